@@ -1,0 +1,189 @@
+"""Flight through the air: gravity, drag, Magnus lift, spin decay and wind, in 3D.
+
+Frame of the core: right-handed, x along the target line, y to the LEFT, z up (the user-facing
+frame, y to the right, is converted in ``shot.py``). The flight state is seven floats,
+(x, y, z, vx, vy, vz, spin): the spin axis keeps its direction in flight (spin decay only
+shrinks |w|), so it is a parameter, not a state.
+
+This module holds the step only (forces, the RK4 update, and the interpolation used to locate
+an event inside a step); the event handling lives in ``shot.py``. Keeping them apart lets a
+later performance pass step a block of shots in lockstep.
+
+    m dv/dt = -m g z - 1/2 rho A C_D |v_rel| v_rel + 1/2 rho A C_L |v_rel|^2 (w x v_rel)/|w x v_rel|
+    dw/dt   = -k |v_rel| / r w                              (Smits and Smith 1994, k = 2e-5)
+"""
+
+import math
+from typing import NamedTuple
+
+from numba import njit
+
+from mcrun.aero import coefficients
+from mcrun.constants import BALL_AREA_M2, BALL_MASS_KG, BALL_RADIUS_M, G_MPS2, SPIN_DECAY_K
+
+WIND_UNIFORM = 0
+WIND_LOG = 1
+WIND_POWER = 2
+WIND_PROFILES = {"uniform": WIND_UNIFORM, "log": WIND_LOG, "power": WIND_POWER}
+
+
+class FlightParams(NamedTuple):
+    """Everything the flight needs besides its state, in SI and in the core's frame."""
+
+    air_density_kgpm3: float
+    kinematic_viscosity_m2ps: float
+    aero_model: int
+    cd_scale: float
+    cl_scale: float
+    wind_x_mps: float
+    wind_y_mps: float
+    wind_profile: int
+    # Height at which the wind has its given speed, and the profile's parameter: the roughness
+    # length z0 (m) of the log law, or the exponent of the power law.
+    wind_reference_height_m: float
+    wind_profile_parameter: float
+
+
+@njit(cache=True)
+def wind_factor(z, profile, reference_height, parameter):
+    """Wind speed at height z as a fraction of its speed at the reference height."""
+    if profile == WIND_UNIFORM:
+        return 1.0
+    if z <= 0.0:
+        return 0.0
+    if profile == WIND_LOG:
+        if z <= parameter:
+            return 0.0
+        return math.log(z / parameter) / math.log(reference_height / parameter)
+    return (z / reference_height) ** parameter
+
+
+@njit(cache=True)
+def derivatives(vx, vy, vz, spin, z, axis_x, axis_y, axis_z, p, table):
+    """Time derivatives (ax, ay, az, dspin/dt) of the flight state; the spin is |w| about the
+    unit axis (axis_x, axis_y, axis_z)."""
+    f = wind_factor(z, p.wind_profile, p.wind_reference_height_m, p.wind_profile_parameter)
+    ux = vx - f * p.wind_x_mps
+    uy = vy - f * p.wind_y_mps
+    uz = vz
+    speed = math.sqrt(ux * ux + uy * uy + uz * uz)
+    if speed == 0.0:
+        return 0.0, 0.0, -G_MPS2, 0.0
+    spin_ratio = BALL_RADIUS_M * spin / speed
+    reynolds = speed * 2.0 * BALL_RADIUS_M / p.kinematic_viscosity_m2ps
+    cd, cl = coefficients(p.aero_model, spin_ratio, reynolds, table)
+    k = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
+    drag = k * p.cd_scale * cd * speed
+    # Lift along w x v_rel, scaled to |v_rel|^2.
+    lx = axis_y * uz - axis_z * uy
+    ly = axis_z * ux - axis_x * uz
+    lz = axis_x * uy - axis_y * ux
+    norm = math.sqrt(lx * lx + ly * ly + lz * lz)
+    lift = 0.0
+    if norm > 1e-12 * speed:
+        lift = k * p.cl_scale * cl * speed * speed / norm
+    ax = -drag * ux + lift * lx
+    ay = -drag * uy + lift * ly
+    az = -drag * uz + lift * lz - G_MPS2
+    return ax, ay, az, -SPIN_DECAY_K * speed / BALL_RADIUS_M * spin
+
+
+@njit(cache=True)
+def rk4_step(x, y, z, vx, vy, vz, spin, h, axis_x, axis_y, axis_z, p, table):
+    """One classical Runge-Kutta step of size h; returns the new seven-float state."""
+    a1x, a1y, a1z, s1 = derivatives(vx, vy, vz, spin, z, axis_x, axis_y, axis_z, p, table)
+    hh = 0.5 * h
+    v2x = vx + hh * a1x
+    v2y = vy + hh * a1y
+    v2z = vz + hh * a1z
+    a2x, a2y, a2z, s2 = derivatives(
+        v2x, v2y, v2z, spin + hh * s1, z + hh * vz, axis_x, axis_y, axis_z, p, table
+    )
+    v3x = vx + hh * a2x
+    v3y = vy + hh * a2y
+    v3z = vz + hh * a2z
+    a3x, a3y, a3z, s3 = derivatives(
+        v3x, v3y, v3z, spin + hh * s2, z + hh * v2z, axis_x, axis_y, axis_z, p, table
+    )
+    v4x = vx + h * a3x
+    v4y = vy + h * a3y
+    v4z = vz + h * a3z
+    a4x, a4y, a4z, s4 = derivatives(
+        v4x, v4y, v4z, spin + h * s3, z + h * v3z, axis_x, axis_y, axis_z, p, table
+    )
+    w = h / 6.0
+    return (
+        x + w * (vx + 2.0 * v2x + 2.0 * v3x + v4x),
+        y + w * (vy + 2.0 * v2y + 2.0 * v3y + v4y),
+        z + w * (vz + 2.0 * v2z + 2.0 * v3z + v4z),
+        vx + w * (a1x + 2.0 * a2x + 2.0 * a3x + a4x),
+        vy + w * (a1y + 2.0 * a2y + 2.0 * a3y + a4y),
+        vz + w * (a1z + 2.0 * a2z + 2.0 * a3z + a4z),
+        spin + w * (s1 + 2.0 * s2 + 2.0 * s3 + s4),
+    )
+
+
+@njit(cache=True)
+def hermite_root(z0, vz0, z1, vz1, h):
+    """Time in [0, h] where the cubic Hermite interpolant of z(t) crosses zero.
+
+    z0 >= 0 > z1. Newton's method on the cubic, safeguarded by bisection.
+    """
+    lo = 0.0
+    hi = h
+    t = h * z0 / (z0 - z1)
+    for _ in range(30):
+        s = t / h
+        s2 = s * s
+        s3 = s2 * s
+        z = (
+            (2 * s3 - 3 * s2 + 1) * z0
+            + (s3 - 2 * s2 + s) * h * vz0
+            + (-2 * s3 + 3 * s2) * z1
+            + (s3 - s2) * h * vz1
+        )
+        dz = (
+            (6 * s2 - 6 * s) * z0
+            + (3 * s2 - 4 * s + 1) * h * vz0
+            + (-6 * s2 + 6 * s) * z1
+            + (3 * s2 - 2 * s) * h * vz1
+        ) / h
+        if z > 0.0:
+            lo = t
+        else:
+            hi = t
+        if abs(z) < 1e-13:
+            break
+        t_new = t - z / dz if dz != 0.0 else 0.5 * (lo + hi)
+        if not (lo < t_new < hi):
+            t_new = 0.5 * (lo + hi)
+        t = t_new
+    return t
+
+
+@njit(cache=True)
+def make_flight_params(
+    air_density_kgpm3,
+    kinematic_viscosity_m2ps,
+    aero_model,
+    cd_scale,
+    cl_scale,
+    wind_x_mps,
+    wind_right_mps,
+    wind_profile,
+    wind_reference_height_m,
+    wind_profile_parameter,
+):
+    """FlightParams from the user's frame (wind positive to the right) to the core's (y left)."""
+    return FlightParams(
+        air_density_kgpm3,
+        kinematic_viscosity_m2ps,
+        aero_model,
+        cd_scale,
+        cl_scale,
+        wind_x_mps,
+        -wind_right_mps,
+        wind_profile,
+        wind_reference_height_m,
+        wind_profile_parameter,
+    )

@@ -1,0 +1,162 @@
+"""Roll: from the last hop to rest, on a ground plane that may slope.
+
+Two phases (Penner 2002 section 2 and physics.md):
+- slide: while the contact point slips (u = v + w x (-r n) != 0, e.g. backspin kept by a sliding
+  bounce), kinetic friction mu g cos(beta) opposes the slip; the slip changes at
+  g_t - (7/2) mu g cos(beta) u_hat and the velocity at g_t - mu g cos(beta) u_hat.
+- roll: rolling without slipping, a = (5/7) (g_t - rho_g g cos(beta) v_hat), eq. (9) plus the
+  pull of gravity g_t = g sin(beta) down the fall line.
+
+Each step holds the direction of u (or v) fixed, which is exact on level ground: there a single
+step runs each phase to its end. On a slope the steps are ROLL_DT_S long. A ball on a slope
+steeper than atan(rho_g) never stops: the bounds in ``status`` end it with NOT_STOPPED.
+"""
+
+import math
+
+from numba import njit
+
+from mcrun.constants import BALL_RADIUS_M, G_MPS2
+from mcrun.status import MAX_ROLL_DISTANCE_M, MAX_ROLL_TIME_S, NOT_STOPPED, OK
+from mcrun.trajectory import ROLL, record
+
+ROLL_DT_S = 0.01
+
+
+@njit(cache=True)
+def _record_segment(traj, n, t_next, dt_record, t0, h, px, py, pz, vx, vy, vz, ax, ay, az):
+    """Record the points of the trajectory grid that fall inside [t0, t0 + h)."""
+    if traj.shape[0] == 0:
+        return n, t_next
+    while t_next < t0 + h:
+        s = t_next - t0
+        n = record(
+            traj,
+            n,
+            t_next,
+            px + vx * s + 0.5 * ax * s * s,
+            py + vy * s + 0.5 * ay * s * s,
+            pz + vz * s + 0.5 * az * s * s,
+            ROLL,
+        )
+        t_next += dt_record
+    return n, t_next
+
+
+@njit(cache=True)
+def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_next, dt_record):
+    """Slide, then roll, from a point on the ground plane until the ball stops.
+
+    The velocity must lie in the plane. Trajectory points are recorded at the times t_next,
+    t_next + dt_record, ... Returns (px, py, pz, t_end, status, n) with n the next row of the
+    trajectory buffer.
+    """
+    # Gravity along the plane (towards the fall line) and across it.
+    g_n = G_MPS2 * nz
+    gx = g_n * nx
+    gy = g_n * ny
+    gz = g_n * nz - G_MPS2
+    g_t = math.sqrt(gx * gx + gy * gy + gz * gz)
+    h_max = ROLL_DT_S if g_t > 0.0 else MAX_ROLL_TIME_S
+    # A step that passes within this distance of zero slip (or speed) ends the phase there;
+    # on level ground the fixed-direction step passes exactly through zero.
+    snap = 2.0 * g_t * ROLL_DT_S + 1e-9
+    x0 = px
+    y0 = py
+    t = t0
+    # Slip of the contact point at -r n.
+    ux = vx + (wy * (-BALL_RADIUS_M * nz) - wz * (-BALL_RADIUS_M * ny))
+    uy = vy + (wz * (-BALL_RADIUS_M * nx) - wx * (-BALL_RADIUS_M * nz))
+    uz = vz + (wx * (-BALL_RADIUS_M * ny) - wy * (-BALL_RADIUS_M * nx))
+    k_slide = turf.mu * g_n
+    while True:
+        u = math.sqrt(ux * ux + uy * uy + uz * uz)
+        if u <= 1e-12:
+            break
+        if t - t0 > MAX_ROLL_TIME_S:
+            return px, py, pz, t, NOT_STOPPED, n
+        avx = gx - k_slide * ux / u
+        avy = gy - k_slide * uy / u
+        avz = gz - k_slide * uz / u
+        aux = gx - 3.5 * k_slide * ux / u
+        auy = gy - 3.5 * k_slide * uy / u
+        auz = gz - 3.5 * k_slide * uz / u
+        h = h_max
+        done = False
+        a2 = aux * aux + auy * auy + auz * auz
+        t_min = -(ux * aux + uy * auy + uz * auz) / a2
+        if 0.0 < t_min <= h:
+            rx = ux + aux * t_min
+            ry = uy + auy * t_min
+            rz = uz + auz * t_min
+            if rx * rx + ry * ry + rz * rz <= snap * snap:
+                h = t_min
+                done = True
+        n, t_next = _record_segment(
+            traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, avx, avy, avz
+        )
+        px += vx * h + 0.5 * avx * h * h
+        py += vy * h + 0.5 * avy * h * h
+        pz += vz * h + 0.5 * avz * h * h
+        vx += avx * h
+        vy += avy * h
+        vz += avz * h
+        ux += aux * h
+        uy += auy * h
+        uz += auz * h
+        t += h
+        if done:
+            # Friction removes what slip is left: dv = -(2/7) u brings u to zero.
+            vx -= (2.0 / 7.0) * ux
+            vy -= (2.0 / 7.0) * uy
+            vz -= (2.0 / 7.0) * uz
+            break
+    k_roll = turf.rho_g * g_n
+    snap = (5.0 / 7.0) * snap
+    static = g_t <= k_roll  # tan(beta) <= rho_g: a ball at rest stays at rest
+    while True:
+        if t - t0 > MAX_ROLL_TIME_S or math.hypot(px - x0, py - y0) > MAX_ROLL_DISTANCE_M:
+            return px, py, pz, t, NOT_STOPPED, n
+        v = math.sqrt(vx * vx + vy * vy + vz * vz)
+        if v <= 1e-12:
+            if static:
+                break
+            # At rest on a slope too steep to hold it: it starts down the fall line.
+            dx = gx / g_t
+            dy = gy / g_t
+            dz = gz / g_t
+        else:
+            dx = vx / v
+            dy = vy / v
+            dz = vz / v
+        ax = (5.0 / 7.0) * (gx - k_roll * dx)
+        ay = (5.0 / 7.0) * (gy - k_roll * dy)
+        az = (5.0 / 7.0) * (gz - k_roll * dz)
+        h = h_max
+        done = False
+        a2 = ax * ax + ay * ay + az * az
+        t_min = -(vx * ax + vy * ay + vz * az) / a2 if a2 > 0.0 else -1.0
+        if 0.0 < t_min <= h:
+            rx = vx + ax * t_min
+            ry = vy + ay * t_min
+            rz = vz + az * t_min
+            if rx * rx + ry * ry + rz * rz <= snap * snap:
+                h = t_min
+                done = True
+        n, t_next = _record_segment(
+            traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
+        )
+        px += vx * h + 0.5 * ax * h * h
+        py += vy * h + 0.5 * ay * h * h
+        pz += vz * h + 0.5 * az * h * h
+        vx += ax * h
+        vy += ay * h
+        vz += az * h
+        t += h
+        if done:
+            vx = 0.0
+            vy = 0.0
+            vz = 0.0
+            if static:
+                break
+    return px, py, pz, t, OK, n

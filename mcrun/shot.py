@@ -1,0 +1,267 @@
+"""The whole shot, from launch to rest, as one njit kernel on plain floats.
+
+``simulate_shot`` is what the Monte Carlo engine runs in ``prange``: no Python objects, no
+allocation per step, a status code instead of an exception. It flies the ball with fixed RK4
+steps (``flight.py``), locates the landing inside the last step, then hands over to the
+event-driven part: bounces (``bounce.py``) as exact ballistic hops until the next hop would be
+lower than the turf's critical height, then the slide and roll (``roll.py``).
+
+Frames: the kernel's inputs and outputs are in the user's frame, x along the target line, y to
+the RIGHT, z up (azimuth, spin axis, wind and slope direction positive to the right). Inside it
+runs in the right-handed frame with y to the left; the conversion happens here and in
+``flight.make_flight_params`` only.
+
+Hops fly without air (the paper's bounce heights, e.g. 2.82 m, are the vacuum values
+v_n^2 / 2g; drag over a hop of under 10 m/s changes it by a few per cent) and keep their spin.
+"""
+
+import math
+
+from numba import njit
+
+from mcrun.bounce import bounce, hop_height
+from mcrun.constants import G_MPS2
+from mcrun.flight import hermite_root, rk4_step
+from mcrun.launch import initial_state
+from mcrun.roll import roll
+from mcrun.status import (
+    INVALID_INPUT,
+    MAX_BOUNCES,
+    MAX_FLIGHT_TIME_S,
+    NOT_LANDED,
+    OK,
+    TOO_MANY_BOUNCES,
+)
+from mcrun.trajectory import BOUNCE, FLIGHT, ROLL, record
+
+# The default flight step: RK4 at 10 ms puts carry within 1e-6 m of a DOP853 reference
+# (tests/test_accuracy.py).
+DEFAULT_DT_S = 0.01
+
+OUTCOME_FIELDS = (
+    "launch_speed_mps",
+    "launch_angle_deg",
+    "launch_spin_radps",
+    "carry_m",
+    "carry_lateral_m",
+    "apex_m",
+    "flight_time_s",
+    "landing_speed_mps",
+    "landing_angle_deg",
+    "landing_spin_radps",
+    "bounces",
+    "first_bounce_height_m",
+    "first_bounce_length_m",
+    "run_m",
+    "total_m",
+    "final_x_m",
+    "final_y_m",
+    "total_time_s",
+    "status",
+)
+(
+    LAUNCH_SPEED,
+    LAUNCH_ANGLE,
+    LAUNCH_SPIN,
+    CARRY,
+    CARRY_LATERAL,
+    APEX,
+    FLIGHT_TIME,
+    LANDING_SPEED,
+    LANDING_ANGLE,
+    LANDING_SPIN,
+    BOUNCES,
+    FIRST_BOUNCE_HEIGHT,
+    FIRST_BOUNCE_LENGTH,
+    RUN,
+    TOTAL,
+    FINAL_X,
+    FINAL_Y,
+    TOTAL_TIME,
+    STATUS,
+) = range(len(OUTCOME_FIELDS))
+N_OUTCOME = len(OUTCOME_FIELDS)
+
+
+@njit(cache=True)
+def _fail(out, i, status):
+    for k in range(3, N_OUTCOME):
+        out[i, k] = math.nan
+    out[i, STATUS] = status
+
+
+@njit(cache=True)
+def simulate_shot(
+    speed,
+    launch_angle,
+    azimuth,
+    spin,
+    spin_axis,
+    p,
+    turf,
+    slope,
+    fall_line,
+    dt,
+    table,
+    out,
+    i,
+    traj,
+):
+    """Simulate one shot and write its outcome into ``out[i, :]`` (fields ``OUTCOME_FIELDS``).
+
+    Parameters
+    ----------
+    speed, launch_angle, azimuth, spin, spin_axis : float
+        Ball speed (m/s), vertical launch angle above the horizontal (rad), horizontal launch
+        angle (rad, positive right), total spin (rad/s) and spin axis tilt (rad, positive curves
+        right), as a launch monitor reports them.
+    p : FlightParams
+        Air, wind and aerodynamic model (``flight.make_flight_params``).
+    turf : Turf
+        The ground the ball lands on.
+    slope, fall_line : float
+        Slope of the landing area (rad) and the direction it falls towards (rad from the target
+        line, positive right). The ground is the plane of that slope through the landing point.
+    dt : float
+        Flight step (s).
+    table : ndarray
+        ``aero.QUADRATIC_COEFFICIENTS``.
+    out : ndarray, shape (n, N_OUTCOME)
+    i : int
+        Row of ``out`` to write.
+    traj : ndarray, shape (m, 5)
+        Trajectory buffer (t, x, y, z, phase), filled every ``dt``; shape (0, 5) records nothing.
+
+    Returns
+    -------
+    int
+        Number of trajectory points the shot has (more than ``traj`` holds if it was too short).
+    """
+    out[i, LAUNCH_SPEED] = speed
+    out[i, LAUNCH_ANGLE] = math.degrees(launch_angle)
+    out[i, LAUNCH_SPIN] = spin
+    inputs = speed + launch_angle + azimuth + spin + spin_axis + slope + fall_line + dt
+    if not (
+        math.isfinite(inputs)
+        and speed > 0.0
+        and spin >= 0.0
+        and dt > 0.0
+        and 0.0 <= slope < 0.5 * math.pi
+    ):
+        _fail(out, i, INVALID_INPUT)
+        return 0
+    vx, vy, vz, ax, ay, az, w = initial_state(speed, launch_angle, azimuth, spin, spin_axis)
+    x = 0.0
+    y = 0.0
+    z = 0.0
+    t = 0.0
+    apex = 0.0
+    n = record(traj, 0, t, x, y, z, FLIGHT)
+    while True:
+        if t > MAX_FLIGHT_TIME_S:
+            _fail(out, i, NOT_LANDED)
+            return n
+        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step(x, y, z, vx, vy, vz, w, dt, ax, ay, az, p, table)
+        if z1 < 0.0:
+            break
+        if vz > 0.0 and vz1 <= 0.0:
+            # Apex inside the step, taking vz linear in time.
+            apex = max(apex, z + 0.5 * vz * dt * vz / (vz - vz1))
+        apex = max(apex, z1)
+        x, y, z, vx, vy, vz, w = x1, y1, z1, vx1, vy1, vz1, w1
+        t += dt
+        n = record(traj, n, t, x, y, z, FLIGHT)
+    # Landing: root of the cubic Hermite interpolant of z, then an RK4 step of that length from
+    # the start of the step, refined by one Newton step on z.
+    h = hermite_root(z, vz, z1, vz1, dt)
+    for _ in range(2):
+        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step(x, y, z, vx, vy, vz, w, h, ax, ay, az, p, table)
+        if vz1 < 0.0:
+            h = min(max(h - z1 / vz1, 0.0), dt)
+    x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step(x, y, z, vx, vy, vz, w, h, ax, ay, az, p, table)
+    x, y, z, vx, vy, vz, w = x1, y1, 0.0, vx1, vy1, vz1, w1
+    t += h
+    n = record(traj, n, t, x, y, z, FLIGHT)
+    out[i, CARRY] = x
+    out[i, CARRY_LATERAL] = -y
+    out[i, APEX] = apex
+    out[i, FLIGHT_TIME] = t
+    out[i, LANDING_SPEED] = math.sqrt(vx * vx + vy * vy + vz * vz)
+    out[i, LANDING_ANGLE] = math.degrees(math.atan2(math.hypot(vx, vy), -vz))
+    out[i, LANDING_SPIN] = w
+
+    # The ground: the plane of the given slope through the landing point. The fall line in the
+    # core's frame is (cos a, -sin a, 0); the normal tilts towards it.
+    sb = math.sin(slope)
+    nx = sb * math.cos(fall_line)
+    ny = -sb * math.sin(fall_line)
+    nz = math.cos(slope)
+    wx = w * ax
+    wy = w * ay
+    wz = w * az
+    landing_x = x
+    first_height = 0.0
+    first_length = 0.0
+    bounces = 0
+    t_next = t + dt
+    while True:
+        vx, vy, vz, wx, wy, wz, theta_c, e, mu_c, rolling = bounce(
+            vx, vy, vz, wx, wy, wz, nx, ny, nz, turf
+        )
+        height = hop_height(vx, vy, vz, nx, ny, nz)
+        if height < turf.critical_height_m:
+            break
+        if bounces == MAX_BOUNCES:
+            _fail(out, i, TOO_MANY_BOUNCES)
+            return n
+        # Exact ballistic hop back to the plane: n.(v T - g z T^2 / 2) = 0.
+        hop_time = 2.0 * (vx * nx + vy * ny + vz * nz) / (G_MPS2 * nz)
+        while t_next < t + hop_time:
+            s = t_next - t
+            n = record(
+                traj, n, t_next, x + vx * s, y + vy * s, z + vz * s - 0.5 * G_MPS2 * s * s, BOUNCE
+            )
+            t_next += dt
+        x1 = x + vx * hop_time
+        if bounces == 0:
+            first_height = height
+            first_length = x1 - x
+        x = x1
+        y += vy * hop_time
+        z += vz * hop_time - 0.5 * G_MPS2 * hop_time * hop_time
+        vz -= G_MPS2 * hop_time
+        t += hop_time
+        bounces += 1
+    # The ball stays on the ground: keep the velocity along the plane.
+    vn = vx * nx + vy * ny + vz * nz
+    x, y, z, t, status, n = roll(
+        x,
+        y,
+        z,
+        vx - vn * nx,
+        vy - vn * ny,
+        vz - vn * nz,
+        wx,
+        wy,
+        wz,
+        nx,
+        ny,
+        nz,
+        turf,
+        t,
+        traj,
+        n,
+        t_next,
+        dt,
+    )
+    n = record(traj, n, t, x, y, z, ROLL)
+    out[i, BOUNCES] = bounces
+    out[i, FIRST_BOUNCE_HEIGHT] = first_height
+    out[i, FIRST_BOUNCE_LENGTH] = first_length
+    out[i, RUN] = x - landing_x
+    out[i, TOTAL] = x
+    out[i, FINAL_X] = x
+    out[i, FINAL_Y] = -y
+    out[i, TOTAL_TIME] = t
+    out[i, STATUS] = status if status != OK else OK
+    return n

@@ -1,0 +1,90 @@
+"""Turf: what the bounce and the roll need to know about the ground, and the presets.
+
+The paper's green and firm green are Penner (2002); fairway and rough are ENGINEERING
+ESTIMATES (no published bounce measurements exist for them), labelled so in ``PRESETS``.
+"""
+
+from typing import NamedTuple
+
+from mcrun.constants import G_MPS2
+
+# Stimpmeter: the ball leaves the ramp at 1.83 m/s (USGA); a green of reading S_t (m)
+# decelerates a rolling ball at a = v0^2 / (2 S_t).
+STIMP_LAUNCH_SPEED_MPS = 1.83
+
+
+class Turf(NamedTuple):
+    """A turf, in SI. ``e_*`` are the coefficients of Penner (2002) eq. (5)."""
+
+    mu: float  # ball-turf kinetic friction
+    softness: float  # scale on theta_c of eq. (8); 1 = the paper's green
+    e0: float  # e = e0 + e1 |v| + e2 |v|^2 for |v| <= e_break_speed_mps (5a)
+    e1: float
+    e2: float
+    e_break_speed_mps: float
+    e_high: float  # e above the break speed (5b)
+    rho_g: float  # rolling resistance of eq. (9)
+    critical_height_m: float  # below this hop height the ball rolls
+
+
+def rho_g_from_stimp(stimp_m):
+    """Rolling resistance rho_g of a green with Stimpmeter reading ``stimp_m`` (metres).
+
+    a = v0^2 / (2 S_t) and a = (5/7) rho_g g (Penner 2002 eq. 9), so rho_g = (7/5) a / g.
+    The paper's rho_g = 0.131 is a Stimp of 1.82 m (6.0 ft), a slow green.
+    """
+    if not stimp_m > 0:
+        raise ValueError(f"a Stimpmeter reading must be positive, got {stimp_m} m")
+    return 1.4 * STIMP_LAUNCH_SPEED_MPS**2 / (2.0 * stimp_m) / G_MPS2
+
+
+def stimp_from_rho_g(rho_g):
+    """Stimpmeter reading (m) of a green with rolling resistance rho_g."""
+    return 1.4 * STIMP_LAUNCH_SPEED_MPS**2 / (2.0 * rho_g * G_MPS2)
+
+
+# Penner (2002) eq. (5): e(v) measured on relatively soft turf (Penner 2001).
+_PAPER_E = dict(e0=0.510, e1=-0.0375, e2=0.000903, e_break_speed_mps=20.0, e_high=0.120)
+
+PRESETS = {
+    # Penner (2002): mu 0.40 (Daish), rho_g 0.131, h_c 5 mm, theta_c from eq. (8).
+    "green": Turf(mu=0.40, softness=1.0, rho_g=0.131, critical_height_m=0.005, **_PAPER_E),
+    # Penner (2002) Fig. 8: the firm tournament green, mu 0.25, all else as the green.
+    "firm_green": Turf(mu=0.25, softness=1.0, rho_g=0.131, critical_height_m=0.005, **_PAPER_E),
+    # ESTIMATE: fairway. rho_g 0.20 (a Stimp of about 1.19 m, 3.9 ft: fairways are mown
+    # longer than greens); bounce as the paper's green.
+    "fairway": Turf(mu=0.40, softness=1.0, rho_g=0.20, critical_height_m=0.005, **_PAPER_E),
+    # ESTIMATE: rough. rho_g 0.50 (a Stimp of about 0.48 m, 1.6 ft), more friction, and a
+    # softer surface (theta_c x 1.5: the ball sinks deeper into long grass).
+    "rough": Turf(mu=0.60, softness=1.5, rho_g=0.50, critical_height_m=0.005, **_PAPER_E),
+}
+
+ESTIMATED_PRESETS = ("fairway", "rough")
+
+
+def turf_preset(name):
+    """The preset called ``name``; ValueError naming the choices."""
+    try:
+        return PRESETS[name]
+    except KeyError:
+        raise ValueError(f"unknown turf '{name}': choose one of {', '.join(PRESETS)}") from None
+
+
+def check_turf(turf):
+    """ValueError with one line naming the first out-of-range field of ``turf``."""
+    limits = {
+        "mu": (0.0, 2.0),
+        "softness": (0.0, 5.0),
+        "e_break_speed_mps": (0.0, 200.0),
+        "e_high": (0.0, 1.0),
+        "rho_g": (0.0, 5.0),
+        "critical_height_m": (0.0, 1.0),
+    }
+    for field, (lo, hi) in limits.items():
+        value = getattr(turf, field)
+        if not lo <= value <= hi:
+            raise ValueError(f"turf {field} = {value} is outside [{lo}, {hi}]")
+    for field in ("e0", "e1", "e2"):
+        if not abs(getattr(turf, field)) < 10.0:
+            raise ValueError(f"turf {field} = {getattr(turf, field)} is not a finite coefficient")
+    return turf

@@ -1,0 +1,399 @@
+"""User-given quantities with optional units, read into SI floats.
+
+The physics core works in SI only; this module is the edge where numbers typed by a user (command
+line options, scenario files, CSV columns) become SI floats, and where SI results go back out.
+
+A quantity is a number with an optional unit, e.g. ``"167mph"``, ``"167 mph"``, ``"74.3"``,
+``"74.3 m/s"``. Unit names are case-insensitive and spaces inside them are ignored. A bare number
+is taken in the kind's *bare unit*, which is SI except for two golf conventions:
+
+- angles: a bare number is in **degrees** (``"12"`` is 12 deg, not 12 rad);
+- temperatures: a bare number is in **degrees Celsius** (``"20"`` is 293.15 K).
+
+Kinds and their SI units: speed (m/s), angle (rad), spin (rad/s), length (m), mass (kg),
+temperature (K), pressure (Pa), fraction (dimensionless, 1 = 100 %).
+"""
+
+import math
+import numbers
+import re
+
+__all__ = [
+    "KINDS",
+    "UnitError",
+    "from_column_name",
+    "parse_quantity",
+    "parse_vector",
+    "to_unit",
+]
+
+
+class UnitError(ValueError):
+    """A quantity given by the user cannot be read; the message is one line meant for the user."""
+
+
+_DEG = math.pi / 180.0
+_REV = 2.0 * math.pi
+_F_FACTOR = 5.0 / 9.0
+
+KINDS: dict[str, tuple[str, dict[str, tuple[float, float]]]] = {
+    # kind: (bare unit, {unit: (factor, offset)}), SI value = number * factor + offset.
+    "speed": (
+        "m/s",
+        {
+            "mph": (0.44704, 0.0),  # exact: 1609.344 m / 3600 s
+            "m/s": (1.0, 0.0),
+            "km/h": (1.0 / 3.6, 0.0),
+            "ft/s": (0.3048, 0.0),
+            "kn": (1852.0 / 3600.0, 0.0),  # international knot, exact
+        },
+    ),
+    "angle": ("deg", {"deg": (_DEG, 0.0), "rad": (1.0, 0.0)}),
+    "spin": ("rad/s", {"rad/s": (1.0, 0.0), "rpm": (_REV / 60.0, 0.0), "rps": (_REV, 0.0)}),
+    "length": (
+        "m",
+        {
+            "m": (1.0, 0.0),
+            "cm": (0.01, 0.0),
+            "mm": (0.001, 0.0),
+            "yd": (0.9144, 0.0),  # exact (international yard, 1959)
+            "ft": (0.3048, 0.0),
+            "in": (0.0254, 0.0),
+        },
+    ),
+    "mass": ("kg", {"kg": (1.0, 0.0), "g": (0.001, 0.0), "oz": (0.028349523125, 0.0)}),
+    "temperature": (
+        "C",
+        {
+            "C": (1.0, 273.15),
+            "F": (_F_FACTOR, 273.15 - 32.0 * _F_FACTOR),
+            "K": (1.0, 0.0),
+        },
+    ),
+    "pressure": (
+        "Pa",
+        {
+            "Pa": (1.0, 0.0),
+            "hPa": (100.0, 0.0),
+            "mbar": (100.0, 0.0),
+            "kPa": (1000.0, 0.0),
+            "inHg": (3386.389, 0.0),  # at 0 C, the unit of US altimeter settings
+            "atm": (101325.0, 0.0),
+        },
+    ),
+    "fraction": ("fraction", {"fraction": (1.0, 0.0), "%": (0.01, 0.0)}),
+}
+"""Kind -> (bare unit, {unit: (factor, offset)}); SI value = number * factor + offset."""
+
+# Other spellings of the units in KINDS, per kind: alias -> unit. Matched case-insensitively.
+_ALIASES: dict[str, dict[str, str]] = {
+    "speed": {
+        "mps": "m/s",
+        "kph": "km/h",
+        "kmh": "km/h",
+        "fps": "ft/s",
+        "knot": "kn",
+        "knots": "kn",
+    },
+    "angle": {"degree": "deg", "degrees": "deg", "°": "deg", "radian": "rad", "radians": "rad"},
+    "spin": {"radps": "rad/s", "rev/s": "rps"},
+    "length": {
+        "yard": "yd",
+        "yards": "yd",
+        "feet": "ft",
+        "foot": "ft",
+        "inch": "in",
+        "inches": "in",
+    },
+    "mass": {},
+    "temperature": {
+        "degC": "C",
+        "°C": "C",
+        "celsius": "C",
+        "degF": "F",
+        "°F": "F",
+        "fahrenheit": "F",
+        "kelvin": "K",
+    },
+    "pressure": {},
+    "fraction": {"percent": "%", "pct": "%"},
+}
+
+# Human wording of the bare unit, where the unit name alone would read badly in a message.
+_BARE_WORDS = {
+    "angle": "degrees",
+    "temperature": "degrees Celsius",
+    "fraction": "a fraction (0.5 = 50%)",
+}
+
+# Column-name suffix token -> (kind, unit in KINDS).
+_COLUMN_SUFFIXES: dict[str, tuple[str, str]] = {
+    "mps": ("speed", "m/s"),
+    "mph": ("speed", "mph"),
+    "kph": ("speed", "km/h"),
+    "fps": ("speed", "ft/s"),
+    "deg": ("angle", "deg"),
+    "rad": ("angle", "rad"),
+    "radps": ("spin", "rad/s"),
+    "rpm": ("spin", "rpm"),
+    "m": ("length", "m"),
+    "cm": ("length", "cm"),
+    "mm": ("length", "mm"),
+    "yd": ("length", "yd"),
+    "ft": ("length", "ft"),
+    "kg": ("mass", "kg"),
+    "g": ("mass", "g"),
+    "c": ("temperature", "C"),
+    "f": ("temperature", "F"),
+    "k": ("temperature", "K"),
+    "pa": ("pressure", "Pa"),
+    "hpa": ("pressure", "hPa"),
+    "pct": ("fraction", "%"),
+}
+
+
+def _key(unit: str) -> str:
+    """Lookup key of a unit name: lower case, no whitespace."""
+    return "".join(unit.split()).lower()
+
+
+def _build_lookup() -> dict[str, dict[str, str]]:
+    lookup: dict[str, dict[str, str]] = {}
+    for kind, (bare, units) in KINDS.items():
+        assert bare in units, (kind, bare)
+        table: dict[str, str] = {}
+        names = [(u, u) for u in units] + list(_ALIASES[kind].items())
+        for name, unit in names:
+            assert unit in units, (kind, unit)
+            assert _key(name) not in table, (kind, name)
+            table[_key(name)] = unit
+        lookup[kind] = table
+    return lookup
+
+
+_LOOKUP = _build_lookup()
+
+_NUMBER = re.compile(
+    r"\s*(?P<num>[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(?P<unit>.*?)\s*",
+    re.DOTALL,
+)
+
+
+class _Unreadable(Exception):
+    """Internal: why one value cannot be read (the reason part of a UnitError message)."""
+
+
+def _check_kind(kind: str) -> None:
+    if kind not in KINDS:
+        raise ValueError(f"unknown kind {kind!r}: expected one of {', '.join(KINDS)}")
+
+
+def _unit_list(kind: str) -> str:
+    return ", ".join(KINDS[kind][1])
+
+
+def _expected(kind: str) -> str:
+    bare = _BARE_WORDS.get(kind, KINDS[kind][0])
+    return f"expected a number with an optional unit ({_unit_list(kind)}); a bare number is {bare}"
+
+
+def _article(word: str) -> str:
+    return "an" if word[0] in "aeiou" else "a"
+
+
+def _prefix(name: str | None) -> str:
+    return "" if name is None else " ".join(str(name).split()) + ": "
+
+
+def _shown(value: object) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _read(value: object, kind: str) -> tuple[float, bool]:
+    """Read one quantity; return (SI value, whether a unit was given) or raise _Unreadable."""
+    if isinstance(value, str):
+        match = _NUMBER.fullmatch(value)
+        if match is None:
+            try:
+                number = float(value)  # "nan", "inf", "-Infinity"
+            except ValueError:
+                raise _Unreadable(_expected(kind)) from None
+            if not math.isfinite(number):
+                raise _Unreadable("not a finite number")
+            raise _Unreadable(_expected(kind))  # e.g. "1_000": float() reads it, we do not
+        number = float(match["num"])
+        unit_text = match["unit"]
+        if unit_text:
+            unit = _LOOKUP[kind].get(_key(unit_text))
+            if unit is None:
+                raise _Unreadable(_expected(kind))
+        else:
+            unit = KINDS[kind][0]
+    elif isinstance(value, numbers.Real) and not isinstance(value, bool):
+        try:
+            number = float(value)
+        except OverflowError:
+            raise _Unreadable("not a finite number") from None
+        unit_text = ""
+        unit = KINDS[kind][0]
+    else:
+        raise _Unreadable(f"not a number or a string; {_expected(kind)}")
+    if not math.isfinite(number):
+        raise _Unreadable("not a finite number")
+    factor, offset = KINDS[kind][1][unit]
+    si = number * factor + offset
+    if not math.isfinite(si):
+        raise _Unreadable("the value is too large")
+    return si, bool(unit_text)
+
+
+def parse_quantity(value: str | float, kind: str, name: str | None = None) -> float:
+    """Read a quantity with an optional unit into SI.
+
+    Parameters
+    ----------
+    value : str, int or float
+        E.g. ``"167mph"``, ``"167 mph"``, ``"74.3"``, ``74.3``. Numbers and unitless strings are
+        in the bare unit of `kind` (SI, but degrees for angles and Celsius for temperatures).
+    kind : str
+        A key of `KINDS`: speed, angle, spin, length, mass, temperature, pressure or fraction.
+    name : str, optional
+        Name of the option or field (e.g. ``"--ball-speed"``), put at the start of error messages.
+
+    Returns
+    -------
+    float
+        The value in SI: m/s, rad, rad/s, m, kg, K, Pa, or a dimensionless fraction.
+
+    Raises
+    ------
+    UnitError
+        If the value is malformed, has an unknown unit, or is not finite.
+    """
+    _check_kind(kind)
+    try:
+        return _read(value, kind)[0]
+    except _Unreadable as exc:
+        raise UnitError(
+            f"{_prefix(name)}cannot read {_shown(value)} as {_article(kind)} {kind}: {exc}"
+        ) from None
+
+
+def parse_vector(
+    value: str | tuple | list, kind: str, name: str | None = None, size: int = 2
+) -> tuple[float, ...]:
+    """Read a comma-separated vector of quantities into SI, e.g. a wind ``"10mph,-3mph"``.
+
+    Each component may carry its own unit, but either all components or none must have one, so
+    that ``"10,-3 mph"`` is refused rather than read as 10 m/s and -3 mph.
+
+    Parameters
+    ----------
+    value : str, or sequence of str or numbers
+        E.g. ``"5,0"`` (bare unit), ``"10mph,-3mph"``, ``"10 mph, -3 mph"`` or ``(5.0, 0.0)``.
+    kind : str
+        A key of `KINDS`, as for `parse_quantity`.
+    name : str, optional
+        Name of the option or field, put at the start of error messages.
+    size : int, default 2
+        Number of components required.
+
+    Returns
+    -------
+    tuple of float
+        The `size` components in SI units.
+
+    Raises
+    ------
+    UnitError
+        If the number of components is wrong or a component cannot be read.
+    """
+    _check_kind(kind)
+    if not isinstance(size, int) or size < 1:
+        raise ValueError(f"size must be a positive integer, got {size!r}")
+    head = f"{_prefix(name)}cannot read {_shown(value)} as {_article(kind)} {kind} vector"
+    if isinstance(value, str):
+        parts: list[object] = value.split(",")
+    elif isinstance(value, (tuple, list)):
+        parts = list(value)
+    else:
+        raise UnitError(f"{head}: expected {size} comma-separated components")
+    if len(parts) != size:
+        example = ",".join(["0"] * size)
+        raise UnitError(
+            f"{head}: expected {size} comma-separated components (e.g. {example!r}), "
+            f"got {len(parts)}"
+        )
+    values: list[float] = []
+    with_unit: list[bool] = []
+    for i, part in enumerate(parts, start=1):
+        try:
+            si, has_unit = _read(part, kind)
+        except _Unreadable as exc:
+            raise UnitError(f"{head}: component {i} ({_shown(part)}): {exc}") from None
+        values.append(si)
+        with_unit.append(has_unit)
+    if any(with_unit) and not all(with_unit):
+        raise UnitError(
+            f"{head}: some components have a unit and some do not; give a unit on every "
+            f"component or on none (a bare number is {_BARE_WORDS.get(kind, KINDS[kind][0])})"
+        )
+    return tuple(values)
+
+
+def to_unit(value_si: float, kind: str, unit: str) -> float:
+    """Convert an SI value to a unit, the inverse of `parse_quantity`.
+
+    Parameters
+    ----------
+    value_si : float
+        Value in SI units (m/s, rad, rad/s, m, kg, K, Pa, fraction).
+    kind : str
+        A key of `KINDS`.
+    unit : str
+        A unit of `kind` or one of its aliases, case-insensitive (e.g. ``"mph"``, ``"YD"``).
+
+    Returns
+    -------
+    float
+        The value in `unit`. Non-finite values pass through unchecked.
+
+    Raises
+    ------
+    UnitError
+        If `unit` is not a unit of `kind`.
+    """
+    _check_kind(kind)
+    canonical = _LOOKUP[kind].get(_key(unit)) if isinstance(unit, str) else None
+    if canonical is None:
+        raise UnitError(f"unknown {kind} unit {_shown(unit)}: expected one of {_unit_list(kind)}")
+    factor, offset = KINDS[kind][1][canonical]
+    return (float(value_si) - offset) / factor
+
+
+def from_column_name(column_name: str) -> tuple[str, str, str] | None:
+    """Recognise a unit suffix in a column name.
+
+    Parameters
+    ----------
+    column_name : str
+        E.g. ``"ball_speed_mph"``, ``"spin_rpm"``, ``"carry_yd"``, ``"temperature_c"``. The suffix
+        follows the last underscore and is matched case-insensitively; known suffixes are mps,
+        mph, kph, fps, deg, rad, radps, rpm, m, cm, mm, yd, ft, kg, g, c, f, k, pa, hpa, pct.
+
+    Returns
+    -------
+    tuple of (str, str, str) or None
+        ``(base_name, kind, unit)``, with `unit` the unit's name in `KINDS` (``"mps"`` gives
+        ``"m/s"``, ``"c"`` gives ``"C"``, ``"pct"`` gives ``"%"``), e.g. ``"ball_speed_mph"`` ->
+        ``("ball_speed", "speed", "mph")``. None if there is no recognised suffix or no base.
+    """
+    base, sep, suffix = column_name.strip().rpartition("_")
+    if not sep or not base:
+        return None
+    found = _COLUMN_SUFFIXES.get(suffix.lower())
+    if found is None:
+        return None
+    kind, unit = found
+    return base, kind, unit
