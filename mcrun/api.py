@@ -16,7 +16,7 @@ from mcrun.flight import WIND_PROFILES, make_flight_params
 from mcrun.launch import launch_from_club
 from mcrun.shot import DEFAULT_DT_S, N_OUTCOME, OUTCOME_FIELDS, simulate_shot
 from mcrun.trajectory import PHASE_NAMES
-from mcrun.turf import Turf, check_turf, turf_preset
+from mcrun.turf import Turf, check_turf, rho_g_from_stimp, turf_preset
 
 
 class InputError(ValueError):
@@ -45,7 +45,13 @@ RANGES = {
     "slope_deg": (0.0, 45.0),
     "fall_line_deg": (-360.0, 360.0),
     "dt_s": (1e-4, 0.1),
+    # One impact (bounce_once): angle from the vertical, backspin positive (topspin negative).
+    "impact_angle_deg": (0.0, 89.9),
+    "backspin_radps": (-2000.0, 2000.0),
 }
+
+# Penner (2002) section 3.1: a 200 g driver head.
+DEFAULT_CLUB_MASS_KG = 0.200
 
 # Default parameter of each wind profile: roughness length z0 (m) of the log law over short
 # grass, and the 1/7 exponent of the power law.
@@ -94,9 +100,9 @@ def resolve_turf(turf="green", **overrides):
             raise InputError(str(err)) from None
     overrides = {k: v for k, v in overrides.items() if v is not None}
     stimp_m = overrides.pop("stimp_m", None)
+    if stimp_m is not None and "rho_g" in overrides:
+        raise InputError("give rho_g or a Stimp reading, not both")
     if stimp_m is not None:
-        from mcrun.turf import rho_g_from_stimp
-
         try:
             overrides["rho_g"] = rho_g_from_stimp(float(stimp_m))
         except ValueError as err:
@@ -116,11 +122,12 @@ def launch_conditions(
     launch_angle_deg=None,
     spin_radps=None,
     club_speed_mps=None,
-    club_mass_kg=0.200,
+    club_mass_kg=None,
     loft_deg=None,
 ):
-    """(ball speed m/s, launch angle deg, spin rad/s) from a launch monitor or a club delivery."""
-    club = club_speed_mps is not None or loft_deg is not None
+    """(ball speed m/s, launch angle deg, spin rad/s) from a launch monitor or a club delivery
+    (club mass default DEFAULT_CLUB_MASS_KG, a driver head)."""
+    club = club_speed_mps is not None or loft_deg is not None or club_mass_kg is not None
     ball = ball_speed_mps is not None or launch_angle_deg is not None or spin_radps is not None
     if club and ball:
         raise InputError(
@@ -132,7 +139,9 @@ def launch_conditions(
             raise InputError("a club delivery needs both the club speed and the dynamic loft")
         speed, angle, spin = launch_from_club(
             check_range("club_speed_mps", club_speed_mps),
-            check_range("club_mass_kg", club_mass_kg),
+            check_range(
+                "club_mass_kg", DEFAULT_CLUB_MASS_KG if club_mass_kg is None else club_mass_kg
+            ),
             check_range("loft_deg", loft_deg) * DEG,
         )
         return speed, angle / DEG, spin
@@ -233,7 +242,7 @@ def simulate(
     azimuth_deg=0.0,
     spin_axis_deg=0.0,
     club_speed_mps=None,
-    club_mass_kg=0.200,
+    club_mass_kg=None,
     loft_deg=None,
     turf="green",
     slope_deg=0.0,
@@ -285,6 +294,7 @@ def simulate(
             break
         size = n
     outcome = dict(zip(OUTCOME_FIELDS, (float(v) for v in out[0]), strict=True))
+    outcome["launch_angle_deg"] = angle_deg  # as given, not back from radians
     outcome["bounces"] = int(outcome["bounces"]) if math.isfinite(outcome["bounces"]) else -1
     outcome["status"] = int(outcome["status"])
     frame = None

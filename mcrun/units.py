@@ -11,7 +11,7 @@ is taken in the kind's *bare unit*, which is SI except for two golf conventions:
 - temperatures: a bare number is in **degrees Celsius** (``"20"`` is 293.15 K).
 
 Kinds and their SI units: speed (m/s), angle (rad), spin (rad/s), length (m), mass (kg),
-temperature (K), pressure (Pa), fraction (dimensionless, 1 = 100 %).
+temperature (K), pressure (Pa), fraction (dimensionless, 1 = 100 %), time (s).
 """
 
 import math
@@ -82,6 +82,7 @@ KINDS: dict[str, tuple[str, dict[str, tuple[float, float]]]] = {
         },
     ),
     "fraction": ("fraction", {"fraction": (1.0, 0.0), "%": (0.01, 0.0)}),
+    "time": ("s", {"s": (1.0, 0.0), "ms": (0.001, 0.0)}),
 }
 """Kind -> (bare unit, {unit: (factor, offset)}); SI value = number * factor + offset."""
 
@@ -117,6 +118,7 @@ _ALIASES: dict[str, dict[str, str]] = {
     },
     "pressure": {},
     "fraction": {"percent": "%", "pct": "%"},
+    "time": {"sec": "s", "second": "s", "seconds": "s"},
 }
 
 # Human wording of the bare unit, where the unit name alone would read badly in a message.
@@ -149,6 +151,8 @@ _COLUMN_SUFFIXES: dict[str, tuple[str, str]] = {
     "pa": ("pressure", "Pa"),
     "hpa": ("pressure", "hPa"),
     "pct": ("fraction", "%"),
+    "s": ("time", "s"),
+    "ms": ("time", "ms"),
 }
 
 

@@ -78,6 +78,7 @@ def test_bare_units():
         "temperature": "C",
         "pressure": "Pa",
         "fraction": "fraction",
+        "time": "s",
     }
     for bare, table in KINDS.values():
         assert bare in table

@@ -1,0 +1,371 @@
+"""The command line, ``mcrun shot | bounce | models | turfs``: it must give exactly what the
+Python API gives for the same inputs, reproduce the paper's numbers through its options, and
+turn every bad input into one line ``mcrun: error: ...`` on stderr with exit code 2.
+
+Most tests call ``main([...])`` in the test process; one runs the installed console script.
+"""
+
+import importlib.machinery
+import json
+import math
+import shutil
+import subprocess
+import sys
+import types
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+import mcrun
+from mcrun import aero, api, cli, status, turf
+from mcrun.shot import OUTCOME_FIELDS
+
+MPH = 0.44704  # m/s, exact
+RPM = 2.0 * math.pi / 60.0  # rad/s
+
+# A drive as a launch monitor reports it: 167 mph, 10.9 deg, 2686 rpm (TrackMan 2019 PGA Tour
+# average driver).
+DRIVE_ARGS = ["--ball-speed", "167mph", "--launch", "10.9", "--spin", "2686rpm"]
+DRIVE_KWARGS = dict(
+    ball_speed_mps=167 * MPH, launch_angle_deg=10.9, spin_radps=2686 * RPM
+)  # 74.65568 m/s, 281.277 rad/s
+
+
+def run(capsys, *argv):
+    """(exit code, stdout, stderr) of ``mcrun argv``."""
+    code = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def table(text):
+    """{field: value text} of a printed table (name, value, optional golf units)."""
+    rows = {}
+    for line in text.splitlines():
+        name, value = line.split()[:2]
+        rows[name] = value
+    return rows
+
+
+def assert_outcome_equal(got, expected, rel=1e-9):
+    """Every outcome field of ``got`` (from JSON: null for NaN) equals ``expected``."""
+    assert set(got) == set(OUTCOME_FIELDS) | {"status_name"}
+    for name in OUTCOME_FIELDS:
+        want = expected[name]
+        if isinstance(want, float) and math.isnan(want):
+            assert got[name] is None, name
+        else:
+            assert got[name] == pytest.approx(want, rel=rel, abs=1e-12), name
+
+
+# --- shot ----------------------------------------------------------------------------------------
+
+
+def test_shot_json_equals_api(capsys):
+    """``--ball-speed 167mph --launch 10.9 --spin 2686rpm`` is simulate(74.65568 m/s, 10.9 deg,
+    281.277 rad/s): every field to 1e-9 relative, status ok, nothing on stderr."""
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--json")
+    assert code == 0 and err == ""
+    assert len(out.strip().splitlines()) == 1
+    got = json.loads(out)
+    expected = api.simulate(**DRIVE_KWARGS)
+    assert_outcome_equal(got, expected.outcome)
+    assert got["launch_speed_mps"] == pytest.approx(74.65568, rel=1e-12)
+    assert got["launch_spin_radps"] == pytest.approx(281.2773, rel=1e-6)
+    assert got["status_name"] == "ok" and got["status"] == status.OK
+
+
+def test_shot_table_equals_api(capsys):
+    """The default table shows every outcome field with the API's value to its 3 decimals,
+    and the status by name."""
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS)
+    assert code == 0 and err == ""
+    rows = table(out)
+    expected = api.simulate(**DRIVE_KWARGS).outcome
+    assert set(rows) == set(OUTCOME_FIELDS)
+    for name in OUTCOME_FIELDS:
+        if name == "status":
+            assert rows[name] == "ok"
+        else:
+            assert float(rows[name]) == pytest.approx(expected[name], abs=5.1e-4), name
+    assert "(167.0 mph)" in out and "(2686 rpm)" in out
+
+
+def test_shot_club_delivery_driver_55_mps(capsys):
+    """Penner (2001) club model, driver M = 0.200 kg, loft 13.3 deg, 55 m/s (targets.md):
+    ball launch 74.3 m/s, about 10.7 deg, 397 rad/s, each within 1 %."""
+    code, out, _ = run(
+        capsys, "shot", "--club-speed", "55", "--club-mass", "0.2", "--loft", "13.3", "--json"
+    )
+    assert code == 0
+    got = json.loads(out)
+    assert got["launch_speed_mps"] == pytest.approx(74.3, rel=0.01)
+    assert got["launch_angle_deg"] == pytest.approx(10.7, rel=0.01)
+    assert got["launch_spin_radps"] == pytest.approx(397.0, rel=0.01)
+    # The default club mass is the driver's 0.200 kg and units are read: 200g, 123.03mph.
+    code, out2, _ = run(
+        capsys, "shot", "--club-speed", "123.0315mph", "--club-mass", "200g", "--loft",
+        "13.3deg", "--json",
+    )  # fmt: skip
+    assert code == 0
+    assert json.loads(out2)["launch_speed_mps"] == pytest.approx(got["launch_speed_mps"], 1e-6)
+
+
+def test_shot_conditions_equal_api(capsys):
+    """Turf, slope, wind (with a leading minus and units), weather and model options reach
+    simulate() as the same SI keyword arguments."""
+    argv = [
+        "shot", *DRIVE_ARGS, "--azimuth", "-2.5deg", "--spin-axis", "4",
+        "--turf", "fairway", "--mu", "0.3", "--stimp", "10ft", "--slope", "2",
+        "--fall-line", "-90", "--aero", "ferguson2022", "--cd-scale", "1.05",
+        "--wind", "-3mph,2mph", "--wind-profile", "log", "--wind-height", "10m",
+        "--wind-param", "3cm", "--temperature", "68F", "--altitude", "1000ft",
+        "--humidity", "30%", "--dt", "0.005", "--json",
+    ]  # fmt: skip
+    code, out, err = run(capsys, *argv)
+    assert code == 0 and err == ""
+    expected = api.simulate(
+        **DRIVE_KWARGS,
+        azimuth_deg=-2.5,
+        spin_axis_deg=4.0,
+        turf=api.resolve_turf("fairway", mu=0.3, stimp_m=3.048),
+        slope_deg=2.0,
+        fall_line_deg=-90.0,
+        aero_model="ferguson2022",
+        cd_scale=1.05,
+        wind_mps=(-3 * MPH, 2 * MPH),
+        wind_profile="log",
+        wind_reference_height_m=10.0,
+        wind_profile_parameter=0.03,
+        temperature_c=20.0,
+        altitude_m=304.8,
+        relative_humidity=0.3,
+        dt_s=0.005,
+    )
+    assert_outcome_equal(json.loads(out), expected.outcome)
+    assert json.loads(out)["carry_lateral_m"] < 0.0  # pushed 2.5 deg left of the target line
+
+
+def test_shot_trajectory_csv(capsys, tmp_path):
+    """``--trajectory FILE`` writes the path (t_s, x_m, y_m, z_m, phase) ending at the rest
+    point the outcome reports."""
+    path = tmp_path / "drive.csv"
+    code, out, _ = run(capsys, "shot", *DRIVE_ARGS, "--trajectory", str(path), "--json")
+    assert code == 0
+    got = json.loads(out)
+    frame = pd.read_csv(path)
+    assert list(frame.columns) == ["t_s", "x_m", "y_m", "z_m", "phase"]
+    assert set(frame["phase"]) == {"flight", "bounce", "roll"}
+    assert frame["x_m"].iloc[-1] == pytest.approx(got["final_x_m"], abs=1e-6)
+    assert frame["t_s"].iloc[-1] == pytest.approx(got["total_time_s"], abs=1e-6)
+
+
+def test_shot_not_stopped_is_reported_not_an_error(capsys):
+    """Uphill 10 deg, steeper than atan(rho_g) = 7.5 deg of the paper's green: the ball never
+    stops. The outcome is printed with its status (exit 0) and one warning line on stderr."""
+    code, out, err = run(
+        capsys, "shot", "--club-speed", "55", "--loft", "13.3", "--slope", "10",
+        "--fall-line", "180", "--json",
+    )  # fmt: skip
+    assert code == 0
+    got = json.loads(out)
+    assert got["status_name"] == "not_stopped" and got["status"] == status.NOT_STOPPED
+    assert got["total_m"] < 0.0  # rolled back down the slope past the tee
+    assert len(err.splitlines()) == 1
+    assert err.startswith("mcrun: warning:") and "not_stopped" in err
+    code, out, err = run(
+        capsys, "shot", "--club-speed", "55", "--loft", "13.3", "--slope", "10",
+        "--fall-line", "180",
+    )  # fmt: skip
+    assert code == 0 and table(out)["status"] == "not_stopped" and len(err.splitlines()) == 1
+
+
+# --- bounce --------------------------------------------------------------------------------------
+
+
+def test_bounce_drive_35_mps_club_json(capsys):
+    """Penner (2002), drive from a 35 m/s club: lands 26.8 m/s at 68.0 deg with 224 rad/s,
+    mu 0.40. Paper: mu_c = 0.23 (within 0.01), leaves rolling, first bounce 2.82 m (1 %)."""
+    code, out, err = run(
+        capsys, "bounce", "--speed", "26.8", "--angle", "68", "--spin", "224", "--json"
+    )
+    assert code == 0 and err == ""
+    got = json.loads(out)
+    assert got["mu_c"] == pytest.approx(0.23, abs=0.01)
+    assert got["mode"] == "rolling"
+    assert got["hop_height_m"] == pytest.approx(2.82, rel=0.01)
+    expected = api.bounce_once(26.8, 68.0, 224.0, turf="green")
+    assert got.pop("mode") == expected.pop("mode")
+    assert got == pytest.approx(expected, rel=1e-9)
+
+
+def test_bounce_nine_iron_firm_green_table(capsys):
+    """Penner (2002) Fig. 8: the 9-iron landing (23.8 m/s at 34.0 deg, 1000 rad/s) on the firm
+    green (mu 0.25 < mu_c 0.33) slides and bounces forward with backspin; critical backspin
+    of eq. (10) 903 rad/s. Units are read: 53.24mph, 9549rpm."""
+    code, out, err = run(
+        capsys, "bounce", "--speed", "53.239mph", "--angle", "34deg", "--spin", "9549.3rpm",
+        "--turf", "green", "--mu", "0.25",
+    )  # fmt: skip
+    assert code == 0 and err == ""
+    rows = table(out)
+    assert rows["mode"] == "sliding"
+    assert float(rows["mu_c"]) == pytest.approx(0.33, abs=0.01)
+    assert float(rows["rebound_angle_deg"]) > 0.0  # forward
+    assert float(rows["rebound_spin_radps"]) > 0.0  # still backspin
+    assert float(rows["critical_backspin_radps"]) == pytest.approx(903.0, rel=0.01)
+
+
+# --- listings ------------------------------------------------------------------------------------
+
+
+def test_models_lists_every_model_and_marks_the_default(capsys):
+    code, out, _ = run(capsys, "models")
+    assert code == 0
+    for name in aero.MODELS:
+        assert name in out
+    assert f"{aero.DEFAULT_MODEL}  (default)" in out
+    code, out, _ = run(capsys, "models", "--json")
+    listed = json.loads(out)
+    assert [m["name"] for m in listed] == list(aero.MODELS)
+    assert [m["name"] for m in listed if m["default"]] == [aero.DEFAULT_MODEL]
+
+
+def test_turfs_lists_presets_and_marks_estimates(capsys):
+    code, out, _ = run(capsys, "turfs", "--json")
+    assert code == 0
+    listed = {t["name"]: t for t in json.loads(out)}
+    assert set(listed) == set(turf.PRESETS)
+    for name, preset in turf.PRESETS.items():
+        assert listed[name]["rho_g"] == preset.rho_g
+        assert (listed[name]["source"] == "estimate") == (name in turf.ESTIMATED_PRESETS)
+    # The paper's rho_g = 0.131 is a Stimp of about 1.82 m (6.0 ft).
+    assert listed["green"]["stimp_m"] == pytest.approx(1.82, abs=0.01)
+    code, out, _ = run(capsys, "turfs")
+    assert code == 0 and len(out.splitlines()) == 1 + len(turf.PRESETS)
+
+
+# --- bad input -----------------------------------------------------------------------------------
+
+BAD_SHOTS = {
+    "nan speed": ["--ball-speed", "nan", "--launch", "10.9", "--spin", "2686rpm"],
+    "speed out of range": ["--ball-speed", "500", "--launch", "10.9", "--spin", "2686rpm"],
+    "unknown unit": ["--ball-speed", "167mpg", "--launch", "10.9", "--spin", "2686rpm"],
+    "unknown turf": [*DRIVE_ARGS, "--turf", "lava"],
+    "unknown model": [*DRIVE_ARGS, "--aero", "nosuch"],
+    "negative spin": ["--ball-speed", "167mph", "--launch", "10.9", "--spin", "-5"],
+    "ball and club": [*DRIVE_ARGS, "--club-speed", "40", "--loft", "13.3"],
+    "missing spin": ["--ball-speed", "167mph", "--launch", "10.9"],
+    "nothing given": [],
+    "half a club": ["--club-speed", "40"],
+    "mixed wind units": [*DRIVE_ARGS, "--wind", "10mph,-3"],
+    "wind too strong": [*DRIVE_ARGS, "--wind", "60,0"],
+    "bad number": [*DRIVE_ARGS, "--mu", "abc"],
+    "bad friction": [*DRIVE_ARGS, "--mu", "-0.1"],
+    "bad wind profile": [*DRIVE_ARGS, "--wind-profile", "sine"],
+    "pressure and altitude": [*DRIVE_ARGS, "--pressure", "1000hPa", "--altitude", "100"],
+    "humidity over 100 %": [*DRIVE_ARGS, "--humidity", "150%"],
+    "temperature unit": [*DRIVE_ARGS, "--temperature", "20X"],
+    "unwritable trajectory": [*DRIVE_ARGS, "--trajectory", "/nonexistent-dir/t.csv"],
+    "unknown option": [*DRIVE_ARGS, "--bogus"],
+    "option without value": [*DRIVE_ARGS, "--wind"],
+}
+
+
+@pytest.mark.parametrize("argv", BAD_SHOTS.values(), ids=BAD_SHOTS.keys())
+def test_bad_shot_input_is_one_line_and_exit_2(capsys, argv):
+    code, out, err = run(capsys, "shot", *argv)
+    assert code == 2
+    assert out == ""
+    assert len(err.splitlines()) == 1
+    assert err.startswith("mcrun: error: ")
+
+
+BAD_BOUNCES = {
+    "angle from the vertical over 90": ["--speed", "26.8", "--angle", "95", "--spin", "224"],
+    "missing angle": ["--speed", "26.8", "--spin", "224"],
+    "unknown turf": ["--speed", "26.8", "--angle", "68", "--spin", "224", "--turf", "lava"],
+    "infinite spin": ["--speed", "26.8", "--angle", "68", "--spin", "inf"],
+}
+
+
+@pytest.mark.parametrize("argv", BAD_BOUNCES.values(), ids=BAD_BOUNCES.keys())
+def test_bad_bounce_input_is_one_line_and_exit_2(capsys, argv):
+    code, out, err = run(capsys, "bounce", *argv)
+    assert (code, out, len(err.splitlines())) == (2, "", 1)
+    assert err.startswith("mcrun: error: ")
+
+
+def test_error_messages_name_the_problem(capsys):
+    """The one line says what is wrong and what is allowed."""
+    _, _, err = run(capsys, "shot", "--ball-speed", "500", "--launch", "10.9", "--spin", "1")
+    assert "ball_speed_mps" in err and "[0.5, 120]" in err
+    _, _, err = run(capsys, "shot", *DRIVE_ARGS, "--turf", "lava")
+    assert "lava" in err and "green" in err
+    _, _, err = run(capsys, "shot", "--ball-speed", "167mpg", "--launch", "10.9", "--spin", "1")
+    assert "--ball-speed" in err and "mph" in err
+
+
+def test_no_command_and_help(capsys):
+    code, out, err = run(capsys)
+    assert (code, out, len(err.splitlines())) == (2, "", 1)
+    code, out, err = run(capsys, "shot", "--help")
+    assert code == 0 and err == ""
+    for text in ("positive to the right", "tailwind", "bare: deg", "bare: m/s", "rpm"):
+        assert text in out
+
+
+def test_installed_console_script_exits_2_without_traceback():
+    """The installed ``mcrun`` script: a NaN ball speed is one error line and exit code 2."""
+    script = shutil.which("mcrun") or str(Path(sys.executable).parent / "mcrun")
+    result = subprocess.run(
+        [script, "shot", "--ball-speed", "nan", "--launch", "10.9", "--spin", "2686rpm"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert result.returncode == 2
+    assert result.stdout == ""
+    assert "Traceback" not in result.stderr
+    assert result.stderr.splitlines() == [
+        "mcrun: error: --ball-speed: cannot read 'nan' as a speed: not a finite number"
+    ]
+
+
+# --- the calibrate hook --------------------------------------------------------------------------
+
+
+def _fake_calibrate(monkeypatch, module):
+    monkeypatch.setitem(sys.modules, "mcrun.calibrate", module)
+    if module is None:
+        monkeypatch.delattr(mcrun, "calibrate", raising=False)
+    else:
+        monkeypatch.setattr(mcrun, "calibrate", module, raising=False)
+
+
+def test_calibrate_module_registers_its_command(capsys, monkeypatch):
+    """Where mcrun.calibrate has register(subparsers), ``mcrun calibrate`` runs its func."""
+    module = types.ModuleType("mcrun.calibrate")
+    module.__spec__ = importlib.machinery.ModuleSpec("mcrun.calibrate", None)
+
+    def register(subparsers):
+        p = subparsers.add_parser("calibrate")
+        p.add_argument("--n", type=int, default=1)
+        p.set_defaults(func=lambda args: print(f"calibrated {args.n}") or 0)
+
+    module.register = register
+    _fake_calibrate(monkeypatch, module)
+    assert run(capsys, "calibrate", "--n", "3") == (0, "calibrated 3\n", "")
+
+
+def test_calibrate_that_cannot_be_imported_is_one_error_line(capsys, monkeypatch):
+    """A calibrate module that exists but cannot be imported (a missing optional dependency)
+    leaves the other commands working and makes ``mcrun calibrate`` a one-line error."""
+    spec = importlib.machinery.ModuleSpec("mcrun.calibrate", None)
+    monkeypatch.setattr(cli.importlib.util, "find_spec", lambda name: spec)
+    _fake_calibrate(monkeypatch, None)  # None in sys.modules: the import raises ImportError
+    code, out, err = run(capsys, "calibrate", "--anything", "-x", "1")
+    assert (code, out, len(err.splitlines())) == (2, "", 1)
+    assert err.startswith("mcrun: error: the calibrate command cannot be loaded")
+    assert run(capsys, "bounce", "--speed", "26.8", "--angle", "68", "--spin", "224")[0] == 0

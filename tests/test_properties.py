@@ -1,0 +1,237 @@
+"""Properties that must hold for every input in the documented ranges (hypothesis).
+
+- a bounce never creates energy (translational plus rotational), in 3D, on tilted ground, for
+  any turf that ``turf.check_turf`` accepts;
+- a shot always ends with a known status, and an "ok" shot has finite outcome fields;
+- mirror symmetry: the mirror image of a shot (spin axis, azimuth, crosswind, fall line
+  negated) lands and stops at the mirror image of its points.
+
+Derandomized with modest example counts, so that CI runs the same cases every time.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from mcrun import status
+from mcrun.aero import MODELS
+from mcrun.api import RANGES, simulate
+from mcrun.bounce import bounce
+from mcrun.constants import BALL_INERTIA_FACTOR, BALL_RADIUS_M
+from mcrun.turf import PRESETS, Turf, check_turf
+
+SETTINGS = settings(
+    max_examples=150,
+    deadline=None,
+    derandomize=True,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+FEW = settings(SETTINGS, max_examples=60)
+
+
+def in_range(name, **kwargs):
+    lo, hi = RANGES[name]
+    return st.floats(lo, hi, allow_nan=False, **kwargs)
+
+
+def unit_vectors():
+    return st.tuples(*(st.floats(-1.0, 1.0),) * 3).filter(lambda v: 1e-3 < np.linalg.norm(v))
+
+
+def turfs():
+    """Any turf inside ``check_turf``'s limits (restitution coefficients as in eq. 5, up to
+    their documented bound)."""
+    return st.builds(
+        Turf,
+        mu=st.floats(0.0, 2.0),
+        softness=st.floats(0.0, 5.0),
+        e0=st.floats(-9.9, 9.9),
+        e1=st.floats(-9.9, 9.9),
+        e2=st.floats(-9.9, 9.9),
+        e_break_speed_mps=st.floats(0.0, 200.0),
+        e_high=st.floats(0.0, 1.0),
+        rho_g=st.floats(0.0, 5.0),
+        critical_height_m=st.floats(0.0, 1.0),
+    ).map(check_turf)
+
+
+def kinetic_energy_per_mass(v, w):
+    """(1/2) |v|^2 + (1/2) (2/5) r^2 |w|^2, per kilogram of ball."""
+    return 0.5 * float(np.dot(v, v)) + 0.5 * BALL_INERTIA_FACTOR * BALL_RADIUS_M**2 * float(
+        np.dot(w, w)
+    )
+
+
+@SETTINGS
+@given(
+    speed=st.floats(0.1, 120.0),
+    direction=unit_vectors(),
+    spin=st.floats(0.0, 2000.0),
+    spin_axis=unit_vectors(),
+    slope_deg=in_range("slope_deg"),
+    fall_line_deg=in_range("fall_line_deg"),
+    turf=turfs(),
+)
+def test_bounce_creates_no_energy(
+    speed, direction, spin, spin_axis, slope_deg, fall_line_deg, turf
+):
+    """Penner's bounce (3D form of eqs. 2-8) never returns more kinetic energy than it got: the
+    normal impulse has e <= 1 and the friction impulse only ever reduces the slip."""
+    slope = math.radians(slope_deg)
+    fall = math.radians(fall_line_deg)
+    n = np.array([math.sin(slope) * math.cos(fall), math.sin(slope) * math.sin(fall)])
+    n = np.append(n, math.cos(slope))
+    v = speed * np.asarray(direction) / np.linalg.norm(direction)
+    if v @ n > 0.0:
+        v = v - 2.0 * (v @ n) * n  # the ball moves into the ground
+    if v @ n > -1e-6 * speed:
+        v = v - 1e-3 * speed * n
+    w = spin * np.asarray(spin_axis) / np.linalg.norm(spin_axis)
+    before = kinetic_energy_per_mass(v, w)
+    out = bounce(*v, *w, *n, turf)
+    after = kinetic_energy_per_mass(np.array(out[0:3]), np.array(out[3:6]))
+    assert all(math.isfinite(x) for x in out[:9])
+    assert after <= before * (1.0 + 1e-12)
+    # The restitution of eq. (5) stays in [0, 1] for any coefficients check_turf accepts.
+    assert 0.0 <= out[7] <= 1.0
+
+
+@FEW
+@given(
+    speed=in_range("ball_speed_mps"),
+    angle=in_range("launch_angle_deg"),
+    azimuth=in_range("azimuth_deg"),
+    spin=in_range("spin_radps"),
+    axis=in_range("spin_axis_deg"),
+    wind=st.tuples(st.floats(-35.0, 35.0), st.floats(-35.0, 35.0)),
+    profile=st.sampled_from(["uniform", "log", "power"]),
+    model=st.sampled_from(sorted(MODELS)),
+    turf=st.sampled_from(sorted(PRESETS)),
+    slope=in_range("slope_deg"),
+    fall_line=in_range("fall_line_deg"),
+    density=in_range("air_density_kgpm3"),
+    dt=st.floats(1e-3, RANGES["dt_s"][1]),
+)
+def test_shot_always_ends_with_a_status(
+    speed, angle, azimuth, spin, axis, wind, profile, model, turf, slope, fall_line, density, dt
+):
+    """Any shot inside ``api.RANGES`` ends with a known status, and an "ok" one has every
+    outcome field finite. (Steps below 1 ms are in range too; they only cost time.)"""
+    out = simulate(
+        ball_speed_mps=speed,
+        launch_angle_deg=angle,
+        azimuth_deg=azimuth,
+        spin_radps=spin,
+        spin_axis_deg=axis,
+        wind_mps=wind,
+        wind_profile=profile,
+        aero_model=model,
+        turf=turf,
+        slope_deg=slope,
+        fall_line_deg=fall_line,
+        air_density_kgpm3=density,
+        dt_s=dt,
+    ).outcome
+    assert out["status"] in status.NAMES
+    if out["status"] == status.OK:
+        assert all(math.isfinite(v) for v in out.values()), out
+
+
+def mirrored(kwargs):
+    m = dict(kwargs)
+    m["spin_axis_deg"] = -kwargs["spin_axis_deg"]
+    m["azimuth_deg"] = -kwargs["azimuth_deg"]
+    m["wind_mps"] = (kwargs["wind_mps"][0], -kwargs["wind_mps"][1])
+    m["fall_line_deg"] = -kwargs["fall_line_deg"]
+    return m
+
+
+def assert_mirror_images(a, b):
+    assert a["status"] == b["status"]
+    for key in ("carry_m", "apex_m", "landing_speed_mps", "run_m", "total_m", "final_x_m"):
+        assert b[key] == pytest.approx(a[key], abs=1e-9), key
+    for key in ("carry_lateral_m", "final_y_m"):
+        assert b[key] == pytest.approx(-a[key], abs=1e-9), key
+    assert b["bounces"] == a["bounces"]
+
+
+@FEW
+@given(
+    speed=st.floats(20.0, 80.0),
+    angle=st.floats(5.0, 45.0),
+    azimuth=in_range("azimuth_deg"),
+    spin=st.floats(100.0, 1200.0),
+    axis=in_range("spin_axis_deg"),
+    wind=st.tuples(st.floats(-15.0, 15.0), st.floats(-15.0, 15.0)),
+    profile=st.sampled_from(["uniform", "log"]),
+    turf=st.sampled_from(["green", "firm_green", "fairway"]),
+)
+def test_mirror_symmetry(speed, angle, azimuth, spin, axis, wind, profile, turf):
+    """Spin axis -a, azimuth -b and crosswind -w give the mirror image of +a, +b, +w: equal
+    carry and total, lateral and final y negated, to 1e-9 m (level ground)."""
+    kwargs = dict(
+        ball_speed_mps=speed,
+        launch_angle_deg=angle,
+        azimuth_deg=azimuth,
+        spin_radps=spin,
+        spin_axis_deg=axis,
+        wind_mps=wind,
+        wind_profile=profile,
+        turf=turf,
+        fall_line_deg=0.0,
+    )
+    assert_mirror_images(simulate(**kwargs).outcome, simulate(**mirrored(kwargs)).outcome)
+
+
+@FEW
+@given(
+    speed=st.floats(20.0, 80.0),
+    angle=st.floats(5.0, 45.0),
+    spin=st.floats(100.0, 1200.0),
+    axis=st.floats(-30.0, 30.0),
+    slope=st.floats(0.0, 2.0),  # see test_ball_stops_on_a_gentle_downhill for steeper ones
+    fall_line=in_range("fall_line_deg"),
+    turf=st.sampled_from(["green", "firm_green", "fairway"]),
+)
+def test_slope_mirror_symmetry(speed, angle, spin, axis, slope, fall_line, turf):
+    """On a slope, the fall line +c and -c (with the spin axis negated too) give mirror-image
+    runs: equal run and total, final y negated, to 1e-9 m."""
+    kwargs = dict(
+        ball_speed_mps=speed,
+        launch_angle_deg=angle,
+        azimuth_deg=0.0,
+        spin_radps=spin,
+        spin_axis_deg=axis,
+        wind_mps=(0.0, 0.0),
+        turf=turf,
+        slope_deg=slope,
+        fall_line_deg=fall_line,
+    )
+    a = simulate(**kwargs).outcome
+    assert a["status"] == status.OK
+    assert_mirror_images(a, simulate(**mirrored(kwargs)).outcome)
+
+
+def test_slope_symmetry_is_not_vacuous():
+    """The slope changes the run, and a fall line to the right moves the ball right: the
+    symmetry above compares different shots, not a slope the kernel ignores."""
+    base = dict(ball_speed_mps=60.0, launch_angle_deg=12.0, spin_radps=300.0, slope_deg=2.0)
+    level = simulate(**{**base, "slope_deg": 0.0}).outcome
+    right = simulate(**base, fall_line_deg=90.0).outcome
+    left = simulate(**base, fall_line_deg=-90.0).outcome
+    assert right["final_y_m"] > 0.1
+    assert left["final_y_m"] == pytest.approx(-right["final_y_m"], abs=1e-9)
+    assert abs(level["final_y_m"]) < 1e-9
+
+
+@pytest.mark.parametrize("slope_deg", [3.0, 5.0])
+def test_ball_stops_on_a_gentle_downhill(slope_deg):
+    """physics.md: only a slope steeper than atan(rho_g) (7.5 deg on the green) keeps the ball
+    going; a drive onto a gentler downhill comes to rest."""
+    out = simulate(
+        ball_speed_mps=70.0, launch_angle_deg=11.0, spin_radps=280.0, slope_deg=slope_deg
+    ).outcome
+    assert out["status"] == status.OK
