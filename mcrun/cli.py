@@ -16,7 +16,7 @@ import re
 import sys
 import textwrap
 
-from mcrun import aero, api, atmosphere, status, turf, units
+from mcrun import aero, api, atmosphere, paper, status, turf, units
 from mcrun.api import InputError
 from mcrun.units import UnitError
 
@@ -565,6 +565,7 @@ def build_parser():
     _add_bounce(subparsers)
     _add_lists(subparsers)
     _add_calibrate(subparsers)
+    paper.register(subparsers)
     return parser
 
 

@@ -106,8 +106,9 @@ def run_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, dt):
     exact ballistic arcs without air until the next hop would be lower than the turf's
     critical height (Penner 2002), or no lower than HOP_DECAY_LIMIT times the hop before
     (ours: hops that no longer die out are a rolling ball); then ``roll.roll``. Trajectory
-    points go into ``traj`` from row n, every dt. Returns (x, y, z, t, status, bounces, first_bounce_height_m, first_bounce_length_m, n)
-    at rest; first_bounce_length_m is measured along x. Status TOO_MANY_BOUNCES leaves the
+    points go into ``traj`` from row n, every dt. Returns (x, y, z, t, status, bounces,
+    first_bounce_height_m, first_bounce_length_m, n) at rest; first_bounce_length_m is
+    measured along x. Status TOO_MANY_BOUNCES leaves the
     position where the bouncing stopped.
     """
     first_height = 0.0
@@ -223,12 +224,20 @@ def simulate_shot(
     out[i, LAUNCH_ANGLE] = math.degrees(launch_angle)
     out[i, LAUNCH_SPIN] = spin
     inputs = speed + launch_angle + azimuth + spin + spin_axis + slope + fall_line + dt
+    inputs += p.cd_scale + p.cl_scale + p.wind_x_mps + p.wind_y_mps + p.wind_profile_parameter
+    inputs += turf.e0 + turf.e1 + turf.e2 + turf.e_break_speed_mps + turf.e_high
     if not (
         math.isfinite(inputs)
         and speed > 0.0
         and spin >= 0.0
         and dt > 0.0
         and 0.0 <= slope < 0.5 * math.pi
+        and p.air_density_kgpm3 > 0.0
+        and p.kinematic_viscosity_m2ps > 0.0
+        and turf.mu >= 0.0
+        and turf.softness >= 0.0
+        and turf.rho_g >= 0.0
+        and turf.critical_height_m > 0.0
     ):
         _fail(out, i, INVALID_INPUT)
         return 0

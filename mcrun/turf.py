@@ -6,6 +6,8 @@ ESTIMATES (no published bounce measurements exist for them), labelled so in ``PR
 
 from typing import NamedTuple
 
+import numpy as np
+
 from mcrun.constants import G_MPS2
 
 # Stimpmeter: the ball leaves the ramp at 1.83 m/s (USGA); a green of reading S_t (m)
@@ -31,9 +33,9 @@ def rho_g_from_stimp(stimp_m):
     """Rolling resistance rho_g of a green with Stimpmeter reading ``stimp_m`` (metres).
 
     a = v0^2 / (2 S_t) and a = (5/7) rho_g g (Penner 2002 eq. 9), so rho_g = (7/5) a / g.
-    The paper's rho_g = 0.131 is a Stimp of 1.82 m (6.0 ft), a slow green.
+    The paper's rho_g = 0.131 is a Stimp of 1.82 m (6.0 ft), a slow green. Accepts arrays.
     """
-    if not stimp_m > 0:
+    if not np.all(np.asarray(stimp_m) > 0):
         raise ValueError(f"a Stimpmeter reading must be positive, got {stimp_m} m")
     return 1.4 * STIMP_LAUNCH_SPEED_MPS**2 / (2.0 * stimp_m) / G_MPS2
 

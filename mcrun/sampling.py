@@ -1,0 +1,471 @@
+"""The deterministic sampler: a scenario point's distributions drawn into the kernel's inputs.
+
+Determinism rule: sample i of a point belongs to block b = i // block_size. Each block has its
+own generator, ``Generator(PCG64(SeedSequence(seed, spawn_key=(point.index, b))))``, which
+draws every random quantity of the point for all block_size samples of the block, in a fixed
+order (sorted key paths). ``sample`` computes the blocks it needs and slices them. So the inputs
+of sample i depend only on (scenario, seed, i): the chunk size and the thread count cannot
+change them, and the first N samples of a longer run are those of a shorter run. Conversions
+(club -> ball launch, weather -> air, wind, Stimp, restitution) are also computed on whole
+blocks, so that every value comes out of the same operation on arrays of the same shape,
+whichever chunk asks for it. Nothing here touches NumPy's global random state.
+
+Conversions at this edge (the kernel sees only SI floats, ``mcrun.batch.INPUT_FIELDS``):
+
+- club delivery -> ball launch with ``mcrun.launch.launch_from_club`` (Penner 2001);
+- temperature, pressure or altitude, humidity -> air density and kinematic viscosity
+  (``mcrun.atmosphere``), as ``mcrun.api.air_properties`` does;
+- wind speed and the direction it blows TOWARDS (0 tailwind, 90 deg left to right) ->
+  (wind_x_mps, wind_right_mps);
+- Stimp reading -> rho_g (``mcrun.turf.rho_g_from_stimp``); restitution scale -> e0, e1, e2
+  and e_high of the preset scaled.
+
+A constant stays a Python float through these conversions (computed once, as the single-shot
+API computes it), so a scenario of constants gives exactly the kernel inputs of
+``mcrun.api.simulate``. A drawn value outside its documented range (``scenario.PARAMETERS``
+limits) makes its shot's ball speed NaN in ``inputs``, so the kernel returns ``invalid_input``
+for that shot; ``sampled`` keeps the value drawn.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from mcrun import aero, atmosphere
+from mcrun.batch import COLUMN, N_INPUT
+from mcrun.constants import DEG
+from mcrun.flight import WIND_PROFILES
+from mcrun.launch import launch_from_club
+from mcrun.scenario import PARAMETERS
+from mcrun.turf import PRESETS, rho_g_from_stimp
+
+__all__ = [
+    "block_generator",
+    "draw_block",
+    "sample",
+    "sampled_columns",
+    "truncnormal_standard",
+]
+
+LAUNCH_COLUMNS = (
+    "ball_speed_mps",
+    "launch_angle_deg",
+    "azimuth_deg",
+    "spin_radps",
+    "spin_axis_deg",
+)
+CLUB_COLUMNS = ("club_speed_mps", "club_mass_kg", "loft_deg")
+FILE_COLUMNS = ("source_row",)
+
+
+def sampled_columns(scenario):
+    """Names of the ``sampled`` columns of every point of ``scenario``, in order.
+
+    The same for all points of a scenario (one Parquet schema): club columns appear when a
+    point uses a club delivery (NaN for the others), ``source_row`` (the row of the measured
+    shot, 0-based, -1 when not resampled) when a point resamples a file, ``altitude_m`` and
+    ``stimp_m`` when a point gives them (NaN otherwise).
+    """
+    modes = {p.mode for p in scenario.points}
+    columns = list(LAUNCH_COLUMNS)
+    if "club" in modes:
+        columns += CLUB_COLUMNS
+    if "file" in modes:
+        columns += FILE_COLUMNS
+    columns += [
+        "wind_speed_mps",
+        "wind_direction_deg",
+        "wind_x_mps",
+        "wind_right_mps",
+        "wind_reference_height_m",
+        "wind_profile_parameter",
+        "temperature_c",
+        "pressure_pa",
+    ]
+    if any("weather.altitude" in p.params for p in scenario.points):
+        columns.append("altitude_m")
+    columns += [
+        "relative_humidity",
+        "air_density_kgpm3",
+        "kinematic_viscosity_m2ps",
+        "mu",
+        "softness",
+        "restitution",
+        "rho_g",
+    ]
+    if any("turf.stimp" in p.params for p in scenario.points):
+        columns.append("stimp_m")
+    columns += ["critical_height_m", "slope_deg", "fall_line_deg", "cd_scale", "cl_scale", "dt_s"]
+    return columns
+
+
+def block_generator(seed, point_index, block):
+    """The generator of block ``block`` of point ``point_index`` of a run with ``seed``."""
+    return np.random.Generator(
+        np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(point_index, block)))
+    )
+
+
+# --- truncated normal by inverse CDF -------------------------------------------------------
+
+# Acklam's rational approximation of the normal quantile (relative error 1.15e-9), refined by
+# one Halley step on erfc to full double precision.
+_A = (-39.69683028665376, 220.9460984245205, -275.9285104469687, 138.3577518672690,
+      -30.66479806614716, 2.506628277459239)  # fmt: skip
+_B = (-54.47609879822406, 161.5858368580409, -155.6989798598866, 66.80131188771972,
+      -13.28068155288572)  # fmt: skip
+_C = (-0.007784894002430293, -0.3223964580411365, -2.400758277161838, -2.549732539343734,
+      4.374664141464968, 2.938163982698783)  # fmt: skip
+_D = (0.007784695709041462, 0.3224671290700398, 2.445134137142996, 3.754408661907416)
+_P_LOW = 0.02425
+_SQRT2 = math.sqrt(2.0)
+_SQRT2PI = math.sqrt(2.0 * math.pi)
+
+
+@njit(cache=True)
+def _ndtr(x):
+    """Standard normal CDF, accurate in the lower tail."""
+    return 0.5 * math.erfc(-x / _SQRT2)
+
+
+@njit(cache=True)
+def _ndtri(p):
+    """Standard normal quantile."""
+    if p <= 0.0:
+        return -math.inf
+    if p >= 1.0:
+        return math.inf
+    if p < _P_LOW:
+        q = math.sqrt(-2.0 * math.log(p))
+        x = (((((_C[0] * q + _C[1]) * q + _C[2]) * q + _C[3]) * q + _C[4]) * q + _C[5]) / (
+            (((_D[0] * q + _D[1]) * q + _D[2]) * q + _D[3]) * q + 1.0
+        )
+    elif p <= 1.0 - _P_LOW:
+        q = p - 0.5
+        r = q * q
+        x = (
+            (((((_A[0] * r + _A[1]) * r + _A[2]) * r + _A[3]) * r + _A[4]) * r + _A[5])
+            * q
+            / (((((_B[0] * r + _B[1]) * r + _B[2]) * r + _B[3]) * r + _B[4]) * r + 1.0)
+        )
+    else:
+        q = math.sqrt(-2.0 * math.log1p(-p))
+        x = -(((((_C[0] * q + _C[1]) * q + _C[2]) * q + _C[3]) * q + _C[4]) * q + _C[5]) / (
+            (((_D[0] * q + _D[1]) * q + _D[2]) * q + _D[3]) * q + 1.0
+        )
+    e = _ndtr(x) - p
+    u = e * _SQRT2PI * math.exp(0.5 * x * x)
+    if math.isfinite(u):
+        x = x - u / (1.0 + 0.5 * x * u)
+    return x
+
+
+@njit(cache=True)
+def truncnormal_standard(a, b, u):
+    """Standard normal truncated to [a, b], by inverse CDF: the ``u``-quantiles (u in [0, 1)).
+
+    An interval above the mean is mirrored into the lower tail, where the CDF keeps its
+    precision."""
+    flip = a > 0.0
+    if flip:
+        a, b = -b, -a
+    fa = _ndtr(a)
+    fb = _ndtr(b)
+    out = np.empty(u.shape[0])
+    for k in range(u.shape[0]):
+        # Mirrored, 1 - u keeps the map increasing: x is the u-quantile either way.
+        p = 1.0 - u[k] if flip else u[k]
+        x = _ndtri(fa + p * (fb - fa))
+        x = min(max(x, a), b)
+        out[k] = -x if flip else x
+    return out
+
+
+# --- drawing a block -------------------------------------------------------------------------
+
+
+def _draw(rng, dist, n):
+    """n draws of a non-constant Dist."""
+    args = dist.args
+    if dist.dist == "normal":
+        return args[0] + args[1] * rng.standard_normal(n)
+    if dist.dist == "truncnormal":
+        mean, sd, low, high = args
+        u = rng.random(n)
+        return mean + sd * truncnormal_standard((low - mean) / sd, (high - mean) / sd, u)
+    if dist.dist == "uniform":
+        return rng.uniform(args[0], args[1], n)
+    if dist.dist == "triangular":
+        return rng.triangular(args[0], args[1], args[2], n)
+    if dist.dist == "lognormal":
+        return args[0] * np.exp(args[1] * rng.standard_normal(n))
+    raise AssertionError(dist.dist)
+
+
+def _random_items(point):
+    """The point's random items, in draw order: (key path, what)."""
+    correlated = set()
+    for key in ("launch.correlation", "club.correlation"):
+        if key in point.params:
+            section = key.partition(".")[0]
+            correlated.update(f"{section}.{n}" for n in point.params[key].names)
+    items = []
+    for key in sorted(point.params):
+        spec = point.params[key]
+        if key in correlated or isinstance(spec, str):
+            continue
+        if key.endswith(".correlation") or key == "launch.file":
+            items.append(key)
+        elif not spec.is_constant:
+            items.append(key)
+    return items
+
+
+def draw_block(scenario, point, block):
+    """The raw draws of one block: {key path: SI array of block_size, or float for a
+    constant}; a resampled file adds ``launch.file.rows`` (int64) and the jittered quantities
+    as ``launch.<quantity>``."""
+    n = scenario.block_size
+    rng = block_generator(scenario.seed, point.index, block)
+    raw = {}
+    for key, spec in point.params.items():
+        if not isinstance(spec, str) and hasattr(spec, "is_constant") and spec.is_constant:
+            raw[key] = float(spec.value)
+    for key in _random_items(point):
+        spec = point.params[key]
+        if key.endswith(".correlation"):
+            section = key.partition(".")[0]
+            z = rng.standard_normal((n, len(spec.names)))
+            for j, name in enumerate(spec.names):
+                # x_j = sum_l F[j, l] z_l, elementwise in a fixed order (no BLAS).
+                x = spec.factor[j, 0] * z[:, 0]
+                for m in range(1, len(spec.names)):
+                    x = x + spec.factor[j, m] * z[:, m]
+                mean, sd = point.params[f"{section}.{name}"].args
+                raw[f"{section}.{name}"] = mean + sd * x
+        elif key == "launch.file":
+            rows = rng.integers(0, spec.n_rows, size=n)
+            raw["launch.file.rows"] = rows
+            for name in sorted(set(spec.columns) | set(spec.jitter)):
+                column = spec.columns.get(name)
+                value = column[rows] if column is not None else np.zeros(n)
+                sd = spec.jitter.get(name)
+                if sd is not None:
+                    value = value + sd * rng.standard_normal(n)
+                raw[f"launch.{name}"] = value
+        else:
+            raw[key] = _draw(rng, spec, n)
+    return raw
+
+
+# --- conversions -------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _launch_from_club_array(club_speed, club_mass, loft):
+    n = club_speed.shape[0]
+    speed = np.empty(n)
+    angle = np.empty(n)
+    spin = np.empty(n)
+    for k in range(n):
+        speed[k], angle[k], spin[k] = launch_from_club(club_speed[k], club_mass[k], loft[k])
+    return speed, angle, spin
+
+
+def _scalar(*values):
+    return all(isinstance(v, float) for v in values)
+
+
+def _club_launch(club_speed, club_mass, loft):
+    """(ball speed, launch angle rad, spin) of a club delivery, as mcrun.api does it: the angle
+    goes through degrees and back (``launch_conditions`` returns degrees)."""
+    if _scalar(club_speed, club_mass, loft):
+        speed, angle, spin = launch_from_club(club_speed, club_mass, loft)
+        return speed, (angle / DEG) * DEG, spin
+    n = max(np.size(v) for v in (club_speed, club_mass, loft))
+    arrays = [np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy() for v in (
+        club_speed, club_mass, loft)]  # fmt: skip
+    speed, angle, spin = _launch_from_club_array(*arrays)
+    return speed, (angle / DEG) * DEG, spin
+
+
+def _air(t_k, pressure, humidity):
+    """(density, kinematic viscosity) as mcrun.api.air_properties computes them."""
+    if _scalar(t_k, humidity) and np.ndim(pressure) == 0:
+        rho = atmosphere.air_density_kgpm3(t_k, float(pressure), humidity)
+    else:
+        rho = atmosphere.air_density_kgpm3(t_k, pressure, humidity)
+    return rho, atmosphere.kinematic_viscosity_m2ps(t_k, rho)
+
+
+def _convert(scenario, point, raw, columns):
+    """(inputs, sampled) of one block from its raw draws."""
+    n = scenario.block_size
+    p = point.params
+    launch = {}
+    sampled = {}
+    if point.mode == "club":
+        speed, angle, spin = _club_launch(raw["club.speed"], raw["club.mass"], raw["club.loft"])
+        launch = {
+            "ball_speed": speed,
+            "launch_angle": angle,
+            "spin": spin,
+            "azimuth": raw["club.azimuth"],
+            "spin_axis": raw["club.spin_axis"],
+        }
+    else:
+        launch = {name: raw[f"launch.{name}"] for name in PARAMETERS["launch"]}
+
+    # Weather.
+    t_k = raw["weather.temperature"]
+    if "weather.altitude" in p:
+        altitude = raw["weather.altitude"]
+        pressure = atmosphere.pressure_at_altitude_pa(altitude)
+    else:
+        altitude = math.nan
+        pressure = raw["weather.pressure"]
+    humidity = raw["weather.humidity"]
+    rho, nu = _air(t_k, pressure, humidity)
+    wind_speed = raw["weather.wind_speed"]
+    direction = raw["weather.wind_direction"]
+    if _scalar(wind_speed, direction):
+        wind_x = wind_speed * math.cos(direction)
+        wind_right = wind_speed * math.sin(direction)
+    else:
+        wind_x = wind_speed * np.cos(direction)
+        wind_right = wind_speed * np.sin(direction)
+
+    # Turf.
+    preset = PRESETS[p["turf.preset"]]
+    scale = raw["turf.restitution"]
+    if "turf.stimp" in p:
+        stimp = raw["turf.stimp"]
+        rho_g = rho_g_from_stimp(stimp)
+    else:
+        stimp = math.nan
+        rho_g = raw["turf.rho_g"]
+
+    inputs = np.empty((n, N_INPUT), order="F")
+    values = {
+        "ball_speed_mps": launch["ball_speed"],
+        "launch_angle_rad": launch["launch_angle"],
+        "azimuth_rad": launch["azimuth"],
+        "spin_radps": launch["spin"],
+        "spin_axis_rad": launch["spin_axis"],
+        "air_density_kgpm3": rho,
+        "kinematic_viscosity_m2ps": nu,
+        "aero_model": float(aero.MODELS[p["models.aero"]]),
+        "cd_scale": raw["models.cd_scale"],
+        "cl_scale": raw["models.cl_scale"],
+        "wind_x_mps": wind_x,
+        "wind_right_mps": wind_right,
+        "wind_profile": float(WIND_PROFILES[p["weather.wind_profile"]]),
+        "wind_reference_height_m": raw["weather.wind_reference_height"],
+        "wind_profile_parameter": raw["weather.wind_profile_parameter"],
+        "mu": raw["turf.mu"],
+        "softness": raw["turf.softness"],
+        "e0": preset.e0 * scale,
+        "e1": preset.e1 * scale,
+        "e2": preset.e2 * scale,
+        "e_break_speed_mps": preset.e_break_speed_mps,
+        "e_high": preset.e_high * scale,
+        "rho_g": rho_g,
+        "critical_height_m": raw["turf.critical_height"],
+        "slope_rad": raw["turf.slope"],
+        "fall_line_rad": raw["turf.fall_line"],
+        "dt_s": raw["models.dt"],
+    }
+    for name, value in values.items():
+        inputs[:, COLUMN[name]] = value
+
+    # Drawn values outside their documented range: the kernel must refuse the shot.
+    bad = np.zeros(n, dtype=bool)
+    for key, value in raw.items():
+        if isinstance(value, float) or key == "launch.file.rows":
+            continue
+        section, _, name = key.partition(".")
+        lo, hi = PARAMETERS[section][name].limits
+        bad |= ~((value >= lo) & (value <= hi))
+    if bad.any():
+        inputs[bad, COLUMN["ball_speed_mps"]] = math.nan
+
+    nan = math.nan
+    club = point.mode == "club"
+    everything = {
+        "ball_speed_mps": launch["ball_speed"],
+        "launch_angle_deg": launch["launch_angle"] / DEG,
+        "azimuth_deg": launch["azimuth"] / DEG,
+        "spin_radps": launch["spin"],
+        "spin_axis_deg": launch["spin_axis"] / DEG,
+        "club_speed_mps": raw["club.speed"] if club else nan,
+        "club_mass_kg": raw["club.mass"] if club else nan,
+        "loft_deg": raw["club.loft"] / DEG if club else nan,
+        "wind_speed_mps": wind_speed,
+        "wind_direction_deg": direction / DEG,
+        "wind_x_mps": wind_x,
+        "wind_right_mps": wind_right,
+        "wind_reference_height_m": raw["weather.wind_reference_height"],
+        "wind_profile_parameter": raw["weather.wind_profile_parameter"],
+        "temperature_c": t_k - 273.15,
+        "pressure_pa": pressure,
+        "altitude_m": altitude,
+        "relative_humidity": humidity,
+        "air_density_kgpm3": rho,
+        "kinematic_viscosity_m2ps": nu,
+        "mu": raw["turf.mu"],
+        "softness": raw["turf.softness"],
+        "restitution": scale,
+        "rho_g": rho_g,
+        "stimp_m": stimp,
+        "critical_height_m": raw["turf.critical_height"],
+        "slope_deg": raw["turf.slope"] / DEG,
+        "fall_line_deg": raw["turf.fall_line"] / DEG,
+        "cd_scale": raw["models.cd_scale"],
+        "cl_scale": raw["models.cl_scale"],
+        "dt_s": raw["models.dt"],
+    }
+    for name in columns:
+        if name == "source_row":
+            rows = raw.get("launch.file.rows")
+            sampled[name] = np.full(n, -1, dtype=np.int64) if rows is None else rows
+        else:
+            sampled[name] = np.broadcast_to(np.asarray(everything[name], dtype=float), (n,))
+    return inputs, sampled
+
+
+def sample(scenario, point, start, stop):
+    """The kernel inputs and the sampled columns of samples ``start`` .. ``stop - 1`` of a point.
+
+    Returns
+    -------
+    inputs : ndarray, shape (stop - start, N_INPUT), Fortran order
+        Columns ``mcrun.batch.INPUT_FIELDS``, SI, user frame.
+    sampled : dict of str -> ndarray
+        ``sampled_columns(scenario)``, each of length stop - start, with units in the names.
+    """
+    start = int(start)
+    stop = int(stop)
+    if not 0 <= start <= stop:
+        raise ValueError(f"need 0 <= start <= stop, got {start}, {stop}")
+    size = scenario.block_size
+    n = stop - start
+    columns = sampled_columns(scenario)
+    inputs = np.empty((n, N_INPUT), order="F")
+    sampled = {
+        name: np.empty(n, dtype=np.int64 if name == "source_row" else float) for name in columns
+    }
+    if n == 0:
+        return inputs, sampled
+    for block in range(start // size, (stop - 1) // size + 1):
+        first = block * size
+        lo = max(start, first) - first
+        hi = min(stop, first + size) - first
+        block_inputs, block_sampled = _convert(
+            scenario, point, draw_block(scenario, point, block), columns
+        )
+        at = first + lo - start
+        inputs[at : at + hi - lo] = block_inputs[lo:hi]
+        for name in columns:
+            sampled[name][at : at + hi - lo] = block_sampled[name][lo:hi]
+    return inputs, sampled

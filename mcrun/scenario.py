@@ -1,0 +1,1167 @@
+"""Scenarios: what a Monte Carlo run samples, read from a TOML file and validated.
+
+A scenario file names every input of a shot (the ball launch or the club delivery, the turf,
+the weather, the models), each a constant or a distribution, and may hold several groups (a bag
+of clubs) and a grid sweep over any parameter. ``load`` reads it into plain objects: a
+``Scenario`` with one ``Point`` per group and sweep combination, each point holding the fully
+resolved parameter specs (defaults filled in, SI) that ``mcrun.sampling`` draws from.
+
+Every mistake a user can make in a file ends in a ``ScenarioError`` whose message is one line
+naming the file, the key path and what is allowed, e.g.
+``scenarios/x.toml: launch.spin.sd: must be >= 0, got -5 rad/s``.
+
+Sections and their keys (``PARAMETERS``): ``[scenario]`` name, question, description, shots,
+seed, target, block_size; ``[launch]`` ball_speed, launch_angle, spin, azimuth, spin_axis,
+correlation, or file (a launch monitor's CSV or Parquet, resampled) with jitter; ``[club]``
+speed, mass (default 0.200 kg), loft, azimuth, spin_axis, correlation (instead of the ball
+launch); ``[turf]`` preset, mu, softness, restitution, rho_g or stimp, critical_height, slope,
+fall_line; ``[weather]`` wind_speed, wind_direction (towards which it blows: 0 tailwind, 90 deg
+left to right), wind_profile, wind_reference_height, wind_profile_parameter, temperature,
+altitude or pressure, humidity; ``[models]`` aero, bounce, cd_scale, cl_scale, dt;
+``[[group]]`` name, target and dotted overrides (``launch.spin = ...``); ``[sweep]``
+"section.key" = [values]. Defaults are those of ``mcrun.api.simulate``, and the turf preset's.
+
+Units: values may carry a unit (``"167 mph"``), or the key may (``ball_speed_mph = 167``); bare
+values are SI, except angles (degrees) and temperatures (Celsius), as in ``mcrun.units``.
+
+Distributions (``dist``): constant (a bare value, or ``{dist = "constant", value = ...}``),
+normal (mean, sd), truncnormal (mean, sd, low, high), uniform (low, high), triangular (low,
+mode, high), lognormal (median, sigma; sigma is the sd of the log, dimensionless). Ranges: a
+constant, a normal's mean, a lognormal's median and the bounds of a truncnormal, uniform or
+triangular must lie in the quantity's documented range (``mcrun.api.RANGES`` and the turf
+limits of ``PARAMETERS``). A normal or lognormal draw may still fall outside it; the sampler
+then makes that shot's kernel input invalid, so the kernel returns status ``invalid_input`` for
+it (bound a quantity with a truncnormal to avoid that).
+"""
+
+import itertools
+import math
+import numbers
+import os
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from mcrun import aero
+from mcrun.api import RANGES, WIND_PROFILE_DEFAULTS, InputError
+from mcrun.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA, STANDARD_TEMPERATURE_K
+from mcrun.flight import WIND_PROFILES
+from mcrun.shot import DEFAULT_DT_S
+from mcrun.turf import PRESETS
+from mcrun.units import KINDS, UnitError, from_column_name, parse_quantity, to_unit
+
+__all__ = [
+    "BOUNCE_MODELS",
+    "DEFAULT_BLOCK_SIZE",
+    "DISTRIBUTIONS",
+    "ENV_LIBRARY",
+    "FILE_COLUMNS",
+    "PARAMETERS",
+    "Correlation",
+    "Dist",
+    "Param",
+    "Point",
+    "Resample",
+    "Scenario",
+    "ScenarioError",
+    "find",
+    "library_folder",
+    "list_library",
+    "load",
+]
+
+
+class ScenarioError(InputError):
+    """A scenario cannot be used; the message is one line: file, key path, what is allowed."""
+
+
+DEFAULT_BLOCK_SIZE = 4096
+MAX_BLOCK_SIZE = 1 << 20
+BOUNCE_MODELS = ("penner2002",)
+ENV_LIBRARY = "MCRUN_SCENARIOS"
+
+# A truncnormal whose interval lies further than this many sd from its mean is refused: its
+# probability mass underflows.
+_TRUNCNORMAL_MAX_Z = 30.0
+
+
+def _range_si(name):
+    """SI limits of ``RANGES[name]`` (deg -> rad, C -> K)."""
+    lo, hi = RANGES[name]
+    if name.endswith("_deg"):
+        return lo * DEG, hi * DEG
+    if name.endswith("_c"):
+        return lo + 273.15, hi + 273.15
+    return float(lo), float(hi)
+
+
+@dataclass(frozen=True)
+class Param:
+    """One parameter of a section: its kind (a ``mcrun.units`` kind, "number" for a
+    dimensionless value, "choice" for a name), SI limits, and whether it may be sampled."""
+
+    kind: str
+    limits: tuple[float, float] | None = None
+    choices: tuple[str, ...] = ()
+    constant_only: bool = False
+
+
+_ANGLE_ANY = (-360.0 * DEG, 360.0 * DEG)
+
+PARAMETERS: dict[str, dict[str, Param]] = {
+    "launch": {
+        "ball_speed": Param("speed", _range_si("ball_speed_mps")),
+        "launch_angle": Param("angle", _range_si("launch_angle_deg")),
+        "spin": Param("spin", _range_si("spin_radps")),
+        "azimuth": Param("angle", _range_si("azimuth_deg")),
+        "spin_axis": Param("angle", _range_si("spin_axis_deg")),
+    },
+    "club": {
+        "speed": Param("speed", _range_si("club_speed_mps")),
+        "mass": Param("mass", _range_si("club_mass_kg")),
+        "loft": Param("angle", _range_si("loft_deg")),
+        "azimuth": Param("angle", _range_si("azimuth_deg")),
+        "spin_axis": Param("angle", _range_si("spin_axis_deg")),
+    },
+    "turf": {
+        "preset": Param("choice", choices=tuple(PRESETS)),
+        # Limits of mcrun.turf.check_turf; restitution scales e0, e1, e2 and e_high, and above
+        # 1.9 the paper's e0 = 0.510 would exceed 0.97.
+        "mu": Param("number", (0.0, 2.0)),
+        "softness": Param("number", (0.0, 5.0)),
+        "restitution": Param("number", (0.0, 1.9)),
+        "rho_g": Param("number", (0.0, 5.0)),
+        "stimp": Param("length", (0.1, 6.0)),
+        "critical_height": Param("length", (0.0, 1.0)),
+        "slope": Param("angle", _range_si("slope_deg")),
+        "fall_line": Param("angle", _range_si("fall_line_deg")),
+    },
+    "weather": {
+        "wind_speed": Param("speed", _range_si("wind_speed_mps")),
+        "wind_direction": Param("angle", _ANGLE_ANY),
+        "wind_profile": Param("choice", choices=tuple(WIND_PROFILES)),
+        "wind_reference_height": Param(
+            "length", _range_si("wind_reference_height_m"), constant_only=True
+        ),
+        "wind_profile_parameter": Param("number", (0.0, 100.0), constant_only=True),
+        "temperature": Param("temperature", _range_si("temperature_c")),
+        "altitude": Param("length", _range_si("altitude_m")),
+        "pressure": Param("pressure", _range_si("pressure_pa")),
+        "humidity": Param("fraction", _range_si("relative_humidity")),
+    },
+    "models": {
+        "aero": Param("choice", choices=tuple(aero.MODELS)),
+        "bounce": Param("choice", choices=BOUNCE_MODELS),
+        "cd_scale": Param("number", _range_si("cd_scale")),
+        "cl_scale": Param("number", _range_si("cl_scale")),
+        "dt": Param("time", _range_si("dt_s"), constant_only=True),
+    },
+}
+"""Section -> parameter name -> Param. Every sampled quantity of a scenario is one of these."""
+
+# Keys of a section that are not quantities.
+_SPECIAL = {"launch": ("correlation", "file", "jitter"), "club": ("correlation",)}
+_SECTIONS = tuple(PARAMETERS)
+_TOP_KEYS = ("scenario", *_SECTIONS, "group", "sweep")
+_SCENARIO_KEYS = ("name", "question", "description", "shots", "seed", "target", "block_size")
+_GROUP_KEYS = ("name", "target", *_SECTIONS)
+_BALL = ("ball_speed", "launch_angle", "spin")
+_CLUB = ("speed", "loft")
+_OPTIONAL_LAUNCH = ("azimuth", "spin_axis")
+DEFAULT_CLUB_MASS_KG = 0.200  # as mcrun.api.simulate
+
+DISTRIBUTIONS = {
+    # dist: its keys, in the order of Dist.args; "sd"-like keys are spreads (no unit offset).
+    "constant": ("value",),
+    "normal": ("mean", "sd"),
+    "truncnormal": ("mean", "sd", "low", "high"),
+    "uniform": ("low", "high"),
+    "triangular": ("low", "mode", "high"),
+    "lognormal": ("median", "sigma"),
+}
+_SPREADS = ("sd",)
+_DIMENSIONLESS = ("sigma",)
+
+# Columns of a launch-monitor file: quantity -> accepted base names (the unit is the suffix).
+FILE_COLUMNS = {
+    "ball_speed": ("ball_speed",),
+    "launch_angle": ("launch", "launch_angle", "vertical_launch", "launch_vertical"),
+    "spin": ("spin", "total_spin", "spin_rate"),
+    "spin_axis": ("spin_axis",),
+    "azimuth": ("azimuth", "direction", "launch_direction", "horizontal_launch"),
+}
+
+
+# --- the objects ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Dist:
+    """A quantity's distribution, SI. ``args`` follow ``DISTRIBUTIONS[dist]``."""
+
+    kind: str
+    dist: str
+    args: tuple[float, ...]
+
+    @property
+    def is_constant(self):
+        """True for a constant, and for a normal with sd 0 or a lognormal with sigma 0."""
+        return self.dist == "constant" or (
+            self.dist in ("normal", "lognormal") and self.args[1] == 0.0
+        )
+
+    @property
+    def value(self):
+        """The value of a constant (the mean or median when the spread is 0)."""
+        if not self.is_constant:
+            raise ValueError(f"a {self.dist} distribution has no single value")
+        return self.args[0]
+
+    @property
+    def center(self):
+        """A typical value: the constant, mean, median or mode (for defaults and checks)."""
+        if self.dist in ("constant", "normal", "truncnormal", "lognormal"):
+            return self.args[0]
+        if self.dist == "uniform":
+            return 0.5 * (self.args[0] + self.args[1])
+        return self.args[1]
+
+    def describe(self):
+        """The distribution in the kind's bare unit, e.g. ``normal(mean=167 mph...)``."""
+        unit = _bare_unit(self.kind)
+        parts = []
+        for key, value in zip(DISTRIBUTIONS[self.dist], self.args, strict=True):
+            if key in _DIMENSIONLESS or self.kind in ("number", "choice"):
+                parts.append(f"{key}={value:g}")
+            elif key in _SPREADS:
+                parts.append(f"{key}={_spread_in(value, self.kind):g}{unit}")
+            else:
+                parts.append(f"{key}={_in_unit(value, self.kind):g}{unit}")
+        return f"{self.dist}({', '.join(parts)})"
+
+
+@dataclass(frozen=True)
+class Correlation:
+    """Jointly normal quantities of one section: their names, the correlation matrix and a
+    factor F with F F^T = matrix (Cholesky, or from the eigen-decomposition of a positive
+    semi-definite matrix), so that F z has that correlation for standard normal z."""
+
+    names: tuple[str, ...]
+    matrix: np.ndarray
+    factor: np.ndarray
+
+    def __eq__(self, other):
+        return (
+            isinstance(other, Correlation)
+            and self.names == other.names
+            and np.array_equal(self.matrix, other.matrix)
+            and np.array_equal(self.factor, other.factor)
+        )
+
+    __hash__ = None
+
+
+@dataclass(frozen=True)
+class Resample:
+    """Shots measured by a launch monitor, resampled with replacement: the file, its columns in
+    SI (quantity -> array, one value per row), and the normal jitter sd added per quantity."""
+
+    path: Path
+    columns: dict
+    n_rows: int
+    jitter: dict = field(default_factory=dict)
+
+    def __eq__(self, other):
+        return (
+            isinstance(other, Resample)
+            and (self.path, self.n_rows, self.jitter) == (other.path, other.n_rows, other.jitter)
+            and self.columns.keys() == other.columns.keys()
+            and all(np.array_equal(v, other.columns[k]) for k, v in self.columns.items())
+        )
+
+    __hash__ = None
+
+
+@dataclass(frozen=True)
+class Point:
+    """One group x sweep combination of a scenario.
+
+    ``params`` maps key paths to resolved specs: ``Dist`` for quantities (SI), ``str`` for
+    choices (``turf.preset``, ``weather.wind_profile``, ``models.aero``, ``models.bounce``),
+    ``Correlation`` at ``launch.correlation`` or ``club.correlation`` and ``Resample`` at
+    ``launch.file``. The launch is given by ``launch.*`` (ball) or ``club.*`` (club delivery);
+    with a file, quantities it holds are not in ``params``. Turf fields not given come from the
+    preset; ``turf.stimp`` replaces ``turf.rho_g``; ``weather.altitude`` replaces
+    ``weather.pressure``.
+    """
+
+    index: int
+    label: str
+    group: str
+    sweep: dict
+    params: dict
+    target_m: tuple[float, float] | None
+
+    @property
+    def mode(self):
+        """How the launch is given: "ball", "club" or "file"."""
+        if "launch.file" in self.params:
+            return "file"
+        return "club" if "club.speed" in self.params else "ball"
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A validated scenario: the file, its text, defaults for a run, and its points."""
+
+    path: Path
+    text: str
+    name: str
+    question: str
+    shots: int
+    seed: int
+    block_size: int
+    points: list
+
+
+# --- the library ---------------------------------------------------------------------------
+
+
+def library_folder():
+    """The folder of the scenario library.
+
+    ``$MCRUN_SCENARIOS`` when set (an explicit choice wins), else the ``scenarios/`` folder
+    shipped beside the package (the repository root for a source checkout or an editable
+    install). Raises ScenarioError if neither is a folder.
+    """
+    env = os.environ.get(ENV_LIBRARY)
+    if env:
+        folder = Path(env)
+        if not folder.is_dir():
+            raise ScenarioError(f"{ENV_LIBRARY}={env}: not a folder of scenario files")
+        return folder
+    folder = Path(__file__).resolve().parent.parent / "scenarios"
+    if folder.is_dir():
+        return folder
+    raise ScenarioError(
+        f"no scenario library found: {folder} does not exist; set {ENV_LIBRARY} to the folder "
+        "that holds the *.toml scenarios"
+    )
+
+
+_QUESTION = re.compile(r"^#\s*Question:\s*(.*?)\s*$")
+
+
+def _question_of(text):
+    """The question a scenario answers: its first ``# Question:`` comment line, else
+    ``[scenario] question``, else ""."""
+    for line in text.splitlines():
+        match = _QUESTION.match(line.strip())
+        if match:
+            return match[1]
+    try:
+        question = tomllib.loads(text).get("scenario", {}).get("question", "")
+    except (tomllib.TOMLDecodeError, AttributeError):
+        return ""
+    return question if isinstance(question, str) else ""
+
+
+def list_library(folder=None):
+    """[(name, path, question)] of the ``*.toml`` files of ``folder`` (default: the library),
+    sorted by name. The name is the file's stem; the question its ``# Question:`` line."""
+    folder = library_folder() if folder is None else Path(folder)
+    entries = []
+    for path in sorted(folder.glob("*.toml")):
+        try:
+            text = path.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
+            text = ""
+        entries.append((path.stem, path, _question_of(text)))
+    return entries
+
+
+def find(name_or_path):
+    """The path of a scenario: a file that exists, or the name of a library scenario
+    (``"pga-driver"`` or ``"pga-driver.toml"``). ScenarioError if neither."""
+    path = Path(name_or_path)
+    if path.is_file():
+        return path
+    if path.parent == Path(".") and path.suffix in ("", ".toml"):
+        try:
+            folder = library_folder()
+        except ScenarioError:
+            folder = None
+        if folder is not None:
+            candidate = folder / (path.stem + ".toml")
+            if candidate.is_file():
+                return candidate
+    if path.exists():
+        raise ScenarioError(f"{name_or_path}: not a file")
+    raise ScenarioError(
+        f"{name_or_path}: no such file, nor a scenario of the library (mcrun scenarios lists it)"
+    )
+
+
+# --- values with units ---------------------------------------------------------------------
+
+
+def _bare_unit(kind):
+    if kind in ("number", "choice"):
+        return ""
+    unit = KINDS[kind][0]
+    return "" if unit == "fraction" else " " + unit
+
+
+def _in_unit(value_si, kind):
+    """An SI value in the kind's bare unit (deg, C, ...), for messages."""
+    if kind in ("number", "choice"):
+        return value_si
+    return to_unit(value_si, kind, KINDS[kind][0])
+
+
+def _spread_in(value_si, kind):
+    """An SI difference (an sd) in the kind's bare unit: the scale only, no offset."""
+    if kind in ("number", "choice"):
+        return value_si
+    return value_si / KINDS[kind][1][KINDS[kind][0]][0]
+
+
+def _shown(value):
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+_LEADING_NUMBER = re.compile(r"^\s*[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
+
+
+@dataclass
+class _Context:
+    """Where a value comes from, for messages: the file and a key path."""
+
+    file: str
+
+    def error(self, where, what):
+        return ScenarioError(f"{self.file}: {where}: {what}")
+
+
+@dataclass(frozen=True)
+class _Leaf:
+    """A raw value of a parameter as written: the value, where it was written, and the unit
+    its key carried (``spin_rpm`` -> "rpm"), or None."""
+
+    value: object
+    where: str
+    key_unit: str | None = None
+
+
+def _number(value):
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def _read(ctx, where, value, kind, key_unit, spread=False):
+    """One value of a quantity (a number or a string with an optional unit) in SI."""
+    if kind == "number" or key_unit is not None and kind != "choice":
+        if isinstance(value, str):
+            try:
+                value = float(value)
+            except ValueError:
+                if kind == "number":
+                    raise ctx.error(
+                        where, f"must be a number (dimensionless), got {_shown(value)}"
+                    ) from None
+                raise ctx.error(
+                    where,
+                    f"the key gives the unit ({key_unit}): give a bare number, got {_shown(value)}",
+                ) from None
+        if not _number(value):
+            raise ctx.error(where, f"must be a number, got {_shown(value)}")
+        if not math.isfinite(value):
+            raise ctx.error(where, f"must be finite, got {value}")
+        if kind == "number":
+            return float(value)
+        value = f"{float(value)!r} {key_unit}"
+    if not (isinstance(value, str) or _number(value)):
+        raise ctx.error(
+            where,
+            f"must be a number or a string with a unit ({', '.join(KINDS[kind][1])}), "
+            f"got {_shown(value)}",
+        )
+    try:
+        si = parse_quantity(value, kind)
+        if spread:
+            zero = _LEADING_NUMBER.sub("0", value, count=1) if isinstance(value, str) else 0.0
+            si -= parse_quantity(zero, kind)
+    except UnitError as err:
+        raise ctx.error(where, str(err)) from None
+    return si
+
+
+def _fmt(value_si, kind, spread=False):
+    """An SI value in the kind's bare unit, e.g. "-5 rad/s", "12 deg"."""
+    if kind == "number":
+        return f"{value_si:g}"
+    number = _spread_in(value_si, kind) if spread else _in_unit(value_si, kind)
+    return f"{number:g}{_bare_unit(kind)}"
+
+
+def _check_in(ctx, where, value_si, param, what="must be"):
+    lo, hi = param.limits
+    if not lo <= value_si <= hi:
+        raise ctx.error(
+            where,
+            f"{what} within [{_fmt(lo, param.kind)}, {_fmt(hi, param.kind)}], "
+            f"got {_fmt(value_si, param.kind)}",
+        )
+
+
+def _dist(ctx, leaf, param):
+    """A Dist from a raw value (constant or distribution table), validated against param."""
+    value, where = leaf.value, leaf.where
+    kind = param.kind
+    if not isinstance(value, dict):
+        if isinstance(value, list):
+            raise ctx.error(
+                where,
+                "must be a value or a distribution table {dist = ...}, got a list "
+                "(sweep a parameter in [sweep])",
+            )
+        si = _read(ctx, where, value, kind, leaf.key_unit)
+        _check_in(ctx, where, si, param)
+        return Dist(kind, "constant", (si,))
+    if "dist" not in value:
+        raise ctx.error(f"{where}.dist", f"missing; choose one of {', '.join(DISTRIBUTIONS)}")
+    name = value["dist"]
+    if name not in DISTRIBUTIONS:
+        raise ctx.error(
+            f"{where}.dist",
+            f"unknown distribution {_shown(name)}; choose one of {', '.join(DISTRIBUTIONS)}",
+        )
+    keys = DISTRIBUTIONS[name]
+    for key in value:
+        if key != "dist" and key not in keys:
+            raise ctx.error(
+                f"{where}.{key}",
+                f"unknown key for a {name} distribution; allowed: dist, {', '.join(keys)}",
+            )
+    args = []
+    for key in keys:
+        if key not in value:
+            raise ctx.error(
+                f"{where}.{key}", f"missing: a {name} distribution needs {', '.join(keys)}"
+            )
+        if key in _DIMENSIONLESS:
+            args.append(_read(ctx, f"{where}.{key}", value[key], "number", None))
+        else:
+            args.append(
+                _read(ctx, f"{where}.{key}", value[key], kind, leaf.key_unit, key in _SPREADS)
+            )
+    if param.constant_only and name != "constant":
+        raise ctx.error(where, f"must be a constant, not a {name} distribution")
+    if name == "constant":
+        _check_in(ctx, f"{where}.value", args[0], param)
+    elif name in ("normal", "truncnormal"):
+        mean, sd = args[:2]
+        if sd < 0.0:
+            raise ctx.error(f"{where}.sd", f"must be >= 0, got {_fmt(sd, kind, spread=True)}")
+        if name == "normal":
+            _check_in(ctx, f"{where}.mean", mean, param)
+        else:
+            low, high = args[2:]
+            if sd == 0.0:
+                raise ctx.error(f"{where}.sd", "must be > 0 for a truncnormal, got 0")
+            if not low < high:
+                raise ctx.error(
+                    f"{where}.low",
+                    f"must be < high ({_fmt(high, kind)}), got {_fmt(low, kind)}",
+                )
+            _check_in(ctx, f"{where}.low", low, param)
+            _check_in(ctx, f"{where}.high", high, param)
+            if (low - mean) / sd > _TRUNCNORMAL_MAX_Z or (high - mean) / sd < -_TRUNCNORMAL_MAX_Z:
+                raise ctx.error(
+                    where,
+                    f"[low, high] must come within {_TRUNCNORMAL_MAX_Z:g} sd of the mean",
+                )
+    elif name in ("uniform", "triangular"):
+        low, high = args[0], args[-1]
+        if not low < high:
+            raise ctx.error(
+                f"{where}.low", f"must be < high ({_fmt(high, kind)}), got {_fmt(low, kind)}"
+            )
+        _check_in(ctx, f"{where}.low", low, param)
+        _check_in(ctx, f"{where}.high", high, param)
+        if name == "triangular" and not low <= args[1] <= high:
+            raise ctx.error(
+                f"{where}.mode",
+                f"must be within [low, high] = [{_fmt(low, kind)}, {_fmt(high, kind)}], "
+                f"got {_fmt(args[1], kind)}",
+            )
+    else:  # lognormal
+        median, sigma = args
+        if not median > 0.0:
+            raise ctx.error(f"{where}.median", f"must be > 0, got {_fmt(median, kind)}")
+        if sigma < 0.0:
+            raise ctx.error(f"{where}.sigma", f"must be >= 0, got {sigma:g}")
+        _check_in(ctx, f"{where}.median", median, param)
+    return Dist(kind, name, tuple(args))
+
+
+def _choice(ctx, leaf, param):
+    if not isinstance(leaf.value, str) or leaf.value not in param.choices:
+        raise ctx.error(
+            leaf.where,
+            f"must be one of {', '.join(param.choices)}, got {_shown(leaf.value)}",
+        )
+    return leaf.value
+
+
+# --- reading the file into leaves ------------------------------------------------------------
+
+
+def _table(ctx, where, value):
+    if not isinstance(value, dict):
+        raise ctx.error(where, f"must be a table, got {_shown(value)}")
+    return value
+
+
+def _canonical(ctx, section, key, where):
+    """(parameter name, key unit) of a key of a section; units may be in the name."""
+    names = PARAMETERS[section]
+    if key in names or key in _SPECIAL.get(section, ()):
+        return key, None
+    found = from_column_name(key)
+    if found is not None and found[0] in names:
+        base, kind, unit = found
+        if names[base].kind != kind:
+            expected = names[base].kind
+            allowed = (
+                f"units of a {expected}: {', '.join(KINDS[expected][1])}"
+                if expected in KINDS
+                else "no unit (dimensionless)"
+                if expected == "number"
+                else "no unit"
+            )
+            raise ctx.error(where, f"{unit} is a {kind} unit, but {base} takes {allowed}")
+        return base, unit
+    allowed = ", ".join((*names, *_SPECIAL.get(section, ())))
+    raise ctx.error(
+        where,
+        f"unknown key; allowed: {allowed} (a unit may end the name, e.g. ball_speed_mph)",
+    )
+
+
+def _section_leaves(ctx, section, table, prefix):
+    """{parameter: _Leaf} of one section table; ``prefix`` is where it sits in the file."""
+    table = _table(ctx, prefix.rstrip("."), table)
+    leaves = {}
+    for key, value in table.items():
+        where = f"{prefix}{key}"
+        name, unit = _canonical(ctx, section, key, where)
+        if name in leaves:
+            raise ctx.error(
+                where, f"{section}.{name} is given twice ({leaves[name].where} and {where})"
+            )
+        leaves[name] = _Leaf(value, where, unit)
+    return leaves
+
+
+def _target(ctx, where, value):
+    if not isinstance(value, list) or len(value) != 2:
+        raise ctx.error(
+            where, f'must be a pair [x, y] of lengths, e.g. ["251 m", "0 m"], got {_shown(value)}'
+        )
+    return tuple(_read(ctx, f"{where}[{k}]", v, "length", None) for k, v in enumerate(value))
+
+
+def _flatten_sweep(ctx, table, prefix=""):
+    """{key path: list} of a [sweep] table; accepts "launch.spin" = [...] and nested tables."""
+    out = {}
+    for key, value in table.items():
+        path = f"{prefix}{key}"
+        if isinstance(value, dict):
+            out.update(_flatten_sweep(ctx, value, path + "."))
+        else:
+            out[path] = value
+    return out
+
+
+def _sweep_leaves(ctx, table):
+    """[(section, name, key path as written, [leaf per value])] of the [sweep] table."""
+    entries = []
+    seen = {}
+    for path, values in _flatten_sweep(ctx, _table(ctx, "sweep", table)).items():
+        where = f'sweep."{path}"'
+        section, _, key = path.partition(".")
+        if section not in _SECTIONS or not key or "." in key:
+            raise ctx.error(
+                where,
+                "a sweep key is a parameter path section.name with section one of "
+                f'{", ".join(_SECTIONS)} (e.g. "launch.spin")',
+            )
+        name, unit = _canonical(ctx, section, key, where)
+        if (section, name) in seen:
+            raise ctx.error(where, f"{section}.{name} is swept twice (also {seen[section, name]})")
+        seen[section, name] = where
+        if not isinstance(values, list) or not values:
+            raise ctx.error(where, f"must be a non-empty list of values, got {_shown(values)}")
+        leaves = [_Leaf(v, f"{where}[{k}]", unit) for k, v in enumerate(values)]
+        entries.append((section, name, path, leaves))
+    return entries
+
+
+def _written(value):
+    """A sweep value as written, for labels."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, dict):
+        inner = ", ".join(f"{k}={_written(v)}" for k, v in value.items() if k != "dist")
+        return f"{value.get('dist', '')}({inner})"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+# --- resolving a point -------------------------------------------------------------------------
+
+
+def _correlation(ctx, leaf, section, dists, leaves, context=""):
+    """A Correlation from ``{names = [...], matrix = [[...]]}``, checked against the point."""
+    where = leaf.where
+    table = _table(ctx, where, leaf.value)
+    for key in table:
+        if key not in ("names", "matrix"):
+            raise ctx.error(f"{where}.{key}", "unknown key; allowed: names, matrix")
+    names = table.get("names")
+    if not isinstance(names, list) or len(names) < 2 or not all(isinstance(n, str) for n in names):
+        raise ctx.error(
+            f"{where}.names", f"must be a list of at least two quantity names, got {_shown(names)}"
+        )
+    if len(set(names)) != len(names):
+        raise ctx.error(f"{where}.names", f"must not repeat a name, got {names}")
+    quantities = tuple(PARAMETERS[section])
+    for name in names:
+        if name not in quantities:
+            raise ctx.error(
+                f"{where}.names", f"unknown quantity {name!r}; allowed: {', '.join(quantities)}"
+            )
+        dist = dists.get(name)
+        if dist is None or dist.dist != "normal":
+            if name not in leaves:
+                got = "not given"
+            elif leaves[name].where == f"{section}.{name}":
+                got = f"a {dist.dist}"
+            else:
+                got = f"a {dist.dist}, at {leaves[name].where}"
+            raise ctx.error(
+                f"{where}.names",
+                f"{name} must be a normal distribution to be correlated ({section}.{name} is "
+                f"{got}){context}",
+            )
+    k = len(names)
+    rows = table.get("matrix")
+    if (
+        not isinstance(rows, list)
+        or len(rows) != k
+        or not all(isinstance(r, list) and len(r) == k for r in rows)
+        or not all(_number(x) and math.isfinite(x) for r in rows for x in r)
+    ):
+        raise ctx.error(
+            f"{where}.matrix", f"must be a {k} x {k} list of lists of numbers, got {_shown(rows)}"
+        )
+    matrix = np.array(rows, dtype=float)
+    if not np.all(np.diag(matrix) == 1.0):
+        raise ctx.error(
+            f"{where}.matrix", f"must have 1 on the diagonal, got {np.diag(matrix).tolist()}"
+        )
+    if np.max(np.abs(matrix - matrix.T)) > 1e-12:
+        raise ctx.error(f"{where}.matrix", "must be symmetric")
+    if np.max(np.abs(matrix)) > 1.0:
+        raise ctx.error(f"{where}.matrix", "entries must be within [-1, 1]")
+    eigenvalues, vectors = np.linalg.eigh(matrix)
+    if eigenvalues[0] < -1e-10:
+        raise ctx.error(
+            f"{where}.matrix",
+            f"must be positive semi-definite, its smallest eigenvalue is {eigenvalues[0]:.3g}",
+        )
+    try:
+        factor = np.linalg.cholesky(matrix)
+    except np.linalg.LinAlgError:
+        factor = vectors * np.sqrt(np.clip(eigenvalues, 0.0, None))
+    matrix.setflags(write=False)
+    factor = np.ascontiguousarray(factor)
+    factor.setflags(write=False)
+    return Correlation(tuple(names), matrix, factor)
+
+
+_FILE_CACHE: dict = {}
+
+
+def _read_shots(ctx, where, path):
+    """{quantity: SI array} of the recognised columns of a CSV or Parquet launch-monitor file."""
+    key = (str(path.resolve()), path.stat().st_mtime_ns)
+    if key in _FILE_CACHE:
+        return _FILE_CACHE[key]
+    try:
+        if path.suffix.lower() in (".parquet", ".pq"):
+            frame = pd.read_parquet(path)
+        else:
+            frame = pd.read_csv(path, comment="#", skipinitialspace=True)
+    except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
+        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
+        raise ctx.error(where, f"cannot read {path} as CSV or Parquet: {first}") from None
+    found = {}
+    for column in frame.columns:
+        parsed = from_column_name(str(column).strip().lower())
+        if parsed is None:
+            continue
+        base, kind, unit = parsed
+        for quantity, bases in FILE_COLUMNS.items():
+            if base in bases and PARAMETERS["launch"][quantity].kind == kind:
+                if quantity in found:
+                    raise ctx.error(
+                        where,
+                        f"{path}: columns {found[quantity][0]!r} and {column!r} both give "
+                        f"{quantity}; keep one",
+                    )
+                found[quantity] = (column, unit)
+    missing = [q for q in _BALL if q not in found]
+    if missing:
+        expected = "ball_speed_mph or _mps, launch_deg, spin_rpm or _radps"
+        raise ctx.error(
+            where,
+            f"{path}: no recognisable column for {', '.join(missing)}; expected columns named "
+            f"with their unit ({expected}; optional spin_axis_deg, azimuth_deg), "
+            f"found {', '.join(map(str, frame.columns)) or 'none'}",
+        )
+    if len(frame) == 0:
+        raise ctx.error(where, f"{path}: has no rows")
+    columns = {}
+    for quantity, (column, unit) in found.items():
+        param = PARAMETERS["launch"][quantity]
+        values = pd.to_numeric(frame[column], errors="coerce").to_numpy(dtype=float)
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            raise ctx.error(
+                where,
+                f"{path}: column {column!r} row {bad[0] + 1}: not a number "
+                f"({_shown(frame[column].iloc[bad[0]])}); every row must be complete",
+            )
+        factor, offset = KINDS[param.kind][1][unit]
+        si = values * factor + offset
+        lo, hi = param.limits
+        outside = np.flatnonzero((si < lo) | (si > hi))
+        if outside.size:
+            r = outside[0]
+            raise ctx.error(
+                where,
+                f"{path}: column {column!r} row {r + 1}: {values[r]:g} {unit} is outside the "
+                f"allowed range [{_fmt(lo, param.kind)}, {_fmt(hi, param.kind)}]",
+            )
+        si.setflags(write=False)
+        columns[quantity] = si
+    _FILE_CACHE[key] = columns
+    return columns
+
+
+def _resample(ctx, leaf, jitter_leaf, scenario_dir):
+    where = leaf.where
+    if not isinstance(leaf.value, str) or not leaf.value:
+        raise ctx.error(where, f"must be a path to a CSV or Parquet file, got {_shown(leaf.value)}")
+    path = Path(leaf.value)
+    if not path.is_absolute():
+        path = scenario_dir / path
+    if not path.is_file():
+        raise ctx.error(where, f"no such file: {path}")
+    columns = _read_shots(ctx, where, path)
+    jitter = {}
+    if jitter_leaf is not None:
+        table = _table(ctx, jitter_leaf.where, jitter_leaf.value)
+        for key, value in table.items():
+            jwhere = f"{jitter_leaf.where}.{key}"
+            name, unit = _canonical(ctx, "launch", key, jwhere)
+            if name not in FILE_COLUMNS:
+                raise ctx.error(jwhere, f"unknown key; allowed: {', '.join(FILE_COLUMNS)}")
+            if name in jitter:
+                raise ctx.error(jwhere, f"jitter of {name} is given twice")
+            param = PARAMETERS["launch"][name]
+            sd = _read(ctx, jwhere, value, param.kind, unit, spread=True)
+            if sd < 0.0:
+                raise ctx.error(jwhere, f"must be >= 0, got {_fmt(sd, param.kind, spread=True)}")
+            jitter[name] = sd
+    n_rows = len(next(iter(columns.values())))
+    return Resample(path, dict(columns), n_rows, jitter)
+
+
+def _resolve(ctx, sections, scenario_dir, context):
+    """The params of one point from its merged {section: {name: _Leaf}}."""
+    params = {}
+    launch = sections.get("launch", {})
+    club = sections.get("club", {})
+
+    def quantity(section, name, default=None):
+        leaf = sections.get(section, {}).get(name)
+        param = PARAMETERS[section][name]
+        if leaf is None:
+            if default is None:
+                return None
+            dist = Dist(param.kind, "constant", (float(default),))
+        elif param.kind == "choice":
+            return _choice(ctx, leaf, param)
+        else:
+            dist = _dist(ctx, leaf, param)
+        params[f"{section}.{name}"] = dist
+        return dist
+
+    def choice(section, name, default):
+        leaf = sections.get(section, {}).get(name)
+        value = default if leaf is None else _choice(ctx, leaf, PARAMETERS[section][name])
+        params[f"{section}.{name}"] = value
+        return value
+
+    # Launch: ball, club or file.
+    if launch and club:
+        first = next(iter(club.values())).where
+        raise ctx.error(
+            first,
+            f"give the ball launch [launch] or the club delivery [club], not both{context}",
+        )
+    if club:
+        missing = [n for n in _CLUB if n not in club]
+        if missing:
+            raise ctx.error(
+                f"club.{missing[0]}", f"missing: a club delivery needs speed and loft{context}"
+            )
+        dists = {}
+        for name in PARAMETERS["club"]:
+            default = DEFAULT_CLUB_MASS_KG if name == "mass" else 0.0
+            dists[name] = quantity("club", name, default)
+        if "correlation" in club:
+            params["club.correlation"] = _correlation(
+                ctx, club["correlation"], "club", dists, club, context
+            )
+    elif "file" in launch:
+        for name in _BALL:
+            if name in launch:
+                raise ctx.error(
+                    launch[name].where,
+                    f"not allowed with launch.file, which gives {name}{context}",
+                )
+        if "correlation" in launch:
+            raise ctx.error(
+                launch["correlation"].where,
+                f"not allowed with launch.file: the measured shots keep their own correlation"
+                f"{context}",
+            )
+        resample = _resample(ctx, launch["file"], launch.get("jitter"), scenario_dir)
+        params["launch.file"] = resample
+        for name in _OPTIONAL_LAUNCH:
+            if name in resample.columns:
+                if name in launch:
+                    raise ctx.error(
+                        launch[name].where,
+                        f"not allowed: the file {resample.path.name} gives {name}{context}",
+                    )
+            else:
+                if name in launch and name in resample.jitter:
+                    raise ctx.error(
+                        launch[name].where,
+                        f"{name} is given here and jittered in launch.jitter: give one{context}",
+                    )
+                if name not in resample.jitter:
+                    quantity("launch", name, 0.0)
+    else:
+        if "jitter" in launch:
+            raise ctx.error(launch["jitter"].where, f"only allowed with launch.file{context}")
+        if not launch:
+            raise ctx.error(
+                "launch",
+                "missing: give [launch] with ball_speed, launch_angle and spin, [launch] with "
+                f"file = a launch-monitor CSV or Parquet, or [club] with speed and loft{context}",
+            )
+        missing = [n for n in _BALL if n not in launch]
+        if missing:
+            raise ctx.error(
+                f"launch.{missing[0]}",
+                f"missing: a ball launch needs ball_speed, launch_angle and spin (or give launch."
+                f"file, or [club]){context}",
+            )
+        dists = {name: quantity("launch", name, 0.0) for name in PARAMETERS["launch"]}
+        if "correlation" in launch:
+            params["launch.correlation"] = _correlation(
+                ctx, launch["correlation"], "launch", dists, launch, context
+            )
+
+    # Turf: the preset's fields unless given.
+    preset_name = choice("turf", "preset", "green")
+    preset = PRESETS[preset_name]
+    turf = sections.get("turf", {})
+    if "rho_g" in turf and "stimp" in turf:
+        raise ctx.error(turf["stimp"].where, f"give turf.rho_g or turf.stimp, not both{context}")
+    quantity("turf", "mu", preset.mu)
+    quantity("turf", "softness", preset.softness)
+    quantity("turf", "restitution", 1.0)
+    if "stimp" in turf:
+        quantity("turf", "stimp")
+    else:
+        quantity("turf", "rho_g", preset.rho_g)
+    quantity("turf", "critical_height", preset.critical_height_m)
+    quantity("turf", "slope", 0.0)
+    quantity("turf", "fall_line", 0.0)
+
+    # Weather.
+    weather = sections.get("weather", {})
+    quantity("weather", "wind_speed", 0.0)
+    quantity("weather", "wind_direction", 0.0)
+    profile = choice("weather", "wind_profile", "uniform")
+    reference = quantity("weather", "wind_reference_height", 10.0).value
+    parameter = quantity("weather", "wind_profile_parameter", WIND_PROFILE_DEFAULTS[profile]).value
+    if "wind_profile_parameter" in weather:
+        where = weather["wind_profile_parameter"].where
+        if profile == "log" and not 0.0 < parameter < reference:
+            raise ctx.error(
+                where,
+                "the log profile's roughness length (m) must be > 0 and below the reference "
+                f"height ({reference:g} m), got {parameter:g}{context}",
+            )
+        if profile == "power" and not 0.0 <= parameter <= 1.0:
+            raise ctx.error(
+                where, f"the power profile's exponent must be within [0, 1], got {parameter:g}"
+            )
+    elif profile == "log" and not parameter < reference:
+        raise ctx.error(
+            weather["wind_reference_height"].where,
+            f"must be above the log profile's roughness length ({parameter:g} m){context}",
+        )
+    quantity("weather", "temperature", STANDARD_TEMPERATURE_K)
+    if "altitude" in weather and "pressure" in weather:
+        raise ctx.error(
+            weather["pressure"].where,
+            f"give weather.altitude or weather.pressure, not both{context}",
+        )
+    if "altitude" in weather:
+        quantity("weather", "altitude")
+    else:
+        quantity("weather", "pressure", STANDARD_PRESSURE_PA)
+    quantity("weather", "humidity", STANDARD_HUMIDITY)
+
+    # Models.
+    choice("models", "aero", aero.DEFAULT_MODEL)
+    choice("models", "bounce", "penner2002")
+    quantity("models", "cd_scale", 1.0)
+    quantity("models", "cl_scale", 1.0)
+    quantity("models", "dt", DEFAULT_DT_S)
+    return params
+
+
+# --- loading ---------------------------------------------------------------------------------
+
+
+def _integer(ctx, where, value, low, high=None):
+    if (
+        not isinstance(value, int)
+        or isinstance(value, bool)
+        or value < low
+        or (high is not None and value > high)
+    ):
+        bound = f">= {low}" if high is None else f"within [{low}, {high}]"
+        raise ctx.error(where, f"must be an integer {bound}, got {_shown(value)}")
+    return value
+
+
+def load(path):
+    """Read and validate a scenario file (or a library scenario's name) into a Scenario.
+
+    Raises
+    ------
+    ScenarioError
+        With one line naming the file, the key path and what is allowed.
+    """
+    path = find(path)
+    ctx = _Context(str(path))
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise ScenarioError(f"{path}: cannot read the file: {err}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ScenarioError(f"{path}: not valid TOML: {err}") from None
+    for key in data:
+        if key not in _TOP_KEYS:
+            raise ctx.error(key, f"unknown key; allowed: {', '.join(_TOP_KEYS)}")
+
+    head = _table(ctx, "scenario", data.get("scenario", {}))
+    for key in head:
+        if key not in _SCENARIO_KEYS:
+            raise ctx.error(f"scenario.{key}", f"unknown key; allowed: {', '.join(_SCENARIO_KEYS)}")
+    for key in ("name", "question", "description"):
+        if key in head and not isinstance(head[key], str):
+            raise ctx.error(f"scenario.{key}", f"must be a string, got {_shown(head[key])}")
+    name = head.get("name", path.stem)
+    question = _question_of(text)
+    shots = _integer(ctx, "scenario.shots", head.get("shots", 100_000), 1)
+    seed = _integer(ctx, "scenario.seed", head.get("seed", 0), 0)
+    block_size = _integer(
+        ctx, "scenario.block_size", head.get("block_size", DEFAULT_BLOCK_SIZE), 1, MAX_BLOCK_SIZE
+    )
+    target = _target(ctx, "scenario.target", head["target"]) if "target" in head else None
+
+    base = {s: _section_leaves(ctx, s, data[s], f"{s}.") for s in _SECTIONS if s in data}
+
+    groups = data.get("group")
+    if groups is None:
+        groups = []
+        group_list = [("", {}, target, "")]
+    else:
+        if not isinstance(groups, list) or not all(isinstance(g, dict) for g in groups):
+            raise ctx.error("group", "must be an array of tables ([[group]] with a name each)")
+        group_list = []
+        names = set()
+        for k, table in enumerate(groups):
+            where = f"group[{k}]"
+            for key in table:
+                if key not in _GROUP_KEYS:
+                    raise ctx.error(
+                        f"{where}.{key}", f"unknown key; allowed: {', '.join(_GROUP_KEYS)}"
+                    )
+            gname = table.get("name")
+            if not isinstance(gname, str) or not gname.strip():
+                got = "" if gname is None else f", got {_shown(gname)}"
+                raise ctx.error(f"{where}.name", f"missing: every group needs a name{got}")
+            if gname in names:
+                raise ctx.error(f"{where}.name", f"group name {gname!r} is used twice")
+            names.add(gname)
+            overrides = {
+                s: _section_leaves(ctx, s, table[s], f"{where}.{s}.")
+                for s in _SECTIONS
+                if s in table
+            }
+            gtarget = target
+            if "target" in table:
+                gtarget = _target(ctx, f"{where}.target", table["target"])
+            group_list.append((gname, overrides, gtarget, where))
+
+    sweep = _sweep_leaves(ctx, data["sweep"]) if "sweep" in data else []
+    combos = list(itertools.product(*(leaves for _, _, _, leaves in sweep))) if sweep else [()]
+
+    points = []
+    single = len(group_list) * len(combos) == 1
+    for gname, overrides, gtarget, _ in group_list:
+        for combo in combos:
+            sections = {s: dict(base.get(s, {})) for s in _SECTIONS}
+            for s, leaves in overrides.items():
+                sections[s].update(leaves)
+            values = {}
+            for (section, pname, written, _), leaf in zip(sweep, combo, strict=True):
+                sections[section][pname] = leaf
+                values[written] = leaf.value
+            sweep_label = ", ".join(f"{k}={_written(v)}" for k, v in values.items())
+            label = " | ".join(p for p in (gname, sweep_label) if p)
+            context = "" if single else f" (point {label!r})"
+            sections = {s: v for s, v in sections.items() if v}
+            params = _resolve(ctx, sections, path.parent, context)
+            points.append(Point(len(points), label, gname, values, params, gtarget))
+    return Scenario(path, text, name, question, shots, seed, block_size, points)

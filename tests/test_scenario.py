@@ -1,0 +1,682 @@
+"""Scenario files: the library, every schema error, units, groups and sweeps (mcrun.scenario)."""
+
+import math
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mcrun import scenario as sc
+from mcrun.api import InputError
+from mcrun.constants import DEG
+from mcrun.sampling import sample
+
+LIBRARY = Path(__file__).resolve().parent.parent / "scenarios"
+SESSION_CSV = Path(__file__).resolve().parent / "data" / "launch_monitor_session.csv"
+
+BALL = """
+[launch]
+ball_speed = "167 mph"
+launch_angle = "10.9 deg"
+spin = "2686 rpm"
+"""
+
+
+def write(tmp_path, text, name="s.toml"):
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text), encoding="utf-8")
+    return path
+
+
+# --- the library -------------------------------------------------------------------------------
+
+
+def test_library_folder_is_the_repository_scenarios(monkeypatch):
+    monkeypatch.delenv(sc.ENV_LIBRARY, raising=False)
+    assert sc.library_folder() == LIBRARY
+
+
+def test_library_folder_env_override(monkeypatch, tmp_path):
+    monkeypatch.setenv(sc.ENV_LIBRARY, str(tmp_path))
+    assert sc.library_folder() == tmp_path
+    monkeypatch.setenv(sc.ENV_LIBRARY, str(tmp_path / "missing"))
+    with pytest.raises(sc.ScenarioError, match="MCRUN_SCENARIOS="):
+        sc.library_folder()
+
+
+EXPECTED_LIBRARY = {
+    "pga-driver",
+    "penner-fig4-drives",
+    "penner-fig5-run-vs-launch-speed",
+    "penner-fig6-irons",
+    "penner-fig7-9iron-backspin",
+    "penner-fig8-firm-green",
+    "pga-tour-bag",
+    "lpga-tour-bag",
+    "amateur-slice",
+    "wind-study",
+    "altitude-study",
+    "firm-vs-soft-greens",
+}
+
+
+def test_list_library_names_and_questions(monkeypatch):
+    monkeypatch.delenv(sc.ENV_LIBRARY, raising=False)
+    entries = sc.list_library()
+    names = [name for name, _, _ in entries]
+    assert names == sorted(names)
+    assert EXPECTED_LIBRARY <= set(names)
+    for name, path, question in entries:
+        assert path == LIBRARY / f"{name}.toml"
+        assert question.endswith("?"), name
+
+
+@pytest.mark.parametrize("path", sorted(LIBRARY.glob("*.toml")), ids=lambda p: p.stem)
+def test_library_scenario_validates_and_samples(path):
+    """Every library file loads, starts with its question, and its points sample to finite,
+    valid kernel inputs."""
+    text = path.read_text(encoding="utf-8")
+    assert text.startswith("# Question: ")
+    s = sc.load(path)
+    assert s.name == path.stem
+    assert s.question == text.splitlines()[0].removeprefix("# Question: ")
+    assert s.question == __import__("tomllib").loads(text)["scenario"]["question"]
+    assert s.points
+    for point in s.points:
+        inputs, sampled = sample(s, point, 0, 500)
+        assert np.isfinite(inputs).all(), point.label
+        assert (inputs[:, 0] > 0).all()
+
+
+def test_find_library_scenario_by_name(monkeypatch):
+    monkeypatch.delenv(sc.ENV_LIBRARY, raising=False)
+    assert sc.find("pga-driver") == LIBRARY / "pga-driver.toml"
+    assert sc.load("pga-driver").name == "pga-driver"
+
+
+def test_pga_driver_is_the_2019_table_average():
+    """The reference scenario's means are the TrackMan 2019 PGA Tour driver row."""
+    point = sc.load(LIBRARY / "pga-driver.toml").points[0]
+    p = point.params
+    assert p["launch.ball_speed"].args[0] == pytest.approx(167 * 0.44704, rel=1e-12)
+    assert p["launch.launch_angle"].args[0] == pytest.approx(10.9 * DEG, rel=1e-12)
+    assert p["launch.spin"].args[0] == pytest.approx(2686 * 2 * math.pi / 60, rel=1e-12)
+    assert p["turf.preset"] == "fairway"
+    assert p["launch.correlation"].names == ("ball_speed", "launch_angle", "spin")
+
+
+def test_tour_bags_hold_every_club_of_the_table():
+    import csv
+
+    rows = [
+        r
+        for r in csv.DictReader(
+            line
+            for line in open(
+                LIBRARY.parent / "mcrun" / "data" / "trackman_tour_averages_2019.csv",
+                encoding="utf-8",
+            )
+            if not line.startswith("#")
+        )
+    ]
+    for tour, name in (("PGA", "pga-tour-bag"), ("LPGA", "lpga-tour-bag")):
+        s = sc.load(LIBRARY / f"{name}.toml")
+        table = {r["club"]: r for r in rows if r["tour"] == tour}
+        assert [p.group for p in s.points] == list(table)
+        for point in s.points:
+            row = table[point.group]
+            speed = point.params["launch.ball_speed"]
+            assert speed.args[0] == pytest.approx(float(row["ball_mph"]) * 0.44704)
+            assert speed.args[1] / speed.args[0] == pytest.approx(0.009, abs=0.0004)
+
+
+# --- schema errors ---------------------------------------------------------------------------
+
+ERRORS = [
+    # (name, file text, key path in the message, words of what is allowed)
+    ("unknown top key", BALL + "[wether]\n", "wether", "allowed: scenario, launch"),
+    (
+        "unknown launch key",
+        BALL + "spn = 1\n",
+        "launch.spn",
+        "allowed: ball_speed, launch_angle, spin",
+    ),
+    (
+        "unknown scenario key",
+        "[scenario]\nshot = 5\n" + BALL,
+        "scenario.shot",
+        "allowed: name, question",
+    ),
+    (
+        "wrong type shots",
+        '[scenario]\nshots = "many"\n' + BALL,
+        "scenario.shots",
+        "must be an integer >= 1",
+    ),
+    (
+        "wrong type bool",
+        BALL.replace('"167 mph"', "true"),
+        "launch.ball_speed",
+        "must be a number or a string with a unit",
+    ),
+    (
+        "list instead of a value",
+        BALL.replace('"167 mph"', "[1, 2]"),
+        "launch.ball_speed",
+        "sweep a parameter in [sweep]",
+    ),
+    (
+        "unknown unit",
+        BALL.replace("167 mph", "167 mpg"),
+        "launch.ball_speed",
+        "mph, m/s, km/h",
+    ),
+    (
+        "negative sd",
+        BALL.replace('"2686 rpm"', '{ dist = "normal", mean = "2686 rpm", sd = -5 }'),
+        "launch.spin.sd",
+        "must be >= 0, got -5 rad/s",
+    ),
+    (
+        "negative sigma",
+        BALL.replace('"2686 rpm"', '{ dist = "lognormal", median = "2686 rpm", sigma = -0.1 }'),
+        "launch.spin.sigma",
+        "must be >= 0",
+    ),
+    (
+        "uniform low >= high",
+        BALL.replace('"10.9 deg"', '{ dist = "uniform", low = 12, high = 10 }'),
+        "launch.launch_angle.low",
+        "must be < high (10 deg), got 12 deg",
+    ),
+    (
+        "truncnormal low >= high",
+        BALL.replace(
+            '"10.9 deg"', '{ dist = "truncnormal", mean = 11, sd = 1, low = 12, high = 12 }'
+        ),
+        "launch.launch_angle.low",
+        "must be < high",
+    ),
+    (
+        "triangular mode outside",
+        BALL.replace('"10.9 deg"', '{ dist = "triangular", low = 9, mode = 14, high = 13 }'),
+        "launch.launch_angle.mode",
+        "must be within [low, high] = [9 deg, 13 deg], got 14 deg",
+    ),
+    (
+        "unknown distribution",
+        BALL.replace('"10.9 deg"', '{ dist = "gaussian", mean = 11, sd = 1 }'),
+        "launch.launch_angle.dist",
+        "choose one of constant, normal, truncnormal, uniform, triangular, lognormal",
+    ),
+    (
+        "distribution key",
+        BALL.replace('"10.9 deg"', '{ dist = "normal", mean = 11, stdev = 1 }'),
+        "launch.launch_angle.stdev",
+        "allowed: dist, mean, sd",
+    ),
+    (
+        "distribution missing key",
+        BALL.replace('"10.9 deg"', '{ dist = "normal", mean = 11 }'),
+        "launch.launch_angle.sd",
+        "needs mean, sd",
+    ),
+    (
+        "correlation of a non-normal",
+        BALL + 'correlation = { names = ["ball_speed", "spin"], matrix = [[1, 0.5], [0.5, 1]] }\n',
+        "launch.correlation.names",
+        "ball_speed must be a normal distribution to be correlated",
+    ),
+    (
+        "correlation unknown name",
+        BALL.replace('"167 mph"', '{ dist = "normal", mean = "167 mph", sd = 1 }')
+        + 'correlation = { names = ["ball_speed", "smash"], matrix = [[1, 0.5], [0.5, 1]] }\n',
+        "launch.correlation.names",
+        "allowed: ball_speed, launch_angle, spin, azimuth, spin_axis",
+    ),
+    (
+        "correlation not symmetric",
+        "[launch]\n"
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'launch_angle = "10.9 deg"\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'correlation = { names = ["ball_speed", "spin"], matrix = [[1, 0.5], [0.4, 1]] }\n',
+        "launch.correlation.matrix",
+        "must be symmetric",
+    ),
+    (
+        "correlation diagonal",
+        "[launch]\n"
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'launch_angle = "10.9 deg"\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'correlation = { names = ["ball_speed", "spin"], matrix = [[2, 0.5], [0.5, 1]] }\n',
+        "launch.correlation.matrix",
+        "must have 1 on the diagonal",
+    ),
+    (
+        "correlation not positive semi-definite",
+        "[launch]\n"
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'launch_angle = { dist = "normal", mean = "10.9 deg", sd = 1 }\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'correlation = { names = ["ball_speed", "launch_angle", "spin"], matrix = '
+        "[[1, 0.9, -0.9], [0.9, 1, 0.9], [-0.9, 0.9, 1]] }\n",
+        "launch.correlation.matrix",
+        "must be positive semi-definite",
+    ),
+    (
+        "correlation shape",
+        "[launch]\n"
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'launch_angle = "10.9 deg"\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'correlation = { names = ["ball_speed", "spin"], matrix = [[1, 0.5]] }\n',
+        "launch.correlation.matrix",
+        "must be a 2 x 2 list of lists of numbers",
+    ),
+    (
+        "both launch and club",
+        BALL + '[club]\nspeed = "45 m/s"\nloft = "13.3 deg"\n',
+        "club.speed",
+        "give the ball launch [launch] or the club delivery [club], not both",
+    ),
+    (
+        "missing launch",
+        '[turf]\npreset = "green"\n',
+        "launch",
+        "missing: give [launch] with ball_speed, launch_angle and spin",
+    ),
+    (
+        "missing spin",
+        BALL.replace('spin = "2686 rpm"', ""),
+        "launch.spin",
+        "a ball launch needs ball_speed, launch_angle and spin",
+    ),
+    (
+        "club without loft",
+        '[club]\nspeed = "45 m/s"\n',
+        "club.loft",
+        "a club delivery needs speed and loft",
+    ),
+    (
+        "nonexistent resample file",
+        '[launch]\nfile = "no-such-session.csv"\n',
+        "launch.file",
+        "no such file",
+    ),
+    ("unknown preset", BALL + '[turf]\npreset = "links"\n', "turf.preset", "green, firm_green"),
+    (
+        "unknown aero model",
+        BALL + '[models]\naero = "bearman"\n',
+        "models.aero",
+        "must be one of ferguson2022",
+    ),
+    (
+        "unknown bounce model",
+        BALL + '[models]\nbounce = "daish"\n',
+        "models.bounce",
+        "must be one of penner2002",
+    ),
+    (
+        "unknown wind profile",
+        BALL + '[weather]\nwind_profile = "gusty"\n',
+        "weather.wind_profile",
+        "uniform, log, power",
+    ),
+    (
+        "constant out of range",
+        BALL.replace('"167 mph"', '"200 m/s"'),
+        "launch.ball_speed",
+        "must be within [0.5 m/s, 120 m/s], got 200 m/s",
+    ),
+    (
+        "normal mean out of range",
+        BALL.replace('"2686 rpm"', '{ dist = "normal", mean = -50, sd = 5 }'),
+        "launch.spin.mean",
+        "must be within [0 rad/s, 2000 rad/s]",
+    ),
+    (
+        "truncnormal bound out of range",
+        BALL + '[turf]\nmu = { dist = "truncnormal", mean = 0.4, sd = 0.1, low = -1, high = 1 }\n',
+        "turf.mu.low",
+        "must be within [0, 2]",
+    ),
+    (
+        "temperature out of range",
+        BALL + '[weather]\ntemperature = "80 C"\n',
+        "weather.temperature",
+        "must be within [-40 C, 55 C], got 80 C",
+    ),
+    (
+        "rho_g and stimp",
+        BALL + '[turf]\nrho_g = 0.1\nstimp = "10 ft"\n',
+        "turf.stimp",
+        "give turf.rho_g or turf.stimp, not both",
+    ),
+    (
+        "altitude and pressure",
+        BALL + '[weather]\naltitude = "1609 m"\npressure = "1013 hPa"\n',
+        "weather.pressure",
+        "give weather.altitude or weather.pressure, not both",
+    ),
+    (
+        "a distribution for a constant-only setting",
+        BALL + '[models]\ndt = { dist = "uniform", low = "1 ms", high = "10 ms" }\n',
+        "models.dt",
+        "must be a constant",
+    ),
+    (
+        "unit in the key of the wrong kind",
+        BALL.replace('spin = "2686 rpm"', "spin_mph = 5"),
+        "launch.spin_mph",
+        "spin takes units of a spin: rad/s, rpm, rps",
+    ),
+    (
+        "a unit in the value and in the key",
+        BALL.replace('spin = "2686 rpm"', 'spin_rpm = "2686 rpm"'),
+        "launch.spin_rpm",
+        "the key gives the unit (rpm): give a bare number",
+    ),
+    (
+        "given twice",
+        BALL + "spin_rpm = 2500\n",
+        "launch.spin_rpm",
+        "launch.spin is given twice",
+    ),
+    (
+        "group without a name",
+        BALL + '[[group]]\nlaunch.spin = "3000 rpm"\n',
+        "group[0].name",
+        "every group needs a name",
+    ),
+    (
+        "group name twice",
+        BALL + '[[group]]\nname = "a"\n[[group]]\nname = "a"\n',
+        "group[1].name",
+        "is used twice",
+    ),
+    (
+        "group unknown key",
+        BALL + '[[group]]\nname = "a"\nlanch.spin = 5\n',
+        "group[0].lanch",
+        "allowed: name, target, launch, club",
+    ),
+    (
+        "group override out of range",
+        BALL + '[[group]]\nname = "a"\nlaunch.spin = "-3 rad/s"\n',
+        "group[0].launch.spin",
+        "must be within [0 rad/s, 2000 rad/s]",
+    ),
+    ("sweep empty", BALL + '[sweep]\n"turf.mu" = []\n', 'sweep."turf.mu"', "non-empty list"),
+    (
+        "sweep bad key",
+        BALL + '[sweep]\n"mu" = [0.4]\n',
+        'sweep."mu"',
+        "a sweep key is a parameter path section.name",
+    ),
+    (
+        "sweep value out of range",
+        BALL + '[sweep]\n"turf.mu" = [0.4, 3.0]\n',
+        'sweep."turf.mu"[1]',
+        "must be within [0, 2], got 3",
+    ),
+    (
+        "target",
+        '[scenario]\ntarget = "250 m"\n' + BALL,
+        "scenario.target",
+        "must be a pair [x, y] of lengths",
+    ),
+    (
+        "log wind profile roughness",
+        BALL + '[weather]\nwind_profile = "log"\nwind_profile_parameter = 20\n',
+        "weather.wind_profile_parameter",
+        "must be > 0 and below the reference height",
+    ),
+    ("invalid TOML", BALL + "spin_axis = \n", "not valid TOML", "Invalid value"),
+]
+
+
+@pytest.mark.parametrize(("case", "text", "where", "allowed"), ERRORS, ids=[e[0] for e in ERRORS])
+def test_schema_error_is_one_line_naming_file_key_and_what_is_allowed(
+    tmp_path, case, text, where, allowed
+):
+    path = write(tmp_path, text)
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    message = str(info.value)
+    assert isinstance(info.value, InputError)
+    assert "\n" not in message
+    assert message.startswith(f"{path}: {where}"), message
+    assert allowed in message, message
+
+
+def test_error_for_the_exact_contract_example(tmp_path):
+    """engine.md: ``scenarios/x.toml: launch.spin.sd: must be >= 0, got -5 rad/s``."""
+    path = write(tmp_path, BALL.replace('"2686 rpm"', '{ dist = "normal", mean = 300, sd = -5 }'))
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value) == f"{path}: launch.spin.sd: must be >= 0, got -5 rad/s"
+
+
+def test_missing_scenario_file(tmp_path):
+    path = tmp_path / "nowhere.toml"
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value).startswith(f"{path}: no such file")
+
+
+def test_resample_file_without_recognisable_columns(tmp_path):
+    (tmp_path / "shots.csv").write_text("speed,angle\n70,12\n", encoding="utf-8")
+    path = write(tmp_path, '[launch]\nfile = "shots.csv"\n')
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith(f"{path}: launch.file: ")
+    assert "no recognisable column for ball_speed, launch_angle, spin" in message
+    assert "found speed, angle" in message
+
+
+def test_resample_file_with_a_bad_value(tmp_path):
+    text = SESSION_CSV.read_text(encoding="utf-8").replace("2855", "-2855")
+    (tmp_path / "shots.csv").write_text(text, encoding="utf-8")
+    path = write(tmp_path, '[launch]\nfile = "shots.csv"\n')
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value) == (
+        f"{path}: launch.file: {tmp_path / 'shots.csv'}: column 'spin_rpm' row 1: -2855 rpm is "
+        "outside the allowed range [0 rad/s, 2000 rad/s]"
+    )
+
+
+def test_correlation_broken_by_a_group_names_the_point(tmp_path):
+    text = (
+        "[launch]\n"
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'launch_angle = "10.9 deg"\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'correlation = { names = ["ball_speed", "spin"], matrix = [[1, -0.3], [-0.3, 1]] }\n'
+        '[[group]]\nname = "a"\n[[group]]\nname = "b"\nlaunch.spin = "3000 rpm"\n'
+    )
+    path = write(tmp_path, text)
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value) == (
+        f"{path}: launch.correlation.names: spin must be a normal distribution to be correlated "
+        "(launch.spin is a constant, at group[1].launch.spin) (point 'b')"
+    )
+
+
+# --- units in values and in key names ----------------------------------------------------------
+
+IN_VALUES = """
+[launch]
+ball_speed = { dist = "normal", mean = "167 mph", sd = "1.5 mph" }
+launch_angle = "10.9 deg"
+spin = { dist = "truncnormal", mean = "2686 rpm", sd = "250 rpm", low = "2000 rpm", \
+high = "3500 rpm" }
+spin_axis = { dist = "uniform", low = "-5 deg", high = "5 deg" }
+[turf]
+stimp = "10 ft"
+critical_height = "5 mm"
+[weather]
+temperature = { dist = "normal", mean = "68 F", sd = "9 F" }
+wind_speed = { dist = "lognormal", median = "10 mph", sigma = 0.3 }
+altitude = "5280 ft"
+humidity = "40 %"
+[models]
+dt = "5 ms"
+"""
+
+IN_KEYS = """
+[launch]
+ball_speed_mph = { dist = "normal", mean = 167, sd = 1.5 }
+launch_angle_deg = 10.9
+spin_rpm = { dist = "truncnormal", mean = 2686, sd = 250, low = 2000, high = 3500 }
+spin_axis_deg = { dist = "uniform", low = -5, high = 5 }
+[turf]
+stimp_ft = 10
+critical_height_mm = 5
+[weather]
+temperature_f = { dist = "normal", mean = 68, sd = 9 }
+wind_speed_mph = { dist = "lognormal", median = 10, sigma = 0.3 }
+altitude_ft = 5280
+humidity_pct = 40
+[models]
+dt_ms = 5
+"""
+
+
+def test_units_in_values_and_in_key_names_give_identical_specs(tmp_path):
+    a = sc.load(write(tmp_path, IN_VALUES, "a.toml")).points[0].params
+    b = sc.load(write(tmp_path, IN_KEYS, "b.toml")).points[0].params
+    assert a == b
+    # And the values are the SI ones; a temperature sd has no offset: 9 F is 5 K.
+    assert a["weather.temperature"].args == pytest.approx((293.15, 5.0))
+    assert a["turf.stimp"].value == pytest.approx(3.048)
+    assert a["weather.altitude"].value == pytest.approx(1609.344)
+    assert a["weather.humidity"].value == pytest.approx(0.4)
+    assert a["models.dt"].value == pytest.approx(0.005)
+
+
+def test_bare_values_are_si_but_degrees_and_celsius(tmp_path):
+    text = """
+    [launch]
+    ball_speed = 74.3
+    launch_angle = 12
+    spin = 300
+    [weather]
+    temperature = 25
+    """
+    p = sc.load(write(tmp_path, text)).points[0].params
+    assert p["launch.ball_speed"].value == 74.3
+    assert p["launch.launch_angle"].value == 12 * DEG
+    assert p["launch.spin"].value == 300.0
+    assert p["weather.temperature"].value == pytest.approx(298.15)
+
+
+def test_defaults(tmp_path):
+    """Unset quantities take the single-shot API's defaults and the turf preset's fields."""
+    s = sc.load(write(tmp_path, BALL))
+    assert (s.shots, s.seed, s.block_size, s.name) == (100_000, 0, sc.DEFAULT_BLOCK_SIZE, "s")
+    p = s.points[0].params
+    assert p["turf.preset"] == "green"
+    assert p["turf.mu"].value == 0.40
+    assert p["turf.rho_g"].value == 0.131
+    assert p["weather.pressure"].value == 101325.0
+    assert p["weather.humidity"].value == 0.5
+    assert p["weather.temperature"].value == 293.15
+    assert p["models.aero"] == "trackman2019"
+    assert p["models.dt"].value == 0.01
+    assert p["launch.azimuth"].value == 0.0
+    assert s.points[0].label == "" and s.points[0].target_m is None
+
+
+# --- groups and sweeps -------------------------------------------------------------------------
+
+GROUPS_AND_SWEEP = """
+[scenario]
+target = ["150 m", "0 m"]
+[launch]
+ball_speed = "167 mph"
+launch_angle = "10.9 deg"
+spin = "2686 rpm"
+[turf]
+preset = "firm_green"
+[[group]]
+name = "driver"
+[[group]]
+name = "7-iron"
+target = ["160 yd", "2 yd"]
+launch.ball_speed = { dist = "normal", mean = "120 mph", sd = "1.5 mph" }
+launch.spin = "7097 rpm"
+[sweep]
+"launch.spin" = ["809 rad/s", "1000 rad/s", "1200 rad/s"]
+"turf.mu" = [0.40, 0.25]
+"""
+
+
+def test_groups_times_sweep_points_and_labels(tmp_path):
+    s = sc.load(write(tmp_path, GROUPS_AND_SWEEP))
+    assert len(s.points) == 2 * 3 * 2
+    assert [p.index for p in s.points] == list(range(12))
+    assert s.points[0].label == "driver | launch.spin=809 rad/s, turf.mu=0.4"
+    assert s.points[1].label == "driver | launch.spin=809 rad/s, turf.mu=0.25"
+    assert s.points[11].label == "7-iron | launch.spin=1200 rad/s, turf.mu=0.25"
+    assert [p.group for p in s.points] == ["driver"] * 6 + ["7-iron"] * 6
+    assert s.points[3].sweep == {"launch.spin": "1000 rad/s", "turf.mu": 0.25}
+    for point in s.points:
+        spin = float(point.sweep["launch.spin"].split()[0])
+        # The sweep wins over the group's own spin; the group keeps its ball speed.
+        assert point.params["launch.spin"].value == spin
+        assert point.params["turf.mu"].value == point.sweep["turf.mu"]
+        assert point.params["turf.preset"] == "firm_green"
+        if point.group == "7-iron":
+            assert point.params["launch.ball_speed"].dist == "normal"
+            assert point.target_m == pytest.approx((160 * 0.9144, 2 * 0.9144))
+        else:
+            assert point.params["launch.ball_speed"].dist == "constant"
+            assert point.target_m == (150.0, 0.0)
+
+
+def test_groups_alone_and_sweep_alone(tmp_path):
+    groups = sc.load(write(tmp_path, GROUPS_AND_SWEEP.split("[sweep]")[0], "g.toml"))
+    assert [p.label for p in groups.points] == ["driver", "7-iron"]
+    sweep_only = BALL + '[sweep]\n"weather.altitude" = ["0 m", "1609 m"]\n'
+    points = sc.load(write(tmp_path, sweep_only, "w.toml")).points
+    assert [p.label for p in points] == ["weather.altitude=0 m", "weather.altitude=1609 m"]
+    assert points[0].group == ""
+
+
+def test_sweep_as_nested_tables_and_over_choices(tmp_path):
+    text = BALL + '[sweep]\nturf.preset = ["green", "firm_green"]\n'
+    points = sc.load(write(tmp_path, text)).points
+    assert [p.params["turf.preset"] for p in points] == ["green", "firm_green"]
+    assert [p.params["turf.mu"].value for p in points] == [0.40, 0.25]
+
+
+def test_sweep_with_unit_in_the_key(tmp_path):
+    text = BALL + '[sweep]\n"launch.spin_rpm" = [2500, 3000]\n'
+    points = sc.load(write(tmp_path, text)).points
+    assert [p.params["launch.spin"].value for p in points] == pytest.approx(
+        [2500 * math.pi / 30, 3000 * math.pi / 30]
+    )
+    assert points[0].label == "launch.spin_rpm=2500"
+
+
+def test_club_scenario_and_file_scenario(tmp_path):
+    club = sc.load(write(tmp_path, '[club]\nspeed = "45 m/s"\nloft = 13.3\n', "c.toml"))
+    point = club.points[0]
+    assert point.mode == "club"
+    assert point.params["club.mass"].value == 0.200
+    assert "launch.ball_speed" not in point.params
+    text = f'[launch]\nfile = "{SESSION_CSV}"\njitter = {{ spin_rpm = 50 }}\n'
+    resampled = sc.load(write(tmp_path, text, "f.toml")).points[0]
+    assert resampled.mode == "file"
+    spec = resampled.params["launch.file"]
+    assert spec.n_rows == 20
+    assert set(spec.columns) == {"ball_speed", "launch_angle", "spin", "spin_axis"}
+    assert spec.jitter == {"spin": pytest.approx(50 * math.pi / 30)}
+    assert resampled.params["launch.azimuth"].value == 0.0  # not in the file
