@@ -27,7 +27,7 @@ MODELS = {
     "trackman2019": TRACKMAN2019,
 }
 
-# The model that best predicts measured shots (see the README's calibration table).
+# The model that best predicts measured shots (README, "Calibration of the flight"; benchmarks/calibration.md).
 DEFAULT_MODEL = "trackman2019"
 
 SOURCES = {
@@ -58,8 +58,10 @@ QUADRATIC_COEFFICIENTS = np.array(
         # 0.31 at 0.3), least-squares tuned to the four landings Penner (2002) section 3
         # quotes. The lift had to rise about 25 % above the summary points' C_L to get them.
         [0.2803, -0.1389, 1.2498, 0.0765, 1.1877, -1.3468, 0.40],
-        # trackman2019: output of `mcrun calibrate` on the TrackMan 2019 tour averages.
-        [0.1304, 0.9287, -0.8259, 0.0504, 1.2031, -1.1490, 0.75],
+        # trackman2019: `mcrun calibrate --fit` (from ferguson2022, s_max fitted) on the TrackMan
+        # 2019 PGA and LPGA averages; carry/apex/land-angle RMSE 3.29 m / 2.22 m / 3.24 deg
+        # against ferguson2022's 3.95 / 1.42 / 5.58 (benchmarks/calibration.md).
+        [0.1678, 0.8328, -0.7391, 0.04213, 1.514, -1.631, 0.4972],
     ]
 )
 

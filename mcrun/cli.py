@@ -7,7 +7,6 @@ one line, ``mcrun: error: <message>``, on stderr and exit code 2; anything else 
 """
 
 import argparse
-import importlib.util
 import inspect
 import json
 import math
@@ -16,7 +15,7 @@ import re
 import sys
 import textwrap
 
-from mcrun import aero, api, atmosphere, paper, status, turf, units
+from mcrun import aero, api, atmosphere, calibrate, paper, status, turf, units
 from mcrun.api import InputError
 from mcrun.units import UnitError
 
@@ -528,31 +527,6 @@ def _add_lists(subparsers):
     p.set_defaults(func=_run_turfs)
 
 
-def _add_calibrate(subparsers):
-    """``mcrun calibrate``, from ``mcrun.calibrate.register`` where that module exists."""
-    if importlib.util.find_spec("mcrun.calibrate") is None:
-        return
-    try:
-        from mcrun import calibrate
-    except ImportError as err:  # e.g. the optional scipy is not installed
-        reason = f"the calibrate command cannot be loaded ({err}); install mcrun[calibrate]"
-
-        def unavailable(args):
-            raise CommandError(reason)
-
-        # No option prefix: whatever follows "calibrate" is taken, and the command says why
-        # it cannot run instead of argparse complaining about its options.
-        p = subparsers.add_parser(
-            "calibrate", help="(unavailable) " + reason, add_help=False, prefix_chars="\0"
-        )
-        p.add_argument("rest", nargs="*")
-        p.set_defaults(func=unavailable)
-        return
-    register = getattr(calibrate, "register", None)
-    if register is not None:
-        register(subparsers)
-
-
 def build_parser():
     """The ``mcrun`` argument parser with every subcommand."""
     parser = _Parser(
@@ -564,7 +538,7 @@ def build_parser():
     _add_shot(subparsers)
     _add_bounce(subparsers)
     _add_lists(subparsers)
-    _add_calibrate(subparsers)
+    calibrate.register(subparsers)
     paper.register(subparsers)
     return parser
 

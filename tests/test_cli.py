@@ -5,19 +5,16 @@ turn every bad input into one line ``mcrun: error: ...`` on stderr with exit cod
 Most tests call ``main([...])`` in the test process; one runs the installed console script.
 """
 
-import importlib.machinery
 import json
 import math
 import shutil
 import subprocess
 import sys
-import types
 from pathlib import Path
 
 import pandas as pd
 import pytest
 
-import mcrun
 from mcrun import aero, api, cli, status, turf
 from mcrun.shot import OUTCOME_FIELDS
 
@@ -331,41 +328,3 @@ def test_installed_console_script_exits_2_without_traceback():
     assert result.stderr.splitlines() == [
         "mcrun: error: --ball-speed: cannot read 'nan' as a speed: not a finite number"
     ]
-
-
-# --- the calibrate hook --------------------------------------------------------------------------
-
-
-def _fake_calibrate(monkeypatch, module):
-    monkeypatch.setitem(sys.modules, "mcrun.calibrate", module)
-    if module is None:
-        monkeypatch.delattr(mcrun, "calibrate", raising=False)
-    else:
-        monkeypatch.setattr(mcrun, "calibrate", module, raising=False)
-
-
-def test_calibrate_module_registers_its_command(capsys, monkeypatch):
-    """Where mcrun.calibrate has register(subparsers), ``mcrun calibrate`` runs its func."""
-    module = types.ModuleType("mcrun.calibrate")
-    module.__spec__ = importlib.machinery.ModuleSpec("mcrun.calibrate", None)
-
-    def register(subparsers):
-        p = subparsers.add_parser("calibrate")
-        p.add_argument("--n", type=int, default=1)
-        p.set_defaults(func=lambda args: print(f"calibrated {args.n}") or 0)
-
-    module.register = register
-    _fake_calibrate(monkeypatch, module)
-    assert run(capsys, "calibrate", "--n", "3") == (0, "calibrated 3\n", "")
-
-
-def test_calibrate_that_cannot_be_imported_is_one_error_line(capsys, monkeypatch):
-    """A calibrate module that exists but cannot be imported (a missing optional dependency)
-    leaves the other commands working and makes ``mcrun calibrate`` a one-line error."""
-    spec = importlib.machinery.ModuleSpec("mcrun.calibrate", None)
-    monkeypatch.setattr(cli.importlib.util, "find_spec", lambda name: spec)
-    _fake_calibrate(monkeypatch, None)  # None in sys.modules: the import raises ImportError
-    code, out, err = run(capsys, "calibrate", "--anything", "-x", "1")
-    assert (code, out, len(err.splitlines())) == (2, "", 1)
-    assert err.startswith("mcrun: error: the calibrate command cannot be loaded")
-    assert run(capsys, "bounce", "--speed", "26.8", "--angle", "68", "--spin", "224")[0] == 0
