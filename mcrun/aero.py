@@ -27,7 +27,7 @@ MODELS = {
     "trackman2019": TRACKMAN2019,
 }
 
-# The model that best predicts measured shots (README, "Calibration of the flight"; benchmarks/calibration.md).
+# The model that best predicts measured shots (benchmarks/calibration.md, README).
 DEFAULT_MODEL = "trackman2019"
 
 SOURCES = {
@@ -68,7 +68,14 @@ QUADRATIC_COEFFICIENTS = np.array(
 LYU_RE_SWITCH = 1.0530e5
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
+def quadratic(spin_ratio, a0, a1, a2, b0, b1, b2, s_max):
+    """(C_D, C_L) of the quadratic form, with S clipped at s_max."""
+    s = min(spin_ratio, s_max)
+    return a0 + s * (a1 + s * a2), b0 + s * (b1 + s * b2)
+
+
+@njit(cache=True, error_model="numpy")
 def coefficients(model, spin_ratio, reynolds, table):
     """Drag and lift coefficients (C_D, C_L) of ``model`` at spin ratio S and Reynolds number Re.
 
@@ -89,14 +96,14 @@ def coefficients(model, spin_ratio, reynolds, table):
         s = min(s, 0.32)
         cl = 1.99 * s - 3.25 * s * s
         return cd, cl
-    a0 = table[model, 0]
-    a1 = table[model, 1]
-    a2 = table[model, 2]
-    b0 = table[model, 3]
-    b1 = table[model, 4]
-    b2 = table[model, 5]
-    s = min(s, table[model, 6])
-    return a0 + s * (a1 + s * a2), b0 + s * (b1 + s * b2)
+    c = table[model]
+    return quadratic(s, c[0], c[1], c[2], c[3], c[4], c[5], c[6])
+
+
+@njit(cache=True, error_model="numpy")
+def is_quadratic(model):
+    """Whether the model with this id has the quadratic form (its row of the table is used)."""
+    return model != SMITS_SMITH1994 and model != LYU2018
 
 
 def model_id(name):

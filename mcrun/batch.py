@@ -10,9 +10,19 @@ that runs it, so the results are the same bit for bit whatever the thread count.
 import numpy as np
 from numba import njit, prange
 
-from mcrun.aero import QUADRATIC_COEFFICIENTS
-from mcrun.flight import make_flight_params
-from mcrun.shot import N_OUTCOME, simulate_shot
+from mcrun.aero import QUADRATIC_COEFFICIENTS, is_quadratic
+from mcrun.constants import BALL_AREA_M2, BALL_MASS_KG
+from mcrun.flight import WIND_UNIFORM, make_flight_params, rk4_step_quadratic
+from mcrun.launch import initial_state
+from mcrun.shot import (
+    N_OUTCOME,
+    apex_after_step,
+    fail,
+    finish_shot,
+    simulate_shot,
+    start_shot,
+)
+from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED
 from mcrun.turf import Turf
 
 INPUT_FIELDS = (
@@ -48,24 +58,243 @@ N_INPUT = len(INPUT_FIELDS)
 COLUMN = {name: k for k, name in enumerate(INPUT_FIELDS)}
 
 
-@njit(cache=True)
-def _shot(inputs, i, table, out, j, traj):
-    """Shot i of ``inputs`` into row j of ``out``."""
+@njit(cache=True, error_model="numpy")
+def _params(inputs, i):
+    """FlightParams and Turf of shot i."""
     c = inputs[i]
     p = make_flight_params(
         c[5], c[6], int(c[7]), c[8], c[9], c[10], c[11], int(c[12]), c[13], c[14]
     )
-    turf = Turf(c[15], c[16], c[17], c[18], c[19], c[20], c[21], c[22], c[23])
+    return p, Turf(c[15], c[16], c[17], c[18], c[19], c[20], c[21], c[22], c[23])
+
+
+@njit(cache=True, error_model="numpy")
+def _shot(inputs, i, table, out, j, traj):
+    """Shot i of ``inputs`` into row j of ``out``, one at a time (any model, any wind)."""
+    c = inputs[i]
+    p, turf = _params(inputs, i)
     return simulate_shot(
         c[0], c[1], c[2], c[3], c[4], p, turf, c[24], c[25], c[26], table, out, j, traj
     )
 
 
-@njit(parallel=True, cache=True)
-def _simulate_batch(inputs, table, out):
+# Lockstep flight: shots with a quadratic aerodynamic model in uniform wind (the usual case)
+# fly LANES at a time, a block of lanes stepped together by one loop that the compiler turns
+# into vector instructions; a lane whose ball lands is finished on its own (landing, bounces,
+# roll: shot.finish_shot) and refilled with the next shot. Every operation on a lane is the one
+# ``shot.simulate_shot`` does, in the same order, so the results are the same bit for bit.
+LANES = 16
+# Rows of the lane table: the state before and after a step, then the lane's constants.
+(
+    X,
+    Y,
+    Z,
+    VX,
+    VY,
+    VZ,
+    W,
+    X1,
+    Y1,
+    Z1,
+    VX1,
+    VY1,
+    VZ1,
+    W1,
+    AXIS_X,
+    AXIS_Y,
+    AXIS_Z,
+    WIND_X,
+    WIND_Y,
+    K_CD,
+    K_CL,
+    A0,
+    A1,
+    A2,
+    B0,
+    B1,
+    B2,
+    S_MAX,
+    DT,
+    T,
+    APEX,
+) = range(31)
+N_LANE_ROWS = 31
+
+
+@njit(cache=True, error_model="numpy")
+def _load_lane(inputs, next_i, stop, table, out, lanes, shot, k):
+    """Put the next shot that can fly in lockstep into lane k; shots that cannot (another
+    model or wind profile) are simulated on the spot, invalid ones recorded as such. Returns
+    the index of the shot after the last one taken; shot[k] = -1 when none was left."""
     no_trajectory = np.empty((0, 5))
-    for i in prange(inputs.shape[0]):
-        _shot(inputs, i, table, out, i, no_trajectory)
+    while next_i < stop:
+        i = next_i
+        next_i += 1
+        c = inputs[i]
+        p, turf = _params(inputs, i)
+        if not start_shot(c[0], c[1], c[2], c[3], c[4], p, turf, c[24], c[25], c[26], out, i):
+            continue
+        if not (is_quadratic(p.aero_model) and p.wind_profile == WIND_UNIFORM):
+            simulate_shot(
+                c[0],
+                c[1],
+                c[2],
+                c[3],
+                c[4],
+                p,
+                turf,
+                c[24],
+                c[25],
+                c[26],
+                table,
+                out,
+                i,
+                no_trajectory,
+            )
+            continue
+        vx, vy, vz, ax, ay, az, w = initial_state(c[0], c[1], c[2], c[3], c[4])
+        k_air = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
+        row = table[p.aero_model]
+        for field, value in (
+            (X, 0.0),
+            (Y, 0.0),
+            (Z, 0.0),
+            (VX, vx),
+            (VY, vy),
+            (VZ, vz),
+            (W, w),
+            (AXIS_X, ax),
+            (AXIS_Y, ay),
+            (AXIS_Z, az),
+            (WIND_X, p.wind_x_mps),
+            (WIND_Y, p.wind_y_mps),
+            (K_CD, k_air * p.cd_scale),
+            (K_CL, k_air * p.cl_scale),
+            (A0, row[0]),
+            (A1, row[1]),
+            (A2, row[2]),
+            (B0, row[3]),
+            (B1, row[4]),
+            (B2, row[5]),
+            (S_MAX, row[6]),
+            (DT, c[26]),
+            (T, 0.0),
+            (APEX, 0.0),
+        ):
+            lanes[field, k] = value
+        shot[k] = i
+        return next_i
+    shot[k] = -1
+    return next_i
+
+
+@njit(cache=True, error_model="numpy")
+def _step_lanes(lanes):
+    """One RK4 step of every lane (the vectorised loop)."""
+    for k in range(LANES):
+        ctx = (
+            lanes[AXIS_X, k],
+            lanes[AXIS_Y, k],
+            lanes[AXIS_Z, k],
+            lanes[WIND_X, k],
+            lanes[WIND_Y, k],
+            lanes[K_CD, k],
+            lanes[K_CL, k],
+            lanes[A0, k],
+            lanes[A1, k],
+            lanes[A2, k],
+            lanes[B0, k],
+            lanes[B1, k],
+            lanes[B2, k],
+            lanes[S_MAX, k],
+        )
+        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step_quadratic(
+            lanes[X, k],
+            lanes[Y, k],
+            lanes[Z, k],
+            lanes[VX, k],
+            lanes[VY, k],
+            lanes[VZ, k],
+            lanes[W, k],
+            lanes[DT, k],
+            ctx,
+        )
+        lanes[X1, k] = x1
+        lanes[Y1, k] = y1
+        lanes[Z1, k] = z1
+        lanes[VX1, k] = vx1
+        lanes[VY1, k] = vy1
+        lanes[VZ1, k] = vz1
+        lanes[W1, k] = w1
+
+
+@njit(cache=True, error_model="numpy")
+def _lockstep(inputs, start, stop, table, out):
+    """Simulate shots start..stop-1 of ``inputs`` into ``out``, LANES at a time."""
+    lanes = np.zeros((N_LANE_ROWS, LANES))
+    shot = np.full(LANES, -1)
+    no_trajectory = np.empty((0, 5))
+    next_i = start
+    for k in range(LANES):
+        next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
+    while True:
+        active = 0
+        for k in range(LANES):
+            active += shot[k] >= 0
+        if active == 0:
+            return
+        _step_lanes(lanes)
+        for k in range(LANES):
+            i = shot[k]
+            if i < 0:
+                continue
+            s = lanes[:, k]
+            if s[Z1] < 0.0:
+                p, turf = _params(inputs, i)
+                c = inputs[i]
+                finish_shot(
+                    s[X],
+                    s[Y],
+                    s[Z],
+                    s[VX],
+                    s[VY],
+                    s[VZ],
+                    s[W],
+                    s[Z1],
+                    s[VZ1],
+                    s[T],
+                    s[APEX],
+                    (s[AXIS_X], s[AXIS_Y], s[AXIS_Z], p, table),
+                    turf,
+                    c[24],
+                    c[25],
+                    c[26],
+                    out,
+                    i,
+                    no_trajectory,
+                    0,
+                )
+                next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
+                continue
+            s[APEX] = apex_after_step(s[APEX], s[Z], s[VZ], s[Z1], s[VZ1], s[DT])
+            for field in range(7):
+                s[X + field] = s[X1 + field]
+            s[T] += s[DT]
+            if s[T] > MAX_FLIGHT_TIME_S:
+                fail(out, i, NOT_LANDED)
+                next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
+
+
+# Shots per parallel task: enough to keep the lanes full, few enough to balance two threads.
+TASK_SHOTS = 512
+
+
+@njit(parallel=True, cache=True, error_model="numpy")
+def _simulate_batch(inputs, table, out):
+    n = inputs.shape[0]
+    tasks = (n + TASK_SHOTS - 1) // TASK_SHOTS
+    for task in prange(tasks):
+        _lockstep(inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out)
 
 
 def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS):
@@ -78,7 +307,7 @@ def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS):
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def trajectory_of(inputs, i, table, traj):
     """Trajectory of shot i of ``inputs`` into ``traj`` (m, 5); returns its number of points."""
     out = np.empty((1, N_OUTCOME))

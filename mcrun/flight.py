@@ -18,7 +18,7 @@ from typing import NamedTuple
 
 from numba import njit
 
-from mcrun.aero import coefficients
+from mcrun.aero import coefficients, quadratic
 from mcrun.constants import BALL_AREA_M2, BALL_MASS_KG, BALL_RADIUS_M, G_MPS2, SPIN_DECAY_K
 
 WIND_UNIFORM = 0
@@ -44,7 +44,7 @@ class FlightParams(NamedTuple):
     wind_profile_parameter: float
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def wind_factor(z, profile, reference_height, parameter):
     """Wind speed at height z as a fraction of its speed at the reference height."""
     if profile == WIND_UNIFORM:
@@ -58,10 +58,33 @@ def wind_factor(z, profile, reference_height, parameter):
     return (z / reference_height) ** parameter
 
 
-@njit(cache=True)
-def derivatives(vx, vy, vz, spin, z, axis_x, axis_y, axis_z, p, table):
-    """Time derivatives (ax, ay, az, dspin/dt) of the flight state; the spin is |w| about the
-    unit axis (axis_x, axis_y, axis_z)."""
+@njit(cache=True, error_model="numpy")
+def forces(ux, uy, uz, speed, spin, axis_x, axis_y, axis_z, k_cd, k_cl, cd, cl):
+    """Acceleration and spin decay from the air-relative velocity u (|u| = speed > 0).
+
+    k_cd = k C_D-scale and k_cl = k C_L-scale, with k = rho A / (2 m).
+    """
+    drag = k_cd * cd * speed
+    # Lift along w x v_rel, scaled to |v_rel|^2.
+    lx = axis_y * uz - axis_z * uy
+    ly = axis_z * ux - axis_x * uz
+    lz = axis_x * uy - axis_y * ux
+    norm = math.sqrt(lx * lx + ly * ly + lz * lz)
+    lift = k_cl * cl * speed * speed / norm if norm > 1e-12 * speed else 0.0
+    ax = -drag * ux + lift * lx
+    ay = -drag * uy + lift * ly
+    az = -drag * uz + lift * lz - G_MPS2
+    return ax, ay, az, -SPIN_DECAY_K * speed / BALL_RADIUS_M * spin
+
+
+@njit(cache=True, error_model="numpy")
+def derivatives(vx, vy, vz, spin, z, ctx):
+    """Time derivatives (ax, ay, az, dspin/dt) of the flight state, any model and wind.
+
+    ``ctx`` = (axis_x, axis_y, axis_z, p, table): the unit spin axis, the FlightParams and
+    ``aero.QUADRATIC_COEFFICIENTS``.
+    """
+    axis_x, axis_y, axis_z, p, table = ctx
     f = wind_factor(z, p.wind_profile, p.wind_reference_height_m, p.wind_profile_parameter)
     ux = vx - f * p.wind_x_mps
     uy = vy - f * p.wind_y_mps
@@ -73,57 +96,71 @@ def derivatives(vx, vy, vz, spin, z, axis_x, axis_y, axis_z, p, table):
     reynolds = speed * 2.0 * BALL_RADIUS_M / p.kinematic_viscosity_m2ps
     cd, cl = coefficients(p.aero_model, spin_ratio, reynolds, table)
     k = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
-    drag = k * p.cd_scale * cd * speed
-    # Lift along w x v_rel, scaled to |v_rel|^2.
-    lx = axis_y * uz - axis_z * uy
-    ly = axis_z * ux - axis_x * uz
-    lz = axis_x * uy - axis_y * ux
-    norm = math.sqrt(lx * lx + ly * ly + lz * lz)
-    lift = 0.0
-    if norm > 1e-12 * speed:
-        lift = k * p.cl_scale * cl * speed * speed / norm
-    ax = -drag * ux + lift * lx
-    ay = -drag * uy + lift * ly
-    az = -drag * uz + lift * lz - G_MPS2
-    return ax, ay, az, -SPIN_DECAY_K * speed / BALL_RADIUS_M * spin
-
-
-@njit(cache=True)
-def rk4_step(x, y, z, vx, vy, vz, spin, h, axis_x, axis_y, axis_z, p, table):
-    """One classical Runge-Kutta step of size h; returns the new seven-float state."""
-    a1x, a1y, a1z, s1 = derivatives(vx, vy, vz, spin, z, axis_x, axis_y, axis_z, p, table)
-    hh = 0.5 * h
-    v2x = vx + hh * a1x
-    v2y = vy + hh * a1y
-    v2z = vz + hh * a1z
-    a2x, a2y, a2z, s2 = derivatives(
-        v2x, v2y, v2z, spin + hh * s1, z + hh * vz, axis_x, axis_y, axis_z, p, table
-    )
-    v3x = vx + hh * a2x
-    v3y = vy + hh * a2y
-    v3z = vz + hh * a2z
-    a3x, a3y, a3z, s3 = derivatives(
-        v3x, v3y, v3z, spin + hh * s2, z + hh * v2z, axis_x, axis_y, axis_z, p, table
-    )
-    v4x = vx + h * a3x
-    v4y = vy + h * a3y
-    v4z = vz + h * a3z
-    a4x, a4y, a4z, s4 = derivatives(
-        v4x, v4y, v4z, spin + h * s3, z + h * v3z, axis_x, axis_y, axis_z, p, table
-    )
-    w = h / 6.0
-    return (
-        x + w * (vx + 2.0 * v2x + 2.0 * v3x + v4x),
-        y + w * (vy + 2.0 * v2y + 2.0 * v3y + v4y),
-        z + w * (vz + 2.0 * v2z + 2.0 * v3z + v4z),
-        vx + w * (a1x + 2.0 * a2x + 2.0 * a3x + a4x),
-        vy + w * (a1y + 2.0 * a2y + 2.0 * a3y + a4y),
-        vz + w * (a1z + 2.0 * a2z + 2.0 * a3z + a4z),
-        spin + w * (s1 + 2.0 * s2 + 2.0 * s3 + s4),
+    return forces(
+        ux, uy, uz, speed, spin, axis_x, axis_y, axis_z, k * p.cd_scale, k * p.cl_scale, cd, cl
     )
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
+def derivatives_quadratic(vx, vy, vz, spin, z, ctx):
+    """``derivatives`` for a quadratic aerodynamic model in uniform wind, without branches, so
+    that a loop over a block of shots vectorises. Bit for bit the same numbers as
+    ``derivatives`` gives for such a shot (ignoring the measure-zero case |v_rel| = 0).
+
+    ``ctx`` = (axis_x, axis_y, axis_z, wind_x, wind_y, k_cd, k_cl, a0, a1, a2, b0, b1, b2, s_max).
+    """
+    axis_x, axis_y, axis_z, wind_x, wind_y, k_cd, k_cl, a0, a1, a2, b0, b1, b2, s_max = ctx
+    ux = vx - wind_x
+    uy = vy - wind_y
+    uz = vz
+    speed = math.sqrt(ux * ux + uy * uy + uz * uz)
+    cd, cl = quadratic(BALL_RADIUS_M * spin / speed, a0, a1, a2, b0, b1, b2, s_max)
+    return forces(ux, uy, uz, speed, spin, axis_x, axis_y, axis_z, k_cd, k_cl, cd, cl)
+
+
+def _make_rk4(deriv):
+    """The classical Runge-Kutta step for the derivative function ``deriv`` (called as
+    deriv(vx, vy, vz, spin, z, ctx)). One source for both derivative functions below; numba
+    compiles each with its derivative inlined."""
+
+    @njit(cache=True, error_model="numpy")
+    def rk4_step(x, y, z, vx, vy, vz, spin, h, ctx):
+        """One RK4 step of size h; returns the new seven-float state."""
+        a1x, a1y, a1z, s1 = deriv(vx, vy, vz, spin, z, ctx)
+        hh = 0.5 * h
+        v2x = vx + hh * a1x
+        v2y = vy + hh * a1y
+        v2z = vz + hh * a1z
+        a2x, a2y, a2z, s2 = deriv(v2x, v2y, v2z, spin + hh * s1, z + hh * vz, ctx)
+        v3x = vx + hh * a2x
+        v3y = vy + hh * a2y
+        v3z = vz + hh * a2z
+        a3x, a3y, a3z, s3 = deriv(v3x, v3y, v3z, spin + hh * s2, z + hh * v2z, ctx)
+        v4x = vx + h * a3x
+        v4y = vy + h * a3y
+        v4z = vz + h * a3z
+        a4x, a4y, a4z, s4 = deriv(v4x, v4y, v4z, spin + h * s3, z + h * v3z, ctx)
+        w = h / 6.0
+        return (
+            x + w * (vx + 2.0 * v2x + 2.0 * v3x + v4x),
+            y + w * (vy + 2.0 * v2y + 2.0 * v3y + v4y),
+            z + w * (vz + 2.0 * v2z + 2.0 * v3z + v4z),
+            vx + w * (a1x + 2.0 * a2x + 2.0 * a3x + a4x),
+            vy + w * (a1y + 2.0 * a2y + 2.0 * a3y + a4y),
+            vz + w * (a1z + 2.0 * a2z + 2.0 * a3z + a4z),
+            spin + w * (s1 + 2.0 * s2 + 2.0 * s3 + s4),
+        )
+
+    return rk4_step
+
+
+# rk4_step(x, y, z, vx, vy, vz, spin, h, ctx) for any shot (ctx as for ``derivatives``), and
+# for a quadratic model in uniform wind (ctx as for ``derivatives_quadratic``).
+rk4_step = _make_rk4(derivatives)
+rk4_step_quadratic = _make_rk4(derivatives_quadratic)
+
+
+@njit(cache=True, error_model="numpy")
 def hermite_root(z0, vz0, z1, vz1, h):
     """Time in [0, h] where the cubic Hermite interpolant of z(t) crosses zero.
 
@@ -161,7 +198,7 @@ def hermite_root(z0, vz0, z1, vz1, h):
     return t
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def make_flight_params(
     air_density_kgpm3,
     kinematic_viscosity_m2ps,

@@ -29,7 +29,6 @@ from mcrun.status import (
     MAX_BOUNCES,
     MAX_FLIGHT_TIME_S,
     NOT_LANDED,
-    OK,
     TOO_MANY_BOUNCES,
 )
 from mcrun.trajectory import BOUNCE, FLIGHT, ROLL, record
@@ -91,7 +90,8 @@ N_OUTCOME = len(OUTCOME_FIELDS)
 
 
 @njit(cache=True)
-def _fail(out, i, status):
+def fail(out, i, status):
+    """Record that shot i ended with ``status``: its flight and run fields are NaN."""
     for k in range(3, N_OUTCOME):
         out[i, k] = math.nan
     out[i, STATUS] = status
@@ -131,7 +131,7 @@ def run_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, dt):
             return x, y, z, t, TOO_MANY_BOUNCES, bounces, first_height, first_length, n
         # Exact ballistic hop back to the plane: n.(v T - g z T^2 / 2) = 0.
         hop_time = 2.0 * (vx * nx + vy * ny + vz * nz) / (G_MPS2 * nz)
-        while t_next < t + hop_time:
+        while traj.shape[0] > 0 and t_next < t + hop_time:
             s = t_next - t
             n = record(
                 traj, n, t_next, x + vx * s, y + vy * s, z + vz * s - 0.5 * G_MPS2 * s * s, BOUNCE
@@ -220,6 +220,40 @@ def simulate_shot(
     int
         Number of trajectory points the shot has (more than ``traj`` holds if it was too short).
     """
+    if not start_shot(
+        speed, launch_angle, azimuth, spin, spin_axis, p, turf, slope, fall_line, dt, out, i
+    ):
+        return 0
+    vx, vy, vz, ax, ay, az, w = initial_state(speed, launch_angle, azimuth, spin, spin_axis)
+    ctx = (ax, ay, az, p, table)
+    x = 0.0
+    y = 0.0
+    z = 0.0
+    t = 0.0
+    apex = 0.0
+    n = record(traj, 0, t, x, y, z, FLIGHT)
+    while True:
+        if t > MAX_FLIGHT_TIME_S:
+            fail(out, i, NOT_LANDED)
+            return n
+        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step(x, y, z, vx, vy, vz, w, dt, ctx)
+        if z1 < 0.0:
+            break
+        apex = apex_after_step(apex, z, vz, z1, vz1, dt)
+        x, y, z, vx, vy, vz, w = x1, y1, z1, vx1, vy1, vz1, w1
+        t += dt
+        n = record(traj, n, t, x, y, z, FLIGHT)
+    return finish_shot(
+        x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, turf, slope, fall_line, dt, out, i, traj, n
+    )
+
+
+@njit(cache=True)
+def start_shot(
+    speed, launch_angle, azimuth, spin, spin_axis, p, turf, slope, fall_line, dt, out, i
+):
+    """Write the launch fields of shot i and check its inputs; False (and status
+    INVALID_INPUT written) when one is non-finite or non-physical."""
     out[i, LAUNCH_SPEED] = speed
     out[i, LAUNCH_ANGLE] = math.degrees(launch_angle)
     out[i, LAUNCH_SPIN] = spin
@@ -239,38 +273,38 @@ def simulate_shot(
         and turf.rho_g >= 0.0
         and turf.critical_height_m > 0.0
     ):
-        _fail(out, i, INVALID_INPUT)
-        return 0
-    vx, vy, vz, ax, ay, az, w = initial_state(speed, launch_angle, azimuth, spin, spin_axis)
-    x = 0.0
-    y = 0.0
-    z = 0.0
-    t = 0.0
-    apex = 0.0
-    n = record(traj, 0, t, x, y, z, FLIGHT)
-    while True:
-        if t > MAX_FLIGHT_TIME_S:
-            _fail(out, i, NOT_LANDED)
-            return n
-        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step(x, y, z, vx, vy, vz, w, dt, ax, ay, az, p, table)
-        if z1 < 0.0:
-            break
-        if vz > 0.0 and vz1 <= 0.0:
-            # Apex inside the step, taking vz linear in time.
-            apex = max(apex, z + 0.5 * vz * dt * vz / (vz - vz1))
-        apex = max(apex, z1)
-        x, y, z, vx, vy, vz, w = x1, y1, z1, vx1, vy1, vz1, w1
-        t += dt
-        n = record(traj, n, t, x, y, z, FLIGHT)
+        fail(out, i, INVALID_INPUT)
+        return False
+    return True
+
+
+@njit(cache=True)
+def apex_after_step(apex, z, vz, z1, vz1, dt):
+    """Highest point so far after a step from (z, vz) to (z1, vz1)."""
+    if vz > 0.0 and vz1 <= 0.0:
+        # Apex inside the step, taking vz linear in time.
+        apex = max(apex, z + 0.5 * vz * dt * vz / (vz - vz1))
+    return max(apex, z1)
+
+
+@njit(cache=True)
+def finish_shot(
+    x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, turf, slope, fall_line, dt, out, i, traj, n
+):
+    """From the last step of the flight, (x, ..., w) at t above the ground and z1, vz1 below it:
+    locate the landing, run the ball out (``run_out``) and write the rest of shot i.
+
+    ``ctx`` = (axis_x, axis_y, axis_z, p, table) as for ``flight.derivatives``.
+    """
     # Landing: root of the cubic Hermite interpolant of z, then an RK4 step of that length from
-    # the start of the step, refined by one Newton step on z.
+    # the start of the step, refined by Newton steps on z.
     h = hermite_root(z, vz, z1, vz1, dt)
     for _ in range(2):
-        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step(x, y, z, vx, vy, vz, w, h, ax, ay, az, p, table)
+        _, _, z1, _, _, vz1, _ = rk4_step(x, y, z, vx, vy, vz, w, h, ctx)
         if vz1 < 0.0:
             h = min(max(h - z1 / vz1, 0.0), dt)
-    x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step(x, y, z, vx, vy, vz, w, h, ax, ay, az, p, table)
-    x, y, z, vx, vy, vz, w = x1, y1, 0.0, vx1, vy1, vz1, w1
+    x, y, _, vx, vy, vz, w = rk4_step(x, y, z, vx, vy, vz, w, h, ctx)
+    z = 0.0
     t += h
     n = record(traj, n, t, x, y, z, FLIGHT)
     out[i, CARRY] = x
@@ -288,11 +322,12 @@ def simulate_shot(
     ny = -sb * math.sin(fall_line)
     nz = math.cos(slope)
     landing_x = x
+    ax, ay, az, _, _ = ctx
     x, y, z, t, status, bounces, first_height, first_length, n = run_out(
         x, y, z, vx, vy, vz, w * ax, w * ay, w * az, nx, ny, nz, turf, t, traj, n, dt
     )
     if status == TOO_MANY_BOUNCES:
-        _fail(out, i, TOO_MANY_BOUNCES)
+        fail(out, i, TOO_MANY_BOUNCES)
         return n
     out[i, BOUNCES] = bounces
     out[i, FIRST_BOUNCE_HEIGHT] = first_height
@@ -302,5 +337,5 @@ def simulate_shot(
     out[i, FINAL_X] = x
     out[i, FINAL_Y] = -y
     out[i, TOTAL_TIME] = t
-    out[i, STATUS] = status if status != OK else OK
+    out[i, STATUS] = status
     return n
