@@ -84,7 +84,9 @@ def _shot(inputs, i, table, out, j, traj):
 # roll: shot.finish_shot) and refilled with the next shot. Every operation on a lane is the one
 # ``shot.simulate_shot`` does, in the same order, so the results are the same bit for bit.
 LANES = 16
-# Rows of the lane table: the state before and after a step, then the lane's constants.
+# Rows of the lane table, a flat array whose row r of lane k is at r * LANES + k (a layout
+# whose offsets the compiler can see, so that it vectorises the loop over the lanes): the state
+# before and after a step, then the lane's constants.
 (
     X,
     Y,
@@ -181,7 +183,7 @@ def _load_lane(inputs, next_i, stop, table, out, lanes, shot, k):
             (T, 0.0),
             (APEX, 0.0),
         ):
-            lanes[field, k] = value
+            lanes[field * LANES + k] = value
         shot[k] = i
         return next_i
     shot[k] = -1
@@ -193,45 +195,45 @@ def _step_lanes(lanes):
     """One RK4 step of every lane (the vectorised loop)."""
     for k in range(LANES):
         ctx = (
-            lanes[AXIS_X, k],
-            lanes[AXIS_Y, k],
-            lanes[AXIS_Z, k],
-            lanes[WIND_X, k],
-            lanes[WIND_Y, k],
-            lanes[K_CD, k],
-            lanes[K_CL, k],
-            lanes[A0, k],
-            lanes[A1, k],
-            lanes[A2, k],
-            lanes[B0, k],
-            lanes[B1, k],
-            lanes[B2, k],
-            lanes[S_MAX, k],
+            lanes[AXIS_X * LANES + k],
+            lanes[AXIS_Y * LANES + k],
+            lanes[AXIS_Z * LANES + k],
+            lanes[WIND_X * LANES + k],
+            lanes[WIND_Y * LANES + k],
+            lanes[K_CD * LANES + k],
+            lanes[K_CL * LANES + k],
+            lanes[A0 * LANES + k],
+            lanes[A1 * LANES + k],
+            lanes[A2 * LANES + k],
+            lanes[B0 * LANES + k],
+            lanes[B1 * LANES + k],
+            lanes[B2 * LANES + k],
+            lanes[S_MAX * LANES + k],
         )
         x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step_quadratic(
-            lanes[X, k],
-            lanes[Y, k],
-            lanes[Z, k],
-            lanes[VX, k],
-            lanes[VY, k],
-            lanes[VZ, k],
-            lanes[W, k],
-            lanes[DT, k],
+            lanes[X * LANES + k],
+            lanes[Y * LANES + k],
+            lanes[Z * LANES + k],
+            lanes[VX * LANES + k],
+            lanes[VY * LANES + k],
+            lanes[VZ * LANES + k],
+            lanes[W * LANES + k],
+            lanes[DT * LANES + k],
             ctx,
         )
-        lanes[X1, k] = x1
-        lanes[Y1, k] = y1
-        lanes[Z1, k] = z1
-        lanes[VX1, k] = vx1
-        lanes[VY1, k] = vy1
-        lanes[VZ1, k] = vz1
-        lanes[W1, k] = w1
+        lanes[X1 * LANES + k] = x1
+        lanes[Y1 * LANES + k] = y1
+        lanes[Z1 * LANES + k] = z1
+        lanes[VX1 * LANES + k] = vx1
+        lanes[VY1 * LANES + k] = vy1
+        lanes[VZ1 * LANES + k] = vz1
+        lanes[W1 * LANES + k] = w1
 
 
 @njit(cache=True, error_model="numpy")
 def _lockstep(inputs, start, stop, table, out):
     """Simulate shots start..stop-1 of ``inputs`` into ``out``, LANES at a time."""
-    lanes = np.zeros((N_LANE_ROWS, LANES))
+    lanes = np.zeros(N_LANE_ROWS * LANES)
     shot = np.full(LANES, -1)
     no_trajectory = np.empty((0, 5))
     next_i = start
@@ -248,7 +250,7 @@ def _lockstep(inputs, start, stop, table, out):
             i = shot[k]
             if i < 0:
                 continue
-            s = lanes[:, k]
+            s = lanes[k::LANES]  # s[row] is row ``row`` of lane k
             if s[Z1] < 0.0:
                 p, turf = _params(inputs, i)
                 c = inputs[i]

@@ -15,7 +15,7 @@ import re
 import sys
 import textwrap
 
-from mcrun import aero, api, atmosphere, calibrate, paper, status, turf, units
+from mcrun import aero, api, atmosphere, calibrate, paper, run, status, turf, units
 from mcrun.api import InputError
 from mcrun.units import UnitError
 
@@ -538,6 +538,7 @@ def build_parser():
     _add_shot(subparsers)
     _add_bounce(subparsers)
     _add_lists(subparsers)
+    run.register(subparsers)
     calibrate.register(subparsers)
     paper.register(subparsers)
     return parser

@@ -123,7 +123,8 @@ def _make_rk4(deriv):
     deriv(vx, vy, vz, spin, z, ctx)). One source for both derivative functions below; numba
     compiles each with its derivative inlined."""
 
-    @njit(cache=True, error_model="numpy")
+    # Inlined where it is called, so that a loop over a block of shots vectorises.
+    @njit(cache=True, error_model="numpy", inline="always")
     def rk4_step(x, y, z, vx, vy, vz, spin, h, ctx):
         """One RK4 step of size h; returns the new seven-float state."""
         a1x, a1y, a1z, s1 = deriv(vx, vy, vz, spin, z, ctx)

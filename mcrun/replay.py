@@ -1,0 +1,388 @@
+"""Replaying measured shots: each shot of a launch-monitor session, simulated as given.
+
+``replay`` takes a table of measured launches (a CSV or Parquet file, or a DataFrame), with
+columns recognised by name and unit suffix exactly as a scenario's ``launch.file``
+(``scenario.FILE_COLUMNS``: ``ball_speed_mph``, ``launch_deg``, ``spin_rpm``, optional
+``spin_axis_deg`` and ``azimuth_deg``, ...), and flies every row, without sampling, on the turf
+and in the weather given once for the whole session: what the session would have given on
+another course or another day. The rows run through the same batch kernel as a Monte Carlo run.
+
+A row with a missing value or a value outside ``mcrun.api.RANGES`` is not simulated: it keeps
+its place with status ``invalid_input`` (a session often holds a misread shot; one bad row
+should not stop the others). The output keeps the file's own columns (renamed ``input_<name>``
+where a name is also an output column), then the launch in SI-named columns, the outcome of
+``shot.OUTCOME_FIELDS`` and status_name, with the provenance in the Parquet metadata.
+"""
+
+import argparse
+import math
+import sys
+import time
+from datetime import UTC, datetime
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from mcrun import aero, api, output, status
+from mcrun.api import InputError
+from mcrun.batch import COLUMN, N_INPUT, simulate_batch
+from mcrun.constants import DEG
+from mcrun.scenario import FILE_COLUMNS, PARAMETERS
+from mcrun.shot import DEFAULT_DT_S, OUTCOME_FIELDS
+from mcrun.units import KINDS, UnitError, from_column_name, parse_quantity, parse_vector
+
+# The launch columns of the output, by quantity of FILE_COLUMNS: (name, SI -> output factor).
+LAUNCH_COLUMNS = {
+    "ball_speed": ("ball_speed_mps", 1.0),
+    "launch_angle": ("launch_angle_deg", 1.0 / DEG),
+    "spin": ("spin_radps", 1.0),
+    "spin_axis": ("spin_axis_deg", 1.0 / DEG),
+    "azimuth": ("azimuth_deg", 1.0 / DEG),
+}
+_REQUIRED = ("ball_speed", "launch_angle", "spin")
+
+
+def read_shots(path):
+    """A launch-monitor file (CSV or Parquet) as a DataFrame; InputError if unreadable."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: no such file")
+    try:
+        if path.suffix.lower() in (".parquet", ".pq"):
+            frame = pd.read_parquet(path)
+        else:
+            frame = pd.read_csv(path, comment="#", skipinitialspace=True)
+    except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
+        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
+        raise InputError(f"{path}: cannot read it as CSV or Parquet: {first}") from None
+    return frame
+
+
+def launch_columns(frame, source="the shots"):
+    """{quantity: (column, unit)} of the recognised launch columns of ``frame``."""
+    found = {}
+    for column in frame.columns:
+        parsed = from_column_name(str(column).strip().lower())
+        if parsed is None:
+            continue
+        base, kind, unit = parsed
+        for quantity, bases in FILE_COLUMNS.items():
+            if base in bases and PARAMETERS["launch"][quantity].kind == kind:
+                if quantity in found:
+                    raise InputError(
+                        f"{source}: columns {found[quantity][0]!r} and {column!r} both give "
+                        f"{quantity}; keep one"
+                    )
+                found[quantity] = (column, unit)
+    missing = [q for q in _REQUIRED if q not in found]
+    if missing:
+        names = ", ".join(map(str, frame.columns)) or "none"
+        raise InputError(
+            f"{source}: no recognisable column for {', '.join(missing)}; expected columns named "
+            "with their unit (ball_speed_mph or _mps, launch_deg, spin_rpm or _radps; optional "
+            f"spin_axis_deg, azimuth_deg), found {names}"
+        )
+    return found
+
+
+def launches(frame, source="the shots"):
+    """(SI arrays by quantity, valid row mask) of the measured launches in ``frame``."""
+    found = launch_columns(frame, source)
+    n = len(frame)
+    valid = np.ones(n, dtype=bool)
+    values = {}
+    for quantity in LAUNCH_COLUMNS:
+        if quantity in found:
+            column, unit = found[quantity]
+            kind = PARAMETERS["launch"][quantity].kind
+            raw = pd.to_numeric(frame[column], errors="coerce").to_numpy(dtype=float)
+            factor, offset = KINDS[kind][1][unit]
+            si = raw * factor + offset
+        else:
+            si = np.zeros(n)
+        lo, hi = PARAMETERS["launch"][quantity].limits
+        valid &= np.isfinite(si) & (si >= lo) & (si <= hi)
+        values[quantity] = si
+    return values, valid
+
+
+def conditions_inputs(
+    turf="green",
+    slope_deg=0.0,
+    fall_line_deg=0.0,
+    dt_s=DEFAULT_DT_S,
+    **conditions,
+):
+    """The kernel input columns that do not depend on the launch, checked by ``mcrun.api``
+    exactly as ``api.simulate`` checks them (``conditions``: ``api.flight_params``'s)."""
+    turf = api.resolve_turf(turf)
+    params = api.flight_params(**conditions)
+    return {
+        "air_density_kgpm3": params.air_density_kgpm3,
+        "kinematic_viscosity_m2ps": params.kinematic_viscosity_m2ps,
+        "aero_model": float(params.aero_model),
+        "cd_scale": params.cd_scale,
+        "cl_scale": params.cl_scale,
+        "wind_x_mps": params.wind_x_mps,
+        "wind_right_mps": -params.wind_y_mps,  # FlightParams is in the core's frame, y left
+        "wind_profile": float(params.wind_profile),
+        "wind_reference_height_m": params.wind_reference_height_m,
+        "wind_profile_parameter": params.wind_profile_parameter,
+        "mu": turf.mu,
+        "softness": turf.softness,
+        "e0": turf.e0,
+        "e1": turf.e1,
+        "e2": turf.e2,
+        "e_break_speed_mps": turf.e_break_speed_mps,
+        "e_high": turf.e_high,
+        "rho_g": turf.rho_g,
+        "critical_height_m": turf.critical_height_m,
+        "slope_rad": api.check_range("slope_deg", slope_deg) * DEG,
+        "fall_line_rad": api.check_range("fall_line_deg", fall_line_deg) * DEG,
+        "dt_s": api.check_range("dt_s", dt_s),
+    }
+
+
+def replay(shots, source=None, **conditions):
+    """Simulate every measured shot of ``shots`` (a DataFrame, or a CSV/Parquet path).
+
+    ``conditions``: turf, slope_deg, fall_line_deg, dt_s and the keyword arguments of
+    ``api.flight_params`` (aero_model, wind_mps, temperature_c, altitude_m, ...), the same for
+    every shot, as for ``api.simulate``. Returns a DataFrame, one row per shot (see the module
+    docstring); rows with an unusable launch get status invalid_input.
+    """
+    if isinstance(shots, str | Path):
+        source = source or str(shots)
+        shots = read_shots(shots)
+    source = source or "the shots"
+    values, valid = launches(shots, source)
+    fixed = conditions_inputs(**conditions)
+    n = len(shots)
+    inputs = np.empty((n, N_INPUT), order="F")
+    for name, value in fixed.items():
+        inputs[:, COLUMN[name]] = value
+    inputs[:, COLUMN["ball_speed_mps"]] = values["ball_speed"]
+    inputs[:, COLUMN["launch_angle_rad"]] = values["launch_angle"]
+    inputs[:, COLUMN["spin_radps"]] = values["spin"]
+    inputs[:, COLUMN["spin_axis_rad"]] = values["spin_axis"]
+    inputs[:, COLUMN["azimuth_rad"]] = values["azimuth"]
+    # An unusable row reaches the kernel as a NaN speed, which it answers with invalid_input.
+    inputs[~valid, COLUMN["ball_speed_mps"]] = math.nan
+    out = simulate_batch(inputs)
+
+    frame = {"row": np.arange(n, dtype=np.int64)}
+    launch_names = [name for name, _ in LAUNCH_COLUMNS.values()]
+    taken = {"row", "status_name", *launch_names, *OUTCOME_FIELDS}
+    for column in shots.columns:
+        name = str(column)
+        frame[f"input_{name}" if name in taken else name] = shots[column].to_numpy()
+    for quantity, (name, factor) in LAUNCH_COLUMNS.items():
+        frame[name] = values[quantity] * factor
+    for k, name in enumerate(OUTCOME_FIELDS):
+        if name in frame:  # launch_angle_deg: the measured launch above
+            continue
+        if name == "bounces":
+            missing = ~np.isfinite(out[:, k])
+            bounces = pd.array(np.where(missing, 0, out[:, k]).astype(np.int32), dtype="Int32")
+            bounces[missing] = pd.NA
+            frame[name] = bounces
+        elif name == "status":
+            frame[name] = out[:, k].astype(np.int8)
+        else:
+            frame[name] = out[:, k]
+    codes = out[:, OUTCOME_FIELDS.index("status")].astype(int)
+    frame["status_name"] = pd.Categorical.from_codes(
+        codes, [status.NAMES[k] for k in sorted(status.NAMES)]
+    )
+    return pd.DataFrame(frame)
+
+
+def replay_file(source, destination, force=False, **conditions):
+    """Replay the shots of the file ``source`` and write ``destination`` (Parquet) atomically,
+    with the provenance in its metadata. Returns the DataFrame written."""
+    started = time.perf_counter()
+    start_time = datetime.now(UTC).isoformat(timespec="seconds")
+    source = Path(source)
+    shots = read_shots(source)
+    with output.AtomicFile(destination, force=force) as target:
+        frame = replay(shots, source=str(source), **conditions)
+        metadata = {
+            "format_version": 1,
+            "backend": "local",
+            "file": "replay",
+            "source_path": str(source),
+            "n": len(frame),
+            "conditions": {k: _plain(v) for k, v in conditions.items()},
+            "versions": output.versions(),
+            "threads": _threads(),
+            "start_time_utc": start_time,
+            "elapsed_s": round(time.perf_counter() - started, 3),
+        }
+        output.write_table(target.tmp, frame, output.encode_provenance(metadata))
+        target.commit()
+    return frame
+
+
+def _threads():
+    import numba
+
+    return numba.get_num_threads()
+
+
+def _plain(value):
+    """A JSON-able copy of a condition (a Turf becomes a dict of its fields)."""
+    if hasattr(value, "_asdict"):
+        return {k: _plain(v) for k, v in value._asdict().items()}
+    if isinstance(value, tuple | list):
+        return [_plain(v) for v in value]
+    if isinstance(value, int | float | str | bool) or value is None:
+        return value
+    return str(value)
+
+
+# --- command line ------------------------------------------------------------------------------
+
+
+def _quantity(text, kind, option):
+    return None if text is None else parse_quantity(text, kind, option)
+
+
+def _degrees(text, option):
+    value = _quantity(text, "angle", option)
+    return None if value is None else value / DEG
+
+
+def _number(text, option):
+    if text is None:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{option}: cannot read {text!r} as a number") from None
+    if not math.isfinite(value):
+        raise InputError(f"{option}: cannot read {text!r}: not a finite number")
+    return value
+
+
+def conditions_from_args(args):
+    """Keyword arguments of ``replay`` from the command line options."""
+    turf_overrides = {
+        "mu": _number(args.mu, "--mu"),
+        "softness": _number(args.softness, "--softness"),
+        "rho_g": _number(args.rho_g, "--rho-g"),
+        "stimp_m": _quantity(args.stimp, "length", "--stimp"),
+    }
+    turf = api.resolve_turf(args.turf, **turf_overrides)
+    temperature_k = _quantity(args.temperature, "temperature", "--temperature")
+    wind = (0.0, 0.0) if args.wind is None else parse_vector(args.wind, "speed", "--wind")
+    profile = args.wind_profile
+    parameter = None
+    if args.wind_param is not None:
+        if profile == "log":
+            parameter = _quantity(args.wind_param, "length", "--wind-param")
+        else:
+            parameter = _number(args.wind_param, "--wind-param")
+    given = {
+        "turf": turf,
+        "slope_deg": _degrees(args.slope, "--slope"),
+        "fall_line_deg": _degrees(args.fall_line, "--fall-line"),
+        "dt_s": _number(args.dt, "--dt"),
+        "aero_model": args.aero,
+        "cd_scale": _number(args.cd_scale, "--cd-scale"),
+        "cl_scale": _number(args.cl_scale, "--cl-scale"),
+        "wind_mps": wind,
+        "wind_profile": profile,
+        "wind_reference_height_m": _quantity(args.wind_height, "length", "--wind-height"),
+        "wind_profile_parameter": parameter,
+        "temperature_c": None if temperature_k is None else temperature_k - 273.15,
+        "pressure_pa": _quantity(args.pressure, "pressure", "--pressure"),
+        "altitude_m": _quantity(args.altitude, "length", "--altitude"),
+        "relative_humidity": _quantity(args.humidity, "fraction", "--humidity"),
+        "air_density_kgpm3": _number(args.air_density, "--air-density"),
+    }
+    return {k: v for k, v in given.items() if v is not None}
+
+
+def _cmd_replay(args):
+    try:
+        conditions = conditions_from_args(args)
+        conditions_inputs(**conditions)  # every option checked before reading the file
+        destination = Path(args.output)
+        if destination.suffix.lower() not in (".parquet", ".pq"):
+            raise InputError(f"-o {args.output}: the output must be a .parquet file")
+        frame = replay_file(args.shots, destination, force=args.force, **conditions)
+    except (InputError, UnitError) as err:
+        print("mcrun: error: " + " ".join(str(err).split()), file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("mcrun: interrupted: nothing was written", file=sys.stderr)
+        return 130
+    bad = int((frame["status"] != status.OK).sum())
+    print(f"replayed {len(frame)} shots from {args.shots}; wrote {args.output}")
+    if bad:
+        print(
+            f"mcrun: warning: {bad} shot(s) did not end ok (status_name says why; a missing or "
+            "out-of-range launch value gives invalid_input)",
+            file=sys.stderr,
+        )
+    return 0
+
+
+def register(subparsers):
+    """Add ``replay`` to an argparse subparsers object."""
+    p = subparsers.add_parser(
+        "replay",
+        help="simulate each measured shot of a launch-monitor file as given",
+        description="Fly every shot of a launch-monitor session (CSV or Parquet; columns named "
+        "with their unit: ball_speed_mph, launch_deg, spin_rpm, optional spin_axis_deg, "
+        "azimuth_deg) as measured, without sampling, on the turf and in the weather given "
+        "here, and write a Parquet of the inputs and outcomes. Values take units as in "
+        "'mcrun shot'.",
+        allow_abbrev=False,
+    )
+    p.add_argument("shots", metavar="SHOTS", help="measured shots, .csv or .parquet")
+    p.add_argument("-o", "--output", metavar="OUT.parquet", required=True, help="output file")
+    p.add_argument("--force", action="store_true", help="replace an existing output file")
+    p.add_argument("--turf", metavar="NAME", default="green", help="turf preset (default green)")
+    p.add_argument("--mu", metavar="MU", help="override: ball-turf friction")
+    p.add_argument("--softness", metavar="S", help="override: scale on theta_c")
+    p.add_argument("--rho-g", metavar="RHO", help="override: rolling resistance")
+    p.add_argument("--stimp", metavar="LENGTH", help="override rho_g by a Stimp reading, e.g. 10ft")
+    p.add_argument("--slope", metavar="ANGLE", help="ground slope (bare: deg; default 0)")
+    p.add_argument(
+        "--fall-line", metavar="ANGLE", help="downhill direction, positive right (default 0)"
+    )
+    p.add_argument(
+        "--aero",
+        metavar="NAME",
+        default=aero.DEFAULT_MODEL,
+        help="aero model (default %(default)s)",
+    )
+    p.add_argument("--cd-scale", metavar="X", help="scale on C_D (default 1)")
+    p.add_argument("--cl-scale", metavar="X", help="scale on C_L (default 1)")
+    p.add_argument(
+        "--wind",
+        metavar="X,Y",
+        help="wind: X along the target line (tailwind +), Y to the right; e.g. 10mph,-3mph",
+    )
+    p.add_argument(
+        "--wind-profile", metavar="PROFILE", default="uniform", help="uniform | log | power"
+    )
+    p.add_argument("--wind-height", metavar="LENGTH", help="height of --wind (default 10 m)")
+    p.add_argument("--wind-param", metavar="VALUE", help="log z0 (length) or power exponent")
+    p.add_argument("--temperature", metavar="T", help="air temperature (bare: Celsius)")
+    p.add_argument("--altitude", metavar="LENGTH", help="altitude (bare: m; not with --pressure)")
+    p.add_argument("--pressure", metavar="P", help="air pressure (bare: Pa)")
+    p.add_argument("--humidity", metavar="RH", help="relative humidity, 0.5 or 50%%")
+    p.add_argument("--air-density", metavar="RHO", help="air density, kg/m^3 (overrides)")
+    p.add_argument("--dt", metavar="SECONDS", help="flight step (default 0.01)")
+    p.set_defaults(func=_cmd_replay)
+
+
+def main(argv=None):
+    """``mcrun replay`` alone."""
+    parser = argparse.ArgumentParser(prog="mcrun", allow_abbrev=False)
+    register(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(argv)
+    return args.func(args)

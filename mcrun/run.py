@@ -1,0 +1,719 @@
+"""Running a scenario: sample, simulate, reduce and write, chunk by chunk.
+
+``run_scenario`` streams every point of a scenario through fixed-size chunks of sample indices:
+``sampling.sample`` draws the chunk's inputs (which depend only on the scenario, the seed and
+the sample index, so neither the chunk size nor the thread count changes a number),
+``batch.simulate_batch`` runs them in parallel into a preallocated buffer, ``stats.PointStats``
+folds them into its streaming sums, and ``output.ShotsWriter`` appends them to shots.parquet as
+one row group. Memory is one chunk, whatever the number of shots. After the last chunk the
+percentiles are computed exactly from shots.parquet (``stats.summarise``), summary.parquet is
+written, and the temporary folder is renamed into place.
+
+The command line: ``mcrun run``, ``mcrun validate``, ``mcrun scenarios`` (``register``) and
+``mcrun replay`` (``mcrun.replay``). The default output folder of ``mcrun run`` is
+``runs/<scenario name>-<seed>`` under the current folder.
+"""
+
+import argparse
+import copy
+import dataclasses
+import json
+import math
+import sys
+import time
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+
+import numba
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+
+from mcrun import aero, output, sampling, stats
+from mcrun import scenario as scenario_module
+from mcrun.api import InputError
+from mcrun.batch import COLUMN, simulate_batch, trajectory_of
+from mcrun.flight import WIND_PROFILES
+from mcrun.shot import N_OUTCOME
+from mcrun.units import UnitError
+
+DEFAULT_CHUNK_SIZE = 65536
+RUNS_FOLDER = Path("runs")
+
+# The sampled column of each parameter a user can give a distribution (scenario.PARAMETERS key
+# paths): the candidate drivers of the variance. Derived columns (the ball launch of a club
+# delivery, the air density, the wind components) are not candidates: their parameters are.
+DRIVER_COLUMNS = {
+    "launch.ball_speed": "ball_speed_mps",
+    "launch.launch_angle": "launch_angle_deg",
+    "launch.spin": "spin_radps",
+    "launch.azimuth": "azimuth_deg",
+    "launch.spin_axis": "spin_axis_deg",
+    "club.speed": "club_speed_mps",
+    "club.mass": "club_mass_kg",
+    "club.loft": "loft_deg",
+    "club.azimuth": "azimuth_deg",
+    "club.spin_axis": "spin_axis_deg",
+    "turf.mu": "mu",
+    "turf.softness": "softness",
+    "turf.restitution": "restitution",
+    "turf.rho_g": "rho_g",
+    "turf.stimp": "stimp_m",
+    "turf.critical_height": "critical_height_m",
+    "turf.slope": "slope_deg",
+    "turf.fall_line": "fall_line_deg",
+    "weather.wind_speed": "wind_speed_mps",
+    "weather.wind_direction": "wind_direction_deg",
+    "weather.temperature": "temperature_c",
+    "weather.altitude": "altitude_m",
+    "weather.pressure": "pressure_pa",
+    "weather.humidity": "relative_humidity",
+    "models.cd_scale": "cd_scale",
+    "models.cl_scale": "cl_scale",
+}
+# A resampled launch-monitor file varies the launch quantities it holds or jitters.
+_FILE_DRIVERS = {
+    "ball_speed": "ball_speed_mps",
+    "launch_angle": "launch_angle_deg",
+    "spin": "spin_radps",
+    "spin_axis": "spin_axis_deg",
+    "azimuth": "azimuth_deg",
+}
+
+# How the summary is computed, recorded in summary.parquet's metadata.
+SUMMARY_CONVENTIONS = {
+    "statistics_over": "shots with status ok; the others are counted in n_<status>",
+    "ddof": stats.DDOF,
+    "percentile_method": "linear interpolation between order statistics (pandas' default)",
+    "ellipse": "semi-axes sqrt(eigenvalue * -2 ln(1 - p)) of the final position's covariance; "
+    "angle of the major axis from the target line towards the right, in [0, 180) deg",
+    "target": "the scenario's target, else the point's mean final position",
+    "drivers": "standardised regression coefficients (src) on the sampled inputs that vary, "
+    "share = src^2; run_m: correlation with each landing quantity, share = corr^2",
+}
+
+_INTERRUPTED = "mcrun: interrupted: the run was stopped and nothing was written"
+
+
+@dataclass
+class RunResult:
+    """What a run wrote: the folder, its files, and how it was run."""
+
+    out_dir: Path
+    shots_path: Path
+    summary_path: Path
+    trajectories_path: Path | None
+    n: int
+    seed: int
+    points: int
+    elapsed_s: float
+    threads: int
+    paths: list = field(default_factory=list)
+
+    def shots(self, columns=None):
+        """shots.parquet as a pandas DataFrame (``columns``: a subset to read)."""
+        return pd.read_parquet(self.shots_path, columns=columns)
+
+    def summary(self):
+        """summary.parquet as a pandas DataFrame, one row per point."""
+        return pd.read_parquet(self.summary_path)
+
+    def trajectories(self):
+        """trajectories.parquet as a pandas DataFrame (None when not asked for)."""
+        return None if self.trajectories_path is None else pd.read_parquet(self.trajectories_path)
+
+
+# --- checks ------------------------------------------------------------------------------------
+
+
+def _positive_int(value, name, minimum=1):
+    """An integer >= minimum from an int, a float with an integral value or a text ("1e6")."""
+    wrong = InputError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    if isinstance(value, bool):
+        raise wrong
+    try:
+        number = float(value.strip().replace("_", "") if isinstance(value, str) else value)
+    except (TypeError, ValueError):
+        raise wrong from None
+    if not (math.isfinite(number) and number == int(number) and number >= minimum):
+        raise wrong
+    return int(number)
+
+
+def _check_threads(threads):
+    if threads is None:
+        return None
+    most = numba.config.NUMBA_NUM_THREADS
+    threads = _positive_int(threads, "threads")
+    if threads > most:
+        raise InputError(f"threads must be within [1, {most}] on this machine, got {threads}")
+    return threads
+
+
+def _load(path_or_scenario):
+    if isinstance(path_or_scenario, str | Path):
+        return scenario_module.load(path_or_scenario)
+    return path_or_scenario
+
+
+def _with_seed(scenario, seed):
+    """The scenario with another seed (the sampler reads ``scenario.seed``)."""
+    if dataclasses.is_dataclass(scenario):
+        return dataclasses.replace(scenario, seed=seed)
+    other = copy.copy(scenario)
+    other.seed = seed
+    return other
+
+
+def default_out_dir(scenario, seed):
+    """``runs/<scenario name>-<seed>``, relative to the current folder."""
+    return RUNS_FOLDER / f"{scenario.name}-{seed}"
+
+
+def driver_inputs(point, columns):
+    """The sampled columns of ``point`` that a distribution varies (the variance drivers)."""
+    names = []
+    for key, spec in point.params.items():
+        if key == "launch.file":
+            names += [_FILE_DRIVERS[q] for q in (*spec.columns, *spec.jitter)]
+        elif key in DRIVER_COLUMNS and not getattr(spec, "is_constant", True):
+            names.append(DRIVER_COLUMNS[key])
+    names = set(names)
+    return [name for name in columns if name in names]
+
+
+def _model_names(first_inputs):
+    """Names of the aerodynamic models and wind profiles used, from each point's first row."""
+    aero_names = {v: k for k, v in aero.MODELS.items()}
+    profile_names = {v: k for k, v in WIND_PROFILES.items()}
+    models = sorted({aero_names[int(row[COLUMN["aero_model"]])] for row in first_inputs})
+    profiles = sorted({profile_names[int(row[COLUMN["wind_profile"]])] for row in first_inputs})
+    return {"aero": models, "bounce": ["penner2002"], "wind_profile": profiles}
+
+
+def _sweep_columns(points):
+    """{key path: [value per point]}: numbers as floats, anything else as text."""
+    keys = list(dict.fromkeys(k for p in points for k in (p.sweep or {})))
+    columns = {}
+    for key in keys:
+        values = [(p.sweep or {}).get(key) for p in points]
+        numeric = all(isinstance(v, int | float) and not isinstance(v, bool) for v in values)
+        columns[key] = [float(v) for v in values] if numeric else [str(v) for v in values]
+    return columns
+
+
+# --- the run -----------------------------------------------------------------------------------
+
+
+def _trajectories(writer, inputs, point, start, stop, every, buffer):
+    """Paths of the shots start <= i < stop with i % every == 0 (rows of ``inputs``)."""
+    first = -(-start // every) * every
+    for i in range(first, stop, every):
+        while True:
+            n = trajectory_of(inputs, i - start, aero.QUADRATIC_COEFFICIENTS, buffer)
+            if n <= buffer.shape[0]:
+                break
+            buffer = np.empty((2 * n, 5))
+        writer.add(point, i, buffer[:n])
+    return buffer
+
+
+def run_scenario(
+    path_or_scenario,
+    n=None,
+    seed=None,
+    out_dir=None,
+    threads=None,
+    chunk_size=DEFAULT_CHUNK_SIZE,
+    trajectories_every=None,
+    progress=True,
+    force=False,
+    budget_bytes=stats.DEFAULT_BUDGET_BYTES,
+):
+    """Run a scenario and write its folder; return a RunResult.
+
+    Parameters
+    ----------
+    path_or_scenario : str, Path or scenario.Scenario
+        A scenario file, a library scenario's name, or a loaded scenario.
+    n : int, optional
+        Shots per point (default: the scenario's ``shots``).
+    seed : int, optional
+        Default: the scenario's ``seed``.
+    out_dir : str or Path, optional
+        The run folder (default ``runs/<scenario name>-<seed>``). It must not exist, be empty,
+        or (with ``force``) hold an earlier run, which is replaced once this one is complete.
+    threads : int, optional
+        Numba threads for the batch kernel (default: Numba's, all cores); restored after.
+    chunk_size : int
+        Shots per chunk (one row group each); results do not depend on it.
+    trajectories_every : int, optional
+        Write trajectories.parquet with the path of every k-th shot of each point.
+    progress : bool
+        A tqdm bar on stderr (only when stderr is a terminal).
+    force : bool
+        Replace an existing run folder.
+    budget_bytes : int
+        Memory for the exact percentiles per column (``stats.exact_quantiles``).
+
+    Raises
+    ------
+    InputError
+        (ScenarioError, OutputError) on a bad scenario, argument or output folder, before
+        anything is written. KeyboardInterrupt is re-raised after the temporary files are
+        removed.
+    """
+    scenario = _load(path_or_scenario)
+    n = _positive_int(scenario.shots if n is None else n, "n")
+    seed = _positive_int(scenario.seed if seed is None else seed, "seed", minimum=0)
+    chunk_size = _positive_int(chunk_size, "chunk_size")
+    if trajectories_every is not None:
+        trajectories_every = _positive_int(trajectories_every, "trajectories_every")
+    threads = _check_threads(threads)
+    if seed != scenario.seed:
+        scenario = _with_seed(scenario, seed)
+    points = list(scenario.points)
+    out_dir = Path(default_out_dir(scenario, seed) if out_dir is None else out_dir)
+
+    # The columns (the same for every point) and each point's first inputs (one block each).
+    input_names = list(sampling.sampled_columns(scenario))
+    input_types = {}
+    first_inputs = []
+    for point in points:
+        inputs, sampled = sampling.sample(scenario, point, 0, 1)
+        first_inputs.append(inputs[0])
+        for name, values in sampled.items():
+            if np.issubdtype(np.asarray(values).dtype, np.integer):
+                input_types[name] = pa.int64()
+    drivers_per_point = [driver_inputs(point, input_names) for point in points]
+
+    previous_threads = numba.get_num_threads()
+    if threads is not None:
+        numba.set_num_threads(threads)
+    started = time.perf_counter()
+    base = {
+        "format_version": 1,
+        "backend": "local",
+        "scenario_name": scenario.name,
+        "scenario_path": str(scenario.path),
+        "scenario_text": scenario.text,
+        "seed": seed,
+        "n": n,
+        "block_size": scenario.block_size,
+        "points": [p.label for p in points],
+        "groups": [p.group for p in points],
+        "models": _model_names(first_inputs),
+        "versions": output.versions(),
+        "threads": numba.get_num_threads(),
+        "chunk_size": chunk_size,
+        "trajectories_every": trajectories_every,
+        "start_time_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+    }
+
+    def metadata(file):
+        return output.encode_provenance(
+            {**base, "file": file, "elapsed_s": round(time.perf_counter() - started, 3)}
+        )
+
+    try:
+        with output.AtomicFolder(out_dir, force=force) as folder:
+            shots_writer = output.ShotsWriter(
+                folder.file(output.SHOTS_FILE),
+                input_names,
+                [p.group for p in points],
+                [p.label for p in points],
+                output.encode_provenance({**base, "file": "shots"}),
+                input_types,
+            )
+            traj_writer = None
+            if trajectories_every is not None:
+                traj_writer = output.TrajectoryWriter(
+                    folder.file(output.TRAJECTORIES_FILE),
+                    output.encode_provenance({**base, "file": "trajectories"}),
+                )
+            try:
+                point_stats = _stream(
+                    scenario,
+                    points,
+                    drivers_per_point,
+                    n,
+                    chunk_size,
+                    shots_writer,
+                    traj_writer,
+                    trajectories_every,
+                    progress,
+                )
+            except BaseException:
+                shots_writer.abort()
+                if traj_writer is not None:
+                    traj_writer.abort()
+                raise
+            shots_writer.close(metadata("shots"))
+            rows = _summary_rows(
+                points,
+                point_stats,
+                folder.file(output.SHOTS_FILE),
+                shots_writer.row_groups,
+                budget_bytes,
+            )
+            output.write_table(
+                folder.file(output.SUMMARY_FILE),
+                rows,
+                {**metadata("summary"), **output.encode_provenance(SUMMARY_CONVENTIONS)},
+            )
+            if traj_writer is not None:
+                traj_writer.close(metadata("trajectories"))
+            folder.commit()
+    finally:
+        numba.set_num_threads(previous_threads)
+    elapsed = time.perf_counter() - started
+    paths = [out_dir / output.SHOTS_FILE, out_dir / output.SUMMARY_FILE]
+    traj_path = None
+    if trajectories_every is not None:
+        traj_path = out_dir / output.TRAJECTORIES_FILE
+        paths.append(traj_path)
+    return RunResult(
+        out_dir=out_dir,
+        shots_path=paths[0],
+        summary_path=paths[1],
+        trajectories_path=traj_path,
+        n=n,
+        seed=seed,
+        points=len(points),
+        elapsed_s=elapsed,
+        threads=base["threads"],
+        paths=paths,
+    )
+
+
+def _stream(
+    scenario, points, drivers_per_point, n, chunk_size, shots_writer, traj_writer, every, progress
+):
+    """The chunked loop; returns the PointStats of every point."""
+    from tqdm import tqdm
+
+    show = bool(progress) and sys.stderr.isatty()
+    # One output buffer, reused by every full chunk (the last chunk of a point gets its own).
+    buffer = np.empty((chunk_size, N_OUTCOME), order="F") if n >= chunk_size else None
+    traj_buffer = np.empty((4096, 5))
+    all_stats = []
+    with tqdm(
+        total=n * len(points), unit="shot", unit_scale=True, disable=not show, smoothing=0.1
+    ) as bar:
+        for point, drivers in zip(points, drivers_per_point, strict=True):
+            if len(points) > 1:
+                bar.set_description(point.label or f"point {point.index}")
+            point_stats = stats.PointStats(drivers)
+            for start in range(0, n, chunk_size):
+                stop = min(start + chunk_size, n)
+                inputs, sampled = sampling.sample(scenario, point, start, stop)
+                out = buffer if stop - start == chunk_size else None
+                out = simulate_batch(inputs, out)
+                point_stats.update(out, sampled)
+                shots_writer.write(point.index, start, sampled, out)
+                if traj_writer is not None:
+                    traj_buffer = _trajectories(
+                        traj_writer, inputs, point.index, start, stop, every, traj_buffer
+                    )
+                    traj_writer.flush()
+                bar.update(stop - start)
+            all_stats.append(point_stats)
+    return all_stats
+
+
+def _summary_rows(points, point_stats, shots_path, row_groups, budget_bytes):
+    rows = []
+    sweep = _sweep_columns(points)
+    for point, one in zip(points, point_stats, strict=True):
+        row = {"point": point.index, "group": point.group, "label": point.label}
+        for key, values in sweep.items():
+            row[key] = values[point.index]
+        columns = stats.ShotsColumns(shots_path, row_groups.get(point.index, []))
+        row.update(
+            stats.summarise(one, columns, target_m=point.target_m, budget_bytes=budget_bytes)
+        )
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def run_dataframes(path_or_scenario, n=None, seed=None, **kwargs):
+    """Run a scenario into a temporary folder and return (shots, summary) DataFrames."""
+    import tempfile
+
+    kwargs.setdefault("progress", False)
+    with tempfile.TemporaryDirectory(prefix="mcrun-") as tmp:
+        result = run_scenario(path_or_scenario, n=n, seed=seed, out_dir=Path(tmp) / "run", **kwargs)
+        return result.shots(), result.summary()
+
+
+# --- printing ----------------------------------------------------------------------------------
+
+
+def _fmt(value, spec=".1f"):
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "-"
+    return format(float(value) + 0.0, spec)
+
+
+def _mean_sd(row, name, spec=".1f"):
+    return f"{_fmt(row[f'{name}_mean'], spec)} ± {_fmt(row[f'{name}_std'], spec)}"
+
+
+def format_summary(summary, top=3):
+    """The summary as an aligned text table, one line per point, then the variance drivers."""
+    header = [
+        "point",
+        "label",
+        "ok/shots",
+        "carry_m",
+        "total_m",
+        "final_y_m",
+        "ellipse95_m",
+        "r50_m",
+        "r95_m",
+    ]
+    lines = [header]
+    for row in summary.to_dict("records"):
+        lines.append(
+            [
+                str(row["point"]),
+                row["label"] or "-",
+                f"{row['n_ok']}/{row['n_shots']}",
+                _mean_sd(row, "carry_m"),
+                _mean_sd(row, "total_m"),
+                _mean_sd(row, "final_y_m"),
+                f"{_fmt(row['ellipse95_semi_major_m'])} x {_fmt(row['ellipse95_semi_minor_m'])}"
+                f" @ {_fmt(row['ellipse95_angle_deg'], '.0f')} deg",
+                _fmt(row["distance_r50_m"]),
+                _fmt(row["distance_r95_m"]),
+            ]
+        )
+    widths = [max(len(line[k]) for line in lines) for k in range(len(header))]
+    text = [
+        "  ".join(cell.ljust(w) for cell, w in zip(line, widths, strict=True)).rstrip()
+        for line in lines
+    ]
+    for row in summary.to_dict("records"):
+        for y in (*stats.DRIVEN, "run_m"):
+            prefix = f"{y}_share_"
+            shares = {
+                k[len(prefix) :]: v
+                for k, v in row.items()
+                if k.startswith(prefix) and isinstance(v, float) and math.isfinite(v)
+            }
+            if not shares:
+                continue
+            best = sorted(shares.items(), key=lambda kv: -kv[1])[:top]
+            parts = ", ".join(f"{k} {100 * v:.0f}%" for k, v in best)
+            if y == "run_m":
+                text.append(f"point {row['point']}: run_m explained alone by {parts}")
+            else:
+                text.append(
+                    f"point {row['point']}: variance of {y} from {parts} "
+                    f"(R^2 {_fmt(row[f'{y}_r2'], '.2f')})"
+                )
+    return "\n".join(text)
+
+
+def _json_safe(value):
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+# --- command line ------------------------------------------------------------------------------
+
+
+def _error(err):
+    print("mcrun: error: " + " ".join(str(err).split()), file=sys.stderr)
+    return 2
+
+
+def _interrupted():
+    print(_INTERRUPTED, file=sys.stderr)
+    return 130
+
+
+def _cmd_run(args):
+    try:
+        result = run_scenario(
+            args.scenario,
+            n=args.n,
+            seed=args.seed,
+            out_dir=args.output,
+            threads=args.threads,
+            chunk_size=args.chunk_size,
+            trajectories_every=args.trajectories,
+            progress=not args.quiet,
+            force=args.force,
+        )
+    except (InputError, UnitError) as err:
+        return _error(err)
+    except KeyboardInterrupt:
+        return _interrupted()
+    summary = result.summary()
+    if args.json:
+        records = [{k: _json_safe(v) for k, v in r.items()} for r in summary.to_dict("records")]
+        print(
+            json.dumps(
+                {
+                    "out_dir": str(result.out_dir),
+                    "files": [str(p) for p in result.paths],
+                    "n": result.n,
+                    "seed": result.seed,
+                    "threads": result.threads,
+                    "elapsed_s": result.elapsed_s,
+                    "summary": records,
+                },
+                allow_nan=False,
+            )
+        )
+        return 0
+    print(format_summary(summary))
+    shots = result.n * result.points
+    rate = shots / result.elapsed_s if result.elapsed_s > 0 else math.inf
+    print(
+        f"{shots} shots in {result.elapsed_s:.1f} s ({rate:,.0f} shots/s on {result.threads} "
+        "threads); wrote:"
+    )
+    for path in result.paths:
+        print(f"  {path}")
+    return 0
+
+
+def describe(scenario):
+    """A short description of a scenario's points (what ``mcrun validate`` prints)."""
+    lines = [f"scenario {scenario.name} ({scenario.path})"]
+    if scenario.question:
+        lines.append(f"question: {scenario.question}")
+    lines.append(
+        f"{len(scenario.points)} point(s) x {scenario.shots} shots, seed {scenario.seed}, "
+        f"block size {scenario.block_size}"
+    )
+    names = sampling.sampled_columns(scenario)
+    for point in scenario.points:
+        inputs, _ = sampling.sample(scenario, point, 0, 1)
+        varying = driver_inputs(point, names)
+        model = {v: k for k, v in aero.MODELS.items()}[int(inputs[0, COLUMN["aero_model"]])]
+        label = point.label or "(single point)"
+        lines.append(
+            f"  {point.index}: {label}: aero {model}; sampled: "
+            + (", ".join(varying) if varying else "none (every input constant)")
+        )
+    return "\n".join(lines)
+
+
+def _cmd_validate(args):
+    try:
+        scenario = scenario_module.load(args.scenario)
+        text = describe(scenario)
+    except (InputError, UnitError) as err:
+        return _error(err)
+    print(text)
+    return 0
+
+
+def _cmd_scenarios(args):
+    try:
+        folder = Path(args.dir) if args.dir else scenario_module.library_folder()
+        if not folder.is_dir():
+            raise InputError(f"--dir {folder}: not a folder")
+        entries = scenario_module.list_library(folder)
+    except (InputError, UnitError) as err:
+        return _error(err)
+    if args.json:
+        print(
+            json.dumps(
+                [{"name": name, "question": q, "path": str(path)} for name, path, q in entries]
+            )
+        )
+        return 0
+    if not entries:
+        print(f"no scenarios in {folder}")
+        return 0
+    width = max(len(name) for name, _, _ in entries)
+    for name, _, question in entries:
+        print(f"{name:<{width}}  {question}".rstrip())
+    return 0
+
+
+def register(subparsers):
+    """Add ``run``, ``validate``, ``scenarios`` and ``replay`` to an argparse subparsers."""
+    p = subparsers.add_parser(
+        "run",
+        help="run a Monte Carlo scenario and write shots, summary (and trajectories) Parquet",
+        description="Run every point of a scenario (a TOML file, see 'mcrun scenarios') with "
+        "N shots each, and write a folder with shots.parquet (one row per shot), "
+        "summary.parquet (one row per point: dispersion statistics and what drives it) and "
+        "optionally trajectories.parquet. The same seed gives the same shots, bit for bit, "
+        "whatever the thread count and chunk size. Ctrl-C stops cleanly and writes nothing.",
+        allow_abbrev=False,
+    )
+    p.add_argument(
+        "scenario", metavar="SCENARIO", help="scenario file (.toml), or a library scenario's name"
+    )
+    p.add_argument("-n", metavar="N", help="shots per point (default: the scenario's); 1e6 works")
+    p.add_argument("--seed", metavar="S", help="random seed (default: the scenario's)")
+    p.add_argument(
+        "-o",
+        "--output",
+        metavar="DIR",
+        help="output folder (default runs/<scenario name>-<seed>); refused if it holds a run, "
+        "unless --force",
+    )
+    p.add_argument("--force", action="store_true", help="replace an existing run folder")
+    p.add_argument("--threads", metavar="T", help="Numba threads (default: all cores)")
+    p.add_argument(
+        "--trajectories", metavar="K", help="also write the path of every K-th shot of each point"
+    )
+    p.add_argument(
+        "--chunk-size",
+        metavar="C",
+        default=DEFAULT_CHUNK_SIZE,
+        help=f"shots per chunk and row group (default {DEFAULT_CHUNK_SIZE}); results do not "
+        "depend on it",
+    )
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.set_defaults(func=_cmd_run)
+
+    p = subparsers.add_parser(
+        "validate",
+        help="check a scenario file and describe its points",
+        description="Load and check a scenario; print its points and what each samples. "
+        "Exit 0 when valid, else one line naming the file, the key and what is allowed, exit 2.",
+        allow_abbrev=False,
+    )
+    p.add_argument(
+        "scenario", metavar="SCENARIO", help="scenario file (.toml), or a library scenario's name"
+    )
+    p.set_defaults(func=_cmd_validate)
+
+    p = subparsers.add_parser(
+        "scenarios",
+        help="list the scenario library, with the question each one answers",
+        allow_abbrev=False,
+    )
+    p.add_argument(
+        "--dir",
+        metavar="DIR",
+        help=f"library folder (default: ${scenario_module.ENV_LIBRARY}, else the scenarios/ "
+        "folder beside the package)",
+    )
+    p.add_argument("--json", action="store_true", help="print JSON instead")
+    p.set_defaults(func=_cmd_scenarios)
+
+    from mcrun import replay
+
+    replay.register(subparsers)
+
+
+def main(argv=None):
+    """``run``, ``validate``, ``scenarios`` and ``replay`` alone (for testing without mcrun.cli)."""
+    parser = argparse.ArgumentParser(prog="mcrun", allow_abbrev=False)
+    register(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(argv)
+    return args.func(args)

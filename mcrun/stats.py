@@ -1,0 +1,461 @@
+"""Dispersion statistics of a run, one summary row per point (group and sweep combination).
+
+Everything is computed over the shots whose status is ok; the others are only counted, by
+status. Two passes, both with memory independent of the number of shots:
+
+1. While the run streams (``PointStats.update`` per chunk): the count by status, and the mean
+   and co-moment matrix of the outcome quantities and of the sampled inputs, merged chunk by
+   chunk with the pairwise update of Chan, Golub and LeVeque (1979),
+   C = C_a + C_b + (m_b - m_a)(m_b - m_a)^T n_a n_b / n. These centred sums are the mergeable
+   form of the sums of x, x x^T and x y, without their cancellation. They give the means, the
+   standard deviations (ddof = 1, as pandas), the covariance of the final position and its
+   dispersion ellipses, and the standardised regression coefficients (below).
+2. After the run (``summarise``, ``exact_quantiles``): the percentiles, which no bounded
+   streaming summary gives exactly, are computed from ``shots.parquet`` itself, reading one
+   column of one point at a time, row group by row group. When a point's column fits in
+   ``budget_bytes`` (default 64 MiB, 8 million shots) it is read whole and its order
+   statistics taken from a sort; above that, a histogram-then-select pass finds the bins that
+   hold the wanted order statistics and a second pass collects only those bins (refined again
+   if a bin is still too large), so that 100 million shots need no more memory than one
+   million. Both paths return the same exact order statistics, interpolated as pandas'
+   default (``numpy.percentile``'s "linear": the value at position h = (n - 1) q of the
+   sorted sample, linearly between its neighbours).
+   The distance to the target needs this pass too: its default target is the mean final
+   position, known only once every shot has been seen.
+
+Why exact rather than a sketch (t-digest, P^2): a summary a user compares with pandas on
+``shots.parquet`` should agree with it to rounding, and the second pass costs a fraction of the
+simulation itself.
+
+Drivers of the variance: for y = total_m and y = final_y_m, the linear model
+y = b0 + sum_j b_j x_j over the sampled inputs x_j that vary within the point, fitted by least
+squares from the co-moments; SRC_j = b_j sd(x_j) / sd(y), and for independent inputs SRC_j^2
+is the share of var(y) that x_j explains (the shares add up to R^2; with correlated inputs,
+e.g. ball speed and spin, they are only indicative). The candidates are the inputs a
+distribution varies (``mcrun.run.driver_inputs``), not the columns derived from them (the air
+density from the temperature, the ball launch from the club delivery); as a safeguard, an
+input that the candidates before it explain to more than ``DERIVED_R2`` of its variance is left
+out, since a regression cannot tell its effect from theirs.
+
+The run (run_m) against the landing state (``LANDING_DRIVERS``: angle, speed and spin at
+impact): these are outcomes, strongly correlated with each other, so a joint regression would
+split their effects arbitrarily; the summary gives each one's correlation with the run and its
+square, the share of the run's variance it explains alone. That is where a user reads off the
+finding of Penner (2002) that the impact angle governs the run.
+"""
+
+import math
+
+import numpy as np
+import pyarrow.parquet as pq
+
+from mcrun import status as status_codes
+from mcrun.shot import OUTCOME_FIELDS
+
+QUANTITIES = (
+    "carry_m",
+    "total_m",
+    "run_m",
+    "carry_lateral_m",
+    "final_y_m",
+    "apex_m",
+    "landing_angle_deg",
+    "first_bounce_height_m",
+)
+PERCENTILES = (1, 5, 25, 50, 75, 95, 99)
+ELLIPSE_LEVELS = (68, 95)
+DISTANCE_PERCENTILES = (50, 95)
+DRIVEN = ("total_m", "final_y_m")
+# The run regressed on the landing state: Penner (2002) finds the impact angle governs it.
+LANDING_DRIVERS = ("landing_angle_deg", "landing_speed_mps", "landing_spin_radps")
+DDOF = 1
+DERIVED_R2 = 0.999
+
+DEFAULT_BUDGET_BYTES = 64 * 2**20
+_HISTOGRAM_BINS = 4096
+
+_OUTCOME_COLUMN = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
+_STATUS = _OUTCOME_COLUMN["status"]
+_STATUS_NAMES = tuple(status_codes.NAMES[k] for k in sorted(status_codes.NAMES))
+
+
+def ellipse_scale(level_percent):
+    """sqrt of the chi-square(2 dof) quantile: sqrt(-2 ln(1 - p)), the semi-axis per sd."""
+    return math.sqrt(-2.0 * math.log(1.0 - level_percent / 100.0))
+
+
+def ellipse(cov_xx, cov_xy, cov_yy, level_percent):
+    """(semi-major m, semi-minor m, angle deg, area m^2) of the ``level_percent`` % ellipse.
+
+    The semi-axes are sqrt(eigenvalue) * sqrt(chi2_2(p)) of the 2x2 covariance; the angle is
+    that of the major axis from the target line, turning to the right, in [0, 180): 0 along
+    the line (a dispersion in distance), 90 across it (a dispersion in direction, the usual
+    case of a full shot, which this range keeps away from the wrap-around).
+    """
+    half_sum = 0.5 * (cov_xx + cov_yy)
+    radius = math.hypot(0.5 * (cov_xx - cov_yy), cov_xy)
+    major = max(half_sum + radius, 0.0)
+    minor = max(half_sum - radius, 0.0)
+    angle = 0.5 * math.degrees(math.atan2(2.0 * cov_xy, cov_xx - cov_yy))
+    if angle < 0.0:
+        angle += 180.0
+    k = ellipse_scale(level_percent)
+    a = k * math.sqrt(major)
+    b = k * math.sqrt(minor)
+    return a, b, angle + 0.0, math.pi * a * b
+
+
+class Comoments:
+    """Count, mean vector and co-moment matrix sum (x - mean)(x - mean)^T of k columns,
+    updated with blocks of rows and mergeable (Chan, Golub and LeVeque 1979)."""
+
+    def __init__(self, k):
+        self.n = 0
+        self.mean = np.zeros(k)
+        self.comoment = np.zeros((k, k))
+        self.min = np.full(k, np.inf)
+        self.max = np.full(k, -np.inf)
+
+    def update(self, block):
+        """Add the rows of ``block`` (m, k)."""
+        m = block.shape[0]
+        if m == 0:
+            return
+        other = Comoments(block.shape[1])
+        other.n = m
+        other.mean = block.mean(axis=0)
+        centred = block - other.mean
+        other.comoment = centred.T @ centred
+        other.min = block.min(axis=0)
+        other.max = block.max(axis=0)
+        self.merge(other)
+
+    def merge(self, other):
+        """Add the rows summarised by ``other``."""
+        if other.n == 0:
+            return
+        if self.n == 0:
+            self.n, self.mean, self.comoment = other.n, other.mean.copy(), other.comoment.copy()
+            self.min, self.max = other.min.copy(), other.max.copy()
+            return
+        n = self.n + other.n
+        delta = other.mean - self.mean
+        self.comoment = (
+            self.comoment + other.comoment + np.outer(delta, delta) * (self.n * other.n / n)
+        )
+        self.mean = self.mean + delta * (other.n / n)
+        self.n = n
+        self.min = np.minimum(self.min, other.min)
+        self.max = np.maximum(self.max, other.max)
+
+    def covariance(self, ddof=DDOF):
+        if self.n - ddof <= 0:
+            return np.full_like(self.comoment, np.nan)
+        return self.comoment / (self.n - ddof)
+
+
+class PointStats:
+    """Streaming statistics of one point: counts by status and co-moments of the ok shots.
+
+    ``inputs`` are the names of the sampled input columns (the candidates for the variance
+    drivers); the outcome columns are ``QUANTITIES``, final_x_m and the landing state.
+    """
+
+    def __init__(self, inputs):
+        self.inputs = tuple(inputs)
+        self.outcomes = (*QUANTITIES, "final_x_m", "landing_speed_mps", "landing_spin_radps")
+        self.columns = (*self.outcomes, *self.inputs)
+        self.index = {name: k for k, name in enumerate(self.columns)}
+        self.n_shots = 0
+        self.status_counts = np.zeros(len(_STATUS_NAMES), dtype=np.int64)
+        self.moments = Comoments(len(self.columns))
+
+    def update(self, outcomes, sampled):
+        """Add a chunk: ``outcomes`` (m, N_OUTCOME) as ``batch.simulate_batch`` writes it and
+        ``sampled`` a mapping of input name -> (m,) array (at least ``self.inputs``)."""
+        codes = outcomes[:, _STATUS].astype(np.int64)
+        self.n_shots += len(codes)
+        self.status_counts += np.bincount(codes, minlength=len(_STATUS_NAMES))[: len(_STATUS_NAMES)]
+        ok = codes == status_codes.OK
+        block = np.empty((int(ok.sum()), len(self.columns)))
+        for k, name in enumerate(self.outcomes):
+            block[:, k] = outcomes[ok, _OUTCOME_COLUMN[name]]
+        for k, name in enumerate(self.inputs, start=len(self.outcomes)):
+            block[:, k] = np.broadcast_to(np.asarray(sampled[name], dtype=float), ok.shape)[ok]
+        self.moments.update(block)
+
+    def merge(self, other):
+        if other.columns != self.columns:
+            raise ValueError("cannot merge statistics of different columns")
+        self.n_shots += other.n_shots
+        self.status_counts += other.status_counts
+        self.moments.merge(other.moments)
+
+    @property
+    def n_ok(self):
+        return int(self.status_counts[status_codes.OK])
+
+    def mean(self, name):
+        return float(self.moments.mean[self.index[name]]) if self.n_ok else math.nan
+
+    def covariance(self, a, b):
+        return float(self.moments.covariance()[self.index[a], self.index[b]])
+
+    def correlation(self, a, b):
+        """Pearson correlation of two columns over the ok shots (NaN if either is constant)."""
+        cov = self.moments.covariance()
+        i, j = self.index[a], self.index[b]
+        if self.n_ok < 2 or not (cov[i, i] > 0.0 and cov[j, j] > 0.0):
+            return math.nan
+        return float(cov[i, j] / math.sqrt(cov[i, i] * cov[j, j]))
+
+    def varies(self, name):
+        k = self.index[name]
+        return bool(self.moments.max[k] > self.moments.min[k])
+
+    def drivers(self, y, candidates=None, derived_r2=DERIVED_R2):
+        """Standardised regression coefficients of ``y`` on the inputs that vary.
+
+        ``candidates``: input names in order of preference (default ``self.inputs``); an input
+        that the inputs kept before it explain to more than ``derived_r2`` of its variance is
+        skipped. Returns (dict input -> SRC, R^2).
+        """
+        candidates = self.inputs if candidates is None else tuple(candidates)
+        cov = self.moments.covariance()
+        iy = self.index[y]
+        var_y = cov[iy, iy]
+        if self.n_ok < 3 or not var_y > 0.0:
+            return {}, math.nan
+        kept = []
+        for name in candidates:
+            if not self.varies(name):
+                continue
+            j = self.index[name]
+            var_j = cov[j, j]
+            if not var_j > 0.0:
+                continue
+            if kept:
+                ckk = cov[np.ix_(kept, kept)]
+                ckj = cov[kept, j]
+                residual = var_j - ckj @ np.linalg.solve(ckk, ckj)
+                if residual <= (1.0 - derived_r2) * var_j:
+                    continue
+            kept.append(j)
+        if not kept:
+            return {}, math.nan
+        cxx = cov[np.ix_(kept, kept)]
+        cxy = cov[kept, iy]
+        beta = np.linalg.solve(cxx, cxy)
+        src = beta * np.sqrt(np.diag(cxx) / var_y)
+        r2 = float(beta @ cxy / var_y)
+        return {self.columns[j]: float(s) for j, s in zip(kept, src, strict=True)}, r2
+
+
+# --- exact percentiles from shots.parquet ------------------------------------------------------
+
+
+def _order_statistics_positions(n, quantiles):
+    """numpy's "linear" method: virtual index, the ranks below and above it, and the weight."""
+    q = np.asarray(quantiles, dtype=float)
+    virtual = n * q + (1.0 + q * (1.0 - 1.0 - 1.0)) - 1.0  # numpy _compute_virtual_index
+    below = np.floor(virtual)
+    gamma = virtual - below
+    lo = np.clip(below, 0, n - 1).astype(np.int64)
+    hi = np.clip(below + 1, 0, n - 1).astype(np.int64)
+    return lo, hi, gamma
+
+
+def _lerp(a, b, t):
+    """numpy's _lerp: a + (b - a) t, computed from b for t >= 0.5."""
+    diff = b - a
+    return np.where(t >= 0.5, b - diff * (1.0 - t), a + diff * t)
+
+
+def quantiles_from_ranks(n, quantiles, order_statistic):
+    """Percentiles (pandas' default) from ``order_statistic(ranks) -> values``."""
+    lo, hi, gamma = _order_statistics_positions(n, quantiles)
+    ranks = np.unique(np.concatenate([lo, hi]))
+    values = dict(zip(ranks.tolist(), order_statistic(ranks), strict=True))
+    a = np.array([values[r] for r in lo.tolist()])
+    b = np.array([values[r] for r in hi.tolist()])
+    return _lerp(a, b, gamma)
+
+
+def exact_quantiles(source, n, quantiles, budget_bytes=DEFAULT_BUDGET_BYTES):
+    """Exact quantiles (pandas' linear interpolation) of the values ``source()`` yields.
+
+    ``source`` is called once per pass and returns an iterable of 1-D float arrays whose
+    concatenation is the sample (n values). Memory: at most ``budget_bytes`` of values at once
+    (plus one array from the source): the sample is sorted whole when it fits, otherwise its
+    order statistics are found by histogram-then-select.
+    """
+    if n == 0:
+        return np.full(len(quantiles), np.nan)
+    cap = max(budget_bytes // 8, 1)
+
+    def order_statistic(ranks):
+        if n <= cap:
+            values = np.sort(np.concatenate([np.asarray(v, dtype=float) for v in source()]))
+            if len(values) != n:
+                raise ValueError(f"the source gave {len(values)} values, expected {n}")
+            return values[ranks]
+        lo, hi = math.inf, -math.inf
+        for v in source():
+            if len(v):
+                lo, hi = min(lo, float(np.min(v))), max(hi, float(np.max(v)))
+        found = _select(source, [int(r) for r in ranks], lo, hi, 0, n, cap)
+        return np.array([found[int(r)] for r in ranks])
+
+    return quantiles_from_ranks(n, quantiles, order_statistic)
+
+
+def _in_range(v, lo, hi):
+    v = np.asarray(v, dtype=float)
+    return v[(v >= lo) & (v <= hi)]
+
+
+def _select(source, ranks, lo, hi, below, count, cap):
+    """Order statistics ``ranks`` (0-based, of the whole sample) that lie among the ``count``
+    values within [lo, hi], ``below`` values being < lo. Returns {rank: value}."""
+    if lo == hi:
+        return dict.fromkeys(ranks, lo)
+    if count <= cap:
+        values = np.sort(np.concatenate([_in_range(v, lo, hi) for v in source()]))
+        return {r: float(values[r - below]) for r in ranks}
+    bins = _HISTOGRAM_BINS
+    scale = bins / (hi - lo)
+    if not math.isfinite(scale):
+        scale = bins / (hi / 2.0 - lo / 2.0) / 2.0
+
+    def bin_of(v):
+        return np.minimum(((v - lo) * scale).astype(np.int64), bins - 1)
+
+    counts = np.zeros(bins, dtype=np.int64)
+    for v in source():
+        counts += np.bincount(bin_of(_in_range(v, lo, hi)), minlength=bins)
+    starts = below + np.concatenate([[0], np.cumsum(counts)[:-1]])
+    wanted = {}
+    for r in ranks:
+        b = int(np.searchsorted(starts, r, side="right") - 1)
+        while counts[b] == 0:  # empty bins share the start of the next non-empty one
+            b += 1
+        wanted.setdefault(b, []).append(r)
+    # Second pass: each wanted bin's values when they fit, else its exact min and max.
+    share = max(cap // len(wanted), 1)  # the collected bins together stay within the cap
+    small = {b: [] for b in wanted if counts[b] <= share}
+    bounds = {b: [math.inf, -math.inf] for b in wanted if counts[b] > share}
+    for v in source():
+        v = _in_range(v, lo, hi)
+        index = bin_of(v)
+        for b in small:
+            small[b].append(v[index == b])
+        for b, mm in bounds.items():
+            x = v[index == b]
+            if len(x):
+                mm[0], mm[1] = min(mm[0], float(x.min())), max(mm[1], float(x.max()))
+    found = {}
+    for b, rs in wanted.items():
+        if b in small:
+            values = np.sort(np.concatenate(small[b]))
+            found.update({r: float(values[r - int(starts[b])]) for r in rs})
+        else:
+            # bin_of is monotone, so the bin's values are exactly those within its min..max.
+            mn, mx = bounds[b]
+            found.update(_select(source, rs, mn, mx, int(starts[b]), int(counts[b]), share))
+    return found
+
+
+class ShotsColumns:
+    """Ok-status values of one point's columns in a shots.parquet, row group by row group."""
+
+    def __init__(self, path, row_groups):
+        self.path = path
+        self.row_groups = list(row_groups)
+
+    def chunks(self, columns):
+        """Iterator of dicts column -> ok values, one per row group."""
+        with pq.ParquetFile(self.path) as f:
+            for g in self.row_groups:
+                table = f.read_row_group(g, columns=[*columns, "status"])
+                ok = table.column("status").to_numpy() == status_codes.OK
+                yield {c: table.column(c).to_numpy()[ok] for c in columns}
+
+    def column(self, name):
+        return lambda: (c[name] for c in self.chunks([name]))
+
+    def distance(self, target_x, target_y):
+        return lambda: (
+            np.hypot(c["final_x_m"] - target_x, c["final_y_m"] - target_y)
+            for c in self.chunks(["final_x_m", "final_y_m"])
+        )
+
+
+def _percentile_name(p):
+    return f"p{p:02d}"
+
+
+def summarise(
+    stats,
+    columns,
+    target_m=None,
+    budget_bytes=DEFAULT_BUDGET_BYTES,
+    drivers=None,
+    derived_r2=DERIVED_R2,
+):
+    """The summary row (dict) of one point.
+
+    ``stats``: its PointStats; ``columns``: a ShotsColumns over its rows of shots.parquet;
+    ``target_m``: (x, y) of the target, default the mean final position; ``drivers``: input
+    names in order of preference for the regression (default ``stats.inputs``), see
+    ``PointStats.drivers``.
+    """
+    n_ok = stats.n_ok
+    row = {"n_shots": stats.n_shots, "n_ok": n_ok, "n_failed": stats.n_shots - n_ok}
+    for code, name in enumerate(_STATUS_NAMES):
+        if code != status_codes.OK:
+            row[f"n_{name}"] = int(stats.status_counts[code])
+    q = np.array(PERCENTILES) / 100.0
+    for name in QUANTITIES:
+        row[f"{name}_mean"] = stats.mean(name)
+        row[f"{name}_std"] = math.sqrt(stats.covariance(name, name)) if n_ok > 1 else math.nan
+        values = exact_quantiles(columns.column(name), n_ok, q, budget_bytes)
+        for p, v in zip(PERCENTILES, values, strict=True):
+            row[f"{name}_{_percentile_name(p)}"] = float(v)
+    row["final_x_m_mean"] = stats.mean("final_x_m")
+    cxx = stats.covariance("final_x_m", "final_x_m")
+    cxy = stats.covariance("final_x_m", "final_y_m")
+    cyy = stats.covariance("final_y_m", "final_y_m")
+    row["cov_xx_m2"], row["cov_xy_m2"], row["cov_yy_m2"] = cxx, cxy, cyy
+    for level in ELLIPSE_LEVELS:
+        a, b, angle, area = ellipse(cxx, cxy, cyy, level) if n_ok > 1 else (math.nan,) * 4
+        row[f"ellipse{level}_semi_major_m"] = a
+        row[f"ellipse{level}_semi_minor_m"] = b
+        row[f"ellipse{level}_angle_deg"] = angle
+        row[f"ellipse{level}_area_m2"] = area
+    if target_m is None:
+        target_m = (row["final_x_m_mean"], row["final_y_m_mean"])
+    tx, ty = (float(t) for t in target_m)
+    row["target_x_m"], row["target_y_m"] = tx, ty
+    distance = columns.distance(tx, ty)
+    if n_ok:
+        total = 0.0
+        for d in distance():
+            total += float(np.sum(d))
+        row["distance_mean_m"] = total / n_ok
+    else:
+        row["distance_mean_m"] = math.nan
+    radii = exact_quantiles(distance, n_ok, np.array(DISTANCE_PERCENTILES) / 100.0, budget_bytes)
+    for p, v in zip(DISTANCE_PERCENTILES, radii, strict=True):
+        row[f"distance_r{p}_m"] = float(v)
+    for y in DRIVEN:
+        src, r2 = stats.drivers(y, drivers, derived_r2)
+        row[f"{y}_r2"] = r2
+        for name in stats.inputs:
+            s = src.get(name, math.nan)
+            row[f"{y}_src_{name}"] = s
+            row[f"{y}_share_{name}"] = s * s
+    for name in LANDING_DRIVERS:
+        r = stats.correlation("run_m", name)
+        row[f"run_m_corr_{name}"] = r
+        row[f"run_m_share_{name}"] = r * r
+    return row

@@ -1,0 +1,167 @@
+"""Dispersion statistics (mcrun.stats) against direct computations on synthetic samples.
+
+The streaming sums must give what pandas gives on the whole sample (means, std with ddof = 1,
+covariances) to rounding, the percentiles must be pandas' default (linear interpolation)
+whichever path computes them (a sort in memory, or histogram-then-select when the sample is
+larger than the memory budget), the ellipses must follow from the covariance's eigenvalues,
+and the standardised regression coefficients must equal a least-squares fit on standardised
+data.
+"""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from mcrun import stats
+from mcrun.shot import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.status import INVALID_INPUT, NOT_STOPPED, OK
+
+Q = np.array(stats.PERCENTILES) / 100.0
+REL = 1e-9
+
+
+def chunked(values, sizes):
+    """A source for exact_quantiles: the values in chunks of the given sizes, repeatable."""
+    edges = np.cumsum(sizes)[:-1]
+    parts = np.split(values, edges)
+    return lambda: iter(parts)
+
+
+SAMPLES = {
+    "normal": np.random.default_rng(1).normal(250.0, 8.0, 20_001),
+    "ties": np.repeat([1.0, 2.0, 2.0, 3.0], 5_000),
+    "constant": np.full(3_000, 17.25),
+    "heavy tail": np.concatenate(
+        [np.zeros(9_000), np.random.default_rng(2).lognormal(0.0, 3.0, 1_234)]
+    ),
+    "adjacent floats": np.repeat([1.0, np.nextafter(1.0, 2.0)], [4_000, 6_000]),
+    "one value": np.array([3.5]),
+}
+
+
+@pytest.mark.parametrize("name", list(SAMPLES))
+@pytest.mark.parametrize("budget_values", [10, 1_000, 10**7])
+def test_exact_quantiles_equal_pandas(name, budget_values):
+    """Sort path (budget above n) and histogram-select path (budget of 10 or 1000 values)."""
+    values = SAMPLES[name]
+    rng = np.random.default_rng(3)
+    shuffled = rng.permutation(values)
+    sizes = rng.integers(1, 5_000, size=len(values) // 100 + 2)
+    sizes = sizes[: np.searchsorted(np.cumsum(sizes), len(values)) + 1]
+    sizes[-1] = len(values) - sizes[:-1].sum()
+    got = stats.exact_quantiles(chunked(shuffled, sizes), len(values), Q, 8 * budget_values)
+    want = pd.Series(values).quantile(Q).to_numpy()
+    np.testing.assert_allclose(got, want, rtol=1e-12, atol=0.0)
+
+
+def test_exact_quantiles_empty():
+    assert np.isnan(stats.exact_quantiles(lambda: iter([]), 0, Q)).all()
+
+
+def test_comoments_merge_equals_numpy():
+    """Chan's pairwise merge of chunks of uneven size equals the two-pass covariance."""
+    rng = np.random.default_rng(4)
+    data = rng.normal(size=(10_000, 4)) @ rng.normal(size=(4, 4)) + [300.0, -2.0, 0.0, 1e4]
+    total = stats.Comoments(4)
+    for part in np.array_split(data, [1, 2, 777, 5000, 5001]):
+        total.update(part)
+    np.testing.assert_allclose(total.mean, data.mean(axis=0), rtol=1e-12)
+    np.testing.assert_allclose(total.covariance(), np.cov(data.T, ddof=1), rtol=1e-10)
+    np.testing.assert_array_equal(total.min, data.min(axis=0))
+    np.testing.assert_array_equal(total.max, data.max(axis=0))
+    # Merging two accumulators equals accumulating everything in one.
+    a, b = stats.Comoments(4), stats.Comoments(4)
+    a.update(data[:3000])
+    b.update(data[3000:])
+    a.merge(b)
+    np.testing.assert_allclose(a.covariance(), total.covariance(), rtol=1e-12)
+
+
+def test_ellipse_axes_angle_area():
+    """A covariance with standard deviations 10 m and 4 m, major axis 30 deg right of the
+    line: semi-axes 10 k and 4 k with k = sqrt(-2 ln(1 - p)) (k = 2.4477 at 95 %), angle 30."""
+    a = math.radians(30.0)
+    rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+    cov = rot @ np.diag([100.0, 16.0]) @ rot.T
+    major, minor, angle, area = stats.ellipse(cov[0, 0], cov[0, 1], cov[1, 1], 95)
+    k = math.sqrt(-2.0 * math.log(0.05))
+    assert k == pytest.approx(2.4477, abs=1e-4)
+    assert major == pytest.approx(10.0 * k, rel=1e-12)
+    assert minor == pytest.approx(4.0 * k, rel=1e-12)
+    assert angle == pytest.approx(30.0, abs=1e-9)
+    assert area == pytest.approx(math.pi * 40.0 * k * k, rel=1e-12)
+    # Left of the line: 150 deg in [0, 180); across the line: 90.
+    assert stats.ellipse(cov[0, 0], -cov[0, 1], cov[1, 1], 68)[2] == pytest.approx(150.0)
+    assert stats.ellipse(4.0, 0.0, 100.0, 68)[2] == 90.0
+    assert stats.ellipse(100.0, 0.0, 4.0, 68)[2] == 0.0
+
+
+def test_ellipse_holds_its_share_of_a_normal_sample():
+    """The 68 % and 95 % ellipses of a bivariate normal hold 68 % and 95 % of its points
+    (binomial sd of the fraction at n = 200000: 0.001)."""
+    rng = np.random.default_rng(5)
+    cov = np.array([[16.0, 6.0], [6.0, 100.0]])
+    xy = rng.multivariate_normal([0.0, 0.0], cov, size=200_000)
+    inv = np.linalg.inv(cov)
+    d2 = np.einsum("ij,jk,ik->i", xy, inv, xy)
+    for level in (68, 95):
+        k = stats.ellipse_scale(level)
+        assert np.mean(d2 <= k * k) == pytest.approx(level / 100.0, abs=0.005)
+
+
+def _outcomes(values, status):
+    """An outcomes array as simulate_batch writes it, with the given fields set."""
+    out = np.full((len(status), N_OUTCOME), np.nan, order="F")
+    for name, column in values.items():
+        out[:, OUTCOME_FIELDS.index(name)] = column
+    out[:, OUTCOME_FIELDS.index("status")] = status
+    return out
+
+
+def test_point_stats_drivers_equal_least_squares():
+    """y = 3 x1 - x2 + 0.5 x3 + noise over independent inputs: the SRCs equal the coefficients
+    of a least-squares fit on standardised data, R^2 that fit's, and a derived input (an exact
+    linear function of x1 and x2) and a constant one are left out."""
+    rng = np.random.default_rng(6)
+    n = 5_000
+    x = rng.normal(size=(n, 3)) * [2.0, 1.0, 4.0]
+    y = 3.0 * x[:, 0] - x[:, 1] + 0.5 * x[:, 2] + rng.normal(size=n)
+    derived = 2.0 * x[:, 0] + x[:, 1]
+    sampled = {"x1": x[:, 0], "x2": x[:, 1], "derived": derived, "x3": x[:, 2], "c": np.ones(n)}
+    status = np.where(np.arange(n) % 50 == 0, INVALID_INPUT, OK)
+    values = {name: y for name in stats.QUANTITIES}
+    values["final_x_m"] = y
+    point = stats.PointStats(list(sampled))
+    for part in np.array_split(np.arange(n), 7):
+        point.update(_outcomes({k: v[part] for k, v in values.items()}, status[part]),
+                     {k: v[part] for k, v in sampled.items()})  # fmt: skip
+    ok = status == OK
+    src, r2 = point.drivers("total_m")
+    assert list(src) == ["x1", "x2", "x3"]
+    xs = (x[ok] - x[ok].mean(0)) / x[ok].std(0, ddof=1)
+    ys = (y[ok] - y[ok].mean()) / y[ok].std(ddof=1)
+    coef, *_ = np.linalg.lstsq(xs, ys, rcond=None)
+    np.testing.assert_allclose([src[k] for k in ("x1", "x2", "x3")], coef, rtol=REL)
+    residual = ys - xs @ coef
+    assert r2 == pytest.approx(1.0 - residual @ residual / (ys @ ys), rel=REL)
+    # Independent inputs: the shares SRC^2 add up to R^2 (to sampling noise).
+    assert sum(s * s for s in src.values()) == pytest.approx(r2, abs=0.02)
+    assert point.n_shots == n and point.n_ok == int(ok.sum())
+    assert point.status_counts[INVALID_INPUT] == n - ok.sum()
+
+
+def test_point_stats_counts_failures_and_ignores_them():
+    """Failed shots are counted by status and take no part in the moments (their outcome
+    fields, NaN or not, are not read)."""
+    status = np.array([OK, NOT_STOPPED, OK, INVALID_INPUT, OK])
+    carry = np.array([100.0, 5.0, 110.0, np.nan, 120.0])
+    values = {name: carry for name in stats.QUANTITIES}
+    values["final_x_m"] = carry
+    point = stats.PointStats([])
+    point.update(_outcomes(values, status), {})
+    assert point.n_shots == 5 and point.n_ok == 3
+    assert point.status_counts[NOT_STOPPED] == 1 and point.status_counts[INVALID_INPUT] == 1
+    assert point.mean("carry_m") == pytest.approx(110.0, rel=1e-15)
+    assert math.sqrt(point.covariance("carry_m", "carry_m")) == pytest.approx(10.0, rel=1e-15)
