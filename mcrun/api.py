@@ -14,7 +14,7 @@ from mcrun.bounce import bounce_in_plane, critical_backspin_radps
 from mcrun.constants import DEG, STANDARD_HUMIDITY
 from mcrun.flight import WIND_PROFILES, make_flight_params
 from mcrun.launch import launch_from_club
-from mcrun.shot import DEFAULT_DT_S, N_OUTCOME, OUTCOME_FIELDS, simulate_shot
+from mcrun.shot import N_OUTCOME, OUTCOME_FIELDS, default_dt_s, simulate_shot
 from mcrun.trajectory import PHASE_NAMES
 from mcrun.turf import Turf, check_turf, rho_g_from_stimp, turf_preset
 
@@ -247,7 +247,7 @@ def simulate(
     turf="green",
     slope_deg=0.0,
     fall_line_deg=0.0,
-    dt_s=DEFAULT_DT_S,
+    dt_s=None,
     trajectory=False,
     **conditions,
 ):
@@ -267,6 +267,8 @@ def simulate(
     axis = check_range("spin_axis_deg", spin_axis_deg) * DEG
     slope = check_range("slope_deg", slope_deg) * DEG
     fall_line = check_range("fall_line_deg", fall_line_deg) * DEG
+    if dt_s is None:
+        dt_s = default_dt_s(conditions.get("wind_profile", "uniform"))
     dt = check_range("dt_s", dt_s)
     turf = resolve_turf(turf)
     params = flight_params(**conditions)

@@ -7,6 +7,8 @@ A run is a folder:
   ``shot.OUTCOME_FIELDS`` (status as an int8 code, bounces as a nullable int32, the rest
   float64, NaN where a failed shot did not get that far) and status_name. The outcome's
   launch_angle_deg is the sampled column of that name (the same launch, not written twice).
+  (The Dask backend, ``mcrun.distributed``, writes the same rows as a dataset of parts
+  instead, ``shots/part-NNNNN.parquet``, one per chunk, with a ``_SUCCESS`` marker.)
 - ``summary.parquet``: one row per point (``stats.summarise``).
 - ``trajectories.parquet`` (optional): long format, one row per point of the path of every k-th
   shot: point, shot, t_s, x_m, y_m (positive right), z_m, phase.
@@ -135,11 +137,12 @@ class ShotsWriter:
 
     ``groups`` and ``labels``: the group name and label of every point (by point index);
     ``input_names``: the sampled columns (a point that lacks one gets NaN); ``input_types``:
-    their Arrow types (default float64).
+    their Arrow types (default float64). With ``path`` None nothing is opened: ``table`` then
+    builds the chunks' tables for a writer elsewhere (the parts of ``mcrun.distributed``).
     """
 
     def __init__(self, path, input_names, groups, labels, metadata, input_types=None):
-        self.path = Path(path)
+        self.path = None if path is None else Path(path)
         self.input_names = tuple(input_names)
         self.input_types = {n: (input_types or {}).get(n, pa.float64()) for n in input_names}
         self._outcomes = [
@@ -152,10 +155,19 @@ class ShotsWriter:
         self.schema = shots_schema(self.input_names, self.input_types, metadata)
         self.row_groups = {}  # point -> list of row group indices
         self._n_row_groups = 0
-        self._writer = pq.ParquetWriter(self.path, self.schema, compression=COMPRESSION)
+        self._writer = None
+        if self.path is not None:
+            self._writer = pq.ParquetWriter(self.path, self.schema, compression=COMPRESSION)
 
     def write(self, point, start, sampled, outcomes):
         """Append the chunk of ``point`` with shots start.. as one row group."""
+        table = self.table(point, start, sampled, outcomes)
+        self._writer.write_table(table, row_group_size=max(table.num_rows, 1))
+        self.row_groups.setdefault(point, []).append(self._n_row_groups)
+        self._n_row_groups += 1
+
+    def table(self, point, start, sampled, outcomes):
+        """The chunk of ``point`` with shots start.. as an Arrow table of ``self.schema``."""
         m = outcomes.shape[0]
         columns = [
             pa.array(np.full(m, point, dtype=np.int32)),
@@ -193,10 +205,7 @@ class ShotsWriter:
         columns.append(
             pa.DictionaryArray.from_arrays(pa.array(codes.astype(np.int32)), _STATUS_DICTIONARY)
         )
-        table = pa.Table.from_arrays(columns, schema=self.schema)
-        self._writer.write_table(table, row_group_size=max(m, 1))
-        self.row_groups.setdefault(point, []).append(self._n_row_groups)
-        self._n_row_groups += 1
+        return pa.Table.from_arrays(columns, schema=self.schema)
 
     def close(self, extra_metadata=None):
         if self._writer is None:
@@ -246,16 +255,7 @@ class TrajectoryWriter:
     def flush(self):
         if not self._parts:
             return
-        lengths = [len(t) for _, _, t in self._parts]
-        points = np.repeat([p for p, _, _ in self._parts], lengths).astype(np.int32)
-        shots = np.repeat([s for _, s, _ in self._parts], lengths).astype(np.int64)
-        data = np.concatenate([t for _, _, t in self._parts]) if sum(lengths) else np.empty((0, 5))
-        columns = [pa.array(points), pa.array(shots)]
-        columns += [pa.array(np.ascontiguousarray(data[:, k])) for k in range(4)]
-        columns.append(
-            pa.DictionaryArray.from_arrays(pa.array(data[:, 4].astype(np.int32)), _PHASE_DICTIONARY)
-        )
-        self._writer.write_table(pa.Table.from_arrays(columns, schema=self.schema))
+        self._writer.write_table(trajectory_table(self._parts, self.schema))
         self._parts = []
 
     def close(self, extra_metadata=None):
@@ -273,6 +273,20 @@ class TrajectoryWriter:
                 self._writer.close()
             finally:
                 self._writer = None
+
+
+def trajectory_table(parts, schema=TRAJECTORY_SCHEMA):
+    """The Arrow table of paths ``parts``: (point, shot, traj (n, 5)) as ``add`` buffers them."""
+    lengths = [len(t) for _, _, t in parts]
+    points = np.repeat([p for p, _, _ in parts], lengths).astype(np.int32)
+    shots = np.repeat([s for _, s, _ in parts], lengths).astype(np.int64)
+    data = np.concatenate([t for _, _, t in parts]) if sum(lengths) else np.empty((0, 5))
+    columns = [pa.array(points), pa.array(shots)]
+    columns += [pa.array(np.ascontiguousarray(data[:, k])) for k in range(4)]
+    columns.append(
+        pa.DictionaryArray.from_arrays(pa.array(data[:, 4].astype(np.int32)), _PHASE_DICTIONARY)
+    )
+    return pa.Table.from_arrays(columns, schema=schema)
 
 
 # --- small tables ------------------------------------------------------------------------------

@@ -29,7 +29,7 @@ from mcrun.api import InputError
 from mcrun.batch import COLUMN, N_INPUT, simulate_batch
 from mcrun.constants import DEG
 from mcrun.scenario import FILE_COLUMNS, PARAMETERS
-from mcrun.shot import DEFAULT_DT_S, OUTCOME_FIELDS
+from mcrun.shot import OUTCOME_FIELDS, default_dt_s
 from mcrun.units import KINDS, UnitError, from_column_name, parse_quantity, parse_vector
 
 # The launch columns of the output, by quantity of FILE_COLUMNS: (name, SI -> output factor).
@@ -111,7 +111,7 @@ def conditions_inputs(
     turf="green",
     slope_deg=0.0,
     fall_line_deg=0.0,
-    dt_s=DEFAULT_DT_S,
+    dt_s=None,
     **conditions,
 ):
     """The kernel input columns that do not depend on the launch, checked by ``mcrun.api``
@@ -140,7 +140,10 @@ def conditions_inputs(
         "critical_height_m": turf.critical_height_m,
         "slope_rad": api.check_range("slope_deg", slope_deg) * DEG,
         "fall_line_rad": api.check_range("fall_line_deg", fall_line_deg) * DEG,
-        "dt_s": api.check_range("dt_s", dt_s),
+        "dt_s": api.check_range(
+            "dt_s",
+            default_dt_s(conditions.get("wind_profile", "uniform")) if dt_s is None else dt_s,
+        ),
     }
 
 
@@ -376,7 +379,11 @@ def register(subparsers):
     p.add_argument("--pressure", metavar="P", help="air pressure (bare: Pa)")
     p.add_argument("--humidity", metavar="RH", help="relative humidity, 0.5 or 50%%")
     p.add_argument("--air-density", metavar="RHO", help="air density, kg/m^3 (overrides)")
-    p.add_argument("--dt", metavar="SECONDS", help="flight step (default 0.01)")
+    p.add_argument(
+        "--dt",
+        metavar="SECONDS",
+        help="flight step (default 0.1 s in uniform wind, 0.02 s with a wind profile)",
+    )
     p.set_defaults(func=_cmd_replay)
 
 

@@ -50,7 +50,7 @@ from mcrun import aero
 from mcrun.api import RANGES, WIND_PROFILE_DEFAULTS, InputError
 from mcrun.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA, STANDARD_TEMPERATURE_K
 from mcrun.flight import WIND_PROFILES
-from mcrun.shot import DEFAULT_DT_S
+from mcrun.shot import default_dt_s
 from mcrun.turf import PRESETS
 from mcrun.units import KINDS, UnitError, from_column_name, parse_quantity, to_unit
 
@@ -1052,7 +1052,7 @@ def _resolve(ctx, sections, scenario_dir, context):
     choice("models", "bounce", "penner2002")
     quantity("models", "cd_scale", 1.0)
     quantity("models", "cl_scale", 1.0)
-    quantity("models", "dt", DEFAULT_DT_S)
+    quantity("models", "dt", default_dt_s(profile))
     return params
 
 

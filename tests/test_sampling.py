@@ -28,7 +28,7 @@ from mcrun.sampling import (
     sampled_columns,
     truncnormal_standard,
 )
-from mcrun.shot import OUTCOME_FIELDS
+from mcrun.shot import OUTCOME_FIELDS, default_dt_s
 from mcrun.turf import PRESETS, rho_g_from_stimp
 
 N = 20_000
@@ -430,7 +430,7 @@ def test_weather_turf_and_model_conversions(random_scenario, drawn):
         assert np.allclose(col[name], getattr(fairway, name) * x["restitution"], rtol=1e-14)
     assert (col["e_break_speed_mps"] == fairway.e_break_speed_mps).all()
     assert (col["aero_model"] == 4.0).all()  # trackman2019
-    assert (col["dt_s"] == 0.01).all()
+    assert (col["dt_s"] == default_dt_s("uniform")).all()
     assert (col["mu"] == x["mu"]).all()
 
 
@@ -520,7 +520,7 @@ def test_fig4_inputs_equal_the_single_shot_api():
             **green._asdict(),
             "slope_rad": 0.0,
             "fall_line_rad": 0.0,
-            "dt_s": 0.01,
+            "dt_s": default_dt_s("uniform"),
         }
         assert set(expected) == set(INPUT_FIELDS)
         for name, value in expected.items():
