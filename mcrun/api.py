@@ -7,7 +7,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
 
 from mcrun import aero, atmosphere, status
 from mcrun.bounce import bounce_in_plane, critical_backspin_radps
@@ -78,7 +77,7 @@ class ShotResult:
     trajectory (DataFrame t_s, x_m, y_m, z_m, phase; y positive to the right)."""
 
     outcome: dict
-    trajectory: pd.DataFrame | None = None
+    trajectory: object = None  # a pandas DataFrame, or None
 
     def __getattr__(self, name):
         try:
@@ -301,6 +300,8 @@ def simulate(
     outcome["status"] = int(outcome["status"])
     frame = None
     if trajectory:
+        import pandas as pd  # only here: a shot without its path starts faster
+
         frame = pd.DataFrame(traj[:n], columns=["t_s", "x_m", "y_m", "z_m", "phase"])
         frame["phase"] = pd.Categorical.from_codes(frame["phase"].astype(int), PHASE_NAMES)
     return ShotResult(outcome, frame)

@@ -7,6 +7,7 @@ one line, ``mcrun: error: <message>``, on stderr and exit code 2; anything else 
 """
 
 import argparse
+import importlib
 import inspect
 import json
 import math
@@ -15,7 +16,7 @@ import re
 import sys
 import textwrap
 
-from mcrun import aero, api, atmosphere, calibrate, paper, run, status, turf, units
+from mcrun import aero, api, atmosphere, status, turf, units
 from mcrun.api import InputError
 from mcrun.units import UnitError
 
@@ -527,8 +528,22 @@ def _add_lists(subparsers):
     p.set_defaults(func=_run_turfs)
 
 
-def build_parser():
-    """The ``mcrun`` argument parser with every subcommand."""
+# Commands of their own modules, which bring pandas, pyarrow or matplotlib: imported only
+# when the command line may need them, so that `mcrun shot` starts quickly.
+COMMAND_MODULES = {
+    "run": "mcrun.run",
+    "validate": "mcrun.run",
+    "scenarios": "mcrun.run",
+    "replay": "mcrun.run",
+    "calibrate": "mcrun.calibrate",
+    "paper": "mcrun.paper",
+}
+CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
+
+
+def build_parser(command=None):
+    """The ``mcrun`` argument parser: every subcommand, or only the core ones when ``command``
+    (the first word of the command line) is one of them."""
     parser = _Parser(
         prog="mcrun",
         description="Golf shots: flight, compliant-turf bounce (Penner 2002) and roll.",
@@ -538,20 +553,50 @@ def build_parser():
     _add_shot(subparsers)
     _add_bounce(subparsers)
     _add_lists(subparsers)
-    run.register(subparsers)
-    calibrate.register(subparsers)
-    paper.register(subparsers)
+    if command not in CORE_COMMANDS:
+        for module in dict.fromkeys(COMMAND_MODULES.values()):
+            importlib.import_module(module).register(subparsers)
     return parser
+
+
+# The kernel each simulating command runs: the single shot or the batch.
+SIMULATING_COMMANDS = {
+    "shot": "single",
+    "calibrate": "single",
+    "paper": "single",
+    "run": "batch",
+    "replay": "batch",
+}
+
+
+def _say_if_compiling(kind):
+    """One line on stderr when the command's kernel is not in numba's on-disk cache yet (the
+    first run after an install or an upgrade compiles it, which takes a while)."""
+    from mcrun.batch import _simulate_batch
+    from mcrun.shot import simulate_shot
+
+    kernel = simulate_shot if kind == "single" else _simulate_batch
+    try:
+        missing = not os.path.exists(kernel._cache._cache_file._index_path)
+    except AttributeError:  # numba's cache internals moved: say nothing
+        return
+    if missing:
+        print(
+            "mcrun: compiling the kernels (first run after install; cached for the next runs)",
+            file=sys.stderr,
+        )
 
 
 def main(argv=None):
     """Run ``mcrun`` with ``argv`` (default: the process's arguments); return the exit code."""
     argv = sys.argv[1:] if argv is None else list(argv)
-    parser = build_parser()
+    parser = build_parser(argv[0] if argv else None)
     try:
         args = parser.parse_args(_attach_negative_values(argv))
     except SystemExit as exit_:  # --help, or a usage error argparse has already reported
         return exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
+    if args.command in SIMULATING_COMMANDS:
+        _say_if_compiling(SIMULATING_COMMANDS[args.command])
     try:
         return args.func(args)
     except (InputError, UnitError, CommandError) as err:
