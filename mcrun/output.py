@@ -157,7 +157,12 @@ class ShotsWriter:
         self._n_row_groups = 0
         self._writer = None
         if self.path is not None:
-            self._writer = pq.ParquetWriter(self.path, self.schema, compression=COMPRESSION)
+            self._writer = pq.ParquetWriter(
+                self.path,
+                self.schema,
+                compression=COMPRESSION,
+                use_dictionary=dictionary_columns(self.schema),
+            )
 
     def write(self, point, start, sampled, outcomes):
         """Append the chunk of ``point`` with shots start.. as one row group."""
@@ -290,6 +295,16 @@ def trajectory_table(parts, schema=TRAJECTORY_SCHEMA):
 
 
 # --- small tables ------------------------------------------------------------------------------
+
+
+def dictionary_columns(schema):
+    """The columns worth dictionary-encoding: the text ones. Floats have as many values as
+    rows, and trying a dictionary on each costs three times the rest of the write."""
+    return [
+        f.name
+        for f in schema
+        if not pa.types.is_floating(f.type) and not pa.types.is_integer(f.type)
+    ]
 
 
 def write_table(path, frame, metadata):
