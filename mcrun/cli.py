@@ -56,9 +56,9 @@ def _number(text, option):
     try:
         value = float(text)
     except ValueError:
-        raise CommandError(f"{option}: cannot read {text!r} as a number") from None
+        raise InputError(f"{option}: cannot read {text!r} as a number") from None
     if not math.isfinite(value):
-        raise CommandError(f"{option}: cannot read {text!r}: not a finite number")
+        raise InputError(f"{option}: cannot read {text!r}: not a finite number")
     return value
 
 
@@ -171,8 +171,8 @@ def _turf_from_args(args):
     )
 
 
-def _shot_kwargs(args):
-    """Keyword arguments of ``mcrun.api.simulate`` from the ``shot`` options."""
+def conditions_kwargs(args):
+    """Keyword arguments of ``mcrun.api.simulate`` from ``add_conditions_options``' options."""
     wind = None if args.wind is None else units.parse_vector(args.wind, "speed", "--wind")
     profile = args.wind_profile
     if profile == "log":  # the log law's parameter is a roughness length, e.g. 3cm
@@ -180,14 +180,6 @@ def _shot_kwargs(args):
     else:  # the power law's is an exponent
         wind_param = _number(args.wind_param, "--wind-param")
     return _given(
-        ball_speed_mps=_quantity(args.ball_speed, "speed", "--ball-speed"),
-        launch_angle_deg=_degrees(args.launch, "--launch"),
-        spin_radps=_quantity(args.spin, "spin", "--spin"),
-        azimuth_deg=_degrees(args.azimuth, "--azimuth"),
-        spin_axis_deg=_degrees(args.spin_axis, "--spin-axis"),
-        club_speed_mps=_quantity(args.club_speed, "speed", "--club-speed"),
-        club_mass_kg=_quantity(args.club_mass, "mass", "--club-mass"),
-        loft_deg=_degrees(args.loft, "--loft"),
         turf=_turf_from_args(args),
         slope_deg=_degrees(args.slope, "--slope"),
         fall_line_deg=_degrees(args.fall_line, "--fall-line"),
@@ -207,6 +199,20 @@ def _shot_kwargs(args):
         relative_humidity=_quantity(args.humidity, "fraction", "--humidity"),
         air_density_kgpm3=_number(args.air_density, "--air-density"),
     )
+
+
+def _shot_kwargs(args):
+    """Keyword arguments of ``mcrun.api.simulate`` from the ``shot`` options."""
+    return _given(
+        ball_speed_mps=_quantity(args.ball_speed, "speed", "--ball-speed"),
+        launch_angle_deg=_degrees(args.launch, "--launch"),
+        spin_radps=_quantity(args.spin, "spin", "--spin"),
+        azimuth_deg=_degrees(args.azimuth, "--azimuth"),
+        spin_axis_deg=_degrees(args.spin_axis, "--spin-axis"),
+        club_speed_mps=_quantity(args.club_speed, "speed", "--club-speed"),
+        club_mass_kg=_quantity(args.club_mass, "mass", "--club-mass"),
+        loft_deg=_degrees(args.loft, "--loft"),
+    ) | conditions_kwargs(args)
 
 
 def _run_shot(args):
@@ -316,46 +322,12 @@ examples:
   mcrun shot --ball-speed 50 --launch 20 --spin 6000rpm --wind 10mph,-3mph --temperature 68F"""
 
 
-def _add_shot(subparsers):
+def add_conditions_options(p):
+    """The options of everything but the launch (turf and ground, aerodynamics and wind, air,
+    step), shared by ``mcrun shot`` and ``mcrun replay``; ``conditions_kwargs`` reads them."""
     sim = api.simulate
     fp = api.flight_params
     air = api.air_properties
-    p = subparsers.add_parser(
-        "shot",
-        help="simulate one shot from launch to rest",
-        description=_SHOT_DESCRIPTION,
-        epilog=_SHOT_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-        allow_abbrev=False,
-    )
-    ball = p.add_argument_group("ball launch (as a launch monitor reports it)")
-    ball.add_argument("--ball-speed", metavar="SPEED", help="ball speed (bare: m/s)")
-    ball.add_argument(
-        "--launch", metavar="ANGLE", help="vertical launch angle above the horizontal (bare: deg)"
-    )
-    ball.add_argument("--spin", metavar="SPIN", help="total spin, >= 0 (bare: rad/s)")
-    ball.add_argument(
-        "--azimuth",
-        metavar="ANGLE",
-        help="horizontal launch direction from the target line, positive to the right "
-        f"(bare: deg; default {_api_default(sim, 'azimuth_deg'):g})",
-    )
-    ball.add_argument(
-        "--spin-axis",
-        metavar="ANGLE",
-        help="tilt of the spin axis, positive curves the ball to the right (a fade for a "
-        f"right-hander) (bare: deg; default {_api_default(sim, 'spin_axis_deg'):g})",
-    )
-    club = p.add_argument_group("club delivery (instead of the ball launch; Penner 2001)")
-    club.add_argument("--club-speed", metavar="SPEED", help="club-head speed (bare: m/s)")
-    club.add_argument(
-        "--club-mass",
-        metavar="MASS",
-        help=f"club-head mass (bare: kg; default {api.DEFAULT_CLUB_MASS_KG:.3f})",
-    )
-    club.add_argument(
-        "--loft", metavar="ANGLE", help="dynamic loft, face to the vertical (bare: deg)"
-    )
     ground = p.add_argument_group("turf and ground")
     ground.add_argument(
         "--turf",
@@ -460,12 +432,53 @@ def _add_shot(subparsers):
         metavar="RHO",
         help="air density in kg/m^3, overrides the one from temperature, pressure, humidity",
     )
-    out = p.add_argument_group("numerics and output")
-    out.add_argument(
+    p.add_argument_group("numerics").add_argument(
         "--dt",
         metavar="SECONDS",
         help="flight step in s (default 0.1 in uniform wind, 0.02 with a wind profile)",
     )
+
+
+def _add_shot(subparsers):
+    sim = api.simulate
+    p = subparsers.add_parser(
+        "shot",
+        help="simulate one shot from launch to rest",
+        description=_SHOT_DESCRIPTION,
+        epilog=_SHOT_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        allow_abbrev=False,
+    )
+    ball = p.add_argument_group("ball launch (as a launch monitor reports it)")
+    ball.add_argument("--ball-speed", metavar="SPEED", help="ball speed (bare: m/s)")
+    ball.add_argument(
+        "--launch", metavar="ANGLE", help="vertical launch angle above the horizontal (bare: deg)"
+    )
+    ball.add_argument("--spin", metavar="SPIN", help="total spin, >= 0 (bare: rad/s)")
+    ball.add_argument(
+        "--azimuth",
+        metavar="ANGLE",
+        help="horizontal launch direction from the target line, positive to the right "
+        f"(bare: deg; default {_api_default(sim, 'azimuth_deg'):g})",
+    )
+    ball.add_argument(
+        "--spin-axis",
+        metavar="ANGLE",
+        help="tilt of the spin axis, positive curves the ball to the right (a fade for a "
+        f"right-hander) (bare: deg; default {_api_default(sim, 'spin_axis_deg'):g})",
+    )
+    club = p.add_argument_group("club delivery (instead of the ball launch; Penner 2001)")
+    club.add_argument("--club-speed", metavar="SPEED", help="club-head speed (bare: m/s)")
+    club.add_argument(
+        "--club-mass",
+        metavar="MASS",
+        help=f"club-head mass (bare: kg; default {api.DEFAULT_CLUB_MASS_KG:.3f})",
+    )
+    club.add_argument(
+        "--loft", metavar="ANGLE", help="dynamic loft, face to the vertical (bare: deg)"
+    )
+    add_conditions_options(p)
+    out = p.add_argument_group("numerics and output")
     out.add_argument(
         "--trajectory",
         metavar="FILE.csv",

@@ -24,13 +24,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun import aero, api, output, status
+from mcrun import api, output, status
 from mcrun.api import InputError
 from mcrun.batch import COLUMN, N_INPUT, simulate_batch
+from mcrun.cli import add_conditions_options, conditions_kwargs
 from mcrun.constants import DEG
-from mcrun.scenario import FILE_COLUMNS, PARAMETERS
+from mcrun.scenario import PARAMETERS, launch_columns
 from mcrun.shot import OUTCOME_FIELDS, default_dt_s
-from mcrun.units import KINDS, UnitError, from_column_name, parse_quantity, parse_vector
+from mcrun.units import KINDS, UnitError
 
 # The launch columns of the output, by quantity of FILE_COLUMNS: (name, SI -> output factor).
 LAUNCH_COLUMNS = {
@@ -57,33 +58,6 @@ def read_shots(path):
         first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
         raise InputError(f"{path}: cannot read it as CSV or Parquet: {first}") from None
     return frame
-
-
-def launch_columns(frame, source="the shots"):
-    """{quantity: (column, unit)} of the recognised launch columns of ``frame``."""
-    found = {}
-    for column in frame.columns:
-        parsed = from_column_name(str(column).strip().lower())
-        if parsed is None:
-            continue
-        base, kind, unit = parsed
-        for quantity, bases in FILE_COLUMNS.items():
-            if base in bases and PARAMETERS["launch"][quantity].kind == kind:
-                if quantity in found:
-                    raise InputError(
-                        f"{source}: columns {found[quantity][0]!r} and {column!r} both give "
-                        f"{quantity}; keep one"
-                    )
-                found[quantity] = (column, unit)
-    missing = [q for q in _REQUIRED if q not in found]
-    if missing:
-        names = ", ".join(map(str, frame.columns)) or "none"
-        raise InputError(
-            f"{source}: no recognisable column for {', '.join(missing)}; expected columns named "
-            "with their unit (ball_speed_mph or _mps, launch_deg, spin_rpm or _radps; optional "
-            f"spin_axis_deg, azimuth_deg), found {names}"
-        )
-    return found
 
 
 def launches(frame, source="the shots"):
@@ -247,69 +221,9 @@ def _plain(value):
 # --- command line ------------------------------------------------------------------------------
 
 
-def _quantity(text, kind, option):
-    return None if text is None else parse_quantity(text, kind, option)
-
-
-def _degrees(text, option):
-    value = _quantity(text, "angle", option)
-    return None if value is None else value / DEG
-
-
-def _number(text, option):
-    if text is None:
-        return None
-    try:
-        value = float(text)
-    except ValueError:
-        raise InputError(f"{option}: cannot read {text!r} as a number") from None
-    if not math.isfinite(value):
-        raise InputError(f"{option}: cannot read {text!r}: not a finite number")
-    return value
-
-
-def conditions_from_args(args):
-    """Keyword arguments of ``replay`` from the command line options."""
-    turf_overrides = {
-        "mu": _number(args.mu, "--mu"),
-        "softness": _number(args.softness, "--softness"),
-        "rho_g": _number(args.rho_g, "--rho-g"),
-        "stimp_m": _quantity(args.stimp, "length", "--stimp"),
-    }
-    turf = api.resolve_turf(args.turf, **turf_overrides)
-    temperature_k = _quantity(args.temperature, "temperature", "--temperature")
-    wind = (0.0, 0.0) if args.wind is None else parse_vector(args.wind, "speed", "--wind")
-    profile = args.wind_profile
-    parameter = None
-    if args.wind_param is not None:
-        if profile == "log":
-            parameter = _quantity(args.wind_param, "length", "--wind-param")
-        else:
-            parameter = _number(args.wind_param, "--wind-param")
-    given = {
-        "turf": turf,
-        "slope_deg": _degrees(args.slope, "--slope"),
-        "fall_line_deg": _degrees(args.fall_line, "--fall-line"),
-        "dt_s": _number(args.dt, "--dt"),
-        "aero_model": args.aero,
-        "cd_scale": _number(args.cd_scale, "--cd-scale"),
-        "cl_scale": _number(args.cl_scale, "--cl-scale"),
-        "wind_mps": wind,
-        "wind_profile": profile,
-        "wind_reference_height_m": _quantity(args.wind_height, "length", "--wind-height"),
-        "wind_profile_parameter": parameter,
-        "temperature_c": None if temperature_k is None else temperature_k - 273.15,
-        "pressure_pa": _quantity(args.pressure, "pressure", "--pressure"),
-        "altitude_m": _quantity(args.altitude, "length", "--altitude"),
-        "relative_humidity": _quantity(args.humidity, "fraction", "--humidity"),
-        "air_density_kgpm3": _number(args.air_density, "--air-density"),
-    }
-    return {k: v for k, v in given.items() if v is not None}
-
-
 def _cmd_replay(args):
     try:
-        conditions = conditions_from_args(args)
+        conditions = conditions_kwargs(args)
         conditions_inputs(**conditions)  # every option checked before reading the file
         destination = Path(args.output)
         if destination.suffix.lower() not in (".parquet", ".pq"):
@@ -347,43 +261,7 @@ def register(subparsers):
     p.add_argument("shots", metavar="SHOTS", help="measured shots, .csv or .parquet")
     p.add_argument("-o", "--output", metavar="OUT.parquet", required=True, help="output file")
     p.add_argument("--force", action="store_true", help="replace an existing output file")
-    p.add_argument("--turf", metavar="NAME", default="green", help="turf preset (default green)")
-    p.add_argument("--mu", metavar="MU", help="override: ball-turf friction")
-    p.add_argument("--softness", metavar="S", help="override: scale on theta_c")
-    p.add_argument("--rho-g", metavar="RHO", help="override: rolling resistance")
-    p.add_argument("--stimp", metavar="LENGTH", help="override rho_g by a Stimp reading, e.g. 10ft")
-    p.add_argument("--slope", metavar="ANGLE", help="ground slope (bare: deg; default 0)")
-    p.add_argument(
-        "--fall-line", metavar="ANGLE", help="downhill direction, positive right (default 0)"
-    )
-    p.add_argument(
-        "--aero",
-        metavar="NAME",
-        default=aero.DEFAULT_MODEL,
-        help="aero model (default %(default)s)",
-    )
-    p.add_argument("--cd-scale", metavar="X", help="scale on C_D (default 1)")
-    p.add_argument("--cl-scale", metavar="X", help="scale on C_L (default 1)")
-    p.add_argument(
-        "--wind",
-        metavar="X,Y",
-        help="wind: X along the target line (tailwind +), Y to the right; e.g. 10mph,-3mph",
-    )
-    p.add_argument(
-        "--wind-profile", metavar="PROFILE", default="uniform", help="uniform | log | power"
-    )
-    p.add_argument("--wind-height", metavar="LENGTH", help="height of --wind (default 10 m)")
-    p.add_argument("--wind-param", metavar="VALUE", help="log z0 (length) or power exponent")
-    p.add_argument("--temperature", metavar="T", help="air temperature (bare: Celsius)")
-    p.add_argument("--altitude", metavar="LENGTH", help="altitude (bare: m; not with --pressure)")
-    p.add_argument("--pressure", metavar="P", help="air pressure (bare: Pa)")
-    p.add_argument("--humidity", metavar="RH", help="relative humidity, 0.5 or 50%%")
-    p.add_argument("--air-density", metavar="RHO", help="air density, kg/m^3 (overrides)")
-    p.add_argument(
-        "--dt",
-        metavar="SECONDS",
-        help="flight step (default 0.1 s in uniform wind, 0.02 s with a wind profile)",
-    )
+    add_conditions_options(p)
     p.set_defaults(func=_cmd_replay)
 
 

@@ -799,6 +799,35 @@ def _correlation(ctx, leaf, section, dists, leaves, context=""):
 _FILE_CACHE: dict = {}
 
 
+def launch_columns(frame, source="the shots"):
+    """{quantity: (column, unit)} of the launch columns of a launch-monitor table, recognised
+    by name and unit (``units.from_column_name``); InputError naming ``source`` when a required
+    one is missing or two give the same quantity."""
+    found = {}
+    for column in frame.columns:
+        parsed = from_column_name(str(column).strip().lower())
+        if parsed is None:
+            continue
+        base, kind, unit = parsed
+        for quantity, bases in FILE_COLUMNS.items():
+            if base in bases and PARAMETERS["launch"][quantity].kind == kind:
+                if quantity in found:
+                    raise InputError(
+                        f"{source}: columns {found[quantity][0]!r} and {column!r} both give "
+                        f"{quantity}; keep one"
+                    )
+                found[quantity] = (column, unit)
+    missing = [q for q in _BALL if q not in found]
+    if missing:
+        names = ", ".join(map(str, frame.columns)) or "none"
+        raise InputError(
+            f"{source}: no recognisable column for {', '.join(missing)}; expected columns named "
+            "with their unit (ball_speed_mph or _mps, launch_deg, spin_rpm or _radps; optional "
+            f"spin_axis_deg, azimuth_deg), found {names}"
+        )
+    return found
+
+
 def _read_shots(ctx, where, path):
     """{quantity: SI array} of the recognised columns of a CSV or Parquet launch-monitor file."""
     key = (str(path.resolve()), path.stat().st_mtime_ns)
@@ -812,30 +841,10 @@ def _read_shots(ctx, where, path):
     except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
         first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
         raise ctx.error(where, f"cannot read {path} as CSV or Parquet: {first}") from None
-    found = {}
-    for column in frame.columns:
-        parsed = from_column_name(str(column).strip().lower())
-        if parsed is None:
-            continue
-        base, kind, unit = parsed
-        for quantity, bases in FILE_COLUMNS.items():
-            if base in bases and PARAMETERS["launch"][quantity].kind == kind:
-                if quantity in found:
-                    raise ctx.error(
-                        where,
-                        f"{path}: columns {found[quantity][0]!r} and {column!r} both give "
-                        f"{quantity}; keep one",
-                    )
-                found[quantity] = (column, unit)
-    missing = [q for q in _BALL if q not in found]
-    if missing:
-        expected = "ball_speed_mph or _mps, launch_deg, spin_rpm or _radps"
-        raise ctx.error(
-            where,
-            f"{path}: no recognisable column for {', '.join(missing)}; expected columns named "
-            f"with their unit ({expected}; optional spin_axis_deg, azimuth_deg), "
-            f"found {', '.join(map(str, frame.columns)) or 'none'}",
-        )
+    try:
+        found = launch_columns(frame, str(path))
+    except InputError as err:
+        raise ctx.error(where, str(err)) from None
     if len(frame) == 0:
         raise ctx.error(where, f"{path}: has no rows")
     columns = {}
