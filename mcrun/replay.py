@@ -2,7 +2,7 @@
 
 ``replay`` takes a table of measured launches (a CSV or Parquet file, or a DataFrame), with
 columns recognised by name and unit suffix exactly as a scenario's ``launch.file``
-(``scenario.FILE_COLUMNS``: ``ball_speed_mph``, ``launch_deg``, ``spin_rpm``, optional
+(``scenario.launch_columns``: ``ball_speed_mph``, ``launch_deg``, ``spin_rpm``, optional
 ``spin_axis_deg`` and ``azimuth_deg``, ...), and flies every row, without sampling, on the turf
 and in the weather given once for the whole session: what the session would have given on
 another course or another day. The rows run through the same batch kernel as a Monte Carlo run.
@@ -41,7 +41,6 @@ LAUNCH_COLUMNS = {
     "spin_axis": ("spin_axis_deg", 1.0 / DEG),
     "azimuth": ("azimuth_deg", 1.0 / DEG),
 }
-_REQUIRED = ("ball_speed", "launch_angle", "spin")
 
 
 def read_shots(path):
