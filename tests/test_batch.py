@@ -1,0 +1,112 @@
+"""The batch kernel against the single-shot kernel.
+
+``batch.simulate_batch`` flies shots of a quadratic aerodynamic model in uniform wind in
+lockstep lanes (a vectorised loop) and every other shot one at a time; either way each shot
+must come out bit for bit as ``shot.simulate_shot`` computes it alone, whatever the mix of
+shots, their order, the number of threads and the chunking.
+"""
+
+import numba
+import numpy as np
+import pytest
+
+from mcrun import aero, api
+from mcrun.batch import COLUMN, N_INPUT, _params, simulate_batch
+from mcrun.flight import WIND_PROFILES
+from mcrun.shot import N_OUTCOME, default_dt_s, simulate_shot
+from mcrun.turf import PRESETS
+
+N = 400
+
+
+def mixed_inputs(n, seed=3):
+    """Shots of every model and wind profile, on slopes and turfs, with some invalid rows."""
+    rng = np.random.default_rng(seed)
+    x = np.empty((n, N_INPUT), order="F")
+    col = {name: x[:, k] for name, k in COLUMN.items()}
+    col["ball_speed_mps"][:] = rng.uniform(25, 80, n)
+    col["launch_angle_rad"][:] = np.radians(rng.uniform(2, 40, n))
+    col["azimuth_rad"][:] = np.radians(rng.normal(0, 3, n))
+    col["spin_radps"][:] = rng.uniform(150, 1200, n)
+    col["spin_axis_rad"][:] = np.radians(rng.normal(0, 8, n))
+    rho, nu = api.air_properties()
+    col["air_density_kgpm3"][:] = rho
+    col["kinematic_viscosity_m2ps"][:] = nu
+    col["aero_model"][:] = rng.integers(0, len(aero.MODELS), n)
+    col["cd_scale"][:] = rng.uniform(0.9, 1.1, n)
+    col["cl_scale"][:] = rng.uniform(0.9, 1.1, n)
+    col["wind_x_mps"][:] = rng.normal(0, 3, n)
+    col["wind_right_mps"][:] = rng.normal(0, 3, n)
+    profiles = rng.choice([0, 0, 0, WIND_PROFILES["log"], WIND_PROFILES["power"]], n)
+    col["wind_profile"][:] = profiles
+    col["wind_reference_height_m"][:] = 10.0
+    col["wind_profile_parameter"][:] = np.where(profiles == WIND_PROFILES["log"], 0.03, 1 / 7)
+    turfs = list(PRESETS.values())
+    for k, turf in enumerate(rng.choice(len(turfs), n)):
+        for field, value in turfs[turf]._asdict().items():
+            col[field][k] = value
+    col["slope_rad"][:] = np.radians(rng.choice([0.0, 0.0, 1.5, 4.0], n))
+    col["fall_line_rad"][:] = np.radians(rng.uniform(-180, 180, n))
+    col["dt_s"][:] = [default_dt_s("uniform" if p == 0 else "log") for p in profiles]
+    col["ball_speed_mps"][::37] = np.nan  # invalid rows
+    col["spin_radps"][5::41] = -1.0
+    return x
+
+
+@pytest.fixture(scope="module")
+def inputs():
+    return mixed_inputs(N)
+
+
+@pytest.fixture(scope="module")
+def alone(inputs):
+    """Each row simulated by the single-shot kernel, one call per shot."""
+    out = np.empty((inputs.shape[0], N_OUTCOME))
+    for i in range(inputs.shape[0]):
+        c = inputs[i]
+        p, turf = _params(inputs, i)
+        simulate_shot(
+            c[0],
+            c[1],
+            c[2],
+            c[3],
+            c[4],
+            p,
+            turf,
+            c[24],
+            c[25],
+            c[26],
+            aero.QUADRATIC_COEFFICIENTS,
+            out,
+            i,
+            np.empty((0, 5)),
+        )
+    return out
+
+
+def same(a, b):
+    return np.array_equal(a, b, equal_nan=True)
+
+
+def test_batch_equals_single_shot_kernel_bit_for_bit(inputs, alone):
+    assert same(simulate_batch(inputs), alone)
+
+
+def test_mix_is_real(alone, inputs):
+    """The rows exercise both paths and every status the mix should give."""
+    quadratic = np.isin(inputs[:, COLUMN["aero_model"]], [0, 3, 4])
+    uniform = inputs[:, COLUMN["wind_profile"]] == 0
+    assert 0.2 < np.mean(quadratic & uniform) < 0.8
+    assert set(np.unique(alone[:, -1])) >= {0.0, 1.0}  # ok and invalid_input
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_any_order_and_thread_count(inputs, alone, threads):
+    """Reversed rows and another thread count change nothing."""
+    previous = numba.get_num_threads()
+    numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+    try:
+        reversed_out = simulate_batch(np.asfortranarray(inputs[::-1]))
+    finally:
+        numba.set_num_threads(previous)
+    assert same(reversed_out[::-1], alone)
