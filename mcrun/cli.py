@@ -550,6 +550,8 @@ COMMAND_MODULES = {
     "replay": "mcrun.run",
     "calibrate": "mcrun.calibrate",
     "paper": "mcrun.paper",
+    "plot": "mcrun.plots",
+    "report": "mcrun.plots",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 

@@ -1,0 +1,389 @@
+"""``mcrun plot RUN_DIR`` and ``mcrun report RUN_DIR``: the pictures and the page of a run.
+
+Three small runs, made once per module: a single point large enough to be drawn as a density
+(the library's pga-driver, with trajectories), a sweep drawn as dots (firm-vs-soft-greens, two
+points, trajectories, several row groups per point) and two groups with a target. Each command
+must write its files; every image must have the figure size times the dpi and show something
+(pixel statistics); what is drawn must be what the files hold (histogram counts, ellipses,
+the first trajectories); shots.parquet must be read one row group and only the drawn columns at
+a time; the report must reference nothing outside itself and hold the scenario and the summary
+numbers; and every mistake a user can make must end in one line and exit code 2.
+"""
+
+import base64
+import html
+import re
+import struct
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+import pytest
+
+from mcrun import output, plots, report, stats
+from mcrun.run import run_scenario
+
+pytest.importorskip("matplotlib")  # the optional extra mcrun[plot]
+
+LIBRARY = Path(__file__).resolve().parent.parent / "scenarios"
+DPI = 40
+SINGLE_N = plots.SCATTER_MAX_SHOTS + 1000  # above the dot limit: drawn as a density
+SWEEP_N = 1200
+
+GROUPS_TOML = """\
+[scenario]
+name = "two-wedges"
+question = "Where do two wedges finish around a flag at 100 m?"
+shots = 500
+seed = 7
+target = ["100 m", "0 m"]
+
+[launch]
+launch_angle = { dist = "normal", mean = "28 deg", sd = "1.5 deg" }
+spin = { dist = "normal", mean = "9000 rpm", sd = "600 rpm" }
+azimuth = { dist = "normal", mean = "0 deg", sd = "1.0 deg" }
+
+[turf]
+preset = "green"
+
+[[group]]
+name = "gap wedge"
+launch.ball_speed = { dist = "normal", mean = "92 mph", sd = "1 mph" }
+
+[[group]]
+name = "sand wedge"
+launch.ball_speed = { dist = "normal", mean = "85 mph", sd = "1 mph" }
+"""
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    """{name: run folder}: single (density, trajectories), sweep (dots, trajectories, three row
+    groups per point), groups (dots, explicit target, no trajectories)."""
+    root = tmp_path_factory.mktemp("plots")
+    scenario = root / "two-wedges.toml"
+    scenario.write_text(GROUPS_TOML, encoding="utf-8")
+    made = {
+        "single": run_scenario(
+            LIBRARY / "pga-driver.toml",
+            n=SINGLE_N,
+            out_dir=root / "single",
+            trajectories_every=200,
+            progress=False,
+        ),
+        "sweep": run_scenario(
+            LIBRARY / "firm-vs-soft-greens.toml",
+            n=SWEEP_N,
+            out_dir=root / "sweep",
+            chunk_size=SWEEP_N // 3,
+            trajectories_every=100,
+            progress=False,
+        ),
+        "groups": run_scenario(scenario, n=400, out_dir=root / "groups", progress=False),
+    }
+    return {name: result.out_dir for name, result in made.items()}
+
+
+@pytest.fixture(scope="module")
+def plotted(runs):
+    """{name: (plots folder, exit code, stdout)} of ``mcrun plot RUN_DIR -o DIR``."""
+    out = {}
+    for name, run_dir in runs.items():
+        folder = run_dir.parent / f"{name}-plots"
+        code = plots.main(["plot", str(run_dir), "-o", str(folder), "--dpi", str(DPI)])
+        out[name] = folder, code
+    return out
+
+
+@pytest.fixture(scope="module")
+def page(runs):
+    """The HTML report of the sweep."""
+    path = runs["sweep"].parent / "sweep-report.html"
+    assert report.main(["report", str(runs["sweep"]), "-o", str(path), "--dpi", str(DPI)]) == 0
+    return path.read_text(encoding="utf-8")
+
+
+def expected_files(points, trajectories):
+    names = ["summary", "finish"] if points > 1 else []
+    for k in range(points):
+        names += [f"point{k:02d}-positions", f"point{k:02d}-distances"]
+        if trajectories:
+            names.append(f"point{k:02d}-trajectories")
+    return {f"{n}.png" for n in names}
+
+
+def kind_of(name):
+    stem = Path(name).stem
+    return stem.split("-")[-1] if stem.startswith("point") else stem
+
+
+def assert_drawn(rgb):
+    """An image that shows something: grey levels that vary, dark ink (text, axes, curves)
+    and more than a handful of distinct colours."""
+    grey = rgb.mean(axis=2)
+    assert grey.std() > 0.05
+    assert (grey < 0.5).mean() > 0.005
+    colours = np.unique((rgb.reshape(-1, 3) * 255).round().astype(np.uint8), axis=0)
+    assert len(colours) > 50
+
+
+# --- mcrun plot --------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("name", "points", "trajectories"),
+    [("single", 1, True), ("sweep", 2, True), ("groups", 2, False)],
+)
+def test_plot_writes_one_png_per_plot(plotted, name, points, trajectories):
+    folder, code = plotted[name]
+    assert code == 0
+    assert {p.name for p in folder.iterdir()} == expected_files(points, trajectories)
+
+
+@pytest.mark.parametrize("name", ["single", "sweep", "groups"])
+def test_every_png_has_its_size_and_is_not_blank(plotted, name):
+    from matplotlib.image import imread
+
+    folder, _ = plotted[name]
+    for path in sorted(folder.iterdir()):
+        image = imread(path)
+        width_in, height_in = plots.FIGURE_SIZES_IN[kind_of(path.name)]
+        assert image.shape[:2] == (round(height_in * DPI), round(width_in * DPI)), path.name
+        assert_drawn(image[..., :3])
+
+
+def test_plot_defaults_to_a_plots_folder_in_the_run(runs, tmp_path, capsys):
+    """No -o: RUN_DIR/plots; every file written is printed."""
+    run_dir = tmp_path / "copy"
+    run_dir.mkdir()
+    for name in (output.SHOTS_FILE, output.SUMMARY_FILE):
+        (run_dir / name).write_bytes((runs["groups"] / name).read_bytes())
+    assert plots.main(["plot", str(run_dir), "--dpi", "30"]) == 0
+    printed = capsys.readouterr().out.split()
+    written = {p.name for p in (run_dir / plots.PLOTS_FOLDER).iterdir()}
+    assert written == expected_files(2, False)
+    assert len([w for w in printed if w.endswith(".png")]) == len(written)
+
+
+# --- what is drawn is what the run holds --------------------------------------------------------
+
+
+def ok_shots(run_dir, point, columns):
+    shots = pd.read_parquet(run_dir / output.SHOTS_FILE, columns=["point", "status", *columns])
+    return shots[(shots["point"] == point) & (shots["status"] == 0)]
+
+
+@pytest.mark.parametrize(("name", "point"), [("single", 0), ("sweep", 1)])
+def test_histograms_count_every_ok_shot(runs, name, point):
+    """The binned histograms equal numpy's over the whole column, and every ok shot is in a
+    bin or counted beyond the axis."""
+    run = plots.open_run(runs[name])
+    drawn = plots.read_point_shots(run, point)
+    shots = ok_shots(runs[name], point, [q for q, _ in plots.DISTANCES])
+    assert drawn.n_ok == len(shots) == run.summary.loc[point, "n_ok"]
+    for q, _ in plots.DISTANCES:
+        counts, _ = np.histogram(shots[q].to_numpy(), bins=drawn.edges[q])
+        np.testing.assert_array_equal(drawn.hist[q], counts)
+        assert drawn.hist[q].sum() + drawn.outside[q] == len(shots)
+
+
+def test_a_large_point_is_binned_and_a_small_one_drawn_shot_by_shot(runs):
+    """Above SCATTER_MAX_SHOTS the positions are a 2-D histogram of every ok shot; at or below
+    it, every position is kept, in the file's order."""
+    single = plots.read_point_shots(plots.open_run(runs["single"]), 0)
+    assert not single.scatter
+    for key in ("landing", "final"):
+        assert single.density[key].sum() + single.beyond[key] == single.n_ok == SINGLE_N
+        assert single.positions(key).shape == (0, 2)
+    sweep = plots.read_point_shots(plots.open_run(runs["sweep"]), 1)
+    assert sweep.scatter
+    shots = ok_shots(runs["sweep"], 1, ["final_x_m", "final_y_m"])
+    np.testing.assert_array_equal(sweep.positions("final"), shots[["final_x_m", "final_y_m"]])
+
+
+@pytest.mark.parametrize("name", ["single", "sweep"])
+def test_ellipses_are_the_summarys(runs, name):
+    """The final position's 68 % and 95 % ellipses computed from the shots as they are read
+    equal summary.parquet's (the landing ellipses are computed the same way)."""
+    run = plots.open_run(runs[name])
+    for row in run.summary.to_dict("records"):
+        drawn = plots.read_point_shots(run, row["point"])
+        for level in stats.ELLIPSE_LEVELS:
+            a, b, angle = drawn.ellipse("final", level)
+            assert a == pytest.approx(row[f"ellipse{level}_semi_major_m"], rel=1e-9)
+            assert b == pytest.approx(row[f"ellipse{level}_semi_minor_m"], rel=1e-9)
+            assert angle == pytest.approx(row[f"ellipse{level}_angle_deg"], abs=1e-6)
+
+
+def test_trajectories_are_the_first_complete_paths_of_the_point(runs):
+    """The sample is the first K shots of the point in trajectories.parquet, each complete."""
+    run = plots.open_run(runs["sweep"])
+    table = pd.read_parquet(runs["sweep"] / output.TRAJECTORIES_FILE)
+    for point in (0, 1):
+        paths = plots.sample_trajectories(run, point, limit=5)
+        rows = table[table["point"] == point]
+        assert [s for s, *_ in paths] == list(dict.fromkeys(rows["shot"]))[:5]
+        for shot, x, y, z, phase in paths:
+            mine = rows[rows["shot"] == shot]
+            np.testing.assert_array_equal(x, mine["x_m"])
+            np.testing.assert_array_equal(y, mine["y_m"])
+            np.testing.assert_array_equal(z, mine["z_m"])
+            assert phase[0] == "flight" and phase[-1] != "flight"
+
+
+def test_shots_are_read_a_row_group_and_the_drawn_columns_at_a_time(runs, monkeypatch):
+    """Memory does not grow with N: each read asks for one row group of the point and only the
+    columns the plots draw."""
+    calls = []
+
+    class Recording(pq.ParquetFile):
+        def iter_batches(self, *args, **kwargs):
+            calls.append((kwargs.get("row_groups"), tuple(kwargs.get("columns"))))
+            return super().iter_batches(*args, **kwargs)
+
+    monkeypatch.setattr(plots.pq, "ParquetFile", Recording)
+    run = plots.open_run(runs["sweep"])
+    drawn = plots.read_point_shots(run, 1)
+    assert drawn.n_ok == run.summary.loc[1, "n_ok"]
+    metadata = pq.read_metadata(runs["sweep"] / output.SHOTS_FILE)
+    of_point_1 = [
+        g
+        for g in range(metadata.num_row_groups)
+        if metadata.row_group(g).column(0).statistics.min == 1
+    ]
+    assert len(of_point_1) == 3
+    assert [groups for groups, _ in calls] == [[g] for g in of_point_1]
+    assert {columns for _, columns in calls} == {plots._SHOT_COLUMNS}
+
+
+def test_the_sweep_is_laid_out_against_its_parameter():
+    """A numeric sweep with a unit is an x axis with that unit; text values are categories."""
+    assert plots._numeric(["909.8 rad/s", "1124.6 rad/s"])[1] == "rad/s"
+    np.testing.assert_array_equal(plots._numeric(["5 m/s", "10 m/s"])[0], [5.0, 10.0])
+    np.testing.assert_array_equal(plots._numeric([1.5, 2])[0], [1.5, 2.0])
+    assert plots._numeric(["5 m/s", "10 mph"]) is None
+    assert plots._numeric(["green", "firm_green"]) is None
+
+
+def test_groups_and_sweeps_are_laid_out(runs):
+    groups = plots.open_run(runs["groups"])
+    assert groups.explicit_target
+    x_label, values, ticks, series = plots.sweep_layout(groups)
+    assert (x_label, values, ticks, series) == ("group", None, ["gap wedge", "sand wedge"],
+                                                [("", [0, 1])])  # fmt: skip
+    sweep = plots.open_run(runs["sweep"])
+    assert sweep.sweep_keys == ["turf.preset"]
+    assert not sweep.explicit_target
+    assert plots.sweep_layout(sweep)[:3] == ("turf.preset", None, ["green", "firm_green"])
+
+
+# --- mcrun report ------------------------------------------------------------------------------
+
+
+def test_report_references_nothing_outside_itself(page):
+    """Every src= and href= is a data: URI or a link to a section of the page; no script,
+    stylesheet link, font or CSS url()."""
+    targets = re.findall(r"""(?:src|href)\s*=\s*["']?([^"'\s>]*)""", page, flags=re.I)
+    assert targets
+    for target in targets:
+        assert target.startswith(("data:image/png;base64,", "#")), target[:60]
+    for word in ("<script", "<link", "<iframe", "@import", "url(", "http://", "https://"):
+        assert word not in page.lower()
+    sections = set(re.findall(r'id="([^"]+)"', page))
+    for target in targets:
+        if target.startswith("#"):
+            assert target[1:] in sections
+
+
+def test_report_embeds_every_plot_at_its_size(page, runs):
+    run = plots.open_run(runs["sweep"])
+    images = re.findall(r'src="data:image/png;base64,([A-Za-z0-9+/=]+)"', page)
+    assert len(images) == len(expected_files(run.points, True))
+    for data in images:
+        png = base64.b64decode(data)
+        assert png[:8] == b"\x89PNG\r\n\x1a\n"
+        width, height = struct.unpack(">II", png[16:24])
+        assert (width, height) in {
+            (round(w * DPI), round(h * DPI)) for w, h in plots.FIGURE_SIZES_IN.values()
+        }
+
+
+def test_report_holds_the_scenario_the_summary_and_the_provenance(page, runs):
+    run = plots.open_run(runs["sweep"])
+    text = run.provenance["scenario_text"]
+    assert f"<pre>{html.escape(text)}</pre>" in page
+    assert html.escape(run.question) in page
+    summary = pd.read_parquet(runs["sweep"] / output.SUMMARY_FILE)
+    for point in (0, 1):
+        for column in ("total_m_mean", "carry_m_p95", "run_m_mean", "ellipse95_semi_major_m"):
+            assert f">{summary.loc[point, column]:.2f}<" in page, (point, column)
+    assert "total, at rest (m)" in page and "area (m²)" in page  # units in the headers
+    for key in ("seed", "n", "versions", "start_time_utc", "elapsed_s", "threads", "backend"):
+        assert f'<td class="text">{key}</td>' in page
+    assert f"seed {run.seed}" in page and f"{SWEEP_N:,} shots per point" in page
+
+
+def test_report_defaults_to_the_run_folder(runs, tmp_path, capsys):
+    run_dir = tmp_path / "copy"
+    run_dir.mkdir()
+    for name in (output.SHOTS_FILE, output.SUMMARY_FILE):
+        (run_dir / name).write_bytes((runs["groups"] / name).read_bytes())
+    assert report.main(["report", str(run_dir), "--dpi", "30"]) == 0
+    path = run_dir / report.REPORT_FILE
+    assert capsys.readouterr().out.strip() == f"wrote {path}"
+    assert "two-wedges" in path.read_text(encoding="utf-8")
+
+
+# --- mistakes ------------------------------------------------------------------------------------
+
+
+def one_line_error(capsys, code, *needles):
+    out, err = capsys.readouterr()
+    assert code == 2
+    assert out == ""
+    assert err.startswith("mcrun: error: ") and err.count("\n") == 1, err
+    for needle in needles:
+        assert needle in err, err
+
+
+@pytest.mark.parametrize("command", ["plot", "report"])
+def test_a_folder_that_is_not_a_run_is_one_line(runs, tmp_path, capsys, command):
+    main = plots.main if command == "plot" else report.main
+    one_line_error(capsys, main([command, str(tmp_path / "nowhere")]), "no such run folder")
+    one_line_error(capsys, main([command, str(tmp_path)]), "not an mcrun run folder")
+    a_file = tmp_path / "file.txt"
+    a_file.write_text("x")
+    one_line_error(capsys, main([command, str(a_file)]), "is not a folder")
+    partial = tmp_path / "partial"
+    partial.mkdir()
+    (partial / output.SUMMARY_FILE).write_bytes((runs["groups"] / output.SUMMARY_FILE).read_bytes())
+    one_line_error(capsys, main([command, str(partial)]), "has no shots.parquet")
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    (broken / output.SHOTS_FILE).write_bytes(b"not parquet")
+    (broken / output.SUMMARY_FILE).write_bytes(b"not parquet either")
+    one_line_error(capsys, main([command, str(broken)]), "cannot read the run")
+
+
+def test_an_unwritable_output_is_one_line(runs, tmp_path, capsys):
+    blocker = tmp_path / "a-file"
+    blocker.write_text("x")
+    code = plots.main(["plot", str(runs["groups"]), "-o", str(blocker / "plots")])
+    one_line_error(capsys, code, "cannot write to")
+    code = report.main(["report", str(runs["groups"]), "-o", str(tmp_path)])
+    one_line_error(capsys, code, "is a folder")
+    code = report.main(["report", str(runs["groups"]), "-o", str(blocker / "r.html")])
+    one_line_error(capsys, code, "-o:")
+
+
+@pytest.mark.parametrize("command", ["plot", "report"])
+def test_missing_matplotlib_is_one_line(runs, tmp_path, monkeypatch, capsys, command):
+    import sys
+
+    for name in ("matplotlib", "matplotlib.figure", "matplotlib.backends.backend_agg"):
+        monkeypatch.setitem(sys.modules, name, None)
+    main = plots.main if command == "plot" else report.main
+    code = main([command, str(runs["groups"]), "-o", str(tmp_path / "out")])
+    one_line_error(capsys, code, f"mcrun {command} needs matplotlib", "mcrun[plot]")
+    assert not (tmp_path / "out").exists()
