@@ -1,0 +1,14 @@
+"""The benchmark suite of mcrun: speed, accuracy and memory, measured side by side.
+
+Run it with ``python -m benchmarks`` (full, a few minutes) or ``python -m benchmarks --quick``
+(under a minute, a check before each commit). It writes ``benchmarks/results/latest.json``
+(every number, and the machine it ran on) and ``latest.md`` (the tables of the README); the
+quick mode writes ``quick.json`` and ``quick.md`` instead, so that it never replaces the full
+results.
+
+- ``reference.py``: the reference integration (scipy DOP853 at rtol = atol = 1e-12), written
+  out again from the equations, independent of ``mcrun.flight``.
+- ``baselines.py``: the flight alone as others would write it (solve_ivp per shot, NumPy
+  vectorised RK4, Numba one shot per ``prange`` iteration), for comparison.
+- ``suite.py``: the five figures, the timing, the JSON and the Markdown.
+"""
