@@ -537,19 +537,30 @@ def _interrupted():
     return 130
 
 
+def _dask_backend(args):
+    """Whether ``mcrun run`` was asked for the Dask backend (``mcrun.distributed``)."""
+    names = ("dask", "scheduler", "scheduler_file", "workers")
+    return any(getattr(args, name, None) is not None for name in names)
+
+
 def _cmd_run(args):
     try:
-        result = run_scenario(
-            args.scenario,
-            n=args.n,
-            seed=args.seed,
-            out_dir=args.output,
-            threads=args.threads,
-            chunk_size=args.chunk_size,
-            trajectories_every=args.trajectories,
-            progress=not args.quiet,
-            force=args.force,
-        )
+        if _dask_backend(args):
+            from mcrun import distributed
+
+            result = distributed.run_from_args(args)
+        else:
+            result = run_scenario(
+                args.scenario,
+                n=args.n,
+                seed=args.seed,
+                out_dir=args.output,
+                threads=args.threads,
+                chunk_size=args.chunk_size,
+                trajectories_every=args.trajectories,
+                progress=not args.quiet,
+                force=args.force,
+            )
     except (InputError, UnitError) as err:
         return _error(err)
     except KeyboardInterrupt:
@@ -575,10 +586,9 @@ def _cmd_run(args):
     print(format_summary(summary))
     shots = result.n * result.points
     rate = shots / result.elapsed_s if result.elapsed_s > 0 else math.inf
-    print(
-        f"{shots} shots in {result.elapsed_s:.1f} s ({rate:,.0f} shots/s on {result.threads} "
-        "threads); wrote:"
-    )
+    threads = f"{result.threads} thread" + ("s" if result.threads != 1 else "")
+    where = getattr(result, "where", threads)
+    print(f"{shots} shots in {result.elapsed_s:.1f} s ({rate:,.0f} shots/s on {where}); wrote:")
     for path in result.paths:
         print(f"  {path}")
     return 0
@@ -640,6 +650,31 @@ def _cmd_scenarios(args):
     return 0
 
 
+def _add_dask_options(p):
+    """The Dask backend's options of ``mcrun run`` (``mcrun.distributed``)."""
+    group = p.add_argument_group(
+        "Dask backend (pip install 'mcrun[dask]')",
+        "Run the chunks as tasks on a Dask cluster: the same shots and summary as the local "
+        "engine, bit for bit; shots are written as a dataset, shots/part-NNNNN.parquet, to a "
+        "folder or fsspec URL (-o s3://...) that the client and every worker reach.",
+    )
+    where = group.add_mutually_exclusive_group()
+    where.add_argument(
+        "--dask",
+        choices=["local"],
+        help="a LocalCluster on this machine: --workers processes of one thread each",
+    )
+    where.add_argument(
+        "--scheduler", metavar="ADDRESS", help="an existing cluster, e.g. tcp://HOST:8786"
+    )
+    where.add_argument(
+        "--scheduler-file", metavar="PATH", help="an existing cluster's scheduler file"
+    )
+    group.add_argument(
+        "--workers", metavar="N", help="worker processes of --dask local (default: the cores)"
+    )
+
+
 def register(subparsers):
     """Add ``run``, ``validate``, ``scenarios`` and ``replay`` to an argparse subparsers."""
     p = subparsers.add_parser(
@@ -678,6 +713,7 @@ def register(subparsers):
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    _add_dask_options(p)
     p.set_defaults(func=_cmd_run)
 
     p = subparsers.add_parser(

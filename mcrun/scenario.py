@@ -1089,11 +1089,19 @@ def load(path):
         With one line naming the file, the key path and what is allowed.
     """
     path = find(path)
-    ctx = _Context(str(path))
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as err:
         raise ScenarioError(f"{path}: cannot read the file: {err}") from None
+    return loads(text, path)
+
+
+def loads(text, path):
+    """A Scenario from its TOML ``text``, as if read from ``path`` (which names it in errors
+    and against which a resampled shots file is found): how a worker of a distributed run, or
+    a rerun from a run's provenance, gets the scenario without the file."""
+    path = Path(path)
+    ctx = _Context(str(path))
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:

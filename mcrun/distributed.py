@@ -1,0 +1,886 @@
+"""The same run on a Dask cluster: the local engine's shots and summary, bit for bit.
+
+``run_scenario`` (``mcrun run SCENARIO --dask local``, ``--scheduler tcp://HOST:8786`` or
+``--scheduler-file PATH``) runs a scenario as ``mcrun.run.run_scenario`` does, with the chunks
+of sample indices as Dask tasks. Dask is an optional extra (``pip install 'mcrun[dask]'``);
+this module imports it only when a run asks for it.
+
+Tasks. Every point's N shots are cut into chunks of ``chunk_size`` sample indices, one task
+each, numbered point by point (chunk c). The default size is fixed, not measured: it is the
+local engine's ``run.DEFAULT_CHUNK_SIZE`` (65,536 shots), so that a default Dask run and a
+default local run cut the same chunks (see Statistics). On the pga-driver scenario that is
+about 0.7 s of work per task for one thread on the development machine (0.55 s of simulation at
+~120,000 shots/s, then the sampling, the statistics and the part's write), against a few
+milliseconds of Dask overhead per task; slower scenarios give longer tasks. A task
+(``run_chunk``) rebuilds the scenario from its text (parsed once per worker process), draws its
+chunk with ``sampling.sample`` (the draws of sample i depend only on the scenario, the seed and
+i, so whichever worker runs it, and however often, gives the same numbers), runs
+``batch.simulate_batch`` with one Numba thread, writes its part of the dataset and returns its
+``stats.PointStats`` (counts by status, means and co-moments) to the client. The scenario
+text travels once, as the result of a small task the chunks depend on (so a lost copy is
+recomputed, not lost); a scenario that resamples a measured-shots file needs the scenario file
+and that file at the same path on every worker.
+
+Layout. A Dask run folder holds:
+
+- ``shots/part-NNNNN.parquet``: one file per chunk (NNNNN = c, zero-padded to 5 digits), one
+  row group each, the columns and types of the local engine's ``shots.parquet``. When the
+  scenario has groups the dataset is hive-partitioned by group:
+  ``shots/group=<name>/part-NNNNN.parquet`` (the name percent-encoded, e.g. ``7%20iron``), and
+  the ``group`` column lives in the folder names, not in the files (readers add it back).
+- ``summary.parquet`` (the local engine's, row for row), optional
+  ``trajectories/part-NNNNN.parquet`` (the paths of the chunk's every k-th shots, when it has
+  some), and ``_SUCCESS``, a JSON note written last: a folder without it is incomplete.
+
+The local engine writes one ``shots.parquet`` file instead (one writer, row groups in order);
+here every task writes its own part, in parallel, on any machine. Both read the same way:
+``pd.read_parquet(run / "shots")``, ``pl.scan_parquet(run / "shots" / "**/*.parquet",
+hive_partitioning=True)``, DuckDB's ``read_parquet('run/shots/**/*.parquet',
+hive_partitioning = true)``; rows come in file order, so sort by (point, shot) to compare with
+the local file. ``read_shots`` returns exactly the DataFrame the local engine's file reads as.
+
+Statistics. Moments: from the tasks' partial ``PointStats``, merged on the client in chunk
+order (not in order of completion), each chunk's sums folded into the running total with
+Chan's pairwise update exactly as the local engine folds its chunks: with the same chunk size
+the floating-point sums, and so the means, standard deviations, covariances, ellipses and
+regression coefficients, are identical bit for bit. Percentiles and the distance radii: exact,
+computed afterwards from the dataset by ``stats.summarise`` (sort, or histogram-then-select
+when a column exceeds the memory budget), reading one column of one point at a time part by
+part in chunk order. Not mergeable sketches (t-digest, KLL): those are approximate, and the
+summary must equal the local engine's and a pandas computation on the shots; the extra pass
+reads a few columns of the dataset, a fraction of the simulation's cost. (With another chunk
+size the percentiles stay identical and the moments agree to rounding.) Bit for bit assumes
+the workers run the client's software (mcrun, Numba, NumPy and its BLAS, which computes the
+co-moments) on the same kind of CPU; a mixed cluster may differ in the last bits.
+
+Failures. Every task may be retried twice (``retries``) when it raises; a task whose worker
+dies is rescheduled by Dask on another worker (``distributed.scheduler.allowed-failures``,
+default 3). Part names depend only on the chunk, and each part is written under a hidden
+temporary name and renamed, so a retried or re-run chunk replaces its part: no shot is lost or
+written twice. A run whose chunks still fail raises ``RunFailed`` (exit code 2), naming the
+failed chunks in one line, and removes everything it wrote. A local (or shared, mounted) folder
+is written under a temporary name beside the destination and renamed when complete, as the
+local engine does. An fsspec URL (``s3://...`` with s3fs, or any fsspec protocol, ``file://``
+included) has no atomic rename: the run is written in place, ``summary.parquet`` and then
+``_SUCCESS`` last, and the folder is removed on failure; with ``force`` an earlier run there is
+removed when the new one starts.
+
+Workers. A local cluster has worker processes of one Dask thread each, started with
+``NUMBA_NUM_THREADS=1``; on any cluster a task sets one Numba thread for itself
+(``numba.set_num_threads`` is per calling thread), so the machine runs one Numba thread per
+Dask thread and is not oversubscribed. The kernels are compiled once per worker process, or
+loaded from Numba's on-disk cache (``cache=True``) when it is there. The client and every
+worker must reach the output (the client merges the statistics and computes the percentiles).
+The run's elapsed time starts once the cluster is up; starting a local cluster (about a
+second) is recorded apart, as ``cluster_start_s`` in the provenance.
+"""
+
+import contextlib
+import functools
+import importlib
+import json
+import logging
+import secrets
+import sys
+import time
+import urllib.parse
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import NamedTuple
+
+import numba
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.fs as pafs
+import pyarrow.parquet as pq
+
+from mcrun import output, run, sampling, stats
+from mcrun import scenario as scenario_module
+from mcrun import status as status_codes
+from mcrun.api import InputError
+from mcrun.batch import simulate_batch
+
+DEFAULT_CHUNK_SIZE = run.DEFAULT_CHUNK_SIZE
+RETRIES = 2
+SHOTS_DIR = "shots"
+TRAJECTORIES_DIR = "trajectories"
+SUCCESS_FILE = "_SUCCESS"
+NUMBA_THREADS_PER_TASK = 1
+CONNECT_TIMEOUT_S = 30
+_SHOWN_FAILURES = 10
+
+__all__ = [
+    "DEFAULT_CHUNK_SIZE",
+    "ChunkResult",
+    "DaskRunResult",
+    "RunFailed",
+    "local_cluster",
+    "read_shots",
+    "read_trajectories",
+    "run_chunk",
+    "run_from_args",
+    "run_scenario",
+]
+
+
+class RunFailed(output.OutputError):
+    """A Dask run could not finish; nothing it wrote is left. ``failed``: (chunk, point, start,
+    stop, error) of each chunk that failed."""
+
+    def __init__(self, message, failed=()):
+        super().__init__(message)
+        self.failed = list(failed)
+
+
+def _dask():
+    try:
+        distributed = importlib.import_module("dask.distributed")
+    except ImportError:
+        raise InputError(
+            "the Dask backend needs dask.distributed: pip install 'mcrun[dask]'"
+        ) from None
+    return distributed
+
+
+# --- where the run is written ------------------------------------------------------------------
+
+
+def _is_url(out):
+    return isinstance(out, str) and "://" in out
+
+
+@functools.lru_cache(maxsize=8)
+def filesystem(url=None):
+    """The pyarrow filesystem of a run folder: local for None, else the fsspec one of ``url``."""
+    if url is None:
+        return pafs.LocalFileSystem()
+    import fsspec
+
+    fs, _ = fsspec.core.url_to_fs(url)
+    return pafs.PyFileSystem(pafs.FSSpecHandler(fs))
+
+
+def _url_path(url):
+    import fsspec
+
+    return fsspec.core.url_to_fs(url)[1].rstrip("/")
+
+
+def _locate(folder):
+    """(url or None, filesystem, path in it) of a run folder given as a path or a URL."""
+    if _is_url(str(folder)):
+        url = str(folder).rstrip("/")
+        return url, filesystem(url), _url_path(url)
+    return None, filesystem(None), str(Path(folder).absolute())
+
+
+class _FolderDestination:
+    """A local or shared folder: written under a temporary name beside it, renamed when done."""
+
+    url = None
+
+    def __init__(self, path, force):
+        self._folder = output.AtomicFolder(Path(path).absolute(), force=force)
+        self.fs = filesystem(None)
+        self.root = None
+
+    def __enter__(self):
+        self._folder.__enter__()
+        self.root = str(self._folder.tmp)
+        return self
+
+    def commit(self):
+        self._folder.commit()
+
+    def __exit__(self, *exc):
+        return self._folder.__exit__(*exc)
+
+
+class _UrlDestination:
+    """An fsspec URL: written in place, the summary and ``_SUCCESS`` last; removed on failure."""
+
+    def __init__(self, url, force):
+        self.url = url.rstrip("/")
+        self.force = force
+        try:
+            self.fs = filesystem(self.url)
+            self.root = _url_path(self.url)
+        except (ImportError, ValueError) as err:
+            raise output.OutputError(f"cannot use the output {url}: {err}") from None
+        self._committed = False
+
+    def __enter__(self):
+        info = self.fs.get_file_info(self.root)
+        if info.type == pafs.FileType.File:
+            raise output.OutputError(f"the output {self.url} exists and is not a folder")
+        if info.type == pafs.FileType.Directory:
+            names = {e.base_name for e in self.fs.get_file_info(pafs.FileSelector(self.root))}
+            if names:
+                if not names & {SUCCESS_FILE, SHOTS_DIR, *output.RUN_FILES}:
+                    raise output.OutputError(
+                        f"the output folder {self.url} exists and is not an mcrun run folder: "
+                        "choose another with -o"
+                    )
+                if not self.force:
+                    raise output.OutputError(
+                        f"the output folder {self.url} already holds a run: use --force to "
+                        "replace it, or choose another with -o"
+                    )
+                self.fs.delete_dir_contents(self.root)
+        self.fs.create_dir(self.root)
+        return self
+
+    def commit(self):
+        self._committed = True
+
+    def __exit__(self, *exc):
+        if not self._committed:
+            with contextlib.suppress(OSError):
+                self.fs.delete_dir(self.root)
+        return False
+
+
+def _write_parquet(fs, path, table, local, use_dictionary=True):
+    """Write ``table`` as one row group; on a local filesystem under a hidden temporary name
+    renamed into place, so that a part is either complete or absent."""
+    kwargs = {
+        "compression": output.COMPRESSION,
+        "row_group_size": max(table.num_rows, 1),
+        "use_dictionary": use_dictionary,
+    }
+    if not local:
+        pq.write_table(table, path, filesystem=fs, **kwargs)
+        return
+    parent, _, name = path.rpartition("/")
+    tmp = f"{parent}/.{name}.{secrets.token_hex(4)}.tmp"
+    try:
+        pq.write_table(table, tmp, filesystem=fs, **kwargs)
+        fs.move(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            fs.delete_file(tmp)
+        raise
+
+
+def _group_dir(group):
+    return f"group={urllib.parse.quote(group, safe='')}"
+
+
+def _part_name(chunk):
+    return f"part-{chunk:05d}.parquet"
+
+
+# --- the task ----------------------------------------------------------------------------------
+
+
+class ChunkResult(NamedTuple):
+    """What a task returns: where its part is and its statistics."""
+
+    chunk: int
+    point: int
+    start: int
+    stop: int
+    shots_path: str
+    trajectories_path: str | None
+    stats: stats.PointStats
+
+
+@functools.lru_cache(maxsize=4)
+def _scenario(text, path, seed):
+    """The scenario of a job, parsed from its text once per worker process (a resampled shots
+    file is found relative to ``path``, so it must be at the same place on every worker)."""
+    scenario = scenario_module.loads(text, path)
+    return run._with_seed(scenario, seed) if scenario.seed != seed else scenario
+
+
+_BUILDERS = {}
+
+
+def _shots_builder(job):
+    """The job's table builder (an ``output.ShotsWriter`` without a file), once per worker."""
+    builder = _BUILDERS.get(job["id"])
+    if builder is None:
+        _BUILDERS.clear()
+        builder = _BUILDERS[job["id"]] = output.ShotsWriter(
+            None,
+            job["input_names"],
+            job["groups"],
+            job["labels"],
+            job["shots_metadata"],
+            {name: pa.type_for_alias(kind) for name, kind in job["input_types"].items()},
+        )
+    return builder
+
+
+class _Paths(list):
+    """Collects the trajectories ``run._trajectories`` adds."""
+
+    def add(self, point, shot, traj):
+        self.append((point, shot, np.array(traj, dtype=float)))
+
+
+def run_chunk(chunk, point, start, stop, job):
+    """One task: sample, simulate and write shots ``start .. stop - 1`` of ``point``.
+
+    ``job``: the run's description (plain data: the scenario text and path, the seed, the
+    output's URL and folder, the columns). Returns a ``ChunkResult``.
+    """
+    numba.set_num_threads(NUMBA_THREADS_PER_TASK)
+    scenario = _scenario(job["scenario_text"], job["scenario_path"], job["seed"])
+    inputs, sampled = sampling.sample(scenario, scenario.points[point], start, stop)
+    out = simulate_batch(inputs)
+    point_stats = stats.PointStats(job["drivers"][point])
+    point_stats.update(out, sampled)
+    fs = filesystem(job["url"])
+    local = job["url"] is None
+    table = _shots_builder(job).table(point, start, sampled, out)
+    if job["partitioned"]:
+        table = table.drop_columns("group")
+    shots_path = f"{job['root']}/{job['shot_dirs'][point]}/{_part_name(chunk)}"
+    # Encoded as the local engine's shots.parquet: dictionaries for the text columns only.
+    _write_parquet(fs, shots_path, table, local, output.dictionary_columns(table.schema))
+    traj_path = None
+    every = job["trajectories_every"]
+    if every and -(-start // every) * every < stop:
+        paths = _Paths()
+        run._trajectories(paths, inputs, point, start, stop, every, np.empty((4096, 5)))
+        schema = output.TRAJECTORY_SCHEMA.with_metadata(job["trajectories_metadata"])
+        traj_path = f"{job['root']}/{TRAJECTORIES_DIR}/{_part_name(chunk)}"
+        _write_parquet(fs, traj_path, output.trajectory_table(paths, schema), local)
+    return ChunkResult(chunk, point, start, stop, shots_path, traj_path, point_stats)
+
+
+def _job_of(job):
+    """The job itself: a task the chunks depend on, so its data is recomputed if lost."""
+    return job
+
+
+# --- the cluster -------------------------------------------------------------------------------
+
+
+def local_cluster(workers=None, **kwargs):
+    """A Dask ``LocalCluster`` as ``--dask local`` starts it: ``workers`` processes (default:
+    the cores) of one Dask thread each, with ``NUMBA_NUM_THREADS=1``, no dashboard.
+
+    The variable is in the environment the worker processes are spawned with (Dask's
+    ``distributed.nanny.pre-spawn-environ``), since Numba reads it once, when a process first
+    imports it. (A ``NUMBA_NUM_THREADS`` already set in this process's environment wins, as
+    Dask gives it precedence; each task still runs one Numba thread.)
+    """
+    distributed = _dask()
+    import dask
+
+    if workers is None:
+        workers = dask.system.CPU_COUNT
+    options = {
+        "n_workers": workers,
+        "threads_per_worker": 1,
+        "processes": True,
+        "dashboard_address": None,
+    }
+    environ = "distributed.nanny.pre-spawn-environ.NUMBA_NUM_THREADS"
+    with dask.config.set({environ: str(NUMBA_THREADS_PER_TASK)}):
+        return distributed.LocalCluster(**{**options, **kwargs})
+
+
+@contextlib.contextmanager
+def _connect(client, scheduler, scheduler_file, workers):
+    """The client of the cluster asked for (a local cluster is started and closed here)."""
+    distributed = _dask()
+    if sum(x is not None for x in (client, scheduler, scheduler_file)) > 1:
+        raise InputError("give one of a client, a scheduler address or a scheduler file")
+    if client is not None:
+        yield client
+        return
+    if scheduler_file is not None:
+        if not Path(scheduler_file).is_file():
+            raise InputError(f"--scheduler-file {scheduler_file}: no such file")
+        target = {"scheduler_file": str(scheduler_file)}
+        where = f"the Dask scheduler of {scheduler_file}"
+    elif scheduler not in (None, "local"):
+        target = {"address": scheduler}
+        where = f"the Dask scheduler {scheduler}"
+    else:
+        cluster = local_cluster(workers, silence_logs=logging.ERROR)
+        try:
+            with distributed.Client(cluster) as own:
+                yield own
+        finally:
+            cluster.close()
+        return
+    try:
+        own = distributed.Client(**target, timeout=f"{CONNECT_TIMEOUT_S}s")
+    except (OSError, TimeoutError, ValueError) as err:
+        reason = " ".join(str(err).split()) or type(err).__name__
+        raise InputError(f"cannot reach {where}: {reason}") from None
+    with own:
+        yield own
+
+
+def _cluster_size(client):
+    """(scheduler address, workers, Dask threads of each worker), once a worker is there."""
+    try:
+        client.wait_for_workers(1, timeout=CONNECT_TIMEOUT_S)
+    except TimeoutError:
+        raise InputError(
+            f"the Dask cluster at {client.scheduler.address} has no worker "
+            f"(waited {CONNECT_TIMEOUT_S} s)"
+        ) from None
+    info = client.scheduler_info(n_workers=-1)
+    threads = [w["nthreads"] for w in info["workers"].values()]
+    return info["address"], len(threads), threads
+
+
+# --- the run -----------------------------------------------------------------------------------
+
+
+@dataclass
+class DaskRunResult(run.RunResult):
+    """A ``run.RunResult`` of a Dask run: ``shots_path`` is the shots/ dataset folder."""
+
+    scheduler: str = ""
+    workers: int = 0
+
+    @property
+    def where(self):
+        """How it ran, for the line ``mcrun run`` prints: "2 Dask workers, 2 threads"."""
+        return f"{self.workers} Dask workers, {self.threads} threads"
+
+    def shots(self, columns=None):
+        """The shots as one DataFrame, as the local engine's shots.parquet reads."""
+        return read_shots(self.out_dir, columns)
+
+    def trajectories(self):
+        if self.trajectories_path is None:
+            return None
+        return read_trajectories(self.out_dir)
+
+
+class _Chunk(NamedTuple):
+    index: int
+    point: int
+    start: int
+    stop: int
+
+
+def run_scenario(
+    path_or_scenario,
+    n=None,
+    seed=None,
+    out_dir=None,
+    *,
+    client=None,
+    scheduler=None,
+    scheduler_file=None,
+    workers=None,
+    chunk_size=DEFAULT_CHUNK_SIZE,
+    trajectories_every=None,
+    progress=True,
+    force=False,
+    budget_bytes=stats.DEFAULT_BUDGET_BYTES,
+    retries=RETRIES,
+    chunk_task=run_chunk,
+):
+    """Run a scenario on a Dask cluster and write its folder; return a DaskRunResult.
+
+    The same shots and summary as ``mcrun.run.run_scenario`` with the same ``n``, ``seed``
+    and ``chunk_size``, bit for bit.
+
+    Parameters
+    ----------
+    path_or_scenario, n, seed, chunk_size, trajectories_every, progress, force, budget_bytes
+        As ``mcrun.run.run_scenario``; ``chunk_size`` is also the shots per task.
+    out_dir : str or Path, optional
+        A folder that the client and every worker reach (local, or shared and mounted at the
+        same path), or an fsspec URL (``s3://bucket/run``). Default ``runs/<name>-<seed>``.
+    client : dask.distributed.Client, optional
+        Use this client's cluster.
+    scheduler : str, optional
+        ``"local"`` (a ``local_cluster`` of ``workers`` processes, the default when no client,
+        scheduler or scheduler file is given) or a scheduler address ``tcp://host:8786``.
+    scheduler_file : str or Path, optional
+        The scheduler file of an existing cluster (``dask scheduler --scheduler-file``).
+    workers : int, optional
+        Worker processes of the local cluster (default: the cores).
+    retries : int
+        Retries of a task that raises.
+    chunk_task : callable
+        The function a task runs, with ``run_chunk``'s signature (tests wrap it).
+
+    Raises
+    ------
+    InputError
+        (ScenarioError, OutputError) a bad scenario, argument or output, or an unreachable
+        cluster, before anything is written; ``RunFailed`` when chunks still fail after their
+        retries, after removing what was written. KeyboardInterrupt is re-raised after the
+        tasks are cancelled and the output removed.
+    """
+    scenario = run._load(path_or_scenario)
+    n = run._positive_int(scenario.shots if n is None else n, "n")
+    seed = run._positive_int(scenario.seed if seed is None else seed, "seed", minimum=0)
+    chunk_size = run._positive_int(chunk_size, "chunk_size")
+    if trajectories_every is not None:
+        trajectories_every = run._positive_int(trajectories_every, "trajectories_every")
+    if workers is not None:
+        workers = run._positive_int(workers, "workers")
+    retries = run._positive_int(retries, "retries", minimum=0)
+    if seed != scenario.seed:
+        scenario = run._with_seed(scenario, seed)
+    points = list(scenario.points)
+    if out_dir is None:
+        out_dir = run.default_out_dir(scenario, seed)
+    url = str(out_dir).rstrip("/") if _is_url(str(out_dir)) else None
+
+    # The columns and the models, as the local engine finds them (one sampled row per point).
+    input_names = list(sampling.sampled_columns(scenario))
+    input_types = {}
+    first_inputs = []
+    for point in points:
+        inputs, sampled = sampling.sample(scenario, point, 0, 1)
+        first_inputs.append(inputs[0])
+        for name, values in sampled.items():
+            if np.issubdtype(np.asarray(values).dtype, np.integer):
+                input_types[name] = "int64"
+    drivers = [run.driver_inputs(point, input_names) for point in points]
+    partitioned = any(p.group for p in points)
+    chunks = []
+    for point in points:
+        for start in range(0, n, chunk_size):
+            chunks.append(_Chunk(len(chunks), point.index, start, min(start + chunk_size, n)))
+
+    destination = _UrlDestination(url, force) if url else _FolderDestination(out_dir, force)
+    connecting = time.perf_counter()
+    with destination, _connect(client, scheduler, scheduler_file, workers) as dask_client:
+        address, n_workers, threads = _cluster_size(dask_client)
+        # The run's time starts once the cluster is up (a local cluster takes seconds to
+        # start: recorded apart, as cluster_start_s).
+        started = time.perf_counter()
+        import dask
+        import distributed
+
+        base = {
+            "format_version": 1,
+            "backend": "dask",
+            "layout": "dataset",
+            "scenario_name": scenario.name,
+            "scenario_path": str(scenario.path),
+            "scenario_text": scenario.text,
+            "seed": seed,
+            "n": n,
+            "block_size": scenario.block_size,
+            "points": [p.label for p in points],
+            "groups": [p.group for p in points],
+            "models": run._model_names(first_inputs),
+            "versions": {
+                **output.versions(),
+                "dask": dask.__version__,
+                "distributed": distributed.__version__,
+            },
+            "threads": sum(threads),
+            "scheduler": address,
+            "workers": n_workers,
+            "threads_per_worker": sorted(set(threads)),
+            "cluster_start_s": round(started - connecting, 3),
+            "numba_threads_per_task": NUMBA_THREADS_PER_TASK,
+            "chunk_size": chunk_size,
+            "chunks": len(chunks),
+            "retries": retries,
+            "trajectories_every": trajectories_every,
+            "start_time_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+        }
+        fs, root = destination.fs, destination.root
+        shot_dirs = [
+            f"{SHOTS_DIR}/{_group_dir(p.group)}" if partitioned else SHOTS_DIR for p in points
+        ]
+        # Tasks write into existing folders and never create one: a task still running after
+        # an interrupted run has removed its folder fails instead of leaving files behind.
+        for folder in dict.fromkeys(shot_dirs):
+            fs.create_dir(f"{root}/{folder}")
+        if trajectories_every is not None:
+            fs.create_dir(f"{root}/{TRAJECTORIES_DIR}")
+        job = {
+            "id": secrets.token_hex(8),
+            "scenario_text": scenario.text,
+            "scenario_path": str(Path(scenario.path).absolute()),
+            "seed": seed,
+            "url": destination.url,
+            "root": root,
+            "shot_dirs": shot_dirs,
+            "partitioned": partitioned,
+            "input_names": input_names,
+            "input_types": input_types,
+            "groups": [p.group for p in points],
+            "labels": [p.label for p in points],
+            "drivers": drivers,
+            "trajectories_every": trajectories_every,
+            "shots_metadata": output.encode_provenance({**base, "file": "shots"}),
+            "trajectories_metadata": output.encode_provenance({**base, "file": "trajectories"}),
+        }
+        point_stats, results = _execute(
+            dask_client, chunk_task, job, chunks, drivers, n * len(points), retries, progress
+        )
+        _remove_strays(fs, root, results, trajectories_every is not None)
+        parts = {p.index: [] for p in points}
+        for result in results:
+            parts[result.point].append(result.shots_path)
+        rows = _summary_rows(points, point_stats, fs, parts, budget_bytes)
+
+        def metadata(file):
+            elapsed = round(time.perf_counter() - started, 3)
+            return output.encode_provenance({**base, "file": file, "elapsed_s": elapsed})
+
+        with fs.open_output_stream(f"{root}/{output.SUMMARY_FILE}") as f:
+            output.write_table(
+                f,
+                rows,
+                {**metadata("summary"), **output.encode_provenance(run.SUMMARY_CONVENTIONS)},
+            )
+        elapsed = time.perf_counter() - started
+        note = {
+            "backend": "dask",
+            "n": n,
+            "seed": seed,
+            "points": len(points),
+            "chunks": len(chunks),
+            "shot_parts": [r.shots_path[len(root) + 1 :] for r in results],
+            "elapsed_s": round(elapsed, 3),
+        }
+        with fs.open_output_stream(f"{root}/{SUCCESS_FILE}") as f:
+            f.write(json.dumps(note).encode())
+        destination.commit()
+
+    if url:
+        folder = url
+        join = "{}/{}".format
+    else:
+        folder = Path(out_dir)
+        join = Path.joinpath
+    paths = [join(folder, SHOTS_DIR), join(folder, output.SUMMARY_FILE)]
+    traj_path = None
+    if trajectories_every is not None:
+        traj_path = join(folder, TRAJECTORIES_DIR)
+        paths.append(traj_path)
+    return DaskRunResult(
+        out_dir=folder,
+        shots_path=paths[0],
+        summary_path=paths[1],
+        trajectories_path=traj_path,
+        n=n,
+        seed=seed,
+        points=len(points),
+        elapsed_s=elapsed,
+        threads=sum(threads),
+        paths=paths,
+        scheduler=address,
+        workers=n_workers,
+    )
+
+
+def _describe_chunk(chunk):
+    return f"chunk {chunk.index} (point {chunk.point}, shots {chunk.start}-{chunk.stop - 1})"
+
+
+def _error_text(err):
+    return " ".join(f"{type(err).__name__}: {err}".split())
+
+
+def _execute(client, chunk_task, job, chunks, drivers, total, retries, progress):
+    """Submit the chunks, merge their statistics in chunk order as they finish; return
+    (PointStats per point, ChunkResult per chunk without its statistics)."""
+    from tqdm import tqdm
+
+    distributed = _dask()
+    job_future = client.submit(_job_of, job, key=f"mcrun-job-{job['id']}")
+    futures = client.map(
+        chunk_task,
+        [c.index for c in chunks],
+        [c.point for c in chunks],
+        [c.start for c in chunks],
+        [c.stop for c in chunks],
+        job=job_future,
+        key=[f"mcrun-chunk-{job['id']}-{c.index:05d}" for c in chunks],
+        retries=retries,
+        pure=False,
+    )
+    index_of = {f.key: k for k, f in enumerate(futures)}
+    merged = [stats.PointStats(d) for d in drivers]
+    pending = {}  # chunk -> PointStats, finished ahead of an earlier chunk
+    following = 0  # the next chunk to merge
+    results = [None] * len(chunks)
+    failed = []
+    show = bool(progress) and sys.stderr.isatty()
+    try:
+        with tqdm(
+            total=total, unit="shot", unit_scale=True, disable=not show, smoothing=0.1
+        ) as bar:
+            bar.set_description(f"dask: {len(chunks)} tasks")
+            for future in distributed.as_completed(futures):
+                k = index_of[future.key]
+                chunk = chunks[k]
+                if future.status == "finished":
+                    result = future.result()
+                    results[k] = result._replace(stats=None)
+                    if not failed:  # the run fails anyway: keep no statistics
+                        pending[k] = result.stats
+                        while following in pending:
+                            merged[chunks[following].point].merge(pending.pop(following))
+                            following += 1
+                    bar.update(chunk.stop - chunk.start)
+                else:
+                    err = future.exception() if future.status == "error" else None
+                    failed.append((chunk, err or RuntimeError(f"the task was {future.status}")))
+                    pending.clear()
+                future.release()
+    except BaseException:
+        client.cancel([*futures, job_future])
+        raise
+    finally:
+        job_future.release()
+    if failed:
+        failed.sort(key=lambda item: item[0].index)
+        shown = "; ".join(f"{_describe_chunk(c)}: {_error_text(e)}" for c, e in failed[:3])
+        listed = ", ".join(str(c.index) for c, _ in failed[:_SHOWN_FAILURES])
+        if len(failed) > _SHOWN_FAILURES:
+            listed += f" and {len(failed) - _SHOWN_FAILURES} more"
+        raise RunFailed(
+            f"the run could not finish: {len(failed)} of {len(chunks)} chunks failed after "
+            f"{retries} retries (chunks {listed}): {shown}; nothing was written",
+            [(c.index, c.point, c.start, c.stop, _error_text(e)) for c, e in failed],
+        )
+    return merged, results
+
+
+def _remove_strays(fs, root, results, trajectories):
+    """Remove what is not a finished part (the temporary file of a task whose worker died)."""
+    keep = {r.shots_path for r in results} | {r.trajectories_path for r in results}
+    folders = [SHOTS_DIR, TRAJECTORIES_DIR] if trajectories else [SHOTS_DIR]
+    for folder in folders:
+        selector = pafs.FileSelector(f"{root}/{folder}", recursive=True)
+        for info in fs.get_file_info(selector):
+            if info.type == pafs.FileType.File and info.path not in keep:
+                fs.delete_file(info.path)
+    missing = [
+        r.shots_path
+        for r in results
+        if fs.get_file_info(r.shots_path).type == pafs.FileType.NotFound
+    ]
+    if missing:
+        raise RunFailed(f"the run could not finish: parts missing: {', '.join(missing[:3])}")
+
+
+class _PartsColumns(stats.ShotsColumns):
+    """``stats.ShotsColumns`` over a point's parts, in chunk order (one row group each)."""
+
+    def __init__(self, fs, paths):
+        self.fs = fs
+        self.paths = list(paths)
+
+    def chunks(self, columns):
+        for path in self.paths:
+            with self.fs.open_input_file(path) as f:
+                table = pq.ParquetFile(f).read(columns=[*columns, "status"])
+            ok = table.column("status").to_numpy() == status_codes.OK
+            yield {c: table.column(c).to_numpy()[ok] for c in columns}
+
+
+def _summary_rows(points, point_stats, fs, parts, budget_bytes):
+    """``run._summary_rows`` over the dataset's parts."""
+    rows = []
+    sweep = run._sweep_columns(points)
+    for point, one in zip(points, point_stats, strict=True):
+        row = {"point": point.index, "group": point.group, "label": point.label}
+        for key, values in sweep.items():
+            row[key] = values[point.index]
+        columns = _PartsColumns(fs, parts[point.index])
+        row.update(
+            stats.summarise(one, columns, target_m=point.target_m, budget_bytes=budget_bytes)
+        )
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+# --- reading a run back ------------------------------------------------------------------------
+
+
+def _complete(folder):
+    url, fs, root = _locate(folder)
+    if fs.get_file_info(f"{root}/{SUCCESS_FILE}").type != pafs.FileType.File:
+        raise output.OutputError(f"{folder}: not a complete Dask run (no {SUCCESS_FILE})")
+    with fs.open_input_file(f"{root}/{output.SUMMARY_FILE}") as f:
+        provenance = output.decode_provenance(pq.read_metadata(f).metadata)
+    return fs, root, provenance
+
+
+def read_shots(folder, columns=None):
+    """The shots of a Dask run folder as one DataFrame, the local engine's shots.parquet as
+    pandas reads it: rows by point and shot, the same columns in the same order and types
+    (``group`` a categorical of the groups in point order)."""
+    import pyarrow.dataset as ds
+
+    fs, root, provenance = _complete(folder)
+    dataset = ds.dataset(
+        f"{root}/{SHOTS_DIR}", filesystem=fs, format="parquet", partitioning="hive"
+    )
+    names = list(dataset.schema.names)
+    if names.index("group") != 1:  # hive-partitioned: the group comes last, from the folders
+        names.remove("group")
+        names.insert(1, "group")
+    wanted = names if columns is None else list(columns)
+    unknown = [c for c in wanted if c not in names]
+    if unknown:
+        raise output.OutputError(f"{folder}: no column {', '.join(unknown)} in the shots")
+    read = list(dict.fromkeys(["point", "shot", *wanted]))
+    frame = dataset.to_table(columns=read).to_pandas()
+    frame = frame.sort_values(["point", "shot"], kind="stable").reset_index(drop=True)
+    if "group" in frame:
+        categories = list(dict.fromkeys(provenance["groups"]))
+        frame["group"] = pd.Categorical(frame["group"].astype(str), categories=categories)
+    return frame[wanted]
+
+
+def read_trajectories(folder):
+    """trajectories/ of a Dask run folder as one DataFrame, rows by point, shot and time."""
+    fs, root, _ = _complete(folder)
+    path = f"{root}/{TRAJECTORIES_DIR}"
+    files = sorted(
+        info.path
+        for info in fs.get_file_info(pafs.FileSelector(path, allow_not_found=True))
+        if info.base_name.endswith(".parquet")
+    )
+    tables = []
+    for name in files:
+        with fs.open_input_file(name) as f:
+            tables.append(pq.read_table(f))
+    if not tables:
+        return output.TRAJECTORY_SCHEMA.empty_table().to_pandas()
+    frame = pa.concat_tables(tables).to_pandas()
+    return frame.sort_values(["point", "shot"], kind="stable").reset_index(drop=True)
+
+
+# --- command line ------------------------------------------------------------------------------
+
+
+def run_from_args(args):
+    """``mcrun run`` with ``--dask local``, ``--scheduler`` or ``--scheduler-file``."""
+    if args.threads is not None:
+        raise InputError(
+            "--threads is for the local engine; the Dask backend runs one Numba thread per "
+            "Dask thread (use --workers N with --dask local)"
+        )
+    if args.workers is not None and args.dask != "local":
+        raise InputError("--workers is for --dask local (an existing cluster has its workers)")
+    return run_scenario(
+        args.scenario,
+        n=args.n,
+        seed=args.seed,
+        out_dir=args.output,
+        scheduler=args.scheduler if args.scheduler else args.dask,
+        scheduler_file=args.scheduler_file,
+        workers=args.workers,
+        chunk_size=args.chunk_size,
+        trajectories_every=args.trajectories,
+        progress=not args.quiet,
+        force=args.force,
+    )

@@ -1,0 +1,390 @@
+"""The Dask backend (mcrun.distributed) against the local engine (mcrun.run): the same shots and
+the same summary, bit for bit, for the same seed and chunk size, with and without groups; a
+worker killed mid-run loses and duplicates no shot; the dataset reads back in pandas, polars
+and DuckDB with the local engine's rows; chunks that keep failing are reported in one line and
+leave nothing that looks like a run; the command line's --scheduler path and its errors.
+
+One LocalCluster of 2 worker processes x 1 thread serves the whole module (CI has 2 cores).
+Runs are small (a few thousand shots) in chunks of 1,000-5,000 shots, so that every run has
+several tasks; the grouped scenario uses a sampler block of 256 so that chunks cross blocks.
+"""
+
+import functools
+import json
+import os
+import signal
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+import pytest
+
+pytest.importorskip("dask.distributed")
+
+import cloudpickle  # noqa: E402 (a dependency of dask.distributed)
+from dask.distributed import Client  # noqa: E402
+
+from mcrun import distributed, output, run  # noqa: E402
+
+# The wrapped tasks below are defined here and run on the workers, which cannot import this
+# file: ship them by value.
+cloudpickle.register_pickle_by_value(sys.modules[__name__])
+
+DRIVER = "pga-driver"
+N = 20_000
+CHUNK = 5_000
+
+# Two groups times a sweep over the friction (four points), a temperature distribution and a
+# negative-spin group (some shots end invalid_input).
+BAG = """\
+# Question: do two clubs on two fairways scatter alike?
+[scenario]
+name = "dask-bag"
+shots = 3000
+seed = 11
+block_size = 256
+target = ["150 m", "0 m"]
+
+[launch]
+ball_speed = { dist = "normal", mean = "120 mph", sd = "1.5 mph" }
+launch_angle = { dist = "normal", mean = "16 deg", sd = "1 deg" }
+spin = { dist = "normal", mean = "7000 rpm", sd = "400 rpm" }
+spin_axis = { dist = "normal", mean = "0 deg", sd = "3 deg" }
+
+[turf]
+preset = "fairway"
+
+[weather]
+temperature = { dist = "normal", mean = "20 C", sd = "4 C" }
+
+[[group]]
+name = "7 iron"
+
+[[group]]
+name = "wild"
+launch.spin = { dist = "normal", mean = "100 rad/s", sd = "100 rad/s" }
+
+[sweep]
+"turf.mu" = [0.4, 0.25]
+"""
+BAG_N = 3000
+BAG_CHUNK = 1000
+BAG_TRAJECTORIES = 397
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.local_cluster(2)
+    with Client(cluster) as c:
+        yield c
+    cluster.close()
+
+
+@pytest.fixture(scope="module")
+def driver(tmp_path_factory, client):
+    """The pga-driver scenario run by both engines: (local result, Dask result)."""
+    folder = tmp_path_factory.mktemp("driver")
+    local = run.run_scenario(
+        DRIVER, n=N, chunk_size=CHUNK, out_dir=folder / "local", progress=False
+    )
+    dask = distributed.run_scenario(
+        DRIVER, n=N, chunk_size=CHUNK, out_dir=folder / "dask", client=client, progress=False
+    )
+    return local, dask
+
+
+@pytest.fixture(scope="module")
+def bag(tmp_path_factory, client):
+    """The grouped scenario with trajectories, by both engines: (local result, Dask result)."""
+    folder = tmp_path_factory.mktemp("bag")
+    path = folder / "bag.toml"
+    path.write_text(BAG, encoding="utf-8")
+    kwargs = {
+        "n": BAG_N,
+        "chunk_size": BAG_CHUNK,
+        "trajectories_every": BAG_TRAJECTORIES,
+        "progress": False,
+    }
+    local = run.run_scenario(path, out_dir=folder / "local", **kwargs)
+    dask = distributed.run_scenario(path, out_dir=folder / "dask", client=client, **kwargs)
+    return local, dask
+
+
+@pytest.fixture(scope="module")
+def small(tmp_path_factory):
+    """A small local pga-driver run (4 chunks) to compare the other Dask runs with."""
+    folder = tmp_path_factory.mktemp("small")
+    result = run.run_scenario(
+        DRIVER, n=6000, chunk_size=1500, out_dir=folder / "local", progress=False
+    )
+    return result.shots(), result.summary()
+
+
+def assert_same_run(local, dask):
+    pd.testing.assert_frame_equal(local.shots(), dask.shots(), check_exact=True)
+    pd.testing.assert_frame_equal(local.summary(), dask.summary(), check_exact=True)
+
+
+# --- the same run, bit for bit -----------------------------------------------------------------
+
+
+def test_same_shots_and_summary_as_the_local_engine(driver, client):
+    """pga-driver, 20,000 shots in 4 tasks: every per-shot value and every summary statistic
+    (moments merged in chunk order, percentiles from the dataset) equal the local engine's."""
+    local, dask = driver
+    assert_same_run(local, dask)
+    shots = dask.shots()
+    assert len(shots) == N and shots["shot"].is_unique
+    parts = sorted(p.name for p in Path(dask.shots_path).iterdir())
+    assert parts == [f"part-{c:05d}.parquet" for c in range(N // CHUNK)]
+    assert all(pq.ParquetFile(Path(dask.shots_path) / p).num_row_groups == 1 for p in parts)
+    # Provenance: backend and cluster size in every file; the summary's agrees with the local
+    # engine's on everything but how and when it ran.
+    summary = output.read_provenance(dask.summary_path)
+    part = output.read_provenance(Path(dask.shots_path) / parts[0])
+    assert summary["backend"] == part["backend"] == "dask"
+    assert summary["scheduler"] == client.scheduler.address
+    assert summary["workers"] == 2 and summary["threads"] == 2
+    assert summary["threads_per_worker"] == [1] and summary["numba_threads_per_task"] == 1
+    assert summary["chunks"] == N // CHUNK
+    assert summary["scenario_text"] == output.read_provenance(local.summary_path)["scenario_text"]
+    note = json.loads((Path(dask.out_dir) / distributed.SUCCESS_FILE).read_text())
+    assert note["n"] == N and note["chunks"] == N // CHUNK
+
+
+def test_percentiles_by_histogram_select_over_the_parts(small, client, tmp_path):
+    """With a memory budget of 1,000 values per column the percentiles come from
+    histogram-then-select passes over the parts: still the exact order statistics, so the
+    summary equals the local engine's (which sorted each column whole)."""
+    result = distributed.run_scenario(
+        DRIVER,
+        n=6000,
+        chunk_size=1500,
+        out_dir=tmp_path / "run",
+        client=client,
+        progress=False,
+        budget_bytes=8 * 1000,
+    )
+    pd.testing.assert_frame_equal(small[1], result.summary(), check_exact=True)
+
+
+def test_workers_run_one_numba_thread(client):
+    """The local cluster's workers are spawned with NUMBA_NUM_THREADS=1 (one Dask thread)."""
+    threads = client.run(lambda: __import__("numba").config.NUMBA_NUM_THREADS)
+    nthreads = client.nthreads()
+    assert threads and set(threads.values()) == {1} and set(nthreads.values()) == {1}
+
+
+def test_groups_partition_the_dataset_and_match_the_local_engine(bag):
+    """Two groups x two sweep values: shots/group=<name>/part-NNNNN.parquet (the name
+    percent-encoded, no group column in the files); shots, summary and trajectories equal the
+    local engine's bit for bit."""
+    local, dask = bag
+    assert_same_run(local, dask)
+    pd.testing.assert_frame_equal(local.trajectories(), dask.trajectories(), check_exact=True)
+    shots = Path(dask.shots_path)
+    assert sorted(p.name for p in shots.iterdir()) == ["group=7%20iron", "group=wild"]
+    parts = sorted(shots.glob("*/*.parquet"))
+    assert len(parts) == 4 * BAG_N // BAG_CHUNK
+    assert "group" not in pq.read_schema(parts[0]).names
+    assert (dask.summary()["n_invalid_input"] > 0).any()  # the wild group's negative spins
+
+
+def _local_order(frame, columns):
+    """A frame's ``columns`` in the local file's row order, categoricals as text."""
+    frame = frame.sort_values(["point", "shot"]).reset_index(drop=True)[columns]
+    for name in ("group", "label", "status_name"):
+        frame[name] = frame[name].astype(str)
+    return frame
+
+
+def test_dataset_reads_back_in_pandas_polars_and_duckdb(bag):
+    """pd.read_parquet(folder), pl.scan_parquet(folder/**/*.parquet, hive_partitioning=True)
+    and DuckDB's read_parquet(..., hive_partitioning = true) read the hive-partitioned dataset
+    with the local shots.parquet's rows and values (group back from the folder names)."""
+    pl = pytest.importorskip("polars")
+    duckdb = pytest.importorskip("duckdb")
+    local, dask = bag
+    expected = pd.read_parquet(local.shots_path)
+    columns = list(expected.columns)
+    expected = _local_order(expected, columns)
+    folder = Path(dask.shots_path)
+    readers = {
+        "pandas": pd.read_parquet(folder),
+        "polars": pl.scan_parquet(folder / "**" / "*.parquet", hive_partitioning=True)
+        .collect()
+        .to_pandas(),
+        "duckdb": duckdb.sql(
+            f"SELECT * FROM read_parquet('{folder}/**/*.parquet', hive_partitioning = true)"
+        ).df(),
+    }
+    for name, frame in readers.items():
+        assert sorted(frame.columns) == sorted(columns), name
+        got = _local_order(frame, columns)
+        assert len(got) == len(expected) == 4 * BAG_N, name
+        for column in columns:
+            a, b = expected[column], got[column]
+            if a.dtype.kind == "f":
+                np.testing.assert_array_equal(a.to_numpy(), b.to_numpy(float), err_msg=name)
+            else:
+                assert a.astype(str).tolist() == b.astype(str).tolist(), (name, column)
+
+
+# --- failures ----------------------------------------------------------------------------------
+
+
+def _kill_worker_once(chunk, point, start, stop, job, *, marker):
+    """Run chunk 1, then, the first time, leave a half-written temporary part behind and kill
+    this worker process before it returns: its part is written but not reported."""
+    result = distributed.run_chunk(chunk, point, start, stop, job)
+    if chunk == 1 and not os.path.exists(marker):
+        Path(marker).write_text(str(os.getpid()))
+        stray = Path(result.shots_path).with_name(".part-00001.parquet.dead.tmp")
+        stray.write_bytes(b"PAR1 half written")
+        os.kill(os.getpid(), signal.SIGKILL)
+    return result
+
+
+def test_worker_killed_mid_run_loses_and_duplicates_no_shot(small, client, tmp_path):
+    """A worker dies after writing chunk 1's part and before reporting it: Dask reruns the task
+    on another worker, which rewrites the same part; every shot is there exactly once, with
+    the local engine's values, and the dead task's temporary file is gone."""
+    marker = tmp_path / "killed"
+    task = functools.partial(_kill_worker_once, marker=str(marker))
+    result = distributed.run_scenario(
+        DRIVER,
+        n=6000,
+        chunk_size=1500,
+        out_dir=tmp_path / "run",
+        client=client,
+        progress=False,
+        chunk_task=task,
+    )
+    assert marker.exists()  # a worker was killed
+    shots = result.shots()
+    assert shots["shot"].nunique() == len(shots) == 6000
+    pd.testing.assert_frame_equal(small[0], shots, check_exact=True)
+    pd.testing.assert_frame_equal(small[1], result.summary(), check_exact=True)
+    files = sorted(p.name for p in Path(result.shots_path).iterdir())
+    assert files == [f"part-{c:05d}.parquet" for c in range(4)]
+    client.wait_for_workers(2, timeout=60)  # the nanny restarts the killed worker
+
+
+def _fail_chunk_2(chunk, point, start, stop, job, *, attempts):
+    if chunk == 2:
+        Path(attempts, f"{os.getpid()}-{len(os.listdir(attempts))}").touch()
+        raise RuntimeError("simulated failure")
+    return distributed.run_chunk(chunk, point, start, stop, job)
+
+
+def test_chunks_that_keep_failing_are_reported_and_nothing_is_left(client, tmp_path):
+    """Chunk 2 raises every time: it is tried 1 + 2 retries times, then the run raises
+    RunFailed naming it in one line, and neither the folder nor a temporary one is left."""
+    attempts = tmp_path / "attempts"
+    attempts.mkdir()
+    out = tmp_path / "out"
+    task = functools.partial(_fail_chunk_2, attempts=str(attempts))
+    with pytest.raises(distributed.RunFailed) as info:
+        distributed.run_scenario(
+            DRIVER,
+            n=6000,
+            chunk_size=1500,
+            out_dir=out / "run",
+            client=client,
+            progress=False,
+            chunk_task=task,
+        )
+    message = str(info.value)
+    assert "\n" not in message
+    assert "1 of 4 chunks failed after 2 retries (chunks 2)" in message
+    assert "point 0, shots 3000-4499" in message and "RuntimeError: simulated failure" in message
+    assert [f[0] for f in info.value.failed] == [2]
+    assert len(list(attempts.iterdir())) == 3
+    assert not out.exists()
+
+
+def test_an_fsspec_url_is_written_in_place_with_a_success_marker(small, client, tmp_path):
+    """-o file:///...: through fsspec (as s3:// would be), the same shots and summary, the
+    _SUCCESS marker written; an existing run is refused without force, replaced with it."""
+    url = f"file://{tmp_path}/run"
+    kwargs = {"n": 6000, "chunk_size": 1500, "client": client, "progress": False}
+    result = distributed.run_scenario(DRIVER, out_dir=url, **kwargs)
+    assert result.out_dir == url and result.shots_path == f"{url}/shots"
+    pd.testing.assert_frame_equal(small[0], result.shots(), check_exact=True)
+    pd.testing.assert_frame_equal(small[1], result.summary(), check_exact=True)
+    assert (tmp_path / "run" / distributed.SUCCESS_FILE).is_file()
+    with pytest.raises(output.OutputError, match="already holds a run"):
+        distributed.run_scenario(DRIVER, out_dir=url, **kwargs)
+    again = distributed.run_scenario(DRIVER, out_dir=url, force=True, seed=5, **kwargs)
+    assert again.shots()["ball_speed_mps"].iloc[0] != small[0]["ball_speed_mps"].iloc[0]
+
+
+def test_an_incomplete_run_does_not_read_as_one(driver, tmp_path):
+    _, dask = driver
+    copy = tmp_path / "copy"
+    (copy / "shots").mkdir(parents=True)
+    for part in Path(dask.shots_path).iterdir():
+        (copy / "shots" / part.name).write_bytes(part.read_bytes())
+    (copy / "summary.parquet").write_bytes(Path(dask.summary_path).read_bytes())
+    with pytest.raises(output.OutputError, match="not a complete Dask run"):
+        distributed.read_shots(copy)
+
+
+# --- command line ------------------------------------------------------------------------------
+
+
+def test_cli_runs_on_a_scheduler(small, client, tmp_path, capsys):
+    """mcrun run ... --scheduler ADDRESS: the summary table, the rate on the Dask workers and
+    the paths; the shots equal the local engine's."""
+    out = tmp_path / "run"
+    argv = ["run", DRIVER, "-n", "6000", "--chunk-size", "1500", "-o", str(out), "--quiet"]
+    assert run.main([*argv, "--scheduler", client.scheduler.address]) == 0
+    printed = capsys.readouterr().out
+    assert "shots/s on 2 Dask workers, 2 threads); wrote:" in printed
+    assert str(out / "shots") in printed and str(out / "summary.parquet") in printed
+    pd.testing.assert_frame_equal(small[0], distributed.read_shots(out), check_exact=True)
+
+
+def test_cli_ctrl_c_leaves_nothing(client, tmp_path, capsys, monkeypatch):
+    """Ctrl-C once the tasks are done (while the run checks its parts): exit 130, the
+    temporary folder removed."""
+
+    def interrupt(*args):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(distributed, "_remove_strays", interrupt)
+    argv = ["run", DRIVER, "-n", "3000", "--chunk-size", "1500", "-o", str(tmp_path / "run")]
+    assert run.main([*argv, "--scheduler", client.scheduler.address]) == 130
+    assert "interrupted" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_without_dask_the_backend_says_how_to_install_it(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "dask.distributed", None)  # import fails as if missing
+    out = tmp_path / "run"
+    assert run.main(["run", DRIVER, "-n", "100", "-o", str(out), "--dask", "local"]) == 2
+    assert "pip install 'mcrun[dask]'" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        (["--dask", "local", "--threads", "2"], "--threads is for the local engine"),
+        (["--workers", "2"], "--workers is for --dask local"),
+        (["--scheduler-file", "missing.json"], "--scheduler-file missing.json: no such file"),
+        (["--scheduler", "tcp://127.0.0.1:9"], "cannot reach the Dask scheduler tcp://"),
+    ],
+)
+def test_cli_errors_exit_2_with_one_line_and_write_nothing(
+    options, message, tmp_path, capsys, monkeypatch
+):
+    monkeypatch.setattr(distributed, "CONNECT_TIMEOUT_S", 1)
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "run"
+    assert run.main(["run", DRIVER, "-n", "100", "-o", str(out), *options]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mcrun: error: ") and err.count("\n") == 1 and message in err
+    assert list(tmp_path.iterdir()) == []
