@@ -908,7 +908,8 @@ def write_paper(out_dir, dpi=DEFAULT_DPI):
 # --- command line ------------------------------------------------------------------------------
 
 
-def _dpi(text):
+def dpi_value(text):
+    """argparse type of --dpi: a whole number within DPI_RANGE (also ``mcrun plot``'s)."""
     try:
         value = int(text)
     except ValueError:
@@ -937,7 +938,7 @@ def register(subparsers):
     )
     parser.add_argument(
         "--dpi",
-        type=_dpi,
+        type=dpi_value,
         default=DEFAULT_DPI,
         help=f"resolution of the PNGs, {DPI_RANGE[0]}-{DPI_RANGE[1]} (default %(default)s)",
     )

@@ -52,6 +52,7 @@ import pyarrow.parquet as pq
 from mcrun import output, stats
 from mcrun import status as status_codes
 from mcrun.api import InputError
+from mcrun.paper import DPI_RANGE, dpi_value
 from mcrun.units import UnitError
 
 MISSING_MATPLOTLIB = "mcrun {} needs matplotlib: pip install 'mcrun[plot]'"
@@ -67,7 +68,6 @@ POSITION_PAD = 0.3  # the same for the top views of the positions
 MIN_SPAN_M = 1.0  # the smallest span an axis shows (a point whose shots are all alike)
 
 DEFAULT_PLOT_DPI = 150
-DPI_RANGE = (30, 600)
 PLOTS_FOLDER = "plots"
 
 # Size of each figure (inches); the PNG is this times the dpi, in pixels (constrained layout
@@ -1087,18 +1087,6 @@ def write_plots(run_dir, out_dir=None, dpi=DEFAULT_PLOT_DPI, scatter_max=SCATTER
 
 
 # --- command line ------------------------------------------------------------------------------
-
-
-def dpi_value(text):
-    """argparse type of --dpi: a whole number within DPI_RANGE."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"cannot read {text!r} as a whole number") from None
-    lo, hi = DPI_RANGE
-    if not lo <= value <= hi:
-        raise argparse.ArgumentTypeError(f"{value} is outside [{lo}, {hi}]")
-    return value
 
 
 def command_error(err):

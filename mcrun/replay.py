@@ -29,11 +29,11 @@ from mcrun.api import InputError
 from mcrun.batch import COLUMN, N_INPUT, simulate_batch
 from mcrun.cli import add_conditions_options, conditions_kwargs
 from mcrun.constants import DEG
-from mcrun.scenario import PARAMETERS, launch_columns
+from mcrun.scenario import PARAMETERS, launch_columns, read_launch_table
 from mcrun.shot import OUTCOME_FIELDS, default_dt_s
 from mcrun.units import KINDS, UnitError
 
-# The launch columns of the output, by quantity of FILE_COLUMNS: (name, SI -> output factor).
+# The launch columns of the output, by quantity (scenario.FILE_COLUMNS): (name, SI -> factor).
 LAUNCH_COLUMNS = {
     "ball_speed": ("ball_speed_mps", 1.0),
     "launch_angle": ("launch_angle_deg", 1.0 / DEG),
@@ -41,22 +41,6 @@ LAUNCH_COLUMNS = {
     "spin_axis": ("spin_axis_deg", 1.0 / DEG),
     "azimuth": ("azimuth_deg", 1.0 / DEG),
 }
-
-
-def read_shots(path):
-    """A launch-monitor file (CSV or Parquet) as a DataFrame; InputError if unreadable."""
-    path = Path(path)
-    if not path.is_file():
-        raise InputError(f"{path}: no such file")
-    try:
-        if path.suffix.lower() in (".parquet", ".pq"):
-            frame = pd.read_parquet(path)
-        else:
-            frame = pd.read_csv(path, comment="#", skipinitialspace=True)
-    except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
-        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
-        raise InputError(f"{path}: cannot read it as CSV or Parquet: {first}") from None
-    return frame
 
 
 def launches(frame, source="the shots"):
@@ -130,7 +114,7 @@ def replay(shots, source=None, **conditions):
     """
     if isinstance(shots, str | Path):
         source = source or str(shots)
-        shots = read_shots(shots)
+        shots = read_launch_table(shots)
     source = source or "the shots"
     values, valid = launches(shots, source)
     fixed = conditions_inputs(**conditions)
@@ -180,7 +164,7 @@ def replay_file(source, destination, force=False, **conditions):
     started = time.perf_counter()
     start_time = datetime.now(UTC).isoformat(timespec="seconds")
     source = Path(source)
-    shots = read_shots(source)
+    shots = read_launch_table(source)
     with output.AtomicFile(destination, force=force) as target:
         frame = replay(shots, source=str(source), **conditions)
         metadata = {

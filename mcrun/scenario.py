@@ -828,20 +828,27 @@ def launch_columns(frame, source="the shots"):
     return found
 
 
+def read_launch_table(path):
+    """A launch-monitor file (CSV or Parquet) as a DataFrame; InputError if unreadable."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: no such file")
+    try:
+        if path.suffix.lower() in (".parquet", ".pq"):
+            return pd.read_parquet(path)
+        return pd.read_csv(path, comment="#", skipinitialspace=True)
+    except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
+        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
+        raise InputError(f"{path}: cannot read it as CSV or Parquet: {first}") from None
+
+
 def _read_shots(ctx, where, path):
     """{quantity: SI array} of the recognised columns of a CSV or Parquet launch-monitor file."""
     key = (str(path.resolve()), path.stat().st_mtime_ns)
     if key in _FILE_CACHE:
         return _FILE_CACHE[key]
     try:
-        if path.suffix.lower() in (".parquet", ".pq"):
-            frame = pd.read_parquet(path)
-        else:
-            frame = pd.read_csv(path, comment="#", skipinitialspace=True)
-    except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
-        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
-        raise ctx.error(where, f"cannot read {path} as CSV or Parquet: {first}") from None
-    try:
+        frame = read_launch_table(path)
         found = launch_columns(frame, str(path))
     except InputError as err:
         raise ctx.error(where, str(err)) from None
