@@ -17,6 +17,7 @@ import math
 from numba import njit
 
 from mcrun.constants import BALL_RADIUS_M, DEG, G_MPS2
+from mcrun.trig import atan2_first_quadrant, sincos_first_quadrant
 
 # Haake's impact (18.6 m/s at 44.4 deg) fitted with theta_c = 15.4 deg: Penner (2002) eq. (8).
 THETA_C_REF_RAD = 15.4 * DEG
@@ -24,7 +25,7 @@ SPEED_REF_MPS = 18.6
 PHI_REF_RAD = 44.4 * DEG
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
 def restitution(normal_speed, turf):
     """Ball-turf coefficient of restitution at normal impact speed |v_iy'|, eqs. (5a, 5b)."""
     if normal_speed <= turf.e_break_speed_mps:
@@ -34,7 +35,7 @@ def restitution(normal_speed, turf):
     return min(max(e, 0.0), 1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
 def equivalent_surface_tilt(speed, phi, softness):
     """theta_c (rad) of eq. (8), scaled by the turf's softness and capped at phi.
 
@@ -44,7 +45,7 @@ def equivalent_surface_tilt(speed, phi, softness):
     return min(theta_c, phi)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
 def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
     """One impact on turf of normal n (unit, pointing out of the ground).
 
@@ -57,15 +58,14 @@ def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
     ty = vy - vn * ny
     tz = vz - vn * nz
     vt = math.sqrt(tx * tx + ty * ty + tz * tz)
-    if vt > 0.0:
-        tx /= vt
-        ty /= vt
-        tz /= vt
+    inverse_vt = 1.0 / vt if vt > 0.0 else 0.0
+    tx *= inverse_vt
+    ty *= inverse_vt
+    tz *= inverse_vt
     speed = math.sqrt(vx * vx + vy * vy + vz * vz)
-    phi = math.atan2(vt, abs(vn))
+    phi = atan2_first_quadrant(vt, abs(vn))
     theta_c = equivalent_surface_tilt(speed, phi, turf.softness)
-    c = math.cos(theta_c)
-    s = math.sin(theta_c)
+    s, c = sincos_first_quadrant(theta_c)
     # Equivalent surface normal, tilted towards the incoming ball (eqs. 6, 7).
     ex = c * nx - s * tx
     ey = c * ny - s * ty
@@ -82,15 +82,11 @@ def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
     u = math.sqrt(ux * ux + uy * uy + uz * uz)
     mu_c = (2.0 / 7.0) * u / ((1.0 + e) * abs(vne))  # eq. (4)
     rolling = turf.mu >= mu_c
-    if rolling:
-        jx = -(2.0 / 7.0) * ux  # eq. (3): the slip is brought to zero
-        jy = -(2.0 / 7.0) * uy
-        jz = -(2.0 / 7.0) * uz
-    else:
-        f = turf.mu * (1.0 + e) * abs(vne) / u  # eq. (2): friction for the whole impact
-        jx = -f * ux
-        jy = -f * uy
-        jz = -f * uz
+    # Eq. (3): a rolling exit brings the slip to zero; eq. (2): sliding, friction throughout.
+    f = 2.0 / 7.0 if rolling else turf.mu * (1.0 + e) * abs(vne) / u
+    jx = -f * ux
+    jy = -f * uy
+    jz = -f * uz
     dn = -(1.0 + e) * vne
     # Angular impulse of the contact force at -r n': I dw = (-r n') x J, I = (2/5) m r^2.
     k = 2.5 / (BALL_RADIUS_M * BALL_RADIUS_M)
@@ -108,7 +104,7 @@ def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
 def hop_height(vx, vy, vz, nx, ny, nz):
     """Height above the ground plane of a ballistic hop leaving it at velocity v (no air)."""
     vn = vx * nx + vy * ny + vz * nz

@@ -364,10 +364,8 @@ def local_cluster(workers=None, **kwargs):
     """A Dask ``LocalCluster`` as ``--dask local`` starts it: ``workers`` processes (default:
     the cores) of one Dask thread each, with ``NUMBA_NUM_THREADS=1``, no dashboard.
 
-    The variable is in the environment the worker processes are spawned with (Dask's
-    ``distributed.nanny.pre-spawn-environ``), since Numba reads it once, when a process first
-    imports it. (A ``NUMBA_NUM_THREADS`` already set in this process's environment wins, as
-    Dask gives it precedence; each task still runs one Numba thread.)
+    Numba reads the variable when a process first imports it, which a worker does with its
+    first task. Each task also runs one Numba thread whatever the variable says.
     """
     distributed = _dask()
     import dask
@@ -380,9 +378,12 @@ def local_cluster(workers=None, **kwargs):
         "processes": True,
         "dashboard_address": None,
     }
-    environ = "distributed.nanny.pre-spawn-environ.NUMBA_NUM_THREADS"
-    with dask.config.set({environ: str(NUMBA_THREADS_PER_TASK)}):
-        return distributed.LocalCluster(**{**options, **kwargs})
+    # Set in each worker process as it starts (before it first imports Numba), not through
+    # Dask's pre-spawn-environ: the nannies live in this process and would set it in this
+    # process's environment, where Numba, which rereads it at every compilation, would then
+    # refuse to compile once its own threads have started.
+    env = {"NUMBA_NUM_THREADS": str(NUMBA_THREADS_PER_TASK)}
+    return distributed.LocalCluster(**{**options, "env": env, **kwargs})
 
 
 @contextlib.contextmanager

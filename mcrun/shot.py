@@ -107,6 +107,40 @@ def fail(out, i, status):
     out[i, STATUS] = status
 
 
+# What follows an impact (``impact``).
+HOPS = 0
+ROLLS = 1
+TOO_MANY = 2
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def impact(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, bounces, previous_height):
+    """One impact (``bounce``) and what follows it: the velocity and spin after it, the height
+    and duration of the hop it starts, and whether the ball HOPS, ROLLS (the hop would be lower
+    than the critical height, Penner 2002, or no lower than HOP_DECAY_LIMIT times the one
+    before) or has bounced TOO_MANY times. Branch-free, for loops over many shots."""
+    vx, vy, vz, wx, wy, wz, _, _, _, _ = bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf)
+    height = hop_height(vx, vy, vz, nx, ny, nz)
+    rolls = (height < turf.critical_height_m) | (
+        (bounces > 0) & (height > HOP_DECAY_LIMIT * previous_height)
+    )
+    then = ROLLS if rolls else (TOO_MANY if bounces == MAX_BOUNCES else HOPS)
+    # Exact ballistic hop back to the plane: n.(v T - g z T^2 / 2) = 0.
+    hop_time = 2.0 * (vx * nx + vy * ny + vz * nz) / (G_MPS2 * nz)
+    return vx, vy, vz, wx, wy, wz, height, hop_time, then
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def hop(x, y, z, vx, vy, vz, hop_time):
+    """Position (x, y, z) and vertical velocity at the end of a hop of ``hop_time`` in vacuum."""
+    return (
+        x + vx * hop_time,
+        y + vy * hop_time,
+        z + vz * hop_time - 0.5 * G_MPS2 * hop_time * hop_time,
+        vz - G_MPS2 * hop_time,
+    )
+
+
 @njit(cache=True)
 def run_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, dt):
     """The run (Penner 2002): bounces, then slide and roll, from a ball touching the ground.
@@ -127,35 +161,26 @@ def run_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, dt):
     bounces = 0
     t_next = t + dt
     while True:
-        vx, vy, vz, wx, wy, wz, theta_c, e, mu_c, rolling = bounce(
-            vx, vy, vz, wx, wy, wz, nx, ny, nz, turf
+        vx, vy, vz, wx, wy, wz, height, hop_time, then = impact(
+            vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, bounces, previous_height
         )
-        height = hop_height(vx, vy, vz, nx, ny, nz)
-        if height < turf.critical_height_m:
+        if then == ROLLS:
             break
-        if bounces > 0 and height > HOP_DECAY_LIMIT * previous_height:
-            # The hops have stopped dying out: the ball is rolling over the turf.
-            break
-        previous_height = height
-        if bounces == MAX_BOUNCES:
+        if then == TOO_MANY:
             return x, y, z, t, TOO_MANY_BOUNCES, bounces, first_height, first_length, n
-        # Exact ballistic hop back to the plane: n.(v T - g z T^2 / 2) = 0.
-        hop_time = 2.0 * (vx * nx + vy * ny + vz * nz) / (G_MPS2 * nz)
         while traj.shape[0] > 0 and t_next < t + hop_time:
             s = t_next - t
             n = record(
                 traj, n, t_next, x + vx * s, y + vy * s, z + vz * s - 0.5 * G_MPS2 * s * s, BOUNCE
             )
             t_next += dt
-        x1 = x + vx * hop_time
+        x1, y, z, vz = hop(x, y, z, vx, vy, vz, hop_time)
         if bounces == 0:
             first_height = height
             first_length = x1 - x
         x = x1
-        y += vy * hop_time
-        z += vz * hop_time - 0.5 * G_MPS2 * hop_time * hop_time
-        vz -= G_MPS2 * hop_time
         t += hop_time
+        previous_height = height
         bounces += 1
     # The ball stays on the ground: keep the velocity along the plane.
     vn = vx * nx + vy * ny + vz * nz

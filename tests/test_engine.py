@@ -421,7 +421,7 @@ def test_penner_fig4_scenario_equals_single_shots(tmp_path, source, air):
     assert first_bounce[35.0] == pytest.approx(2.82, rel=0.02)
     assert first_bounce[55.0] == pytest.approx(1.17, rel=0.02)
     summary = result.summary()
-    assert (summary["total_m_std"] == 0.0).all()
+    assert (summary["total_m_std"] < 1e-9).all()  # zero dispersion, to rounding
     assert list(summary["run_m_mean"]) == sorted(summary["run_m_mean"], reverse=True)
 
 
