@@ -15,14 +15,21 @@ from mcrun.constants import BALL_AREA_M2, BALL_MASS_KG
 from mcrun.flight import WIND_UNIFORM, make_flight_params, rk4_step_quadratic
 from mcrun.launch import initial_state
 from mcrun.shot import (
+    HOPS,
     N_OUTCOME,
+    TOO_MANY,
+    TRAJECTORY_DT_S,
     apex_after_step,
     fail,
-    finish_shot,
+    hop,
+    impact,
+    land,
+    roll_out,
     simulate_shot,
     start_shot,
+    write_run,
 )
-from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED
+from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, TOO_MANY_BOUNCES
 from mcrun.turf import Turf
 
 INPUT_FIELDS = (
@@ -230,12 +237,211 @@ def _step_lanes(lanes):
         lanes[W1 * LANES + k] = w1
 
 
+# Bounce lanes: once a task's shots have landed, their bounces run LANES at a time too, one
+# impact and hop of every lane per pass of a vectorised loop (``shot.impact`` and ``shot.hop``,
+# the single-shot kernel's own functions); a lane whose ball stops bouncing rolls out on its
+# own (``shot.roll_out``) and takes the next landed shot. Rows of the bounce lane table:
+(
+    BX,
+    BY,
+    BZ,
+    BVX,
+    BVY,
+    BVZ,
+    BWX,
+    BWY,
+    BWZ,
+    BNX,
+    BNY,
+    BNZ,
+    BT,
+    BOUNCES,
+    PREVIOUS,
+    FIRST_HEIGHT,
+    FIRST_LENGTH,
+    THEN,
+    MU,
+    SOFTNESS,
+    E0,
+    E1,
+    E2,
+    E_BREAK,
+    E_HIGH,
+    CRITICAL,
+) = range(26)
+N_BOUNCE_ROWS = 26
+# The landing of a shot, kept until its bounces run: (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny,
+# nz) in the core's frame.
+N_LANDING = 12
+
+
+@njit(cache=True, error_model="numpy")
+def _impact_lanes(b):
+    """One impact, and the hop it starts, for every bounce lane (the vectorised loop)."""
+    for k in range(LANES):
+        turf = Turf(
+            b[MU * LANES + k],
+            b[SOFTNESS * LANES + k],
+            b[E0 * LANES + k],
+            b[E1 * LANES + k],
+            b[E2 * LANES + k],
+            b[E_BREAK * LANES + k],
+            b[E_HIGH * LANES + k],
+            0.0,
+            b[CRITICAL * LANES + k],
+        )
+        bounces = b[BOUNCES * LANES + k]
+        vx, vy, vz, wx, wy, wz, height, hop_time, then = impact(
+            b[BVX * LANES + k],
+            b[BVY * LANES + k],
+            b[BVZ * LANES + k],
+            b[BWX * LANES + k],
+            b[BWY * LANES + k],
+            b[BWZ * LANES + k],
+            b[BNX * LANES + k],
+            b[BNY * LANES + k],
+            b[BNZ * LANES + k],
+            turf,
+            bounces,
+            b[PREVIOUS * LANES + k],
+        )
+        x = b[BX * LANES + k]
+        x1, y1, z1, vz1 = hop(x, b[BY * LANES + k], b[BZ * LANES + k], vx, vy, vz, hop_time)
+        hops = then == HOPS
+        first = hops & (bounces == 0)
+        b[FIRST_HEIGHT * LANES + k] = height if first else b[FIRST_HEIGHT * LANES + k]
+        b[FIRST_LENGTH * LANES + k] = x1 - x if first else b[FIRST_LENGTH * LANES + k]
+        b[BX * LANES + k] = x1 if hops else x
+        b[BY * LANES + k] = y1 if hops else b[BY * LANES + k]
+        b[BZ * LANES + k] = z1 if hops else b[BZ * LANES + k]
+        b[BVX * LANES + k] = vx
+        b[BVY * LANES + k] = vy
+        b[BVZ * LANES + k] = vz1 if hops else vz
+        b[BWX * LANES + k] = wx
+        b[BWY * LANES + k] = wy
+        b[BWZ * LANES + k] = wz
+        b[BT * LANES + k] = b[BT * LANES + k] + hop_time if hops else b[BT * LANES + k]
+        b[PREVIOUS * LANES + k] = height if hops else b[PREVIOUS * LANES + k]
+        b[BOUNCES * LANES + k] = bounces + 1.0 if hops else bounces
+        b[THEN * LANES + k] = then
+
+
+@njit(cache=True, error_model="numpy")
+def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k):
+    """Put the next landed shot of ``pending`` into bounce lane k (shot[k] = -1 if none)."""
+    if next_j == pending.shape[0]:
+        shot[k] = -1
+        return next_j
+    i = pending[next_j]
+    c = inputs[i]
+    g = landings[i - start]
+    for field, value in (
+        (BX, g[0]),
+        (BY, g[1]),
+        (BZ, 0.0),
+        (BVX, g[2]),
+        (BVY, g[3]),
+        (BVZ, g[4]),
+        (BWX, g[5]),
+        (BWY, g[6]),
+        (BWZ, g[7]),
+        (BT, g[8]),
+        (BNX, g[9]),
+        (BNY, g[10]),
+        (BNZ, g[11]),
+        (BOUNCES, 0.0),
+        (PREVIOUS, 0.0),
+        (FIRST_HEIGHT, 0.0),
+        (FIRST_LENGTH, 0.0),
+        (MU, c[15]),
+        (SOFTNESS, c[16]),
+        (E0, c[17]),
+        (E1, c[18]),
+        (E2, c[19]),
+        (E_BREAK, c[20]),
+        (E_HIGH, c[21]),
+        (CRITICAL, c[23]),
+    ):
+        b[field * LANES + k] = value
+    shot[k] = i
+    return next_j + 1
+
+
+@njit(cache=True, error_model="numpy")
+def _bounce_all(inputs, start, landings, pending, out):
+    """The bounces and the roll of the landed shots ``pending``, LANES at a time."""
+    b = np.zeros(N_BOUNCE_ROWS * LANES)
+    shot = np.full(LANES, -1)
+    no_trajectory = np.empty((0, 5))
+    next_j = 0
+    for k in range(LANES):
+        next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
+    while True:
+        active = 0
+        for k in range(LANES):
+            active += shot[k] >= 0
+        if active == 0:
+            return
+        _impact_lanes(b)
+        for k in range(LANES):
+            i = shot[k]
+            if i < 0:
+                continue
+            s = b[k::LANES]  # s[row] is row ``row`` of lane k
+            if s[THEN] == HOPS:
+                continue
+            landing_x = landings[i - start, 0]
+            if s[THEN] == TOO_MANY:
+                write_run(
+                    out,
+                    i,
+                    landing_x,
+                    s[BX],
+                    s[BY],
+                    s[BT],
+                    TOO_MANY_BOUNCES,
+                    s[BOUNCES],
+                    s[FIRST_HEIGHT],
+                    s[FIRST_LENGTH],
+                )
+            else:
+                _, turf = _params(inputs, i)
+                x, y, _, t, status, _ = roll_out(
+                    s[BX],
+                    s[BY],
+                    s[BZ],
+                    s[BVX],
+                    s[BVY],
+                    s[BVZ],
+                    s[BWX],
+                    s[BWY],
+                    s[BWZ],
+                    s[BNX],
+                    s[BNY],
+                    s[BNZ],
+                    turf,
+                    s[BT],
+                    no_trajectory,
+                    0,
+                    s[BT],
+                    TRAJECTORY_DT_S,
+                )
+                write_run(
+                    out, i, landing_x, x, y, t, status, s[BOUNCES], s[FIRST_HEIGHT], s[FIRST_LENGTH]
+                )
+            next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
+
+
 @njit(cache=True, error_model="numpy")
 def _lockstep(inputs, start, stop, table, out):
-    """Simulate shots start..stop-1 of ``inputs`` into ``out``, LANES at a time."""
+    """Simulate shots start..stop-1 of ``inputs`` into ``out``: their flights LANES at a time,
+    then their bounces LANES at a time, then each roll."""
     lanes = np.zeros(N_LANE_ROWS * LANES)
     shot = np.full(LANES, -1)
     no_trajectory = np.empty((0, 5))
+    landings = np.empty((stop - start, N_LANDING))
+    pending = np.empty(stop - start, dtype=np.int64)
+    n_landed = 0
     next_i = start
     for k in range(LANES):
         next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
@@ -244,7 +450,7 @@ def _lockstep(inputs, start, stop, table, out):
         for k in range(LANES):
             active += shot[k] >= 0
         if active == 0:
-            return
+            break
         _step_lanes(lanes)
         for k in range(LANES):
             i = shot[k]
@@ -252,30 +458,16 @@ def _lockstep(inputs, start, stop, table, out):
                 continue
             s = lanes[k::LANES]  # s[row] is row ``row`` of lane k
             if s[Z1] < 0.0:
-                p, turf = _params(inputs, i)
+                p, _ = _params(inputs, i)
                 c = inputs[i]
-                finish_shot(
-                    s[X],
-                    s[Y],
-                    s[Z],
-                    s[VX],
-                    s[VY],
-                    s[VZ],
-                    s[W],
-                    s[Z1],
-                    s[VZ1],
-                    s[T],
-                    s[APEX],
-                    (s[AXIS_X], s[AXIS_Y], s[AXIS_Z], p, table),
-                    turf,
-                    c[24],
-                    c[25],
-                    c[26],
-                    out,
-                    i,
-                    no_trajectory,
-                    0,
-                )
+                axes = (s[AXIS_X], s[AXIS_Y], s[AXIS_Z], p, table)
+                x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz, _ = land(
+                    s[X], s[Y], s[Z], s[VX], s[VY], s[VZ], s[W], s[Z1], s[VZ1], s[T], s[APEX],
+                    axes, c[24], c[25], c[26], out, i, no_trajectory, 0
+                )  # fmt: skip
+                landings[i - start] = (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz)
+                pending[n_landed] = i
+                n_landed += 1
                 next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
                 continue
             s[APEX] = apex_after_step(s[APEX], s[Z], s[VZ], s[Z1], s[VZ1], s[DT])
@@ -285,6 +477,7 @@ def _lockstep(inputs, start, stop, table, out):
             if s[T] > MAX_FLIGHT_TIME_S:
                 fail(out, i, NOT_LANDED)
                 next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
+    _bounce_all(inputs, start, landings, pending[:n_landed], out)
 
 
 # Shots per parallel task: enough to keep the lanes full, few enough to balance two threads.

@@ -142,6 +142,35 @@ def hop(x, y, z, vx, vy, vz, hop_time):
 
 
 @njit(cache=True)
+def roll_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, t_next, dt):
+    """After the last impact: the ball stays on the ground with its velocity along the plane,
+    slides and rolls to rest (``roll.roll``). Returns (x, y, z, t, status, n)."""
+    vn = vx * nx + vy * ny + vz * nz
+    x, y, z, t, status, n = roll(
+        x,
+        y,
+        z,
+        vx - vn * nx,
+        vy - vn * ny,
+        vz - vn * nz,
+        wx,
+        wy,
+        wz,
+        nx,
+        ny,
+        nz,
+        turf,
+        t,
+        traj,
+        n,
+        t_next,
+        dt,
+    )
+    n = record(traj, n, t, x, y, z, ROLL)
+    return x, y, z, t, status, n
+
+
+@njit(cache=True)
 def run_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, dt):
     """The run (Penner 2002): bounces, then slide and roll, from a ball touching the ground.
 
@@ -182,29 +211,9 @@ def run_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, dt):
         t += hop_time
         previous_height = height
         bounces += 1
-    # The ball stays on the ground: keep the velocity along the plane.
-    vn = vx * nx + vy * ny + vz * nz
-    x, y, z, t, status, n = roll(
-        x,
-        y,
-        z,
-        vx - vn * nx,
-        vy - vn * ny,
-        vz - vn * nz,
-        wx,
-        wy,
-        wz,
-        nx,
-        ny,
-        nz,
-        turf,
-        t,
-        traj,
-        n,
-        t_next,
-        dt,
+    x, y, z, t, status, n = roll_out(
+        x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, t_next, dt
     )
-    n = record(traj, n, t, x, y, z, ROLL)
     return x, y, z, t, status, bounces, first_height, first_length, n
 
 
@@ -323,11 +332,10 @@ def apex_after_step(apex, z, vz, z1, vz1, dt):
 
 
 @njit(cache=True)
-def finish_shot(
-    x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, turf, slope, fall_line, dt, out, i, traj, n
-):
+def land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n):
     """From the last step of the flight, (x, ..., w) at t above the ground and z1, vz1 below it:
-    locate the landing, run the ball out (``run_out``) and write the rest of shot i.
+    locate the landing and write the flight fields of shot i. Returns the ball at landing,
+    (x, y, vx, vy, vz, wx, wy, wz, t), the normal (nx, ny, nz) of the ground there, and n.
 
     ``ctx`` = (axis_x, axis_y, axis_z, p, table) as for ``flight.derivatives``.
     """
@@ -339,9 +347,8 @@ def finish_shot(
         if vz1 < 0.0:
             h = min(max(h - z1 / vz1, 0.0), dt)
     x, y, _, vx, vy, vz, w = rk4_step(x, y, z, vx, vy, vz, w, h, ctx)
-    z = 0.0
     t += h
-    n = record(traj, n, t, x, y, z, FLIGHT)
+    n = record(traj, n, t, x, y, 0.0, FLIGHT)
     out[i, CARRY] = x
     out[i, CARRY_LATERAL] = -y
     out[i, APEX] = apex
@@ -349,21 +356,33 @@ def finish_shot(
     out[i, LANDING_SPEED] = math.sqrt(vx * vx + vy * vy + vz * vz)
     out[i, LANDING_ANGLE] = math.degrees(math.atan2(math.hypot(vx, vy), -vz))
     out[i, LANDING_SPIN] = w
-
     # The ground: the plane of the given slope through the landing point. The fall line in the
     # core's frame is (cos a, -sin a, 0); the normal tilts towards it.
     sb = math.sin(slope)
-    nx = sb * math.cos(fall_line)
-    ny = -sb * math.sin(fall_line)
-    nz = math.cos(slope)
-    landing_x = x
     ax, ay, az, _, _ = ctx
-    x, y, z, t, status, bounces, first_height, first_length, n = run_out(
-        x, y, z, vx, vy, vz, w * ax, w * ay, w * az, nx, ny, nz, turf, t, traj, n, TRAJECTORY_DT_S
+    return (
+        x,
+        y,
+        vx,
+        vy,
+        vz,
+        w * ax,
+        w * ay,
+        w * az,
+        t,
+        sb * math.cos(fall_line),
+        -sb * math.sin(fall_line),
+        math.cos(slope),
+        n,
     )
+
+
+@njit(cache=True)
+def write_run(out, i, landing_x, x, y, t, status, bounces, first_height, first_length):
+    """Write the run fields of shot i, which landed at x = landing_x and rests at (x, y)."""
     if status == TOO_MANY_BOUNCES:
         fail(out, i, TOO_MANY_BOUNCES)
-        return n
+        return
     out[i, BOUNCES] = bounces
     out[i, FIRST_BOUNCE_HEIGHT] = first_height
     out[i, FIRST_BOUNCE_LENGTH] = first_length
@@ -373,4 +392,19 @@ def finish_shot(
     out[i, FINAL_Y] = -y
     out[i, TOTAL_TIME] = t
     out[i, STATUS] = status
+
+
+@njit(cache=True)
+def finish_shot(
+    x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, turf, slope, fall_line, dt, out, i, traj, n
+):
+    """From the last step of the flight: ``land``, ``run_out``, ``write_run``."""
+    x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz, n = land(
+        x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n
+    )
+    landing_x = x
+    x, y, z, t, status, bounces, first_height, first_length, n = run_out(
+        x, y, 0.0, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, TRAJECTORY_DT_S
+    )
+    write_run(out, i, landing_x, x, y, t, status, bounces, first_height, first_length)
     return n
