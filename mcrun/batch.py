@@ -23,7 +23,7 @@ from mcrun.shot import (
     fail,
     hop,
     impact,
-    land,
+    land_quadratic,
     roll_out,
     simulate_shot,
     start_shot,
@@ -92,42 +92,11 @@ def _shot(inputs, i, table, out, j, traj):
 # ``shot.simulate_shot`` does, in the same order, so the results are the same bit for bit.
 LANES = 16
 # Rows of the lane table, a flat array whose row r of lane k is at r * LANES + k (a layout
-# whose offsets the compiler can see, so that it vectorises the loop over the lanes): the state
-# before and after a step, then the lane's constants.
-(
-    X,
-    Y,
-    Z,
-    VX,
-    VY,
-    VZ,
-    W,
-    X1,
-    Y1,
-    Z1,
-    VX1,
-    VY1,
-    VZ1,
-    W1,
-    AXIS_X,
-    AXIS_Y,
-    AXIS_Z,
-    WIND_X,
-    WIND_Y,
-    K_CD,
-    K_CL,
-    A0,
-    A1,
-    A2,
-    B0,
-    B1,
-    B2,
-    S_MAX,
-    DT,
-    T,
-    APEX,
-) = range(31)
-N_LANE_ROWS = 31
+# whose offsets the compiler can see, so that it vectorises the loop over the lanes): the state,
+# the height and vertical speed at the end of the last step, the lane's constants.
+(X, Y, Z, VX, VY, VZ, W, Z1, VZ1, AXIS_X, AXIS_Y, AXIS_Z, WIND_X, WIND_Y, K_CD, K_CL, A0, A1,
+ A2, B0, B1, B2, S_MAX, DT, T, APEX) = range(26)  # fmt: skip
+N_LANE_ROWS = 26
 
 
 @njit(cache=True, error_model="numpy")
@@ -197,78 +166,56 @@ def _load_lane(inputs, next_i, stop, table, out, lanes, shot, k):
     return next_i
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _lane_context(lanes, k):
+    """The ``flight.derivatives_quadratic`` context of lane k."""
+    return (
+        lanes[AXIS_X * LANES + k], lanes[AXIS_Y * LANES + k], lanes[AXIS_Z * LANES + k],
+        lanes[WIND_X * LANES + k], lanes[WIND_Y * LANES + k], lanes[K_CD * LANES + k],
+        lanes[K_CL * LANES + k], lanes[A0 * LANES + k], lanes[A1 * LANES + k],
+        lanes[A2 * LANES + k], lanes[B0 * LANES + k], lanes[B1 * LANES + k],
+        lanes[B2 * LANES + k], lanes[S_MAX * LANES + k],
+    )  # fmt: skip
+
+
 @njit(cache=True, error_model="numpy")
 def _step_lanes(lanes):
-    """One RK4 step of every lane (the vectorised loop)."""
+    """One RK4 step of every lane (the vectorised loop). A lane whose ball stays in the air
+    takes the new state, its apex and time; one that went below the ground keeps the state
+    before the step, for ``shot.land``, and the step's z1 and vz1."""
     for k in range(LANES):
-        ctx = (
-            lanes[AXIS_X * LANES + k],
-            lanes[AXIS_Y * LANES + k],
-            lanes[AXIS_Z * LANES + k],
-            lanes[WIND_X * LANES + k],
-            lanes[WIND_Y * LANES + k],
-            lanes[K_CD * LANES + k],
-            lanes[K_CL * LANES + k],
-            lanes[A0 * LANES + k],
-            lanes[A1 * LANES + k],
-            lanes[A2 * LANES + k],
-            lanes[B0 * LANES + k],
-            lanes[B1 * LANES + k],
-            lanes[B2 * LANES + k],
-            lanes[S_MAX * LANES + k],
-        )
+        x = lanes[X * LANES + k]
+        y = lanes[Y * LANES + k]
+        z = lanes[Z * LANES + k]
+        vx = lanes[VX * LANES + k]
+        vy = lanes[VY * LANES + k]
+        vz = lanes[VZ * LANES + k]
+        w = lanes[W * LANES + k]
+        dt = lanes[DT * LANES + k]
         x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step_quadratic(
-            lanes[X * LANES + k],
-            lanes[Y * LANES + k],
-            lanes[Z * LANES + k],
-            lanes[VX * LANES + k],
-            lanes[VY * LANES + k],
-            lanes[VZ * LANES + k],
-            lanes[W * LANES + k],
-            lanes[DT * LANES + k],
-            ctx,
+            x, y, z, vx, vy, vz, w, dt, _lane_context(lanes, k)
         )
-        lanes[X1 * LANES + k] = x1
-        lanes[Y1 * LANES + k] = y1
+        landed = z1 < 0.0
+        apex = lanes[APEX * LANES + k]
+        lanes[APEX * LANES + k] = apex if landed else apex_after_step(apex, z, vz, z1, vz1, dt)
+        lanes[X * LANES + k] = x if landed else x1
+        lanes[Y * LANES + k] = y if landed else y1
+        lanes[Z * LANES + k] = z if landed else z1
+        lanes[VX * LANES + k] = vx if landed else vx1
+        lanes[VY * LANES + k] = vy if landed else vy1
+        lanes[VZ * LANES + k] = vz if landed else vz1
+        lanes[W * LANES + k] = w if landed else w1
+        lanes[T * LANES + k] = lanes[T * LANES + k] if landed else lanes[T * LANES + k] + dt
         lanes[Z1 * LANES + k] = z1
-        lanes[VX1 * LANES + k] = vx1
-        lanes[VY1 * LANES + k] = vy1
         lanes[VZ1 * LANES + k] = vz1
-        lanes[W1 * LANES + k] = w1
 
 
 # Bounce lanes: once a task's shots have landed, their bounces run LANES at a time too, one
 # impact and hop of every lane per pass of a vectorised loop (``shot.impact`` and ``shot.hop``,
 # the single-shot kernel's own functions); a lane whose ball stops bouncing rolls out on its
 # own (``shot.roll_out``) and takes the next landed shot. Rows of the bounce lane table:
-(
-    BX,
-    BY,
-    BZ,
-    BVX,
-    BVY,
-    BVZ,
-    BWX,
-    BWY,
-    BWZ,
-    BNX,
-    BNY,
-    BNZ,
-    BT,
-    BOUNCES,
-    PREVIOUS,
-    FIRST_HEIGHT,
-    FIRST_LENGTH,
-    THEN,
-    MU,
-    SOFTNESS,
-    E0,
-    E1,
-    E2,
-    E_BREAK,
-    E_HIGH,
-    CRITICAL,
-) = range(26)
+(BX, BY, BZ, BVX, BVY, BVZ, BWX, BWY, BWZ, BNX, BNY, BNZ, BT, BOUNCES, PREVIOUS, FIRST_HEIGHT,
+ FIRST_LENGTH, THEN, MU, SOFTNESS, E0, E1, E2, E_BREAK, E_HIGH, CRITICAL) = range(26)  # fmt: skip
 N_BOUNCE_ROWS = 26
 # The landing of a shot, kept until its bounces run: (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny,
 # nz) in the core's frame.
@@ -387,9 +334,9 @@ def _bounce_all(inputs, start, landings, pending, out):
             i = shot[k]
             if i < 0:
                 continue
-            s = b[k::LANES]  # s[row] is row ``row`` of lane k
-            if s[THEN] == HOPS:
+            if b[THEN * LANES + k] == HOPS:
                 continue
+            s = b[k::LANES]  # s[row] is row ``row`` of lane k
             landing_x = landings[i - start, 0]
             if s[THEN] == TOO_MANY:
                 write_run(
@@ -456,25 +403,18 @@ def _lockstep(inputs, start, stop, table, out):
             i = shot[k]
             if i < 0:
                 continue
-            s = lanes[k::LANES]  # s[row] is row ``row`` of lane k
-            if s[Z1] < 0.0:
-                p, _ = _params(inputs, i)
-                c = inputs[i]
-                axes = (s[AXIS_X], s[AXIS_Y], s[AXIS_Z], p, table)
-                x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz, _ = land(
+            if lanes[Z1 * LANES + k] < 0.0:
+                s = lanes[k::LANES]  # s[row] is row ``row`` of lane k
+                x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz, _ = land_quadratic(
                     s[X], s[Y], s[Z], s[VX], s[VY], s[VZ], s[W], s[Z1], s[VZ1], s[T], s[APEX],
-                    axes, c[24], c[25], c[26], out, i, no_trajectory, 0
+                    _lane_context(lanes, k), inputs[i, 24], inputs[i, 25], inputs[i, 26], out,
+                    i, no_trajectory, 0
                 )  # fmt: skip
                 landings[i - start] = (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz)
                 pending[n_landed] = i
                 n_landed += 1
                 next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
-                continue
-            s[APEX] = apex_after_step(s[APEX], s[Z], s[VZ], s[Z1], s[VZ1], s[DT])
-            for field in range(7):
-                s[X + field] = s[X1 + field]
-            s[T] += s[DT]
-            if s[T] > MAX_FLIGHT_TIME_S:
+            elif lanes[T * LANES + k] > MAX_FLIGHT_TIME_S:
                 fail(out, i, NOT_LANDED)
                 next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
     _bounce_all(inputs, start, landings, pending[:n_landed], out)

@@ -21,7 +21,7 @@ from numba import njit
 
 from mcrun.bounce import bounce, hop_height
 from mcrun.constants import G_MPS2
-from mcrun.flight import hermite_root, rk4_step
+from mcrun.flight import hermite_root, rk4_step, rk4_step_quadratic
 from mcrun.launch import initial_state
 from mcrun.roll import roll
 from mcrun.status import (
@@ -322,59 +322,71 @@ def start_shot(
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
 def apex_after_step(apex, z, vz, z1, vz1, dt):
     """Highest point so far after a step from (z, vz) to (z1, vz1)."""
-    if vz > 0.0 and vz1 <= 0.0:
-        # Apex inside the step, taking vz linear in time.
-        apex = max(apex, z + 0.5 * vz * dt * vz / (vz - vz1))
-    return max(apex, z1)
+    # Apex inside the step (vz changes sign), taking vz linear in time.
+    inside = z + 0.5 * vz * dt * vz / (vz - vz1)
+    crossed = (vz > 0.0) & (vz1 <= 0.0)
+    return max(max(apex, inside) if crossed else apex, z1)
 
 
-@njit(cache=True)
-def land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n):
-    """From the last step of the flight, (x, ..., w) at t above the ground and z1, vz1 below it:
-    locate the landing and write the flight fields of shot i. Returns the ball at landing,
-    (x, y, vx, vy, vz, wx, wy, wz, t), the normal (nx, ny, nz) of the ground there, and n.
+def _make_land(rk4):
+    """``land`` for the RK4 step ``rk4`` (of ``flight``): one source for both steps."""
 
-    ``ctx`` = (axis_x, axis_y, axis_z, p, table) as for ``flight.derivatives``.
-    """
-    # Landing: root of the cubic Hermite interpolant of z, then an RK4 step of that length from
-    # the start of the step, refined by Newton steps on z.
-    h = hermite_root(z, vz, z1, vz1, dt)
-    for _ in range(2):
-        _, _, z1, _, _, vz1, _ = rk4_step(x, y, z, vx, vy, vz, w, h, ctx)
-        if vz1 < 0.0:
-            h = min(max(h - z1 / vz1, 0.0), dt)
-    x, y, _, vx, vy, vz, w = rk4_step(x, y, z, vx, vy, vz, w, h, ctx)
-    t += h
-    n = record(traj, n, t, x, y, 0.0, FLIGHT)
-    out[i, CARRY] = x
-    out[i, CARRY_LATERAL] = -y
-    out[i, APEX] = apex
-    out[i, FLIGHT_TIME] = t
-    out[i, LANDING_SPEED] = math.sqrt(vx * vx + vy * vy + vz * vz)
-    out[i, LANDING_ANGLE] = math.degrees(math.atan2(math.hypot(vx, vy), -vz))
-    out[i, LANDING_SPIN] = w
-    # The ground: the plane of the given slope through the landing point. The fall line in the
-    # core's frame is (cos a, -sin a, 0); the normal tilts towards it.
-    sb = math.sin(slope)
-    ax, ay, az, _, _ = ctx
-    return (
-        x,
-        y,
-        vx,
-        vy,
-        vz,
-        w * ax,
-        w * ay,
-        w * az,
-        t,
-        sb * math.cos(fall_line),
-        -sb * math.sin(fall_line),
-        math.cos(slope),
-        n,
-    )
+    @njit(cache=True)
+    def land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n):
+        """From the last step of the flight, (x, ..., w) at t above the ground and z1, vz1 below it:
+        locate the landing and write the flight fields of shot i. Returns the ball at landing,
+        (x, y, vx, vy, vz, wx, wy, wz, t), the normal (nx, ny, nz) of the ground there, and n.
+
+        ``ctx`` as for ``rk4``'s derivative function; its first three items are the spin axis.
+        """
+        # Landing: root of the cubic Hermite interpolant of z, then an RK4 step of that length from
+        # the start of the step, refined by Newton steps on z.
+        h = hermite_root(z, vz, z1, vz1, dt)
+        for _ in range(2):
+            _, _, z1, _, _, vz1, _ = rk4(x, y, z, vx, vy, vz, w, h, ctx)
+            if vz1 < 0.0:
+                h = min(max(h - z1 / vz1, 0.0), dt)
+        x, y, _, vx, vy, vz, w = rk4(x, y, z, vx, vy, vz, w, h, ctx)
+        t += h
+        n = record(traj, n, t, x, y, 0.0, FLIGHT)
+        out[i, CARRY] = x
+        out[i, CARRY_LATERAL] = -y
+        out[i, APEX] = apex
+        out[i, FLIGHT_TIME] = t
+        out[i, LANDING_SPEED] = math.sqrt(vx * vx + vy * vy + vz * vz)
+        out[i, LANDING_ANGLE] = math.degrees(math.atan2(math.hypot(vx, vy), -vz))
+        out[i, LANDING_SPIN] = w
+        # The ground: the plane of the given slope through the landing point. The fall line in the
+        # core's frame is (cos a, -sin a, 0); the normal tilts towards it.
+        sb = math.sin(slope)
+        ax, ay, az = ctx[0], ctx[1], ctx[2]
+        return (
+            x,
+            y,
+            vx,
+            vy,
+            vz,
+            w * ax,
+            w * ay,
+            w * az,
+            t,
+            sb * math.cos(fall_line),
+            -sb * math.sin(fall_line),
+            math.cos(slope),
+            n,
+        )
+
+    return land
+
+
+# land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n)
+# for any shot (ctx as for flight.derivatives), and for a quadratic model in uniform wind (ctx
+# as for flight.derivatives_quadratic): the same numbers, the second faster.
+land = _make_land(rk4_step)
+land_quadratic = _make_land(rk4_step_quadratic)
 
 
 @njit(cache=True)
