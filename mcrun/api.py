@@ -43,7 +43,7 @@ RANGES = {
     "cl_scale": (0.0, 3.0),
     "slope_deg": (0.0, 45.0),
     "fall_line_deg": (-360.0, 360.0),
-    "dt_s": (1e-4, 0.1),
+    "dt_s": (1e-4, 0.25),
     # One impact (bounce_once): angle from the vertical, backspin positive (topspin negative).
     "impact_angle_deg": (0.0, 89.9),
     "backspin_radps": (-2000.0, 2000.0),

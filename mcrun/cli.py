@@ -435,7 +435,7 @@ def add_conditions_options(p):
     p.add_argument_group("numerics").add_argument(
         "--dt",
         metavar="SECONDS",
-        help="flight step in s (default 0.1 in uniform wind, 0.02 with a wind profile)",
+        help="flight step in s (default 0.2 in uniform wind, 0.02 with a wind profile)",
     )
 
 

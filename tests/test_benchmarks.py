@@ -94,10 +94,12 @@ def test_solve_ivp_baseline_carries_as_mcrun_within_1cm():
 
 
 def test_step_study_error_grows_with_the_step(results):
-    """The default 10 ms step is within 1 cm for every club; 200 ms is measurably worse."""
+    """RK4's error grows with the step (200 ms errs more than 10 ms by far), and 200 ms, the
+    default in uniform wind, still puts carry and total within 1 cm for every club."""
     steps = results[0]["steps"]
     fine, coarse = steps["rows"]
     for label in fine["carry_error_cm"]:
-        assert fine["carry_error_cm"][label] < 1.0
-        assert fine["total_error_cm"][label] < 1.0
+        for row in (fine, coarse):
+            assert row["carry_error_cm"][label] < 1.0
+            assert row["total_error_cm"][label] < 1.0
         assert coarse["carry_error_cm"][label] > 10.0 * fine["carry_error_cm"][label]

@@ -589,7 +589,7 @@ def test_defaults(tmp_path):
     assert p["weather.humidity"].value == 0.5
     assert p["weather.temperature"].value == 293.15
     assert p["models.aero"] == "trackman2019"
-    assert p["models.dt"].value == 0.1  # the default step in uniform wind
+    assert p["models.dt"].value == 0.2  # the default step in uniform wind
     log = sc.load(write(tmp_path, BALL + '[weather]\nwind_profile = "log"\n'))
     assert log.points[0].params["models.dt"].value == 0.02  # and with a wind profile
     assert p["launch.azimuth"].value == 0.0
