@@ -424,7 +424,7 @@ def _lockstep(inputs, start, stop, table, out):
 TASK_SHOTS = 512
 
 
-@njit(parallel=True, cache=True, error_model="numpy")
+@njit(parallel=True, cache=True, error_model="numpy", nogil=True)
 def _simulate_batch(inputs, table, out):
     n = inputs.shape[0]
     tasks = (n + TASK_SHOTS - 1) // TASK_SHOTS

@@ -21,6 +21,7 @@ import json
 import math
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
@@ -394,13 +395,21 @@ def _stream(
     from tqdm import tqdm
 
     show = bool(progress) and sys.stderr.isatty()
-    # One output buffer, reused by every full chunk (the last chunk of a point gets its own).
-    buffer = np.empty((chunk_size, N_OUTCOME), order="F") if n >= chunk_size else None
+    # Two output buffers, taken in turn by the full chunks (the last chunk of a point gets its
+    # own): a chunk is written to Parquet on a thread of its own while the next one is sampled
+    # and simulated (pyarrow encodes without the GIL), in order, one write at a time.
+    full = n >= chunk_size
+    buffers = [np.empty((chunk_size, N_OUTCOME), order="F") if full else None for _ in range(2)]
     traj_buffer = np.empty((4096, 5))
     all_stats = []
-    with tqdm(
-        total=n * len(points), unit="shot", unit_scale=True, disable=not show, smoothing=0.1
-    ) as bar:
+    chunk = 0
+    writing = None  # the write of the previous chunk
+    with (
+        ThreadPoolExecutor(max_workers=1) as writer,
+        tqdm(
+            total=n * len(points), unit="shot", unit_scale=True, disable=not show, smoothing=0.1
+        ) as bar,
+    ):
         for point, drivers in zip(points, drivers_per_point, strict=True):
             if len(points) > 1:
                 bar.set_description(point.label or f"point {point.index}")
@@ -408,10 +417,13 @@ def _stream(
             for start in range(0, n, chunk_size):
                 stop = min(start + chunk_size, n)
                 inputs, sampled = sampling.sample(scenario, point, start, stop)
-                out = buffer if stop - start == chunk_size else None
+                out = buffers[chunk % 2] if stop - start == chunk_size else None
                 out = simulate_batch(inputs, out)
                 point_stats.update(out, sampled)
-                shots_writer.write(point.index, start, sampled, out)
+                if writing is not None:
+                    writing.result()  # frees the other buffer; raises what the write raised
+                writing = writer.submit(shots_writer.write, point.index, start, sampled, out)
+                chunk += 1
                 if traj_writer is not None:
                     traj_buffer = _trajectories(
                         traj_writer, inputs, point.index, start, stop, every, traj_buffer
@@ -419,6 +431,8 @@ def _stream(
                     traj_writer.flush()
                 bar.update(stop - start)
             all_stats.append(point_stats)
+        if writing is not None:
+            writing.result()
     return all_stats
 
 
