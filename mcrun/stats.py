@@ -177,7 +177,7 @@ class PointStats:
         self.n_shots += len(codes)
         self.status_counts += np.bincount(codes, minlength=len(_STATUS_NAMES))[: len(_STATUS_NAMES)]
         ok = codes == status_codes.OK
-        block = np.empty((int(ok.sum()), len(self.columns)))
+        block = np.empty((int(ok.sum()), len(self.columns)), order="F")
         for k, name in enumerate(self.outcomes):
             block[:, k] = outcomes[ok, _OUTCOME_COLUMN[name]]
         for k, name in enumerate(self.inputs, start=len(self.outcomes)):
