@@ -1,10 +1,12 @@
 """The batch kernel: many shots in parallel, structure-of-arrays in, structure-of-arrays out.
 
-``simulate_batch`` runs ``shot.simulate_shot`` in ``prange`` over the rows of ``inputs``, an
-(n, N_INPUT) float64 array in Fortran order (each column contiguous, named by ``INPUT_FIELDS``,
-SI, user frame) and writes ``out``, an (n, N_OUTCOME) float64 array in Fortran order whose
-columns are ``shot.OUTCOME_FIELDS``. Every shot is independent of the others and of the thread
-that runs it, so the results are the same bit for bit whatever the thread count.
+``simulate_batch`` simulates the rows of ``inputs``, an (n, N_INPUT) float64 array in Fortran
+order (each column contiguous, named by ``INPUT_FIELDS``, SI, user frame), in ``prange`` over
+tasks of TASK_SHOTS shots, and writes ``out``, an (n, N_OUTCOME) float64 array in Fortran order
+whose columns are ``shot.OUTCOME_FIELDS``. Within a task the shots fly, then bounce, in
+lockstep lanes (below); each lane does exactly what ``shot.simulate_shot`` does for one shot.
+Every shot is independent of the others, of its lane and of the thread that runs it, so the
+results are the same bit for bit whatever the thread count or the order of the rows.
 """
 
 import numpy as np
@@ -87,9 +89,10 @@ def _shot(inputs, i, table, out, j, traj):
 
 # Lockstep flight: shots with a quadratic aerodynamic model in uniform wind (the usual case)
 # fly LANES at a time, a block of lanes stepped together by one loop that the compiler turns
-# into vector instructions; a lane whose ball lands is finished on its own (landing, bounces,
-# roll: shot.finish_shot) and refilled with the next shot. Every operation on a lane is the one
-# ``shot.simulate_shot`` does, in the same order, so the results are the same bit for bit.
+# into vector instructions; a lane whose ball lands has its landing located on its own
+# (shot.land_quadratic), waits for the bounce lanes, and takes the next shot. Every operation
+# on a lane is the one ``shot.simulate_shot`` does, in the same order, so the results are the
+# same bit for bit.
 LANES = 16
 # Rows of the lane table, a flat array whose row r of lane k is at r * LANES + k (a layout
 # whose offsets the compiler can see, so that it vectorises the loop over the lanes): the state,
@@ -436,6 +439,8 @@ def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS):
     """Simulate every row of ``inputs`` (n, N_INPUT); return ``out`` (n, N_OUTCOME), F-order."""
     if inputs.ndim != 2 or inputs.shape[1] != N_INPUT:
         raise ValueError(f"inputs must have shape (n, {N_INPUT}), got {inputs.shape}")
+    # One compiled layout: a slice of the rows (not contiguous) is copied, not compiled again.
+    inputs = np.asfortranarray(inputs, dtype=np.float64)
     if out is None:
         out = np.empty((inputs.shape[0], N_OUTCOME), order="F")
     _simulate_batch(inputs, table, out)
