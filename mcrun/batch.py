@@ -102,6 +102,15 @@ LANES = 16
 N_LANE_ROWS = 26
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _any_lane_busy(shot):
+    """Whether some lane still holds a shot (shot[k] is -1 for an empty lane)."""
+    for k in range(LANES):
+        if shot[k] >= 0:
+            return True
+    return False
+
+
 @njit(cache=True, error_model="numpy")
 def _load_lane(inputs, next_i, stop, table, out, lanes, shot, k):
     """Put the next shot that can fly in lockstep into lane k; shots that cannot (another
@@ -326,12 +335,7 @@ def _bounce_all(inputs, start, landings, pending, out):
     next_j = 0
     for k in range(LANES):
         next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
-    while True:
-        active = 0
-        for k in range(LANES):
-            active += shot[k] >= 0
-        if active == 0:
-            return
+    while _any_lane_busy(shot):
         _impact_lanes(b)
         for k in range(LANES):
             i = shot[k]
@@ -395,12 +399,7 @@ def _lockstep(inputs, start, stop, table, out):
     next_i = start
     for k in range(LANES):
         next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
-    while True:
-        active = 0
-        for k in range(LANES):
-            active += shot[k] >= 0
-        if active == 0:
-            break
+    while _any_lane_busy(shot):
         _step_lanes(lanes)
         for k in range(LANES):
             i = shot[k]
