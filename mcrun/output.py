@@ -132,7 +132,29 @@ def shots_schema(input_names, input_types=None, metadata=None):
     return pa.schema(fields, metadata=metadata)
 
 
-class ShotsWriter:
+class _ParquetWriter:
+    """What the writers below share: closing the file with the run's metadata, or dropping it."""
+
+    _writer = None
+
+    def close(self, extra_metadata=None):
+        if self._writer is None:
+            return
+        if extra_metadata:
+            self._writer.add_key_value_metadata(extra_metadata)
+        self._writer.close()
+        self._writer = None
+
+    def abort(self):
+        """Close without caring about the file (it is about to be removed)."""
+        if self._writer is not None:
+            try:
+                self._writer.close()
+            finally:
+                self._writer = None
+
+
+class ShotsWriter(_ParquetWriter):
     """shots.parquet, one row group per chunk.
 
     ``groups`` and ``labels``: the group name and label of every point (by point index);
@@ -212,21 +234,6 @@ class ShotsWriter:
         )
         return pa.Table.from_arrays(columns, schema=self.schema)
 
-    def close(self, extra_metadata=None):
-        if self._writer is None:
-            return
-        if extra_metadata:
-            self._writer.add_key_value_metadata(extra_metadata)
-        self._writer.close()
-        self._writer = None
-
-    def abort(self):
-        """Close without caring about the file (it is about to be removed)."""
-        if self._writer is not None:
-            try:
-                self._writer.close()
-            finally:
-                self._writer = None
 
 
 # --- trajectories ------------------------------------------------------------------------------
@@ -244,7 +251,7 @@ TRAJECTORY_SCHEMA = pa.schema(
 )
 
 
-class TrajectoryWriter:
+class TrajectoryWriter(_ParquetWriter):
     """trajectories.parquet: the paths of the shots given to ``add``, written per chunk."""
 
     def __init__(self, path, metadata):
@@ -264,20 +271,9 @@ class TrajectoryWriter:
         self._parts = []
 
     def close(self, extra_metadata=None):
-        if self._writer is None:
-            return
-        self.flush()
-        if extra_metadata:
-            self._writer.add_key_value_metadata(extra_metadata)
-        self._writer.close()
-        self._writer = None
-
-    def abort(self):
         if self._writer is not None:
-            try:
-                self._writer.close()
-            finally:
-                self._writer = None
+            self.flush()
+        super().close(extra_metadata)
 
 
 def trajectory_table(parts, schema=TRAJECTORY_SCHEMA):
