@@ -125,22 +125,7 @@ def _load_lane(inputs, next_i, stop, table, out, lanes, shot, k):
         if not start_shot(c[0], c[1], c[2], c[3], c[4], p, turf, c[24], c[25], c[26], out, i):
             continue
         if not (is_quadratic(p.aero_model) and p.wind_profile == WIND_UNIFORM):
-            simulate_shot(
-                c[0],
-                c[1],
-                c[2],
-                c[3],
-                c[4],
-                p,
-                turf,
-                c[24],
-                c[25],
-                c[26],
-                table,
-                out,
-                i,
-                no_trajectory,
-            )
+            _shot(inputs, i, table, out, i, no_trajectory)
             continue
         vx, vy, vz, ax, ay, az, w = initial_state(c[0], c[1], c[2], c[3], c[4])
         k_air = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG

@@ -658,22 +658,16 @@ def run_scenario(
     else:
         folder = Path(out_dir)
         join = Path.joinpath
-    paths = [join(folder, SHOTS_DIR), join(folder, output.SUMMARY_FILE)]
-    traj_path = None
-    if trajectories_every is not None:
-        traj_path = join(folder, TRAJECTORIES_DIR)
-        paths.append(traj_path)
     return DaskRunResult(
         out_dir=folder,
-        shots_path=paths[0],
-        summary_path=paths[1],
-        trajectories_path=traj_path,
+        shots_path=join(folder, SHOTS_DIR),
+        summary_path=join(folder, output.SUMMARY_FILE),
+        trajectories_path=None if trajectories_every is None else join(folder, TRAJECTORIES_DIR),
         n=n,
         seed=seed,
         points=len(points),
         elapsed_s=elapsed,
         threads=sum(threads),
-        paths=paths,
         scheduler=address,
         workers=n_workers,
     )

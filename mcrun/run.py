@@ -22,7 +22,7 @@ import math
 import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -110,7 +110,12 @@ class RunResult:
     points: int
     elapsed_s: float
     threads: int
-    paths: list = field(default_factory=list)
+
+    @property
+    def paths(self):
+        """The files (or, for a Dask run, the folders) the run wrote."""
+        optional = [] if self.trajectories_path is None else [self.trajectories_path]
+        return [self.shots_path, self.summary_path, *optional]
 
     def shots(self, columns=None):
         """shots.parquet as a pandas DataFrame (``columns``: a subset to read)."""
@@ -371,22 +376,18 @@ def run_scenario(
     finally:
         numba.set_num_threads(previous_threads)
     elapsed = time.perf_counter() - started
-    paths = [out_dir / output.SHOTS_FILE, out_dir / output.SUMMARY_FILE]
-    traj_path = None
-    if trajectories_every is not None:
-        traj_path = out_dir / output.TRAJECTORIES_FILE
-        paths.append(traj_path)
     return RunResult(
         out_dir=out_dir,
-        shots_path=paths[0],
-        summary_path=paths[1],
-        trajectories_path=traj_path,
+        shots_path=out_dir / output.SHOTS_FILE,
+        summary_path=out_dir / output.SUMMARY_FILE,
+        trajectories_path=None
+        if trajectories_every is None
+        else out_dir / output.TRAJECTORIES_FILE,
         n=n,
         seed=seed,
         points=len(points),
         elapsed_s=elapsed,
         threads=base["threads"],
-        paths=paths,
     )
 
 

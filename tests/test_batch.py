@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from mcrun import aero, api
-from mcrun.batch import COLUMN, N_INPUT, _params, simulate_batch
+from mcrun.batch import COLUMN, N_INPUT, _shot, simulate_batch
 from mcrun.flight import WIND_PROFILES
-from mcrun.shot import N_OUTCOME, default_dt_s, simulate_shot
+from mcrun.shot import N_OUTCOME, default_dt_s
 from mcrun.turf import PRESETS
 
 N = 400
@@ -63,24 +63,7 @@ def alone(inputs):
     """Each row simulated by the single-shot kernel, one call per shot."""
     out = np.empty((inputs.shape[0], N_OUTCOME))
     for i in range(inputs.shape[0]):
-        c = inputs[i]
-        p, turf = _params(inputs, i)
-        simulate_shot(
-            c[0],
-            c[1],
-            c[2],
-            c[3],
-            c[4],
-            p,
-            turf,
-            c[24],
-            c[25],
-            c[26],
-            aero.QUADRATIC_COEFFICIENTS,
-            out,
-            i,
-            np.empty((0, 5)),
-        )
+        _shot(inputs, i, aero.QUADRATIC_COEFFICIENTS, out, i, np.empty((0, 5)))
     return out
 
 
