@@ -14,7 +14,13 @@ from numba import njit, prange
 
 from mcrun.aero import QUADRATIC_COEFFICIENTS, is_quadratic
 from mcrun.constants import BALL_AREA_M2, BALL_MASS_KG
-from mcrun.flight import WIND_UNIFORM, make_flight_params, rk4_step_quadratic
+from mcrun.flight import (
+    WIND_UNIFORM,
+    derivatives_quadratic,
+    make_flight_params,
+    rk4_combine,
+    rk4_stage_quadratic,
+)
 from mcrun.launch import initial_state
 from mcrun.shot import (
     HOPS,
@@ -96,10 +102,13 @@ def _shot(inputs, i, table, out, j, traj):
 LANES = 16
 # Rows of the lane table, a flat array whose row r of lane k is at r * LANES + k (a layout
 # whose offsets the compiler can see, so that it vectorises the loop over the lanes): the state,
-# the height and vertical speed at the end of the last step, the lane's constants.
+# the height and vertical speed at the end of the last step, the lane's constants, and the
+# derivatives (K) and velocities (V) of the RK4 stages of the step under way.
 (X, Y, Z, VX, VY, VZ, W, Z1, VZ1, AXIS_X, AXIS_Y, AXIS_Z, WIND_X, WIND_Y, K_CD, K_CL, A0, A1,
  A2, B0, B1, B2, S_MAX, DT, T, APEX) = range(26)  # fmt: skip
-N_LANE_ROWS = 26
+K1, K2, K3 = 26, 30, 34  # four rows each: ax, ay, az, dspin/dt
+V2, V3 = 38, 41  # three rows each: vx, vy, vz
+N_LANE_ROWS = 44
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -175,11 +184,79 @@ def _lane_context(lanes, k):
     )  # fmt: skip
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _lane_velocity(lanes, row, k):
+    """The three rows row.. of lane k: a velocity (vx, vy, vz)."""
+    return lanes[row * LANES + k], lanes[(row + 1) * LANES + k], lanes[(row + 2) * LANES + k]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _lane_derivative(lanes, row, k):
+    """The four rows row.. of lane k: a derivative (ax, ay, az, dspin/dt)."""
+    return (
+        lanes[row * LANES + k], lanes[(row + 1) * LANES + k], lanes[(row + 2) * LANES + k],
+        lanes[(row + 3) * LANES + k],
+    )  # fmt: skip
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _set_lane_velocity(lanes, row, k, v):
+    lanes[row * LANES + k] = v[0]
+    lanes[(row + 1) * LANES + k] = v[1]
+    lanes[(row + 2) * LANES + k] = v[2]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _set_lane_derivative(lanes, row, k, d):
+    lanes[row * LANES + k] = d[0]
+    lanes[(row + 1) * LANES + k] = d[1]
+    lanes[(row + 2) * LANES + k] = d[2]
+    lanes[(row + 3) * LANES + k] = d[3]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _lane_stage(lanes, k, c, derivative, vz_k):
+    """The RK4 stage of lane k at c times ``derivative`` (``flight.rk4_stage``)."""
+    return rk4_stage_quadratic(
+        lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
+        lanes[W * LANES + k], lanes[Z * LANES + k], c, derivative, vz_k,
+        _lane_context(lanes, k),
+    )  # fmt: skip
+
+
 @njit(cache=True, error_model="numpy")
 def _step_lanes(lanes):
-    """One RK4 step of every lane (the vectorised loop). A lane whose ball stays in the air
-    takes the new state, its apex and time; one that went below the ground keeps the state
-    before the step, for ``shot.land``, and the step's z1 and vz1."""
+    """One RK4 step of every lane, ``flight.rk4_step_quadratic`` split into one vectorised loop
+    per stage: the iterations of a loop are independent, so the processor overlaps their long
+    chains of square roots and divisions, where a single loop through the whole step waits on
+    them. A lane whose ball stays in the air takes the new state, its apex and time; one that
+    went below the ground keeps the state before the step, for ``shot.land``, and the step's z1
+    and vz1."""
+    for k in range(LANES):
+        _set_lane_derivative(
+            lanes,
+            K1,
+            k,
+            derivatives_quadratic(
+                lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
+                lanes[W * LANES + k], lanes[Z * LANES + k], _lane_context(lanes, k),
+            ),
+        )  # fmt: skip
+    # (The rows are named in each loop: passed as arguments, they stop it vectorising.)
+    for k in range(LANES):
+        v, d = _lane_stage(
+            lanes, k, 0.5 * lanes[DT * LANES + k], _lane_derivative(lanes, K1, k),
+            lanes[VZ * LANES + k],
+        )  # fmt: skip
+        _set_lane_velocity(lanes, V2, k, v)
+        _set_lane_derivative(lanes, K2, k, d)
+    for k in range(LANES):
+        v, d = _lane_stage(
+            lanes, k, 0.5 * lanes[DT * LANES + k], _lane_derivative(lanes, K2, k),
+            lanes[(V2 + 2) * LANES + k],
+        )  # fmt: skip
+        _set_lane_velocity(lanes, V3, k, v)
+        _set_lane_derivative(lanes, K3, k, d)
     for k in range(LANES):
         x = lanes[X * LANES + k]
         y = lanes[Y * LANES + k]
@@ -189,9 +266,14 @@ def _step_lanes(lanes):
         vz = lanes[VZ * LANES + k]
         w = lanes[W * LANES + k]
         dt = lanes[DT * LANES + k]
-        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_step_quadratic(
-            x, y, z, vx, vy, vz, w, dt, _lane_context(lanes, k)
+        v4, k4 = _lane_stage(
+            lanes, k, dt, _lane_derivative(lanes, K3, k), lanes[(V3 + 2) * LANES + k]
         )
+        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_combine(
+            x, y, z, vx, vy, vz, w, dt, _lane_velocity(lanes, V2, k), _lane_velocity(lanes, V3, k),
+            v4, _lane_derivative(lanes, K1, k), _lane_derivative(lanes, K2, k),
+            _lane_derivative(lanes, K3, k), k4,
+        )  # fmt: skip
         landed = z1 < 0.0
         apex = lanes[APEX * LANES + k]
         lanes[APEX * LANES + k] = apex if landed else apex_after_step(apex, z, vz, z1, vz1, dt)

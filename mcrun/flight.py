@@ -118,47 +118,55 @@ def derivatives_quadratic(vx, vy, vz, spin, z, ctx):
     return forces(ux, uy, uz, speed, spin, axis_x, axis_y, axis_z, k_cd, k_cl, cd, cl)
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def rk4_combine(x, y, z, vx, vy, vz, spin, h, v2, v3, v4, k1, k2, k3, k4):
+    """The end of an RK4 step of size h from (x, ..., spin): the new seven-float state from the
+    velocities v2, v3, v4 of stages 2-4 and the derivatives k1-k4 (ax, ay, az, dspin/dt) of
+    stages 1-4."""
+    w = h / 6.0
+    return (
+        x + w * (vx + 2.0 * v2[0] + 2.0 * v3[0] + v4[0]),
+        y + w * (vy + 2.0 * v2[1] + 2.0 * v3[1] + v4[1]),
+        z + w * (vz + 2.0 * v2[2] + 2.0 * v3[2] + v4[2]),
+        vx + w * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0]),
+        vy + w * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1]),
+        vz + w * (k1[2] + 2.0 * k2[2] + 2.0 * k3[2] + k4[2]),
+        spin + w * (k1[3] + 2.0 * k2[3] + 2.0 * k3[3] + k4[3]),
+    )
+
+
 def _make_rk4(deriv):
     """The classical Runge-Kutta step for the derivative function ``deriv`` (called as
-    deriv(vx, vy, vz, spin, z, ctx)). One source for both derivative functions below; numba
-    compiles each with its derivative inlined."""
+    deriv(vx, vy, vz, spin, z, ctx)), and its stage. One source for both derivative functions
+    below; numba compiles each with its derivative inlined."""
 
-    # Inlined where it is called, so that a loop over a block of shots vectorises.
+    # Inlined where they are called, so that a loop over a block of shots vectorises.
+    @njit(cache=True, error_model="numpy", inline="always")
+    def rk4_stage(vx, vy, vz, spin, z, c, k, vz_k, ctx):
+        """A stage of an RK4 step from (vx, vy, vz, spin, z): its velocity, at the state moved
+        by c times the derivative k of the stage before (whose vertical velocity is vz_k), and
+        its derivative."""
+        v = (vx + c * k[0], vy + c * k[1], vz + c * k[2])
+        return v, deriv(v[0], v[1], v[2], spin + c * k[3], z + c * vz_k, ctx)
+
     @njit(cache=True, error_model="numpy", inline="always")
     def rk4_step(x, y, z, vx, vy, vz, spin, h, ctx):
         """One RK4 step of size h; returns the new seven-float state."""
-        a1x, a1y, a1z, s1 = deriv(vx, vy, vz, spin, z, ctx)
+        k1 = deriv(vx, vy, vz, spin, z, ctx)
         hh = 0.5 * h
-        v2x = vx + hh * a1x
-        v2y = vy + hh * a1y
-        v2z = vz + hh * a1z
-        a2x, a2y, a2z, s2 = deriv(v2x, v2y, v2z, spin + hh * s1, z + hh * vz, ctx)
-        v3x = vx + hh * a2x
-        v3y = vy + hh * a2y
-        v3z = vz + hh * a2z
-        a3x, a3y, a3z, s3 = deriv(v3x, v3y, v3z, spin + hh * s2, z + hh * v2z, ctx)
-        v4x = vx + h * a3x
-        v4y = vy + h * a3y
-        v4z = vz + h * a3z
-        a4x, a4y, a4z, s4 = deriv(v4x, v4y, v4z, spin + h * s3, z + h * v3z, ctx)
-        w = h / 6.0
-        return (
-            x + w * (vx + 2.0 * v2x + 2.0 * v3x + v4x),
-            y + w * (vy + 2.0 * v2y + 2.0 * v3y + v4y),
-            z + w * (vz + 2.0 * v2z + 2.0 * v3z + v4z),
-            vx + w * (a1x + 2.0 * a2x + 2.0 * a3x + a4x),
-            vy + w * (a1y + 2.0 * a2y + 2.0 * a3y + a4y),
-            vz + w * (a1z + 2.0 * a2z + 2.0 * a3z + a4z),
-            spin + w * (s1 + 2.0 * s2 + 2.0 * s3 + s4),
-        )
+        v2, k2 = rk4_stage(vx, vy, vz, spin, z, hh, k1, vz, ctx)
+        v3, k3 = rk4_stage(vx, vy, vz, spin, z, hh, k2, v2[2], ctx)
+        v4, k4 = rk4_stage(vx, vy, vz, spin, z, h, k3, v3[2], ctx)
+        return rk4_combine(x, y, z, vx, vy, vz, spin, h, v2, v3, v4, k1, k2, k3, k4)
 
-    return rk4_step
+    return rk4_stage, rk4_step
 
 
 # rk4_step(x, y, z, vx, vy, vz, spin, h, ctx) for any shot (ctx as for ``derivatives``), and
-# for a quadratic model in uniform wind (ctx as for ``derivatives_quadratic``).
-rk4_step = _make_rk4(derivatives)
-rk4_step_quadratic = _make_rk4(derivatives_quadratic)
+# for a quadratic model in uniform wind (ctx as for ``derivatives_quadratic``); the stage of
+# the second is what a block of shots steps through one loop at a time (``batch``).
+_, rk4_step = _make_rk4(derivatives)
+rk4_stage_quadratic, rk4_step_quadratic = _make_rk4(derivatives_quadratic)
 
 
 @njit(cache=True, error_model="numpy")
