@@ -13,10 +13,12 @@ import numpy as np
 from numba import njit, prange
 
 from mcrun.aero import QUADRATIC_COEFFICIENTS, is_quadratic
+from mcrun.bounce import incidence
 from mcrun.constants import BALL_AREA_M2, BALL_MASS_KG
 from mcrun.flight import (
     WIND_UNIFORM,
     derivatives_quadratic,
+    hermite_root,
     make_flight_params,
     rk4_combine,
     rk4_stage_quadratic,
@@ -29,12 +31,15 @@ from mcrun.shot import (
     TRAJECTORY_DT_S,
     apex_after_step,
     fail,
+    ground_normal,
     hop,
-    impact,
-    land_quadratic,
+    impact_rebound,
+    landing_newton,
+    landing_speed_angle,
     roll_out,
     simulate_shot,
     start_shot,
+    write_landing,
     write_run,
 )
 from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, TOO_MANY_BOUNCES
@@ -94,21 +99,26 @@ def _shot(inputs, i, table, out, j, traj):
 
 
 # Lockstep flight: shots with a quadratic aerodynamic model in uniform wind (the usual case)
-# fly LANES at a time, a block of lanes stepped together by one loop that the compiler turns
-# into vector instructions; a lane whose ball lands has its landing located on its own
-# (shot.land_quadratic), waits for the bounce lanes, and takes the next shot. Every operation
-# on a lane is the one ``shot.simulate_shot`` does, in the same order, so the results are the
-# same bit for bit.
+# fly LANES at a time, a block of lanes stepped together by loops that the compiler turns into
+# vector instructions. A lane whose ball goes below the ground hands its last state to the
+# landing table and takes the next shot; once LANES shots wait there, their landings are
+# located together (``shot.land``, in vectorised loops), and they wait for the bounce lanes.
+# Every operation on a lane is the one ``shot.simulate_shot`` does, in the same order, so the
+# results are the same bit for bit.
 LANES = 16
 # Rows of the lane table, a flat array whose row r of lane k is at r * LANES + k (a layout
 # whose offsets the compiler can see, so that it vectorises the loop over the lanes): the state,
-# the height and vertical speed at the end of the last step, the lane's constants, and the
-# derivatives (K) and velocities (V) of the RK4 stages of the step under way.
+# the height and vertical speed at the end of the last step, the lane's constants, ...
 (X, Y, Z, VX, VY, VZ, W, Z1, VZ1, AXIS_X, AXIS_Y, AXIS_Z, WIND_X, WIND_Y, K_CD, K_CL, A0, A1,
  A2, B0, B1, B2, S_MAX, DT, T, APEX) = range(26)  # fmt: skip
+N_SHOT_ROWS = 26  # (the rows that go with a shot into the landing table)
+# ... the derivatives (K) and velocities (V) of the RK4 stages of the step under way, the rest
+# of the state at its end (with Z1 and VZ1), and, in the landing table only, the flight step,
+# the ground's normal, the shot, and the speed and angle at landing.
 K1, K2, K3 = 26, 30, 34  # four rows each: ax, ay, az, dspin/dt
 V2, V3 = 38, 41  # three rows each: vx, vy, vz
-N_LANE_ROWS = 44
+(X1, Y1, VX1, VY1, W1, H_MAX, NX, NY, NZ, SHOT, SPEED, ANGLE) = range(44, 56)
+N_LANE_ROWS = 56
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -225,13 +235,11 @@ def _lane_stage(lanes, k, c, derivative, vz_k):
 
 
 @njit(cache=True, error_model="numpy")
-def _step_lanes(lanes):
-    """One RK4 step of every lane, ``flight.rk4_step_quadratic`` split into one vectorised loop
-    per stage: the iterations of a loop are independent, so the processor overlaps their long
-    chains of square roots and divisions, where a single loop through the whole step waits on
-    them. A lane whose ball stays in the air takes the new state, its apex and time; one that
-    went below the ground keeps the state before the step, for ``shot.land``, and the step's z1
-    and vz1."""
+def _rk4_lanes(lanes):
+    """An RK4 step of length DT of every lane, from its state to rows X1..W1:
+    ``flight.rk4_step_quadratic`` split into one vectorised loop per stage. The iterations of
+    a loop are independent, so the processor overlaps their long chains of square roots and
+    divisions, where a single loop through the whole step waits on them."""
     for k in range(LANES):
         _set_lane_derivative(
             lanes,
@@ -258,35 +266,98 @@ def _step_lanes(lanes):
         _set_lane_velocity(lanes, V3, k, v)
         _set_lane_derivative(lanes, K3, k, d)
     for k in range(LANES):
-        x = lanes[X * LANES + k]
-        y = lanes[Y * LANES + k]
-        z = lanes[Z * LANES + k]
-        vx = lanes[VX * LANES + k]
-        vy = lanes[VY * LANES + k]
-        vz = lanes[VZ * LANES + k]
-        w = lanes[W * LANES + k]
         dt = lanes[DT * LANES + k]
         v4, k4 = _lane_stage(
             lanes, k, dt, _lane_derivative(lanes, K3, k), lanes[(V3 + 2) * LANES + k]
         )
         x1, y1, z1, vx1, vy1, vz1, w1 = rk4_combine(
-            x, y, z, vx, vy, vz, w, dt, _lane_velocity(lanes, V2, k), _lane_velocity(lanes, V3, k),
-            v4, _lane_derivative(lanes, K1, k), _lane_derivative(lanes, K2, k),
-            _lane_derivative(lanes, K3, k), k4,
+            lanes[X * LANES + k], lanes[Y * LANES + k], lanes[Z * LANES + k],
+            lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
+            lanes[W * LANES + k], dt, _lane_velocity(lanes, V2, k),
+            _lane_velocity(lanes, V3, k), v4, _lane_derivative(lanes, K1, k),
+            _lane_derivative(lanes, K2, k), _lane_derivative(lanes, K3, k), k4,
         )  # fmt: skip
+        lanes[X1 * LANES + k] = x1
+        lanes[Y1 * LANES + k] = y1
+        lanes[Z1 * LANES + k] = z1
+        lanes[VX1 * LANES + k] = vx1
+        lanes[VY1 * LANES + k] = vy1
+        lanes[VZ1 * LANES + k] = vz1
+        lanes[W1 * LANES + k] = w1
+
+
+@njit(cache=True, error_model="numpy")
+def _step_lanes(lanes):
+    """One flight step of every lane. A lane whose ball stays in the air takes the new state,
+    its apex and time; one that went below the ground keeps the state before the step, for
+    ``_land_lanes``, and the step's z1 and vz1."""
+    _rk4_lanes(lanes)
+    for k in range(LANES):
+        z = lanes[Z * LANES + k]
+        vz = lanes[VZ * LANES + k]
+        z1 = lanes[Z1 * LANES + k]
+        vz1 = lanes[VZ1 * LANES + k]
+        dt = lanes[DT * LANES + k]
         landed = z1 < 0.0
         apex = lanes[APEX * LANES + k]
         lanes[APEX * LANES + k] = apex if landed else apex_after_step(apex, z, vz, z1, vz1, dt)
-        lanes[X * LANES + k] = x if landed else x1
-        lanes[Y * LANES + k] = y if landed else y1
-        lanes[Z * LANES + k] = z if landed else z1
-        lanes[VX * LANES + k] = vx if landed else vx1
-        lanes[VY * LANES + k] = vy if landed else vy1
-        lanes[VZ * LANES + k] = vz if landed else vz1
-        lanes[W * LANES + k] = w if landed else w1
         lanes[T * LANES + k] = lanes[T * LANES + k] if landed else lanes[T * LANES + k] + dt
-        lanes[Z1 * LANES + k] = z1
-        lanes[VZ1 * LANES + k] = vz1
+        lanes[X * LANES + k] = lanes[X * LANES + k] if landed else lanes[X1 * LANES + k]
+        lanes[Y * LANES + k] = lanes[Y * LANES + k] if landed else lanes[Y1 * LANES + k]
+        lanes[Z * LANES + k] = z if landed else z1
+        lanes[VX * LANES + k] = lanes[VX * LANES + k] if landed else lanes[VX1 * LANES + k]
+        lanes[VY * LANES + k] = lanes[VY * LANES + k] if landed else lanes[VY1 * LANES + k]
+        lanes[VZ * LANES + k] = vz if landed else vz1
+        lanes[W * LANES + k] = lanes[W * LANES + k] if landed else lanes[W1 * LANES + k]
+
+
+@njit(cache=True, error_model="numpy")
+def _land_lanes(g):
+    """Locate the landing of the shots in the landing table ``g`` (lane table rows, the step
+    that went below the ground in Z1 and VZ1): ``shot.land``, for LANES shots at a time. Leaves
+    the landing state in rows X1..W1, its time in T, the apex in APEX and the speed and angle
+    at landing in SPEED and ANGLE."""
+    for k in range(LANES):
+        g[DT * LANES + k] = hermite_root(
+            g[Z * LANES + k], g[VZ * LANES + k], g[Z1 * LANES + k], g[VZ1 * LANES + k],
+            g[H_MAX * LANES + k],
+        )  # fmt: skip
+    for _ in range(2):
+        _rk4_lanes(g)
+        for k in range(LANES):
+            g[DT * LANES + k] = landing_newton(
+                g[DT * LANES + k], g[Z1 * LANES + k], g[VZ1 * LANES + k], g[H_MAX * LANES + k]
+            )
+    _rk4_lanes(g)
+    for k in range(LANES):
+        h = g[DT * LANES + k]
+        vz1 = g[VZ1 * LANES + k]
+        g[APEX * LANES + k] = apex_after_step(
+            g[APEX * LANES + k], g[Z * LANES + k], g[VZ * LANES + k], 0.0, vz1, h
+        )
+        g[T * LANES + k] = g[T * LANES + k] + h
+        speed, angle_deg = landing_speed_angle(g[VX1 * LANES + k], g[VY1 * LANES + k], vz1)
+        g[SPEED * LANES + k] = speed
+        g[ANGLE * LANES + k] = angle_deg
+
+
+@njit(cache=True, error_model="numpy")
+def _file_landings(g, count, out, start, landings, pending, n_landed):
+    """Land the first ``count`` shots of the landing table ``g``: write their flight fields and
+    their landings, and queue them in ``pending`` after the n_landed there. Returns n_landed."""
+    _land_lanes(g)
+    for j in range(count):
+        s = g[j::LANES]  # s[row] is row ``row`` of column j
+        i = int(s[SHOT])
+        w1 = s[W1]
+        write_landing(out, i, s[X1], s[Y1], s[T], s[APEX], s[SPEED], s[ANGLE], w1)
+        landings[i - start] = (
+            s[X1], s[Y1], s[VX1], s[VY1], s[VZ1], w1 * s[AXIS_X], w1 * s[AXIS_Y],
+            w1 * s[AXIS_Z], s[T], s[NX], s[NY], s[NZ],
+        )  # fmt: skip
+        pending[n_landed] = i
+        n_landed += 1
+    return n_landed
 
 
 # Bounce lanes: once a task's shots have landed, their bounces run LANES at a time too, one
@@ -295,7 +366,9 @@ def _step_lanes(lanes):
 # own (``shot.roll_out``) and takes the next landed shot. Rows of the bounce lane table:
 (BX, BY, BZ, BVX, BVY, BVZ, BWX, BWY, BWZ, BNX, BNY, BNZ, BT, BOUNCES, PREVIOUS, FIRST_HEIGHT,
  FIRST_LENGTH, THEN, MU, SOFTNESS, E0, E1, E2, E_BREAK, E_HIGH, CRITICAL) = range(26)  # fmt: skip
-N_BOUNCE_ROWS = 26
+# The equivalent surface of the impact under way (``bounce.incidence``): its normal and v.e.
+(EX, EY, EZ, VNE) = range(26, 30)
+N_BOUNCE_ROWS = 30
 # The landing of a shot, kept until its bounces run: (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny,
 # nz) in the core's frame.
 N_LANDING = 12
@@ -303,7 +376,17 @@ N_LANDING = 12
 
 @njit(cache=True, error_model="numpy")
 def _impact_lanes(b):
-    """One impact, and the hop it starts, for every bounce lane (the vectorised loop)."""
+    """One impact, and the hop it starts, for every bounce lane: ``shot.impact`` in two
+    vectorised loops (as ``_step_lanes``, so that the lanes' long chains overlap)."""
+    for k in range(LANES):
+        ex, ey, ez, vne, _ = incidence(
+            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BNX * LANES + k],
+            b[BNY * LANES + k], b[BNZ * LANES + k], b[SOFTNESS * LANES + k],
+        )  # fmt: skip
+        b[EX * LANES + k] = ex
+        b[EY * LANES + k] = ey
+        b[EZ * LANES + k] = ez
+        b[VNE * LANES + k] = vne
     for k in range(LANES):
         turf = Turf(
             b[MU * LANES + k],
@@ -317,20 +400,12 @@ def _impact_lanes(b):
             b[CRITICAL * LANES + k],
         )
         bounces = b[BOUNCES * LANES + k]
-        vx, vy, vz, wx, wy, wz, height, hop_time, then = impact(
-            b[BVX * LANES + k],
-            b[BVY * LANES + k],
-            b[BVZ * LANES + k],
-            b[BWX * LANES + k],
-            b[BWY * LANES + k],
-            b[BWZ * LANES + k],
-            b[BNX * LANES + k],
-            b[BNY * LANES + k],
-            b[BNZ * LANES + k],
-            turf,
-            bounces,
-            b[PREVIOUS * LANES + k],
-        )
+        vx, vy, vz, wx, wy, wz, height, hop_time, then = impact_rebound(
+            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BWX * LANES + k],
+            b[BWY * LANES + k], b[BWZ * LANES + k], b[BNX * LANES + k], b[BNY * LANES + k],
+            b[BNZ * LANES + k], b[EX * LANES + k], b[EY * LANES + k], b[EZ * LANES + k],
+            b[VNE * LANES + k], turf, bounces, b[PREVIOUS * LANES + k],
+        )  # fmt: skip
         x = b[BX * LANES + k]
         x1, y1, z1, vz1 = hop(x, b[BY * LANES + k], b[BZ * LANES + k], vx, vy, vz, hop_time)
         hops = then == HOPS
@@ -456,10 +531,11 @@ def _bounce_all(inputs, start, landings, pending, out):
 @njit(cache=True, error_model="numpy")
 def _lockstep(inputs, start, stop, table, out):
     """Simulate shots start..stop-1 of ``inputs`` into ``out``: their flights LANES at a time,
-    then their bounces LANES at a time, then each roll."""
+    their landings LANES at a time, then their bounces LANES at a time, then each roll."""
     lanes = np.zeros(N_LANE_ROWS * LANES)
+    g = np.zeros(N_LANE_ROWS * LANES)  # the landing table
+    waiting = 0  # shots in it
     shot = np.full(LANES, -1)
-    no_trajectory = np.empty((0, 5))
     landings = np.empty((stop - start, N_LANDING))
     pending = np.empty(stop - start, dtype=np.int64)
     n_landed = 0
@@ -473,19 +549,22 @@ def _lockstep(inputs, start, stop, table, out):
             if i < 0:
                 continue
             if lanes[Z1 * LANES + k] < 0.0:
-                s = lanes[k::LANES]  # s[row] is row ``row`` of lane k
-                x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz, _ = land_quadratic(
-                    s[X], s[Y], s[Z], s[VX], s[VY], s[VZ], s[W], s[Z1], s[VZ1], s[T], s[APEX],
-                    _lane_context(lanes, k), inputs[i, 24], inputs[i, 25], inputs[i, 26], out,
-                    i, no_trajectory, 0
-                )  # fmt: skip
-                landings[i - start] = (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz)
-                pending[n_landed] = i
-                n_landed += 1
+                for row in range(N_SHOT_ROWS):
+                    g[row * LANES + waiting] = lanes[row * LANES + k]
+                nx, ny, nz = ground_normal(inputs[i, 24], inputs[i, 25])
+                for row, value in ((H_MAX, lanes[DT * LANES + k]), (NX, nx), (NY, ny), (NZ, nz)):
+                    g[row * LANES + waiting] = value
+                g[SHOT * LANES + waiting] = i
+                waiting += 1
+                if waiting == LANES:
+                    n_landed = _file_landings(g, waiting, out, start, landings, pending, n_landed)
+                    waiting = 0
                 next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
             elif lanes[T * LANES + k] > MAX_FLIGHT_TIME_S:
                 fail(out, i, NOT_LANDED)
                 next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
+    if waiting > 0:
+        n_landed = _file_landings(g, waiting, out, start, landings, pending, n_landed)
     _bounce_all(inputs, start, landings, pending[:n_landed], out)
 
 

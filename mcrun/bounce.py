@@ -46,13 +46,9 @@ def equivalent_surface_tilt(speed, phi, softness):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
-    """One impact on turf of normal n (unit, pointing out of the ground).
-
-    Returns (vx, vy, vz, wx, wy, wz, theta_c_rad, e, mu_c, rolling) after the impact, where
-    rolling is True when the ball leaves the equivalent surface rolling (eq. 3), False when it
-    slides through the impact (eq. 2).
-    """
+def incidence(vx, vy, vz, nx, ny, nz, softness):
+    """The first half of ``bounce``: the equivalent surface the ball at velocity v meets on turf
+    of normal n. Returns its unit normal (ex, ey, ez), the normal velocity v.e and theta_c."""
     vn = vx * nx + vy * ny + vz * nz
     tx = vx - vn * nx
     ty = vy - vn * ny
@@ -64,13 +60,19 @@ def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
     tz *= inverse_vt
     speed = math.sqrt(vx * vx + vy * vy + vz * vz)
     phi = atan2_first_quadrant(vt, abs(vn))
-    theta_c = equivalent_surface_tilt(speed, phi, turf.softness)
+    theta_c = equivalent_surface_tilt(speed, phi, softness)
     s, c = sincos_first_quadrant(theta_c)
     # Equivalent surface normal, tilted towards the incoming ball (eqs. 6, 7).
     ex = c * nx - s * tx
     ey = c * ny - s * ty
     ez = c * nz - s * tz
-    vne = vx * ex + vy * ey + vz * ez
+    return ex, ey, ez, vx * ex + vy * ey + vz * ez, theta_c
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def rebound(vx, vy, vz, wx, wy, wz, ex, ey, ez, vne, turf):
+    """The second half of ``bounce``: the impact on the equivalent surface of normal e, met at
+    normal velocity vne (``incidence``). Returns (vx, vy, vz, wx, wy, wz, e, mu_c, rolling)."""
     e = restitution(abs(vne), turf)
     # Slip of the contact point at -r n' along the equivalent surface.
     rx = -BALL_RADIUS_M * ex
@@ -80,10 +82,12 @@ def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
     uy = vy - vne * ey + (wz * rx - wx * rz)
     uz = vz - vne * ez + (wx * ry - wy * rx)
     u = math.sqrt(ux * ux + uy * uy + uz * uz)
-    mu_c = (2.0 / 7.0) * u / ((1.0 + e) * abs(vne))  # eq. (4)
-    rolling = turf.mu >= mu_c
+    # Eq. (4), mu_c = (2/7) |u| / ((1 + e) |v.n'|); the test mu >= mu_c without its division.
+    normal_impulse = (1.0 + e) * abs(vne)
+    mu_c = (2.0 / 7.0) * u / normal_impulse
+    rolling = turf.mu * normal_impulse >= (2.0 / 7.0) * u
     # Eq. (3): a rolling exit brings the slip to zero; eq. (2): sliding, friction throughout.
-    f = 2.0 / 7.0 if rolling else turf.mu * (1.0 + e) * abs(vne) / u
+    f = 2.0 / 7.0 if rolling else turf.mu * normal_impulse / u
     jx = -f * ux
     jy = -f * uy
     jz = -f * uz
@@ -97,7 +101,6 @@ def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
         wx + k * (ry * jz - rz * jy),
         wy + k * (rz * jx - rx * jz),
         wz + k * (rx * jy - ry * jx),
-        theta_c,
         e,
         mu_c,
         rolling,
@@ -105,12 +108,27 @@ def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
+    """One impact on turf of normal n (unit, pointing out of the ground).
+
+    Returns (vx, vy, vz, wx, wy, wz, theta_c_rad, e, mu_c, rolling) after the impact, where
+    rolling is True when the ball leaves the equivalent surface rolling (eq. 3), False when it
+    slides through the impact (eq. 2). In two halves, ``incidence`` and ``rebound``, that a
+    loop over many shots runs one after the other (``batch``).
+    """
+    ex, ey, ez, vne, theta_c = incidence(vx, vy, vz, nx, ny, nz, turf.softness)
+    vx, vy, vz, wx, wy, wz, e, mu_c, rolling = rebound(
+        vx, vy, vz, wx, wy, wz, ex, ey, ez, vne, turf
+    )
+    return vx, vy, vz, wx, wy, wz, theta_c, e, mu_c, rolling
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def hop_height(vx, vy, vz, nx, ny, nz):
     """Height above the ground plane of a ballistic hop leaving it at velocity v (no air)."""
     vn = vx * nx + vy * ny + vz * nz
-    if vn <= 0.0:
-        return 0.0
-    return vn * vn / (2.0 * G_MPS2 * nz)
+    # 1 / (g n_z) is the one division of the hop: its duration is 2 (v.n) / (g n_z).
+    return 0.5 * vn * vn * (1.0 / (G_MPS2 * nz)) if vn > 0.0 else 0.0
 
 
 def bounce_in_plane(speed_mps, angle_from_vertical_rad, backspin_radps, turf):

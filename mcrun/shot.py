@@ -19,7 +19,7 @@ import math
 
 from numba import njit
 
-from mcrun.bounce import bounce, hop_height
+from mcrun.bounce import hop_height, incidence, rebound
 from mcrun.constants import G_MPS2
 from mcrun.flight import hermite_root, rk4_step, rk4_step_quadratic
 from mcrun.launch import initial_state
@@ -32,6 +32,7 @@ from mcrun.status import (
     TOO_MANY_BOUNCES,
 )
 from mcrun.trajectory import BOUNCE, FLIGHT, ROLL, record
+from mcrun.trig import atan2_first_quadrant
 
 # A hop higher than this fraction of the one before ends the bouncing (see run_out). On level
 # turf the hops shrink by 5 % or more each time; on a downhill, gravity along the slope during
@@ -119,14 +120,25 @@ def impact(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, bounces, previous_height):
     and duration of the hop it starts, and whether the ball HOPS, ROLLS (the hop would be lower
     than the critical height, Penner 2002, or no lower than HOP_DECAY_LIMIT times the one
     before) or has bounced TOO_MANY times. Branch-free, for loops over many shots."""
-    vx, vy, vz, wx, wy, wz, _, _, _, _ = bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf)
+    ex, ey, ez, vne, _ = incidence(vx, vy, vz, nx, ny, nz, turf.softness)
+    return impact_rebound(
+        vx, vy, vz, wx, wy, wz, nx, ny, nz, ex, ey, ez, vne, turf, bounces, previous_height
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def impact_rebound(
+    vx, vy, vz, wx, wy, wz, nx, ny, nz, ex, ey, ez, vne, turf, bounces, previous_height
+):
+    """The rest of ``impact`` once ``bounce.incidence`` has found the equivalent surface."""
+    vx, vy, vz, wx, wy, wz, _, _, _ = rebound(vx, vy, vz, wx, wy, wz, ex, ey, ez, vne, turf)
     height = hop_height(vx, vy, vz, nx, ny, nz)
     rolls = (height < turf.critical_height_m) | (
         (bounces > 0) & (height > HOP_DECAY_LIMIT * previous_height)
     )
     then = ROLLS if rolls else (TOO_MANY if bounces == MAX_BOUNCES else HOPS)
     # Exact ballistic hop back to the plane: n.(v T - g z T^2 / 2) = 0.
-    hop_time = 2.0 * (vx * nx + vy * ny + vz * nz) / (G_MPS2 * nz)
+    hop_time = 2.0 * (vx * nx + vy * ny + vz * nz) * (1.0 / (G_MPS2 * nz))
     return vx, vy, vz, wx, wy, wz, height, hop_time, then
 
 
@@ -354,11 +366,50 @@ def _make_record_flight(rk4):
 record_flight = _make_record_flight(rk4_step)
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def landing_newton(h, z1, vz1, dt):
+    """The next length of the landing step: a Newton step on the height z1 (vertical speed
+    vz1) that a step of length h from the last state above the ground ends at, within [0, dt]."""
+    return min(max(h - z1 / vz1, 0.0), dt) if vz1 < 0.0 else h
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def landing_speed_angle(vx, vy, vz):
+    """Speed (m/s) and angle of descent from the vertical (deg) of a ball at velocity v."""
+    angle = atan2_first_quadrant(math.sqrt(vx * vx + vy * vy), abs(vz))
+    return (
+        math.sqrt(vx * vx + vy * vy + vz * vz),
+        math.degrees(math.pi - angle if vz > 0.0 else angle),
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def ground_normal(slope, fall_line):
+    """Unit normal of the ground plane of the given slope, in the core's frame: the fall line
+    (cos a, -sin a, 0), and the normal tilts towards it."""
+    if slope == 0.0:
+        return 0.0, 0.0, 1.0
+    sb = math.sin(slope)
+    return sb * math.cos(fall_line), -sb * math.sin(fall_line), math.cos(slope)
+
+
+@njit(cache=True)
+def write_landing(out, i, x, y, t, apex, speed, angle_deg, w):
+    """Write the flight fields of shot i, which lands at (x, y) at time t."""
+    out[i, CARRY] = x
+    out[i, CARRY_LATERAL] = -y
+    out[i, APEX] = apex
+    out[i, FLIGHT_TIME] = t
+    out[i, LANDING_SPEED] = speed
+    out[i, LANDING_ANGLE] = angle_deg
+    out[i, LANDING_SPIN] = w
+
+
 def _make_land(rk4):
     """``land`` for the RK4 step ``rk4`` (of ``flight``): one source for both steps."""
     record_flight = _make_record_flight(rk4)
 
-    @njit(cache=True)
+    @njit(cache=True, error_model="numpy")
     def land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n):
         """From the last step of the flight, (x, ..., w) at t above the ground and z1, vz1 below it:
         locate the landing and write the flight fields of shot i. Returns the ball at landing,
@@ -371,38 +422,18 @@ def _make_land(rk4):
         h = hermite_root(z, vz, z1, vz1, dt)
         for _ in range(2):
             _, _, z1, _, _, vz1, _ = rk4(x, y, z, vx, vy, vz, w, h, ctx)
-            if vz1 < 0.0:
-                h = min(max(h - z1 / vz1, 0.0), dt)
+            h = landing_newton(h, z1, vz1, dt)
         n = record_flight(traj, n, t, h, x, y, z, vx, vy, vz, w, ctx)
-        x, y, _, vx, vy, vz, w = rk4(x, y, z, vx, vy, vz, w, h, ctx)
+        x1, y1, _, vx1, vy1, vz1, w1 = rk4(x, y, z, vx, vy, vz, w, h, ctx)
+        # The apex may lie in the landing step (a flight of one or two steps).
+        apex = apex_after_step(apex, z, vz, 0.0, vz1, h)
         t += h
-        n = record(traj, n, t, x, y, 0.0, FLIGHT)
-        out[i, CARRY] = x
-        out[i, CARRY_LATERAL] = -y
-        out[i, APEX] = apex
-        out[i, FLIGHT_TIME] = t
-        out[i, LANDING_SPEED] = math.sqrt(vx * vx + vy * vy + vz * vz)
-        out[i, LANDING_ANGLE] = math.degrees(math.atan2(math.hypot(vx, vy), -vz))
-        out[i, LANDING_SPIN] = w
-        # The ground: the plane of the given slope through the landing point. The fall line in the
-        # core's frame is (cos a, -sin a, 0); the normal tilts towards it.
-        sb = math.sin(slope)
+        n = record(traj, n, t, x1, y1, 0.0, FLIGHT)
+        speed, angle_deg = landing_speed_angle(vx1, vy1, vz1)
+        write_landing(out, i, x1, y1, t, apex, speed, angle_deg, w1)
+        nx, ny, nz = ground_normal(slope, fall_line)
         ax, ay, az = ctx[0], ctx[1], ctx[2]
-        return (
-            x,
-            y,
-            vx,
-            vy,
-            vz,
-            w * ax,
-            w * ay,
-            w * az,
-            t,
-            sb * math.cos(fall_line),
-            -sb * math.sin(fall_line),
-            math.cos(slope),
-            n,
-        )
+        return x1, y1, vx1, vy1, vz1, w1 * ax, w1 * ay, w1 * az, t, nx, ny, nz, n
 
     return land
 

@@ -46,11 +46,12 @@ _COS = (
 @njit(cache=True, error_model="numpy", inline="always")
 def atan2_first_quadrant(y, x):
     """atan2(y, x) for y >= 0, x >= 0 (not both zero), in [0, pi/2]."""
+    small = min(x, y)
     big = max(x, y)
-    a = min(x, y) / big  # in [0, 1]
-    # Cephes: above 0.66, atan(a) = pi/4 + atan((a - 1) / (a + 1)).
-    reduced = a > 0.66
-    u = (a - 1.0) / (a + 1.0) if reduced else a
+    # atan(a) of a = small / big in [0, 1]. Cephes: above a = 0.66, atan(a) = pi/4 +
+    # atan((a - 1) / (a + 1)), here (small - big) / (small + big): one division either way.
+    reduced = small > 0.66 * big
+    u = (small - big if reduced else small) / (small + big if reduced else big)
     z = u * u
     p = (((_ATAN_P[0] * z + _ATAN_P[1]) * z + _ATAN_P[2]) * z + _ATAN_P[3]) * z + _ATAN_P[4]
     q = ((((z + _ATAN_Q[0]) * z + _ATAN_Q[1]) * z + _ATAN_Q[2]) * z + _ATAN_Q[3]) * z + _ATAN_Q[4]
