@@ -58,19 +58,31 @@ def wind_factor(z, profile, reference_height, parameter):
     return (z / reference_height) ** parameter
 
 
-@njit(cache=True, error_model="numpy")
-def forces(ux, uy, uz, speed, spin, axis_x, axis_y, axis_z, k_cd, k_cl, cd, cl):
-    """Acceleration and spin decay from the air-relative velocity u (|u| = speed > 0).
+@njit(cache=True, error_model="numpy", inline="always")
+def air_speed(ux, uy, uz, axis_x, axis_y, axis_z):
+    """What the forces need of the air-relative velocity u (|u| > 0): its speed |u|, 1 / |u|,
+    and the lift's direction l = w_hat x u with the scale |u|^2 / |l| that gives the lift its
+    |u|^2 (0 where l vanishes, u along the spin axis). Two square roots and one division."""
+    lx = axis_y * uz - axis_z * uy
+    ly = axis_z * ux - axis_x * uz
+    lz = axis_x * uy - axis_y * ux
+    speed = math.sqrt(ux * ux + uy * uy + uz * uz)
+    norm = math.sqrt(lx * lx + ly * ly + lz * lz)
+    lifts = norm > 1e-12 * speed
+    inverse = 1.0 / (speed * norm if lifts else speed)
+    inverse_speed = norm * inverse if lifts else inverse
+    lift_scale = speed * speed * speed * inverse if lifts else 0.0
+    return speed, inverse_speed, lx, ly, lz, lift_scale
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def forces(ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, k_cd, k_cl, cd, cl):
+    """Acceleration and spin decay from the air-relative velocity u and ``air_speed``'s terms.
 
     k_cd = k C_D-scale and k_cl = k C_L-scale, with k = rho A / (2 m).
     """
     drag = k_cd * cd * speed
-    # Lift along w x v_rel, scaled to |v_rel|^2.
-    lx = axis_y * uz - axis_z * uy
-    ly = axis_z * ux - axis_x * uz
-    lz = axis_x * uy - axis_y * ux
-    norm = math.sqrt(lx * lx + ly * ly + lz * lz)
-    lift = k_cl * cl * speed * speed / norm if norm > 1e-12 * speed else 0.0
+    lift = k_cl * cl * lift_scale
     ax = -drag * ux + lift * lx
     ay = -drag * uy + lift * ly
     az = -drag * uz + lift * lz - G_MPS2
@@ -89,15 +101,15 @@ def derivatives(vx, vy, vz, spin, z, ctx):
     ux = vx - f * p.wind_x_mps
     uy = vy - f * p.wind_y_mps
     uz = vz
-    speed = math.sqrt(ux * ux + uy * uy + uz * uz)
-    if speed == 0.0:
+    if ux == 0.0 and uy == 0.0 and uz == 0.0:
         return 0.0, 0.0, -G_MPS2, 0.0
-    spin_ratio = BALL_RADIUS_M * spin / speed
+    speed, inverse_speed, lx, ly, lz, lift_scale = air_speed(ux, uy, uz, axis_x, axis_y, axis_z)
+    spin_ratio = BALL_RADIUS_M * spin * inverse_speed
     reynolds = speed * 2.0 * BALL_RADIUS_M / p.kinematic_viscosity_m2ps
     cd, cl = coefficients(p.aero_model, spin_ratio, reynolds, table)
     k = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
     return forces(
-        ux, uy, uz, speed, spin, axis_x, axis_y, axis_z, k * p.cd_scale, k * p.cl_scale, cd, cl
+        ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, k * p.cd_scale, k * p.cl_scale, cd, cl
     )
 
 
@@ -113,9 +125,9 @@ def derivatives_quadratic(vx, vy, vz, spin, z, ctx):
     ux = vx - wind_x
     uy = vy - wind_y
     uz = vz
-    speed = math.sqrt(ux * ux + uy * uy + uz * uz)
-    cd, cl = quadratic(BALL_RADIUS_M * spin / speed, a0, a1, a2, b0, b1, b2, s_max)
-    return forces(ux, uy, uz, speed, spin, axis_x, axis_y, axis_z, k_cd, k_cl, cd, cl)
+    speed, inverse_speed, lx, ly, lz, lift_scale = air_speed(ux, uy, uz, axis_x, axis_y, axis_z)
+    cd, cl = quadratic(BALL_RADIUS_M * spin * inverse_speed, a0, a1, a2, b0, b1, b2, s_max)
+    return forces(ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, k_cd, k_cl, cd, cl)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
