@@ -165,6 +165,9 @@ SHOTS = {
         "ferguson2022", 40.0, 4.0, 450.0, azimuth=3.0, wind=(-6.0, 3.0), wind_profile="log"
     ),
     "punch, 5000 ft": shot("smits_smith1994", 45.0, 6.0, 500.0, air={"altitude_m": 1524.0}),
+    # Flights of one and two steps: the landing and the apex lie in the step from the ground.
+    "chip, shorter than one step": shot("trackman2019", 10.0, 5.0, 100.0),
+    "chip, two steps": shot("ferguson2022", 12.0, 8.0, 150.0, wind=(2.0, 3.0)),
 }
 
 
