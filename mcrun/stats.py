@@ -45,6 +45,7 @@ finding of Penner (2002) that the impact angle governs the run.
 """
 
 import math
+import operator
 
 import numpy as np
 import pyarrow.parquet as pq
@@ -209,6 +210,24 @@ class PointStats:
             return math.nan
         return float(cov[i, j] / math.sqrt(cov[i, i] * cov[j, j]))
 
+    def bounds(self, name):
+        """(min, max) of a column over the ok shots."""
+        k = self.index[name]
+        return float(self.moments.min[k]), float(self.moments.max[k])
+
+    def distance_bounds(self, target_x, target_y):
+        """(lo, hi) that hold the distance of every ok shot's final position to the target,
+        from the box of the final positions (widened by a few roundings)."""
+        x0, x1 = self.bounds("final_x_m")
+        y0, y1 = self.bounds("final_y_m")
+        near = math.hypot(
+            max(x0 - target_x, 0.0, target_x - x1), max(y0 - target_y, 0.0, target_y - y1)
+        )
+        far = math.hypot(
+            max(abs(x0 - target_x), abs(x1 - target_x)), max(abs(y0 - target_y), abs(y1 - target_y))
+        )
+        return near * (1.0 - 1e-12), far * (1.0 + 1e-12)
+
     def varies(self, name):
         k = self.index[name]
         return bool(self.moments.max[k] > self.moments.min[k])
@@ -271,42 +290,61 @@ def _lerp(a, b, t):
     return np.where(t >= 0.5, b - diff * (1.0 - t), a + diff * t)
 
 
-def quantiles_from_ranks(n, quantiles, order_statistic):
-    """Percentiles (pandas' default) from ``order_statistic(ranks) -> values``."""
-    lo, hi, gamma = _order_statistics_positions(n, quantiles)
-    ranks = np.unique(np.concatenate([lo, hi]))
-    values = dict(zip(ranks.tolist(), order_statistic(ranks), strict=True))
-    a = np.array([values[r] for r in lo.tolist()])
-    b = np.array([values[r] for r in hi.tolist()])
-    return _lerp(a, b, gamma)
-
-
 def exact_quantiles(source, n, quantiles, budget_bytes=DEFAULT_BUDGET_BYTES):
     """Exact quantiles (pandas' linear interpolation) of the values ``source()`` yields.
 
     ``source`` is called once per pass and returns an iterable of 1-D float arrays whose
     concatenation is the sample (n values). Memory: at most ``budget_bytes`` of values at once
-    (plus one array from the source): the sample is sorted whole when it fits, otherwise its
-    order statistics are found by histogram-then-select.
+    (plus one array from the source): the sample is taken whole when it fits, otherwise its
+    order statistics are found by histogram-then-select. ``exact_quantiles_of`` for several
+    samples at once.
     """
+    variables = {"values": (np.asarray, quantiles)}
+    return exact_quantiles_of(source, variables, n, budget_bytes)[0]["values"]
+
+
+def exact_quantiles_of(chunks, variables, n, budget_bytes=DEFAULT_BUDGET_BYTES, bounds=None):
+    """Exact quantiles of several samples of n values each, read in the same passes.
+
+    ``chunks`` is called once per pass and returns an iterable of chunks; ``variables`` maps a
+    name to (values_of, quantiles), values_of(chunk) giving a 1-D float array of the chunk's
+    values of that sample. ``bounds`` may map a name to (lo, hi) that hold all its values (it
+    saves the pass that finds them). Memory: at most ``budget_bytes`` of values at once, for all
+    the samples together (plus one chunk). Returns ({name: quantiles}, {name: sum of the
+    values}), the sums added chunk by chunk.
+    """
+    sums = dict.fromkeys(variables, 0.0)
     if n == 0:
-        return np.full(len(quantiles), np.nan)
+        return {name: np.full(len(q), np.nan) for name, (_, q) in variables.items()}, sums
+    positions = {name: _order_statistics_positions(n, q) for name, (_, q) in variables.items()}
     cap = max(budget_bytes // 8, 1)
-
-    def order_statistic(ranks):
-        if n <= cap:
-            values = np.sort(np.concatenate([np.asarray(v, dtype=float) for v in source()]))
-            if len(values) != n:
-                raise ValueError(f"the source gave {len(values)} values, expected {n}")
-            return values[ranks]
-        lo, hi = math.inf, -math.inf
-        for v in source():
-            if len(v):
-                lo, hi = min(lo, float(np.min(v))), max(hi, float(np.max(v)))
-        found = _select(source, [int(r) for r in ranks], lo, hi, 0, n, cap)
-        return np.array([found[int(r)] for r in ranks])
-
-    return quantiles_from_ranks(n, quantiles, order_statistic)
+    bounds = dict(bounds or {})
+    if n * len(variables) <= cap:  # read whole
+        bounds = dict.fromkeys(variables, (-math.inf, math.inf))
+    missing = [name for name in variables if name not in bounds]
+    if missing:
+        low = dict.fromkeys(missing, math.inf)
+        high = dict.fromkeys(missing, -math.inf)
+        for chunk in chunks():
+            for name, (values_of, _) in variables.items():
+                v = np.asarray(values_of(chunk), dtype=float)
+                sums[name] += float(np.sum(v))
+                if name in low and len(v):
+                    low[name] = min(low[name], float(np.min(v)))
+                    high[name] = max(high[name], float(np.max(v)))
+        bounds.update({name: (low[name], high[name]) for name in missing})
+    requests = {}
+    for name, (values_of, _) in variables.items():
+        lo, hi, _ = positions[name]
+        ranks = np.unique(np.concatenate([lo, hi])).tolist()
+        requests[name] = (values_of, ranks, *bounds[name], 0, n)
+    found = _select(requests, chunks, cap, sums=None if missing else sums)
+    quantiles = {}
+    for name, (lo, hi, gamma) in positions.items():
+        a = np.array([found[name][r] for r in lo.tolist()])
+        b = np.array([found[name][r] for r in hi.tolist()])
+        quantiles[name] = _lerp(a, b, gamma)
+    return quantiles, sums
 
 
 def _in_range(v, lo, hi):
@@ -314,54 +352,113 @@ def _in_range(v, lo, hi):
     return v[(v >= lo) & (v <= hi)]
 
 
-def _select(source, ranks, lo, hi, below, count, cap):
-    """Order statistics ``ranks`` (0-based, of the whole sample) that lie among the ``count``
-    values within [lo, hi], ``below`` values being < lo. Returns {rank: value}."""
-    if lo == hi:
-        return dict.fromkeys(ranks, lo)
-    if count <= cap:
-        values = np.sort(np.concatenate([_in_range(v, lo, hi) for v in source()]))
-        return {r: float(values[r - below]) for r in ranks}
-    bins = _HISTOGRAM_BINS
-    scale = bins / (hi - lo)
+def _bin_scale(lo, hi):
+    """Bins per unit of the histogram of [lo, hi] (lo < hi, finite)."""
+    scale = _HISTOGRAM_BINS / (hi - lo)
     if not math.isfinite(scale):
-        scale = bins / (hi / 2.0 - lo / 2.0) / 2.0
+        scale = _HISTOGRAM_BINS / (hi / 2.0 - lo / 2.0) / 2.0
+    return scale
 
-    def bin_of(v):
-        return np.minimum(((v - lo) * scale).astype(np.int64), bins - 1)
 
-    counts = np.zeros(bins, dtype=np.int64)
-    for v in source():
-        counts += np.bincount(bin_of(_in_range(v, lo, hi)), minlength=bins)
-    starts = below + np.concatenate([[0], np.cumsum(counts)[:-1]])
-    wanted = {}
-    for r in ranks:
-        b = int(np.searchsorted(starts, r, side="right") - 1)
-        while counts[b] == 0:  # empty bins share the start of the next non-empty one
-            b += 1
-        wanted.setdefault(b, []).append(r)
-    # Second pass: each wanted bin's values when they fit, else its exact min and max.
-    share = max(cap // len(wanted), 1)  # the collected bins together stay within the cap
-    small = {b: [] for b in wanted if counts[b] <= share}
-    bounds = {b: [math.inf, -math.inf] for b in wanted if counts[b] > share}
-    for v in source():
-        v = _in_range(v, lo, hi)
-        index = bin_of(v)
-        for b in small:
-            small[b].append(v[index == b])
-        for b, mm in bounds.items():
-            x = v[index == b]
-            if len(x):
-                mm[0], mm[1] = min(mm[0], float(x.min())), max(mm[1], float(x.max()))
+def _bin_of(v, lo, scale):
+    return np.minimum(((v - lo) * scale).astype(np.int64), _HISTOGRAM_BINS - 1)
+
+
+def _select(requests, chunks, cap, sums=None):
+    """Order statistics of several samples, read in the same passes.
+
+    ``requests`` maps a name to (values_of, ranks, lo, hi, below, count): the order statistics
+    ``ranks`` (0-based, of the whole sample) that lie among the ``count`` values within
+    [lo, hi], ``below`` values being < lo; values_of(chunk) gives a chunk's values of the
+    sample. A request whose values fit its share of ``cap`` is read whole; the others are
+    histogrammed, and a second pass collects the bins that hold the wanted ranks, or the exact
+    min and max of a bin still too large, refined in turn. ``sums``, if given, receives the sum
+    of every sample's values in the first pass. Returns {name: {rank: value}}.
+    """
     found = {}
-    for b, rs in wanted.items():
-        if b in small:
-            values = np.sort(np.concatenate(small[b]))
-            found.update({r: float(values[r - int(starts[b])]) for r in rs})
+    share = max(cap // len(requests), 1)
+    whole = {}
+    histograms = {}
+    for name, (_, ranks, lo, hi, _, count) in requests.items():
+        if lo == hi:
+            found[name] = dict.fromkeys(ranks, lo)
+        elif count <= share:
+            whole[name] = []
         else:
-            # bin_of is monotone, so the bin's values are exactly those within its min..max.
-            mn, mx = bounds[b]
-            found.update(_select(source, rs, mn, mx, int(starts[b]), int(counts[b]), share))
+            histograms[name] = (_bin_scale(lo, hi), np.zeros(_HISTOGRAM_BINS, dtype=np.int64))
+    for chunk in chunks() if whole or histograms or sums is not None else ():
+        for name, (values_of, _, lo, hi, _, _) in requests.items():
+            v = np.asarray(values_of(chunk), dtype=float)
+            if sums is not None:
+                sums[name] += float(np.sum(v))
+            if name in whole:
+                whole[name].append(_in_range(v, lo, hi))
+            elif name in histograms:
+                scale, counts = histograms[name]
+                counts += np.bincount(
+                    _bin_of(_in_range(v, lo, hi), lo, scale), minlength=_HISTOGRAM_BINS
+                )
+    for name, parts in whole.items():
+        ranks, below, count = requests[name][1], requests[name][4], requests[name][5]
+        values = np.concatenate(parts)
+        if len(values) != count:
+            raise ValueError(f"the source gave {len(values)} values, expected {count}")
+        kth = [r - below for r in ranks]
+        found[name] = dict(zip(ranks, np.partition(values, kth)[kth].tolist(), strict=True))
+    if not histograms:
+        return found
+    # The bins that hold the wanted ranks (empty bins share the start of the next non-empty).
+    wanted = {}
+    for name, (_, counts) in histograms.items():
+        _, ranks, _, _, below, _ = requests[name]
+        starts = below + np.concatenate([[0], np.cumsum(counts)[:-1]])
+        bins = {}
+        for r in ranks:
+            b = int(np.searchsorted(starts, r, side="right") - 1)
+            while counts[b] == 0:
+                b += 1
+            bins.setdefault(b, []).append(r)
+        wanted[name] = (bins, starts)
+    # Second pass: each wanted bin's values when they fit (the collected bins together stay
+    # within the cap), else its exact min and max.
+    bin_share = max(cap // sum(len(bins) for bins, _ in wanted.values()), 1)
+    collect = {}
+    big = {}
+    for name, (bins, _) in wanted.items():
+        counts = histograms[name][1]
+        collect[name] = (np.zeros(_HISTOGRAM_BINS, dtype=bool), [], [])
+        collect[name][0][[b for b in bins if counts[b] <= bin_share]] = True
+        big[name] = {b: [math.inf, -math.inf] for b in bins if counts[b] > bin_share}
+    for chunk in chunks():
+        for name, (keep, values, index) in collect.items():
+            values_of, _, lo, hi, _, _ = requests[name]
+            v = _in_range(values_of(chunk), lo, hi)
+            i = _bin_of(v, lo, histograms[name][0])
+            kept = keep[i]
+            values.append(v[kept])
+            index.append(i[kept])
+            for b, mm in big[name].items():
+                x = v[i == b]
+                if len(x):
+                    mm[0], mm[1] = min(mm[0], float(x.min())), max(mm[1], float(x.max()))
+    refine = {}
+    for name, (bins, starts) in wanted.items():
+        values = np.concatenate(collect[name][1])
+        index = np.concatenate(collect[name][2])
+        counts = histograms[name][1]
+        found.setdefault(name, {})
+        for b, rs in bins.items():
+            if b in big[name]:
+                # _bin_of is monotone: the bin's values are exactly those within its min..max.
+                mn, mx = big[name][b]
+                refine[name, b] = (requests[name][0], rs, mn, mx, int(starts[b]), int(counts[b]))
+            else:
+                in_bin = np.sort(values[index == b])
+                found[name].update({r: float(in_bin[r - int(starts[b])]) for r in rs})
+    del collect
+    if refine:
+        for (name, _), more in _select(refine, chunks, cap).items():
+            found[name].update(more)
     return found
 
 
@@ -379,15 +476,6 @@ class ShotsColumns:
                 table = f.read_row_group(g, columns=[*columns, "status"])
                 ok = table.column("status").to_numpy() == status_codes.OK
                 yield {c: table.column(c).to_numpy()[ok] for c in columns}
-
-    def column(self, name):
-        return lambda: (c[name] for c in self.chunks([name]))
-
-    def distance(self, target_x, target_y):
-        return lambda: (
-            np.hypot(c["final_x_m"] - target_x, c["final_y_m"] - target_y)
-            for c in self.chunks(["final_x_m", "final_y_m"])
-        )
 
 
 def _percentile_name(p):
@@ -414,12 +502,26 @@ def summarise(
     for code, name in enumerate(_STATUS_NAMES):
         if code != status_codes.OK:
             row[f"n_{name}"] = int(stats.status_counts[code])
+    if target_m is None:
+        target_m = (stats.mean("final_x_m"), stats.mean("final_y_m"))
+    tx, ty = (float(t) for t in target_m)
+    # The percentiles of every quantity and of the distance to the target, in the same passes
+    # over shots.parquet; the streaming minima and maxima bound the histograms.
     q = np.array(PERCENTILES) / 100.0
+    variables = {name: (operator.itemgetter(name), q) for name in QUANTITIES}
+    variables["distance"] = (
+        lambda c: np.hypot(c["final_x_m"] - tx, c["final_y_m"] - ty),
+        np.array(DISTANCE_PERCENTILES) / 100.0,
+    )
+    bounds = {name: stats.bounds(name) for name in QUANTITIES}
+    bounds["distance"] = stats.distance_bounds(tx, ty)
+    quantiles, sums = exact_quantiles_of(
+        lambda: columns.chunks([*QUANTITIES, "final_x_m"]), variables, n_ok, budget_bytes, bounds
+    )
     for name in QUANTITIES:
         row[f"{name}_mean"] = stats.mean(name)
         row[f"{name}_std"] = math.sqrt(stats.covariance(name, name)) if n_ok > 1 else math.nan
-        values = exact_quantiles(columns.column(name), n_ok, q, budget_bytes)
-        for p, v in zip(PERCENTILES, values, strict=True):
+        for p, v in zip(PERCENTILES, quantiles[name], strict=True):
             row[f"{name}_{_percentile_name(p)}"] = float(v)
     row["final_x_m_mean"] = stats.mean("final_x_m")
     cxx = stats.covariance("final_x_m", "final_x_m")
@@ -432,20 +534,9 @@ def summarise(
         row[f"ellipse{level}_semi_minor_m"] = b
         row[f"ellipse{level}_angle_deg"] = angle
         row[f"ellipse{level}_area_m2"] = area
-    if target_m is None:
-        target_m = (row["final_x_m_mean"], row["final_y_m_mean"])
-    tx, ty = (float(t) for t in target_m)
     row["target_x_m"], row["target_y_m"] = tx, ty
-    distance = columns.distance(tx, ty)
-    if n_ok:
-        total = 0.0
-        for d in distance():
-            total += float(np.sum(d))
-        row["distance_mean_m"] = total / n_ok
-    else:
-        row["distance_mean_m"] = math.nan
-    radii = exact_quantiles(distance, n_ok, np.array(DISTANCE_PERCENTILES) / 100.0, budget_bytes)
-    for p, v in zip(DISTANCE_PERCENTILES, radii, strict=True):
+    row["distance_mean_m"] = sums["distance"] / n_ok if n_ok else math.nan
+    for p, v in zip(DISTANCE_PERCENTILES, quantiles["distance"], strict=True):
         row[f"distance_r{p}_m"] = float(v)
     for y in DRIVEN:
         src, r2 = stats.drivers(y, drivers, derived_r2)
