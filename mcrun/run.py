@@ -398,42 +398,53 @@ def _stream(
     from tqdm import tqdm
 
     show = bool(progress) and sys.stderr.isatty()
-    # Two output buffers, taken in turn by the full chunks (the last chunk of a point gets its
-    # own): a chunk is written to Parquet on a thread of its own while the next one is sampled
-    # and simulated (pyarrow encodes without the GIL), in order, one write at a time.
+    # A pipeline of three threads: while the kernel simulates a chunk (on every core, without
+    # the GIL), one thread samples the next chunk and another adds the chunk before to the
+    # statistics and writes it to Parquet (numpy and pyarrow release the GIL too). The
+    # statistics take the chunks in order, so they do not depend on the timing. Two output
+    # buffers, taken in turn by the full chunks (the last chunk of a point gets its own).
     full = n >= chunk_size
     buffers = [np.empty((chunk_size, N_OUTCOME), order="F") if full else None for _ in range(2)]
     traj_buffer = np.empty((4096, 5))
-    all_stats = []
-    chunk = 0
-    writing = None  # the write of the previous chunk
+    all_stats = [stats.PointStats(drivers) for drivers in drivers_per_point]
+    chunks = [
+        (j, point, start, min(start + chunk_size, n))
+        for j, point in enumerate(points)
+        for start in range(0, n, chunk_size)
+    ]
+
+    def finish(point_stats, point, start, sampled, out):
+        point_stats.update(out, sampled)
+        shots_writer.write(point.index, start, sampled, out)
+
+    writing = None  # the statistics and the write of the chunk before
     with (
+        ThreadPoolExecutor(max_workers=1) as sampler,
         ThreadPoolExecutor(max_workers=1) as writer,
         tqdm(
             total=n * len(points), unit="shot", unit_scale=True, disable=not show, smoothing=0.1
         ) as bar,
     ):
-        for point, drivers in zip(points, drivers_per_point, strict=True):
-            if len(points) > 1:
+        sampling_next = (
+            sampler.submit(sampling.sample, scenario, *chunks[0][1:]) if chunks else None
+        )
+        for k, (j, point, start, stop) in enumerate(chunks):
+            if len(points) > 1 and start == 0:
                 bar.set_description(point.label or f"point {point.index}")
-            point_stats = stats.PointStats(drivers)
-            for start in range(0, n, chunk_size):
-                stop = min(start + chunk_size, n)
-                inputs, sampled = sampling.sample(scenario, point, start, stop)
-                out = buffers[chunk % 2] if stop - start == chunk_size else None
-                out = simulate_batch(inputs, out)
-                point_stats.update(out, sampled)
-                if writing is not None:
-                    writing.result()  # frees the other buffer; raises what the write raised
-                writing = writer.submit(shots_writer.write, point.index, start, sampled, out)
-                chunk += 1
-                if traj_writer is not None:
-                    traj_buffer = _trajectories(
-                        traj_writer, inputs, point.index, start, stop, every, traj_buffer
-                    )
-                    traj_writer.flush()
-                bar.update(stop - start)
-            all_stats.append(point_stats)
+            inputs, sampled = sampling_next.result()
+            if k + 1 < len(chunks):
+                sampling_next = sampler.submit(sampling.sample, scenario, *chunks[k + 1][1:])
+            out = buffers[k % 2] if stop - start == chunk_size else None
+            out = simulate_batch(inputs, out)
+            if writing is not None:
+                writing.result()  # frees the other buffer; raises what the write raised
+            writing = writer.submit(finish, all_stats[j], point, start, sampled, out)
+            if traj_writer is not None:
+                traj_buffer = _trajectories(
+                    traj_writer, inputs, point.index, start, stop, every, traj_buffer
+                )
+                traj_writer.flush()
+            bar.update(stop - start)
         if writing is not None:
             writing.result()
     return all_stats
