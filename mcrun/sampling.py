@@ -299,8 +299,9 @@ def _air(t_k, pressure, humidity):
     return rho, atmosphere.kinematic_viscosity_m2ps(t_k, rho)
 
 
-def _convert(scenario, point, raw, columns):
-    """(inputs, sampled) of one block from its raw draws."""
+def _convert(scenario, point, raw, columns, inputs=None):
+    """(inputs, sampled) of one block from its raw draws; ``inputs`` may be given, a view of
+    block_size rows to fill. A sampled column that is constant is a read-only broadcast view."""
     n = scenario.block_size
     p = point.params
     launch = {}
@@ -346,7 +347,8 @@ def _convert(scenario, point, raw, columns):
         stimp = math.nan
         rho_g = raw["turf.rho_g"]
 
-    inputs = np.empty((n, N_INPUT), order="F")
+    if inputs is None:
+        inputs = np.empty((n, N_INPUT), order="F")
     values = {
         "ball_speed_mps": launch["ball_speed"],
         "launch_angle_rad": launch["launch_angle"],
@@ -434,6 +436,10 @@ def _convert(scenario, point, raw, columns):
     return inputs, sampled
 
 
+def _dtype(name):
+    return np.int64 if name == "source_row" else float
+
+
 def sample(scenario, point, start, stop):
     """The kernel inputs and the sampled columns of samples ``start`` .. ``stop - 1`` of a point.
 
@@ -442,7 +448,8 @@ def sample(scenario, point, start, stop):
     inputs : ndarray, shape (stop - start, N_INPUT), Fortran order
         Columns ``mcrun.batch.INPUT_FIELDS``, SI, user frame.
     sampled : dict of str -> ndarray
-        ``sampled_columns(scenario)``, each of length stop - start, with units in the names.
+        ``sampled_columns(scenario)``, each of length stop - start, with units in the names;
+        a column that is constant for the point is a read-only broadcast view.
     """
     start = int(start)
     stop = int(stop)
@@ -452,20 +459,30 @@ def sample(scenario, point, start, stop):
     n = stop - start
     columns = sampled_columns(scenario)
     inputs = np.empty((n, N_INPUT), order="F")
-    sampled = {
-        name: np.empty(n, dtype=np.int64 if name == "source_row" else float) for name in columns
-    }
+    sampled = {}
     if n == 0:
-        return inputs, sampled
+        return inputs, {name: np.empty(0, dtype=_dtype(name)) for name in columns}
     for block in range(start // size, (stop - 1) // size + 1):
         first = block * size
         lo = max(start, first) - first
         hi = min(stop, first + size) - first
-        block_inputs, block_sampled = _convert(
-            scenario, point, draw_block(scenario, point, block), columns
-        )
         at = first + lo - start
-        inputs[at : at + hi - lo] = block_inputs[lo:hi]
+        whole = lo == 0 and hi == size  # the block's rows go straight into ``inputs``
+        block_inputs, block_sampled = _convert(
+            scenario,
+            point,
+            draw_block(scenario, point, block),
+            columns,
+            inputs[at : at + size] if whole else None,
+        )
+        if not whole:
+            inputs[at : at + hi - lo] = block_inputs[lo:hi]
         for name in columns:
-            sampled[name][at : at + hi - lo] = block_sampled[name][lo:hi]
+            values = block_sampled[name]
+            if values.strides == (0,):  # constant for the point, so in every block
+                sampled[name] = np.broadcast_to(values[:1], (n,))
+                continue
+            if name not in sampled:
+                sampled[name] = np.empty(n, dtype=_dtype(name))
+            sampled[name][at : at + hi - lo] = values[lo:hi]
     return inputs, sampled
