@@ -79,13 +79,20 @@ COLUMN = {name: k for k, name in enumerate(INPUT_FIELDS)}
 
 
 @njit(cache=True, error_model="numpy")
+def _turf(inputs, i):
+    """Turf of shot i."""
+    c = inputs[i]
+    return Turf(c[15], c[16], c[17], c[18], c[19], c[20], c[21], c[22], c[23])
+
+
+@njit(cache=True, error_model="numpy")
 def _params(inputs, i):
     """FlightParams and Turf of shot i."""
     c = inputs[i]
     p = make_flight_params(
         c[5], c[6], int(c[7]), c[8], c[9], c[10], c[11], int(c[12]), c[13], c[14]
     )
-    return p, Turf(c[15], c[16], c[17], c[18], c[19], c[20], c[21], c[22], c[23])
+    return p, _turf(inputs, i)
 
 
 @njit(cache=True, error_model="numpy")
@@ -290,8 +297,10 @@ def _rk4_lanes(lanes):
 def _step_lanes(lanes):
     """One flight step of every lane. A lane whose ball stays in the air takes the new state,
     its apex and time; one that went below the ground keeps the state before the step, for
-    ``_land_lanes``, and the step's z1 and vz1."""
+    ``_land_lanes``, and the step's z1 and vz1. Returns the number of lanes (empty ones
+    included) that went below the ground or past MAX_FLIGHT_TIME_S."""
     _rk4_lanes(lanes)
+    events = 0
     for k in range(LANES):
         z = lanes[Z * LANES + k]
         vz = lanes[VZ * LANES + k]
@@ -309,6 +318,8 @@ def _step_lanes(lanes):
         lanes[VY * LANES + k] = lanes[VY * LANES + k] if landed else lanes[VY1 * LANES + k]
         lanes[VZ * LANES + k] = vz if landed else vz1
         lanes[W * LANES + k] = lanes[W * LANES + k] if landed else lanes[W1 * LANES + k]
+        events += 1 if landed | (lanes[T * LANES + k] > MAX_FLIGHT_TIME_S) else 0
+    return events
 
 
 @njit(cache=True, error_model="numpy")
@@ -377,7 +388,8 @@ N_LANDING = 12
 @njit(cache=True, error_model="numpy")
 def _impact_lanes(b):
     """One impact, and the hop it starts, for every bounce lane: ``shot.impact`` in two
-    vectorised loops (as ``_step_lanes``, so that the lanes' long chains overlap)."""
+    vectorised loops (as ``_step_lanes``, so that the lanes' long chains overlap). Returns the
+    number of lanes (empty ones included) whose ball no longer hops."""
     for k in range(LANES):
         ex, ey, ez, vne, _ = incidence(
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BNX * LANES + k],
@@ -387,6 +399,7 @@ def _impact_lanes(b):
         b[EY * LANES + k] = ey
         b[EZ * LANES + k] = ez
         b[VNE * LANES + k] = vne
+    ended = 0
     for k in range(LANES):
         turf = Turf(
             b[MU * LANES + k],
@@ -425,6 +438,8 @@ def _impact_lanes(b):
         b[PREVIOUS * LANES + k] = height if hops else b[PREVIOUS * LANES + k]
         b[BOUNCES * LANES + k] = bounces + 1.0 if hops else bounces
         b[THEN * LANES + k] = then
+        ended += 0 if hops else 1
+    return ended
 
 
 @njit(cache=True, error_model="numpy")
@@ -478,7 +493,8 @@ def _bounce_all(inputs, start, landings, pending, out):
     for k in range(LANES):
         next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
     while _any_lane_busy(shot):
-        _impact_lanes(b)
+        if _impact_lanes(b) == 0:
+            continue
         for k in range(LANES):
             i = shot[k]
             if i < 0:
@@ -501,7 +517,6 @@ def _bounce_all(inputs, start, landings, pending, out):
                     s[FIRST_LENGTH],
                 )
             else:
-                _, turf = _params(inputs, i)
                 x, y, _, t, status, _ = roll_out(
                     s[BX],
                     s[BY],
@@ -515,7 +530,7 @@ def _bounce_all(inputs, start, landings, pending, out):
                     s[BNX],
                     s[BNY],
                     s[BNZ],
-                    turf,
+                    _turf(inputs, i),
                     s[BT],
                     no_trajectory,
                     0,
@@ -543,7 +558,8 @@ def _lockstep(inputs, start, stop, table, out):
     for k in range(LANES):
         next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
     while _any_lane_busy(shot):
-        _step_lanes(lanes)
+        if _step_lanes(lanes) == 0:
+            continue
         for k in range(LANES):
             i = shot[k]
             if i < 0:
@@ -569,7 +585,7 @@ def _lockstep(inputs, start, stop, table, out):
 
 
 # Shots per parallel task: enough to keep the lanes full, few enough to balance two threads.
-TASK_SHOTS = 512
+TASK_SHOTS = 2048
 
 
 @njit(parallel=True, cache=True, error_model="numpy", nogil=True)
