@@ -9,6 +9,7 @@ import math
 from numba import njit
 
 from mcrun.constants import BALL_MASS_KG, BALL_RADIUS_M
+from mcrun.trig import sincos
 
 
 @njit(cache=True)
@@ -41,20 +42,20 @@ def initial_state(speed, launch_angle, azimuth, spin, spin_axis):
     a positive spin axis tilts the lift to the right and curves the ball right.
     Returns (vx, vy, vz, ax, ay, az, spin) with the axis (ax, ay, az) a unit vector.
     """
-    ca = math.cos(launch_angle)
-    vx = speed * ca * math.cos(azimuth)
-    vy = -speed * ca * math.sin(azimuth)
-    vz = speed * math.sin(launch_angle)
+    sa, ca = sincos(launch_angle)
+    sz, cz = sincos(azimuth)
+    vx = speed * ca * cz
+    vy = -speed * ca * sz
+    vz = speed * sa
     # Pure backspin is about b = v_hat x z_hat (horizontal, to the right of the flight), so
     # that the lift, along w x v, points up_perp = b x v_hat. The spin axis is b tilted about v
     # by spin_axis, w_hat = cos(a) b - sin(a) up_perp, which turns the lift to the right for a > 0.
-    hx = math.cos(azimuth)
-    hy = -math.sin(azimuth)
+    hx = cz
+    hy = -sz
     bx = hy
     by = -hx
-    ux = -math.sin(launch_angle) * hx
-    uy = -math.sin(launch_angle) * hy
+    ux = -sa * hx
+    uy = -sa * hy
     uz = ca
-    c = math.cos(spin_axis)
-    s = math.sin(spin_axis)
+    s, c = sincos(spin_axis)
     return vx, vy, vz, c * bx - s * ux, c * by - s * uy, -s * uz, spin

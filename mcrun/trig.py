@@ -1,10 +1,11 @@
-"""The arctangent, sine and cosine the bounce needs, as branch-free polynomials.
+"""The arctangent, sine and cosine the kernel needs, as branch-free polynomials.
 
 The bounce runs in loops over many shots at once; the C library's atan2, sin and cos are calls
-the compiler cannot vectorise, these are plain arithmetic it can. Rational and polynomial
-approximations of Cephes (S. L. Moshier, "Methods and programs for mathematical functions",
-1989; atan.c and sin.c), accurate to about 1e-16 relative on the ranges used here: the angles
-of the bounce lie in [0, pi/2].
+the compiler cannot vectorise, these are plain arithmetic it can (and cheaper calls where they
+are not vectorised: the launch). Rational and polynomial approximations of Cephes (S. L.
+Moshier, "Methods and programs for mathematical functions", 1989; atan.c and sin.c), accurate
+to about 1e-16 relative: the angles of the bounce lie in [0, pi/2]; ``sincos`` reduces any
+angle of magnitude below about 1e9 rad to [-pi/4, pi/4] first.
 """
 
 import math
@@ -79,3 +80,37 @@ def sincos_first_quadrant(theta):
         * (((((_COS[0] * z + _COS[1]) * z + _COS[2]) * z + _COS[3]) * z + _COS[4]) * z + _COS[5])
     )
     return (c, s) if upper else (s, c)
+
+
+# Cephes sin.c: pi/4 in three parts (Cody-Waite), and 4/pi.
+_PI4_PARTS = (7.85398125648498535156e-1, 3.77489470793079817668e-8, 2.69515142907905952645e-15)
+_FOUR_OVER_PI = 1.27323954473516268615
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def sincos(x):
+    """(sin x, cos x) for |x| below about 1e9."""
+    a = abs(x)
+    j = int(a * _FOUR_OVER_PI)  # the octant; made even, a = j pi/4 + r with |r| <= pi/4
+    j += j & 1
+    y = float(j)
+    r = ((a - y * _PI4_PARTS[0]) - y * _PI4_PARTS[1]) - y * _PI4_PARTS[2]
+    z = r * r
+    s = r + r * z * (
+        ((((_SIN[0] * z + _SIN[1]) * z + _SIN[2]) * z + _SIN[3]) * z + _SIN[4]) * z + _SIN[5]
+    )
+    c = (
+        1.0
+        - 0.5 * z
+        + z
+        * z
+        * (((((_COS[0] * z + _COS[1]) * z + _COS[2]) * z + _COS[3]) * z + _COS[4]) * z + _COS[5])
+    )
+    # Quarter turns q = j / 2 (mod 4): (sin, cos)(q pi/2 + r) = (s, c), (c, -s), (-s, -c), (-c, s).
+    q = j & 6
+    swap = (q == 2) | (q == 6)
+    sine = c if swap else s
+    cosine = s if swap else c
+    sine = -sine if q >= 4 else sine
+    cosine = -cosine if (q == 2) | (q == 4) else cosine
+    return (-sine if x < 0.0 else sine), cosine
