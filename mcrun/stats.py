@@ -366,16 +366,32 @@ def _bin_of(v, lo, scale):
     return np.minimum(((v - lo) * scale).astype(np.int64), _HISTOGRAM_BINS - 1)
 
 
+class _Filling:
+    """A preallocated array filled chunk by chunk (no list of parts to concatenate, which
+    would hold the values twice)."""
+
+    def __init__(self, size, dtype=float):
+        self.values = np.empty(size, dtype=dtype)
+        self.size = 0
+
+    def add(self, v):
+        if self.size + len(v) > len(self.values):
+            raise ValueError(f"the source gave more than the {len(self.values)} values expected")
+        self.values[self.size : self.size + len(v)] = v
+        self.size += len(v)
+
+
 def _select(requests, chunks, cap, sums=None):
     """Order statistics of several samples, read in the same passes.
 
     ``requests`` maps a name to (values_of, ranks, lo, hi, below, count): the order statistics
     ``ranks`` (0-based, of the whole sample) that lie among the ``count`` values within
     [lo, hi], ``below`` values being < lo; values_of(chunk) gives a chunk's values of the
-    sample. A request whose values fit its share of ``cap`` is read whole; the others are
-    histogrammed, and a second pass collects the bins that hold the wanted ranks, or the exact
-    min and max of a bin still too large, refined in turn. ``sums``, if given, receives the sum
-    of every sample's values in the first pass. Returns {name: {rank: value}}.
+    sample. A request whose values fit its share of ``cap`` (values of 8 bytes) is read whole;
+    the others are histogrammed, and a second pass collects the bins that hold the wanted
+    ranks, or the exact min and max of a bin still too large, refined in turn. ``sums``, if
+    given, receives the sum of every sample's values in the first pass. Returns
+    {name: {rank: value}}.
     """
     found = {}
     share = max(cap // len(requests), 1)
@@ -385,7 +401,7 @@ def _select(requests, chunks, cap, sums=None):
         if lo == hi:
             found[name] = dict.fromkeys(ranks, lo)
         elif count <= share:
-            whole[name] = []
+            whole[name] = _Filling(count)
         else:
             histograms[name] = (_bin_scale(lo, hi), np.zeros(_HISTOGRAM_BINS, dtype=np.int64))
     for chunk in chunks() if whole or histograms or sums is not None else ():
@@ -394,19 +410,19 @@ def _select(requests, chunks, cap, sums=None):
             if sums is not None:
                 sums[name] += float(np.sum(v))
             if name in whole:
-                whole[name].append(_in_range(v, lo, hi))
+                whole[name].add(_in_range(v, lo, hi))
             elif name in histograms:
                 scale, counts = histograms[name]
                 counts += np.bincount(
                     _bin_of(_in_range(v, lo, hi), lo, scale), minlength=_HISTOGRAM_BINS
                 )
-    for name, parts in whole.items():
+    for name, filled in whole.items():
         ranks, below, count = requests[name][1], requests[name][4], requests[name][5]
-        values = np.concatenate(parts)
-        if len(values) != count:
-            raise ValueError(f"the source gave {len(values)} values, expected {count}")
+        if filled.size != count:
+            raise ValueError(f"the source gave {filled.size} values, expected {count}")
         kth = [r - below for r in ranks]
-        found[name] = dict(zip(ranks, np.partition(values, kth)[kth].tolist(), strict=True))
+        found[name] = dict(zip(ranks, np.partition(filled.values, kth)[kth].tolist(), strict=True))
+    del whole
     if not histograms:
         return found
     # The bins that hold the wanted ranks (empty bins share the start of the next non-empty).
@@ -421,15 +437,18 @@ def _select(requests, chunks, cap, sums=None):
                 b += 1
             bins.setdefault(b, []).append(r)
         wanted[name] = (bins, starts)
-    # Second pass: each wanted bin's values when they fit (the collected bins together stay
-    # within the cap), else its exact min and max.
-    bin_share = max(cap // sum(len(bins) for bins, _ in wanted.values()), 1)
+    # Second pass: each wanted bin's values when they fit (the collected bins together, with
+    # their bin numbers of 2 bytes, stay within the cap), else its exact min and max.
+    bin_share = max(cap * 4 // 5 // sum(len(bins) for bins, _ in wanted.values()), 1)
     collect = {}
     big = {}
     for name, (bins, _) in wanted.items():
         counts = histograms[name][1]
-        collect[name] = (np.zeros(_HISTOGRAM_BINS, dtype=bool), [], [])
-        collect[name][0][[b for b in bins if counts[b] <= bin_share]] = True
+        small = [b for b in bins if counts[b] <= bin_share]
+        keep = np.zeros(_HISTOGRAM_BINS, dtype=bool)
+        keep[small] = True
+        size = int(counts[small].sum())
+        collect[name] = (keep, _Filling(size), _Filling(size, np.int16))
         big[name] = {b: [math.inf, -math.inf] for b in bins if counts[b] > bin_share}
     for chunk in chunks():
         for name, (keep, values, index) in collect.items():
@@ -437,16 +456,15 @@ def _select(requests, chunks, cap, sums=None):
             v = _in_range(values_of(chunk), lo, hi)
             i = _bin_of(v, lo, histograms[name][0])
             kept = keep[i]
-            values.append(v[kept])
-            index.append(i[kept])
+            values.add(v[kept])
+            index.add(i[kept])
             for b, mm in big[name].items():
                 x = v[i == b]
                 if len(x):
                     mm[0], mm[1] = min(mm[0], float(x.min())), max(mm[1], float(x.max()))
     refine = {}
     for name, (bins, starts) in wanted.items():
-        values = np.concatenate(collect[name][1])
-        index = np.concatenate(collect[name][2])
+        _, values, index = collect.pop(name)
         counts = histograms[name][1]
         found.setdefault(name, {})
         for b, rs in bins.items():
@@ -455,9 +473,8 @@ def _select(requests, chunks, cap, sums=None):
                 mn, mx = big[name][b]
                 refine[name, b] = (requests[name][0], rs, mn, mx, int(starts[b]), int(counts[b]))
             else:
-                in_bin = np.sort(values[index == b])
+                in_bin = np.sort(values.values[index.values == b])
                 found[name].update({r: float(in_bin[r - int(starts[b])]) for r in rs})
-    del collect
     if refine:
         for (name, _), more in _select(refine, chunks, cap).items():
             found[name].update(more)
