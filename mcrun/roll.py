@@ -75,12 +75,16 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
             break
         if t - t0 > MAX_ROLL_TIME_S:
             return px, py, pz, t, NOT_STOPPED, n
-        avx = gx - k_slide * ux / u
-        avy = gy - k_slide * uy / u
-        avz = gz - k_slide * uz / u
-        aux = gx - 3.5 * k_slide * ux / u
-        auy = gy - 3.5 * k_slide * uy / u
-        auz = gz - 3.5 * k_slide * uz / u
+        # Friction along -u_hat: one division for the six components.
+        fx = k_slide * ux * (1.0 / u)
+        fy = k_slide * uy * (1.0 / u)
+        fz = k_slide * uz * (1.0 / u)
+        avx = gx - fx
+        avy = gy - fy
+        avz = gz - fz
+        aux = gx - 3.5 * fx
+        auy = gy - 3.5 * fy
+        auz = gz - 3.5 * fz
         h = h_max
         done = False
         a2 = aux * aux + auy * auy + auz * auz
@@ -126,9 +130,9 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
             dy = gy / g_t
             dz = gz / g_t
         else:
-            dx = vx / v
-            dy = vy / v
-            dz = vz / v
+            dx = vx * (1.0 / v)
+            dy = vy * (1.0 / v)
+            dz = vz * (1.0 / v)
         ax = (5.0 / 7.0) * (gx - k_roll * dx)
         ay = (5.0 / 7.0) * (gy - k_roll * dy)
         az = (5.0 / 7.0) * (gz - k_roll * dz)
