@@ -37,12 +37,13 @@ from mcrun.shot import (
     landing_newton,
     landing_speed_angle,
     roll_out,
+    roll_out_short,
     simulate_shot,
     start_shot,
     write_landing,
     write_run,
 )
-from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, TOO_MANY_BOUNCES
+from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, OK, TOO_MANY_BOUNCES
 from mcrun.turf import Turf
 
 INPUT_FIELDS = (
@@ -379,7 +380,10 @@ def _file_landings(g, count, out, start, landings, pending, n_landed):
  FIRST_LENGTH, THEN, MU, SOFTNESS, E0, E1, E2, E_BREAK, E_HIGH, CRITICAL) = range(26)  # fmt: skip
 # The equivalent surface of the impact under way (``bounce.incidence``): its normal and v.e.
 (EX, EY, EZ, VNE) = range(26, 30)
-N_BOUNCE_ROWS = 30
+# The turf's rolling resistance, and, in the roll table only (below), the shot and where and
+# when ``shot.roll_out_short`` brings it to rest, if it does (SHORT).
+(RHO_G, BSHOT, REST_X, REST_Y, REST_T, SHORT) = range(30, 36)
+N_BOUNCE_ROWS = 36
 # The landing of a shot, kept until its bounces run: (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny,
 # nz) in the core's frame.
 N_LANDING = 12
@@ -477,6 +481,7 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k):
         (E_BREAK, c[20]),
         (E_HIGH, c[21]),
         (CRITICAL, c[23]),
+        (RHO_G, c[22]),
     ):
         b[field * LANES + k] = value
     shot[k] = i
@@ -484,11 +489,50 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k):
 
 
 @njit(cache=True, error_model="numpy")
-def _bounce_all(inputs, start, landings, pending, out):
-    """The bounces and the roll of the landed shots ``pending``, LANES at a time."""
-    b = np.zeros(N_BOUNCE_ROWS * LANES)
-    shot = np.full(LANES, -1)
+def _roll_lanes(r):
+    """``shot.roll_out_short`` of every lane of the roll table ``r`` (the vectorised loop)."""
+    for k in range(LANES):
+        x, y, t, short = roll_out_short(
+            r[BX * LANES + k], r[BY * LANES + k], r[BZ * LANES + k], r[BVX * LANES + k],
+            r[BVY * LANES + k], r[BVZ * LANES + k], r[BWX * LANES + k], r[BWY * LANES + k],
+            r[BWZ * LANES + k], r[BNX * LANES + k], r[BNY * LANES + k], r[BNZ * LANES + k],
+            r[MU * LANES + k], r[RHO_G * LANES + k], r[BT * LANES + k],
+        )  # fmt: skip
+        r[REST_X * LANES + k] = x
+        r[REST_Y * LANES + k] = y
+        r[REST_T * LANES + k] = t
+        r[SHORT * LANES + k] = 1.0 if short else 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _file_rolls(inputs, start, landings, r, count, out):
+    """Roll out the first ``count`` shots of the roll table ``r`` and write their run: LANES
+    at a time by ``_roll_lanes``, and on their own (``shot.roll_out``) where that is not
+    enough."""
+    _roll_lanes(r)
     no_trajectory = np.empty((0, 5))
+    for j in range(count):
+        s = r[j::LANES]  # s[row] is row ``row`` of column j
+        i = int(s[BSHOT])
+        x, y, t, status = s[REST_X], s[REST_Y], s[REST_T], OK
+        if s[SHORT] == 0.0:
+            x, y, _, t, status, _ = roll_out(
+                s[BX], s[BY], s[BZ], s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ], s[BNX],
+                s[BNY], s[BNZ], _turf(inputs, i), s[BT], no_trajectory, 0, s[BT],
+                TRAJECTORY_DT_S,
+            )  # fmt: skip
+        landing_x = landings[i - start, 0]
+        write_run(out, i, landing_x, x, y, t, status, s[BOUNCES], s[FIRST_HEIGHT], s[FIRST_LENGTH])
+
+
+@njit(cache=True, error_model="numpy")
+def _bounce_all(inputs, start, landings, pending, out):
+    """The bounces and the roll of the landed shots ``pending``, LANES at a time; a shot that
+    stops hopping waits in the roll table until LANES shots roll out together."""
+    b = np.zeros(N_BOUNCE_ROWS * LANES)
+    r = np.zeros(N_BOUNCE_ROWS * LANES)  # the roll table
+    waiting = 0  # shots in it
+    shot = np.full(LANES, -1)
     next_j = 0
     for k in range(LANES):
         next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
@@ -501,46 +545,24 @@ def _bounce_all(inputs, start, landings, pending, out):
                 continue
             if b[THEN * LANES + k] == HOPS:
                 continue
-            s = b[k::LANES]  # s[row] is row ``row`` of lane k
-            landing_x = landings[i - start, 0]
-            if s[THEN] == TOO_MANY:
+            if b[THEN * LANES + k] == TOO_MANY:
+                s = b[k::LANES]  # s[row] is row ``row`` of lane k
+                landing_x = landings[i - start, 0]
                 write_run(
-                    out,
-                    i,
-                    landing_x,
-                    s[BX],
-                    s[BY],
-                    s[BT],
-                    TOO_MANY_BOUNCES,
-                    s[BOUNCES],
-                    s[FIRST_HEIGHT],
-                    s[FIRST_LENGTH],
-                )
+                    out, i, landing_x, s[BX], s[BY], s[BT], TOO_MANY_BOUNCES, s[BOUNCES],
+                    s[FIRST_HEIGHT], s[FIRST_LENGTH],
+                )  # fmt: skip
             else:
-                x, y, _, t, status, _ = roll_out(
-                    s[BX],
-                    s[BY],
-                    s[BZ],
-                    s[BVX],
-                    s[BVY],
-                    s[BVZ],
-                    s[BWX],
-                    s[BWY],
-                    s[BWZ],
-                    s[BNX],
-                    s[BNY],
-                    s[BNZ],
-                    _turf(inputs, i),
-                    s[BT],
-                    no_trajectory,
-                    0,
-                    s[BT],
-                    TRAJECTORY_DT_S,
-                )
-                write_run(
-                    out, i, landing_x, x, y, t, status, s[BOUNCES], s[FIRST_HEIGHT], s[FIRST_LENGTH]
-                )
+                for row in range(N_BOUNCE_ROWS):
+                    r[row * LANES + waiting] = b[row * LANES + k]
+                r[BSHOT * LANES + waiting] = i
+                waiting += 1
+                if waiting == LANES:
+                    _file_rolls(inputs, start, landings, r, waiting, out)
+                    waiting = 0
             next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
+    if waiting > 0:
+        _file_rolls(inputs, start, landings, r, waiting, out)
 
 
 @njit(cache=True, error_model="numpy")

@@ -43,7 +43,109 @@ def _record_segment(traj, n, t_next, dt_record, t0, h, px, py, pz, vx, vy, vz, a
     return n, t_next
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
+def plane_gravity(nx, ny, nz):
+    """Gravity on the ground plane of normal n: g n_z (pressing the ball on it), the part along
+    it (gx, gy, gz) and its magnitude g_t, the step of the roll (one step per phase on level
+    ground, where each step is exact) and the distance within which a step's end counts as
+    zero slip (or speed)."""
+    g_n = G_MPS2 * nz
+    gx = g_n * nx
+    gy = g_n * ny
+    gz = g_n * nz - G_MPS2
+    g_t = math.sqrt(gx * gx + gy * gy + gz * gz)
+    h_max = ROLL_DT_S if g_t > 0.0 else MAX_ROLL_TIME_S
+    return g_n, gx, gy, gz, g_t, h_max, 2.0 * g_t * ROLL_DT_S + 1e-9
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def contact_slip(vx, vy, vz, wx, wy, wz, nx, ny, nz):
+    """Slip u = v + w x (-r n) of the contact point at -r n."""
+    return (
+        vx + (wy * (-BALL_RADIUS_M * nz) - wz * (-BALL_RADIUS_M * ny)),
+        vy + (wz * (-BALL_RADIUS_M * nx) - wx * (-BALL_RADIUS_M * nz)),
+        vz + (wx * (-BALL_RADIUS_M * ny) - wy * (-BALL_RADIUS_M * nx)),
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def slide_step(px, py, pz, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, k_slide, h, snap):
+    """A step of the slide, of at most h, with the contact point slipping at u (|u| = u > 0):
+    the ball's acceleration, the step's length, whether it ends the slide, and the position,
+    velocity and slip after it. A step that passes within ``snap`` of zero slip ends there,
+    and friction then removes what slip is left: dv = -(2/7) u brings it to zero."""
+    # Friction along -u_hat: one division for the six components.
+    fx = k_slide * ux * (1.0 / u)
+    fy = k_slide * uy * (1.0 / u)
+    fz = k_slide * uz * (1.0 / u)
+    avx = gx - fx
+    avy = gy - fy
+    avz = gz - fz
+    aux = gx - 3.5 * fx
+    auy = gy - 3.5 * fy
+    auz = gz - 3.5 * fz
+    a2 = aux * aux + auy * auy + auz * auz
+    t_min = -(ux * aux + uy * auy + uz * auz) / a2
+    rx = ux + aux * t_min
+    ry = uy + auy * t_min
+    rz = uz + auz * t_min
+    done = (0.0 < t_min) & (t_min <= h) & (rx * rx + ry * ry + rz * rz <= snap * snap)
+    h = t_min if done else h
+    ux += aux * h
+    uy += auy * h
+    uz += auz * h
+    return (
+        (avx, avy, avz),
+        h,
+        done,
+        px + vx * h + 0.5 * avx * h * h,
+        py + vy * h + 0.5 * avy * h * h,
+        pz + vz * h + 0.5 * avz * h * h,
+        vx + avx * h - (2.0 / 7.0) * ux if done else vx + avx * h,
+        vy + avy * h - (2.0 / 7.0) * uy if done else vy + avy * h,
+        vz + avz * h - (2.0 / 7.0) * uz if done else vz + avz * h,
+        ux,
+        uy,
+        uz,
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def roll_step(px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, h, snap):
+    """A step of the roll, of at most h, with rolling resistance against the direction d (of
+    the velocity, or of the fall line for a ball at rest): the acceleration, the step's
+    length, whether the ball stops, and the position and velocity after it (zero if it
+    stops: a step that passes within ``snap`` of zero speed ends there)."""
+    ax = (5.0 / 7.0) * (gx - k_roll * dx)
+    ay = (5.0 / 7.0) * (gy - k_roll * dy)
+    az = (5.0 / 7.0) * (gz - k_roll * dz)
+    a2 = ax * ax + ay * ay + az * az
+    t_min = -(vx * ax + vy * ay + vz * az) / a2 if a2 > 0.0 else -1.0
+    rx = vx + ax * t_min
+    ry = vy + ay * t_min
+    rz = vz + az * t_min
+    done = (0.0 < t_min) & (t_min <= h) & (rx * rx + ry * ry + rz * rz <= snap * snap)
+    h = t_min if done else h
+    return (
+        (ax, ay, az),
+        h,
+        done,
+        px + vx * h + 0.5 * ax * h * h,
+        py + vy * h + 0.5 * ay * h * h,
+        pz + vz * h + 0.5 * az * h * h,
+        0.0 if done else vx + ax * h,
+        0.0 if done else vy + ay * h,
+        0.0 if done else vz + az * h,
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def rolled_too_far(px, py, x0, y0):
+    """Whether the ball has rolled more than MAX_ROLL_DISTANCE_M from (x0, y0)."""
+    return (px - x0) * (px - x0) + (py - y0) * (py - y0) > MAX_ROLL_DISTANCE_M**2
+
+
+@njit(cache=True, error_model="numpy")
 def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_next, dt_record):
     """Slide, then roll, from a point on the ground plane until the ball stops.
 
@@ -51,23 +153,11 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
     t_next + dt_record, ... Returns (px, py, pz, t_end, status, n) with n the next row of the
     trajectory buffer.
     """
-    # Gravity along the plane (towards the fall line) and across it.
-    g_n = G_MPS2 * nz
-    gx = g_n * nx
-    gy = g_n * ny
-    gz = g_n * nz - G_MPS2
-    g_t = math.sqrt(gx * gx + gy * gy + gz * gz)
-    h_max = ROLL_DT_S if g_t > 0.0 else MAX_ROLL_TIME_S
-    # A step that passes within this distance of zero slip (or speed) ends the phase there;
-    # on level ground the fixed-direction step passes exactly through zero.
-    snap = 2.0 * g_t * ROLL_DT_S + 1e-9
+    g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
     x0 = px
     y0 = py
     t = t0
-    # Slip of the contact point at -r n.
-    ux = vx + (wy * (-BALL_RADIUS_M * nz) - wz * (-BALL_RADIUS_M * ny))
-    uy = vy + (wz * (-BALL_RADIUS_M * nx) - wx * (-BALL_RADIUS_M * nz))
-    uz = vz + (wx * (-BALL_RADIUS_M * ny) - wy * (-BALL_RADIUS_M * nx))
+    ux, uy, uz = contact_slip(vx, vy, vz, wx, wy, wz, nx, ny, nz)
     k_slide = turf.mu * g_n
     while True:
         u = math.sqrt(ux * ux + uy * uy + uz * uz)
@@ -75,51 +165,21 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
             break
         if t - t0 > MAX_ROLL_TIME_S:
             return px, py, pz, t, NOT_STOPPED, n
-        # Friction along -u_hat: one division for the six components.
-        fx = k_slide * ux * (1.0 / u)
-        fy = k_slide * uy * (1.0 / u)
-        fz = k_slide * uz * (1.0 / u)
-        avx = gx - fx
-        avy = gy - fy
-        avz = gz - fz
-        aux = gx - 3.5 * fx
-        auy = gy - 3.5 * fy
-        auz = gz - 3.5 * fz
-        h = h_max
-        done = False
-        a2 = aux * aux + auy * auy + auz * auz
-        t_min = -(ux * aux + uy * auy + uz * auz) / a2
-        if 0.0 < t_min <= h:
-            rx = ux + aux * t_min
-            ry = uy + auy * t_min
-            rz = uz + auz * t_min
-            if rx * rx + ry * ry + rz * rz <= snap * snap:
-                h = t_min
-                done = True
-        n, t_next = _record_segment(
-            traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, avx, avy, avz
+        (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1, ux, uy, uz = slide_step(
+            px, py, pz, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, k_slide, h_max, snap
         )
-        px += vx * h + 0.5 * avx * h * h
-        py += vy * h + 0.5 * avy * h * h
-        pz += vz * h + 0.5 * avz * h * h
-        vx += avx * h
-        vy += avy * h
-        vz += avz * h
-        ux += aux * h
-        uy += auy * h
-        uz += auz * h
+        n, t_next = _record_segment(
+            traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
+        )
+        px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
         t += h
         if done:
-            # Friction removes what slip is left: dv = -(2/7) u brings u to zero.
-            vx -= (2.0 / 7.0) * ux
-            vy -= (2.0 / 7.0) * uy
-            vz -= (2.0 / 7.0) * uz
             break
     k_roll = turf.rho_g * g_n
     snap = (5.0 / 7.0) * snap
     static = g_t <= k_roll  # tan(beta) <= rho_g: a ball at rest stays at rest
     while True:
-        if t - t0 > MAX_ROLL_TIME_S or math.hypot(px - x0, py - y0) > MAX_ROLL_DISTANCE_M:
+        if t - t0 > MAX_ROLL_TIME_S or rolled_too_far(px, py, x0, y0):
             return px, py, pz, t, NOT_STOPPED, n
         v = math.sqrt(vx * vx + vy * vy + vz * vz)
         if v <= 1e-12:
@@ -133,34 +193,14 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
             dx = vx * (1.0 / v)
             dy = vy * (1.0 / v)
             dz = vz * (1.0 / v)
-        ax = (5.0 / 7.0) * (gx - k_roll * dx)
-        ay = (5.0 / 7.0) * (gy - k_roll * dy)
-        az = (5.0 / 7.0) * (gz - k_roll * dz)
-        h = h_max
-        done = False
-        a2 = ax * ax + ay * ay + az * az
-        t_min = -(vx * ax + vy * ay + vz * az) / a2 if a2 > 0.0 else -1.0
-        if 0.0 < t_min <= h:
-            rx = vx + ax * t_min
-            ry = vy + ay * t_min
-            rz = vz + az * t_min
-            if rx * rx + ry * ry + rz * rz <= snap * snap:
-                h = t_min
-                done = True
+        (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1 = roll_step(
+            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, h_max, snap
+        )
         n, t_next = _record_segment(
             traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
         )
-        px += vx * h + 0.5 * ax * h * h
-        py += vy * h + 0.5 * ay * h * h
-        pz += vz * h + 0.5 * az * h * h
-        vx += ax * h
-        vy += ay * h
-        vz += az * h
+        px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
         t += h
-        if done:
-            vx = 0.0
-            vy = 0.0
-            vz = 0.0
-            if static:
-                break
+        if done and static:
+            break
     return px, py, pz, t, OK, n

@@ -13,7 +13,7 @@ import pytest
 from mcrun import aero, api
 from mcrun.batch import COLUMN, N_INPUT, _shot, simulate_batch
 from mcrun.flight import WIND_PROFILES
-from mcrun.shot import N_OUTCOME, default_dt_s
+from mcrun.shot import N_OUTCOME, default_dt_s, roll_out, roll_out_short
 from mcrun.turf import PRESETS
 
 N = 400
@@ -93,3 +93,24 @@ def test_any_order_and_thread_count(inputs, alone, threads):
     finally:
         numba.set_num_threads(previous)
     assert same(reversed_out[::-1], alone)
+
+
+def test_short_roll_is_roll_out_on_level_ground():
+    """``shot.roll_out_short``, the roll out of the lanes, gives ``roll_out``'s rest bit for
+    bit on level ground, and hands a ball on a slope back to it."""
+    rng = np.random.default_rng(7)
+    turf = PRESETS["fairway"]
+    no_trajectory = np.empty((0, 5))
+    for _ in range(200):
+        v = (rng.uniform(0.0, 8.0), rng.normal(0.0, 1.0), rng.uniform(-2.0, 0.0))
+        w = tuple(rng.normal(0.0, 150.0, 3))
+        x, y, t, short = roll_out_short(
+            1.0, 2.0, 0.0, *v, *w, 0.0, 0.0, 1.0, turf.mu, turf.rho_g, 3.0
+        )
+        level = (0.0, 0.0, 1.0)
+        want = roll_out(1.0, 2.0, 0.0, *v, *w, *level, turf, 3.0, no_trajectory, 0, 3.0, 0.01)
+        assert short
+        assert (x, y, t) == (want[0], want[1], want[3])
+        slope = np.radians(4.0)
+        n = (np.sin(slope), 0.0, np.cos(slope))
+        assert not roll_out_short(1.0, 2.0, 0.0, *v, *w, *n, turf.mu, turf.rho_g, 3.0)[3]
