@@ -3,8 +3,9 @@
 ``simulate_batch`` simulates the rows of ``inputs``, an (n, N_INPUT) float64 array in Fortran
 order (each column contiguous, named by ``INPUT_FIELDS``, SI, user frame), in ``prange`` over
 tasks of TASK_SHOTS shots, and writes ``out``, an (n, N_OUTCOME) float64 array in Fortran order
-whose columns are ``shot.OUTCOME_FIELDS``. Within a task the shots fly, then bounce, in
-lockstep lanes (below); each lane does exactly what ``shot.simulate_shot`` does for one shot.
+whose columns are ``shot.OUTCOME_FIELDS``. Within a task the shots fly, land, bounce and
+roll out in lockstep lanes (below); each lane does exactly what ``shot.simulate_shot`` does
+for one shot.
 Every shot is independent of the others, of its lane and of the thread that runs it, so the
 results are the same bit for bit whatever the thread count or the order of the rows.
 """
@@ -219,6 +220,7 @@ def _lane_derivative(lanes, row, k):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _set_lane_velocity(lanes, row, k, v):
+    """Rows row.. of lane k from the velocity v."""
     lanes[row * LANES + k] = v[0]
     lanes[(row + 1) * LANES + k] = v[1]
     lanes[(row + 2) * LANES + k] = v[2]
@@ -226,6 +228,7 @@ def _set_lane_velocity(lanes, row, k, v):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _set_lane_derivative(lanes, row, k, d):
+    """Rows row.. of lane k from the derivative d."""
     lanes[row * LANES + k] = d[0]
     lanes[(row + 1) * LANES + k] = d[1]
     lanes[(row + 2) * LANES + k] = d[2]
@@ -245,9 +248,10 @@ def _lane_stage(lanes, k, c, derivative, vz_k):
 @njit(cache=True, error_model="numpy")
 def _rk4_lanes(lanes):
     """An RK4 step of length DT of every lane, from its state to rows X1..W1:
-    ``flight.rk4_step_quadratic`` split into one vectorised loop per stage. The iterations of
-    a loop are independent, so the processor overlaps their long chains of square roots and
-    divisions, where a single loop through the whole step waits on them."""
+    ``flight.rk4_step`` with ``flight.derivatives_quadratic``, split into one vectorised loop
+    per stage. The iterations of a loop are independent, so the processor overlaps their long
+    chains of square roots and divisions, where a single loop through the whole step waits on
+    them."""
     for k in range(LANES):
         _set_lane_derivative(
             lanes,
@@ -373,9 +377,11 @@ def _file_landings(g, count, out, start, landings, pending, n_landed):
 
 
 # Bounce lanes: once a task's shots have landed, their bounces run LANES at a time too, one
-# impact and hop of every lane per pass of a vectorised loop (``shot.impact`` and ``shot.hop``,
-# the single-shot kernel's own functions); a lane whose ball stops bouncing rolls out on its
-# own (``shot.roll_out``) and takes the next landed shot. Rows of the bounce lane table:
+# impact and hop of every lane per pass of vectorised loops (``shot.impact`` and ``shot.hop``,
+# the single-shot kernel's own functions); a lane whose ball stops bouncing hands it to the
+# roll table, where LANES shots roll out together (``shot.roll_out_short``, or
+# ``shot.roll_out`` on their own where that is not enough), and takes the next landed shot.
+# Rows of the bounce lane table:
 (BX, BY, BZ, BVX, BVY, BVZ, BWX, BWY, BWZ, BNX, BNY, BNZ, BT, BOUNCES, PREVIOUS, FIRST_HEIGHT,
  FIRST_LENGTH, THEN, MU, SOFTNESS, E0, E1, E2, E_BREAK, E_HIGH, CRITICAL) = range(26)  # fmt: skip
 # The equivalent surface of the impact under way (``bounce.incidence``): its normal and v.e.

@@ -175,10 +175,10 @@ def _make_rk4(deriv):
 
 
 # rk4_step(x, y, z, vx, vy, vz, spin, h, ctx) for any shot (ctx as for ``derivatives``), and
-# for a quadratic model in uniform wind (ctx as for ``derivatives_quadratic``); the stage of
-# the second is what a block of shots steps through one loop at a time (``batch``).
+# the RK4 stage of a quadratic model in uniform wind (ctx as for ``derivatives_quadratic``),
+# which a block of shots steps through one loop at a time (``batch``): the same numbers.
 _, rk4_step = _make_rk4(derivatives)
-rk4_stage_quadratic, rk4_step_quadratic = _make_rk4(derivatives_quadratic)
+rk4_stage_quadratic, _ = _make_rk4(derivatives_quadratic)
 
 
 # Newton steps of ``hermite_root``: three reach the root to 1e-14 s on the pga-driver shots.

@@ -240,7 +240,6 @@ class ShotsWriter(_ParquetWriter):
         return pa.Table.from_arrays(columns, schema=self.schema)
 
 
-
 # --- trajectories ------------------------------------------------------------------------------
 
 TRAJECTORY_SCHEMA = pa.schema(

@@ -21,7 +21,7 @@ from numba import njit
 
 from mcrun.bounce import hop_height, incidence, rebound
 from mcrun.constants import G_MPS2
-from mcrun.flight import hermite_root, rk4_step, rk4_step_quadratic
+from mcrun.flight import hermite_root, rk4_step
 from mcrun.launch import initial_state
 from mcrun.roll import contact_slip, plane_gravity, roll, roll_step, rolled_too_far, slide_step
 from mcrun.status import (
@@ -381,26 +381,18 @@ def apex_after_step(apex, z, vz, z1, vz1, dt):
     return max(max(apex, inside) if crossed else apex, z1)
 
 
-def _make_record_flight(rk4):
-    """``record_flight`` for the RK4 step ``rk4``."""
-
-    @njit(cache=True)
-    def record_flight(traj, n, t, h, x, y, z, vx, vy, vz, w, ctx):
-        """Trajectory points inside a flight step from the state at t, every TRAJECTORY_DT_S
-        up to t + h (exclusive), by RK4 from the step's start: the recorded path does not
-        depend on the step."""
-        k = 1
-        while traj.shape[0] > 0 and k * TRAJECTORY_DT_S < h - 1e-9:
-            s = k * TRAJECTORY_DT_S
-            px, py, pz, _, _, _, _ = rk4(x, y, z, vx, vy, vz, w, s, ctx)
-            n = record(traj, n, t + s, px, py, pz, FLIGHT)
-            k += 1
-        return n
-
-    return record_flight
-
-
-record_flight = _make_record_flight(rk4_step)
+@njit(cache=True)
+def record_flight(traj, n, t, h, x, y, z, vx, vy, vz, w, ctx):
+    """Trajectory points inside a flight step from the state at t, every TRAJECTORY_DT_S
+    up to t + h (exclusive), by RK4 from the step's start: the recorded path does not
+    depend on the step."""
+    k = 1
+    while traj.shape[0] > 0 and k * TRAJECTORY_DT_S < h - 1e-9:
+        s = k * TRAJECTORY_DT_S
+        px, py, pz, _, _, _, _ = rk4_step(x, y, z, vx, vy, vz, w, s, ctx)
+        n = record(traj, n, t + s, px, py, pz, FLIGHT)
+        k += 1
+    return n
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -442,44 +434,31 @@ def write_landing(out, i, x, y, t, apex, speed, angle_deg, w):
     out[i, LANDING_SPIN] = w
 
 
-def _make_land(rk4):
-    """``land`` for the RK4 step ``rk4`` (of ``flight``): one source for both steps."""
-    record_flight = _make_record_flight(rk4)
+@njit(cache=True, error_model="numpy")
+def land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n):
+    """From the last step of the flight, (x, ..., w) at t above the ground and z1, vz1 below it:
+    locate the landing and write the flight fields of shot i. Returns the ball at landing,
+    (x, y, vx, vy, vz, wx, wy, wz, t), the normal (nx, ny, nz) of the ground there, and n.
 
-    @njit(cache=True, error_model="numpy")
-    def land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n):
-        """From the last step of the flight, (x, ..., w) at t above the ground and z1, vz1 below it:
-        locate the landing and write the flight fields of shot i. Returns the ball at landing,
-        (x, y, vx, vy, vz, wx, wy, wz, t), the normal (nx, ny, nz) of the ground there, and n.
-
-        ``ctx`` as for ``rk4``'s derivative function; its first three items are the spin axis.
-        """
-        # Landing: root of the cubic Hermite interpolant of z, then an RK4 step of that length from
-        # the start of the step, refined by Newton steps on z.
-        h = hermite_root(z, vz, z1, vz1, dt)
-        for _ in range(2):
-            _, _, z1, _, _, vz1, _ = rk4(x, y, z, vx, vy, vz, w, h, ctx)
-            h = landing_newton(h, z1, vz1, dt)
-        n = record_flight(traj, n, t, h, x, y, z, vx, vy, vz, w, ctx)
-        x1, y1, _, vx1, vy1, vz1, w1 = rk4(x, y, z, vx, vy, vz, w, h, ctx)
-        # The apex may lie in the landing step (a flight of one or two steps).
-        apex = apex_after_step(apex, z, vz, 0.0, vz1, h)
-        t += h
-        n = record(traj, n, t, x1, y1, 0.0, FLIGHT)
-        speed, angle_deg = landing_speed_angle(vx1, vy1, vz1)
-        write_landing(out, i, x1, y1, t, apex, speed, angle_deg, w1)
-        nx, ny, nz = ground_normal(slope, fall_line)
-        ax, ay, az = ctx[0], ctx[1], ctx[2]
-        return x1, y1, vx1, vy1, vz1, w1 * ax, w1 * ay, w1 * az, t, nx, ny, nz, n
-
-    return land
-
-
-# land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, out, i, traj, n)
-# for any shot (ctx as for flight.derivatives), and for a quadratic model in uniform wind (ctx
-# as for flight.derivatives_quadratic): the same numbers, the second faster.
-land = _make_land(rk4_step)
-land_quadratic = _make_land(rk4_step_quadratic)
+    ``ctx`` as for ``rk4``'s derivative function; its first three items are the spin axis.
+    """
+    # Landing: root of the cubic Hermite interpolant of z, then an RK4 step of that length from
+    # the start of the step, refined by Newton steps on z.
+    h = hermite_root(z, vz, z1, vz1, dt)
+    for _ in range(2):
+        _, _, z1, _, _, vz1, _ = rk4_step(x, y, z, vx, vy, vz, w, h, ctx)
+        h = landing_newton(h, z1, vz1, dt)
+    n = record_flight(traj, n, t, h, x, y, z, vx, vy, vz, w, ctx)
+    x1, y1, _, vx1, vy1, vz1, w1 = rk4_step(x, y, z, vx, vy, vz, w, h, ctx)
+    # The apex may lie in the landing step (a flight of one or two steps).
+    apex = apex_after_step(apex, z, vz, 0.0, vz1, h)
+    t += h
+    n = record(traj, n, t, x1, y1, 0.0, FLIGHT)
+    speed, angle_deg = landing_speed_angle(vx1, vy1, vz1)
+    write_landing(out, i, x1, y1, t, apex, speed, angle_deg, w1)
+    nx, ny, nz = ground_normal(slope, fall_line)
+    ax, ay, az = ctx[0], ctx[1], ctx[2]
+    return x1, y1, vx1, vy1, vz1, w1 * ax, w1 * ay, w1 * az, t, nx, ny, nz, n
 
 
 @njit(cache=True)
