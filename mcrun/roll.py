@@ -69,6 +69,30 @@ def contact_slip(vx, vy, vz, wx, wy, wz, nx, ny, nz):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _step_to_zero(ux, uy, uz, ax, ay, az, h, snap):
+    """The length of a step of at most h of a vector u that changes at the constant rate a,
+    and whether the step brings u to zero: it ends where |u| is least, if that comes within h
+    and within ``snap`` of zero."""
+    a2 = ax * ax + ay * ay + az * az
+    t_min = -(ux * ax + uy * ay + uz * az) / a2 if a2 > 0.0 else -1.0
+    rx = ux + ax * t_min
+    ry = uy + ay * t_min
+    rz = uz + az * t_min
+    done = (0.0 < t_min) & (t_min <= h) & (rx * rx + ry * ry + rz * rz <= snap * snap)
+    return (t_min if done else h), done
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _advance(px, py, pz, vx, vy, vz, ax, ay, az, h):
+    """The position after h at velocity v and constant acceleration a."""
+    return (
+        px + vx * h + 0.5 * ax * h * h,
+        py + vy * h + 0.5 * ay * h * h,
+        pz + vz * h + 0.5 * az * h * h,
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def slide_step(px, py, pz, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, k_slide, h, snap):
     """A step of the slide, of at most h, with the contact point slipping at u (|u| = u > 0):
     the ball's acceleration, the step's length, whether it ends the slide, and the position,
@@ -84,23 +108,18 @@ def slide_step(px, py, pz, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, k_slide, h, sn
     aux = gx - 3.5 * fx
     auy = gy - 3.5 * fy
     auz = gz - 3.5 * fz
-    a2 = aux * aux + auy * auy + auz * auz
-    t_min = -(ux * aux + uy * auy + uz * auz) / a2
-    rx = ux + aux * t_min
-    ry = uy + auy * t_min
-    rz = uz + auz * t_min
-    done = (0.0 < t_min) & (t_min <= h) & (rx * rx + ry * ry + rz * rz <= snap * snap)
-    h = t_min if done else h
+    h, done = _step_to_zero(ux, uy, uz, aux, auy, auz, h, snap)
     ux += aux * h
     uy += auy * h
     uz += auz * h
+    px, py, pz = _advance(px, py, pz, vx, vy, vz, avx, avy, avz, h)
     return (
         (avx, avy, avz),
         h,
         done,
-        px + vx * h + 0.5 * avx * h * h,
-        py + vy * h + 0.5 * avy * h * h,
-        pz + vz * h + 0.5 * avz * h * h,
+        px,
+        py,
+        pz,
         vx + avx * h - (2.0 / 7.0) * ux if done else vx + avx * h,
         vy + avy * h - (2.0 / 7.0) * uy if done else vy + avy * h,
         vz + avz * h - (2.0 / 7.0) * uz if done else vz + avz * h,
@@ -119,20 +138,15 @@ def roll_step(px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, h, snap):
     ax = (5.0 / 7.0) * (gx - k_roll * dx)
     ay = (5.0 / 7.0) * (gy - k_roll * dy)
     az = (5.0 / 7.0) * (gz - k_roll * dz)
-    a2 = ax * ax + ay * ay + az * az
-    t_min = -(vx * ax + vy * ay + vz * az) / a2 if a2 > 0.0 else -1.0
-    rx = vx + ax * t_min
-    ry = vy + ay * t_min
-    rz = vz + az * t_min
-    done = (0.0 < t_min) & (t_min <= h) & (rx * rx + ry * ry + rz * rz <= snap * snap)
-    h = t_min if done else h
+    h, done = _step_to_zero(vx, vy, vz, ax, ay, az, h, snap)
+    px, py, pz = _advance(px, py, pz, vx, vy, vz, ax, ay, az, h)
     return (
         (ax, ay, az),
         h,
         done,
-        px + vx * h + 0.5 * ax * h * h,
-        py + vy * h + 0.5 * ay * h * h,
-        pz + vz * h + 0.5 * az * h * h,
+        px,
+        py,
+        pz,
         0.0 if done else vx + ax * h,
         0.0 if done else vy + ay * h,
         0.0 if done else vz + az * h,

@@ -67,7 +67,13 @@ def sincos_first_quadrant(theta):
     """(sin theta, cos theta) for theta in [0, pi/2]."""
     # Cephes: the polynomials hold on [0, pi/4]; above, swap sine and cosine of pi/2 - theta.
     upper = theta > 0.25 * math.pi
-    r = 0.5 * math.pi - theta if upper else theta
+    s, c = _sincos_reduced(0.5 * math.pi - theta if upper else theta)
+    return (c, s) if upper else (s, c)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _sincos_reduced(r):
+    """(sin r, cos r) for |r| <= pi/4: Cephes' polynomials."""
     z = r * r
     s = r + r * z * (
         ((((_SIN[0] * z + _SIN[1]) * z + _SIN[2]) * z + _SIN[3]) * z + _SIN[4]) * z + _SIN[5]
@@ -79,7 +85,7 @@ def sincos_first_quadrant(theta):
         * z
         * (((((_COS[0] * z + _COS[1]) * z + _COS[2]) * z + _COS[3]) * z + _COS[4]) * z + _COS[5])
     )
-    return (c, s) if upper else (s, c)
+    return s, c
 
 
 # Cephes sin.c: pi/4 in three parts (Cody-Waite), and 4/pi.
@@ -94,18 +100,7 @@ def sincos(x):
     j = int(a * _FOUR_OVER_PI)  # the octant; made even, a = j pi/4 + r with |r| <= pi/4
     j += j & 1
     y = float(j)
-    r = ((a - y * _PI4_PARTS[0]) - y * _PI4_PARTS[1]) - y * _PI4_PARTS[2]
-    z = r * r
-    s = r + r * z * (
-        ((((_SIN[0] * z + _SIN[1]) * z + _SIN[2]) * z + _SIN[3]) * z + _SIN[4]) * z + _SIN[5]
-    )
-    c = (
-        1.0
-        - 0.5 * z
-        + z
-        * z
-        * (((((_COS[0] * z + _COS[1]) * z + _COS[2]) * z + _COS[3]) * z + _COS[4]) * z + _COS[5])
-    )
+    s, c = _sincos_reduced(((a - y * _PI4_PARTS[0]) - y * _PI4_PARTS[1]) - y * _PI4_PARTS[2])
     # Quarter turns q = j / 2 (mod 4): (sin, cos)(q pi/2 + r) = (s, c), (c, -s), (-s, -c), (-c, s).
     q = j & 6
     swap = (q == 2) | (q == 6)
