@@ -536,14 +536,8 @@ def run_scenario(
 
     # The columns and the models, as the local engine finds them (one sampled row per point).
     input_names = list(sampling.sampled_columns(scenario))
-    input_types = {}
-    first_inputs = []
-    for point in points:
-        inputs, sampled = sampling.sample(scenario, point, 0, 1)
-        first_inputs.append(inputs[0])
-        for name, values in sampled.items():
-            if np.issubdtype(np.asarray(values).dtype, np.integer):
-                input_types[name] = "int64"
+    first_inputs, integer_columns = run.first_samples(scenario, points)
+    input_types = dict.fromkeys(integer_columns, "int64")
     drivers = [run.driver_inputs(point, input_names) for point in points]
     partitioned = any(p.group for p in points)
     chunks = []

@@ -225,6 +225,20 @@ def _trajectories(writer, inputs, point, start, stop, every, buffer):
     return buffer
 
 
+def first_samples(scenario, points):
+    """Each point's first kernel inputs (one sample each), and the sampled columns that hold
+    integers."""
+    first_inputs = []
+    integer_columns = []
+    for point in points:
+        inputs, sampled = sampling.sample(scenario, point, 0, 1)
+        first_inputs.append(inputs[0])
+        for name, values in sampled.items():
+            if np.issubdtype(np.asarray(values).dtype, np.integer) and name not in integer_columns:
+                integer_columns.append(name)
+    return first_inputs, integer_columns
+
+
 def run_scenario(
     path_or_scenario,
     n=None,
@@ -284,14 +298,8 @@ def run_scenario(
 
     # The columns (the same for every point) and each point's first inputs (one block each).
     input_names = list(sampling.sampled_columns(scenario))
-    input_types = {}
-    first_inputs = []
-    for point in points:
-        inputs, sampled = sampling.sample(scenario, point, 0, 1)
-        first_inputs.append(inputs[0])
-        for name, values in sampled.items():
-            if np.issubdtype(np.asarray(values).dtype, np.integer):
-                input_types[name] = pa.int64()
+    first_inputs, integer_columns = first_samples(scenario, points)
+    input_types = dict.fromkeys(integer_columns, pa.int64())
     drivers_per_point = [driver_inputs(point, input_names) for point in points]
 
     previous_threads = numba.get_num_threads()
