@@ -225,6 +225,22 @@ def _trajectories(writer, inputs, point, start, stop, every, buffer):
     return buffer
 
 
+def describe_run(scenario, seed, n, points, first_inputs):
+    """The provenance every backend records: the scenario, its seed and size, its points and
+    the models of their first inputs."""
+    return {
+        "scenario_name": scenario.name,
+        "scenario_path": str(scenario.path),
+        "scenario_text": scenario.text,
+        "seed": seed,
+        "n": n,
+        "block_size": scenario.block_size,
+        "points": [p.label for p in points],
+        "groups": [p.group for p in points],
+        "models": _model_names(first_inputs),
+    }
+
+
 def first_samples(scenario, points):
     """Each point's first kernel inputs (one sample each), and the sampled columns that hold
     integers."""
@@ -311,15 +327,7 @@ def run_scenario(
     base = {
         "format_version": 1,
         "backend": "local",
-        "scenario_name": scenario.name,
-        "scenario_path": str(scenario.path),
-        "scenario_text": scenario.text,
-        "seed": seed,
-        "n": n,
-        "block_size": scenario.block_size,
-        "points": [p.label for p in points],
-        "groups": [p.group for p in points],
-        "models": _model_names(first_inputs),
+        **describe_run(scenario, seed, n, points, first_inputs),
         "versions": output.versions(),
         "threads": numba.get_num_threads(),
         "chunk_size": chunk_size,
