@@ -247,8 +247,8 @@ class Dist:
 @dataclass(frozen=True)
 class Correlation:
     """Jointly normal quantities of one section: their names, the correlation matrix and a
-    factor F with F F^T = matrix (Cholesky, or from the eigen-decomposition of a positive
-    semi-definite matrix), so that F z has that correlation for standard normal z."""
+    lower-triangular factor F with F F^T = matrix (``semidefinite_cholesky``), so that F z has
+    that correlation for standard normal z."""
 
     names: tuple[str, ...]
     matrix: np.ndarray
@@ -780,20 +780,48 @@ def _correlation(ctx, leaf, section, dists, leaves, context=""):
         raise ctx.error(f"{where}.matrix", "must be symmetric")
     if np.max(np.abs(matrix)) > 1.0:
         raise ctx.error(f"{where}.matrix", "entries must be within [-1, 1]")
-    eigenvalues, vectors = np.linalg.eigh(matrix)
-    if eigenvalues[0] < -1e-10:
+    smallest = np.linalg.eigvalsh(matrix)[0]
+    if smallest < -PSD_TOLERANCE * k:
         raise ctx.error(
             f"{where}.matrix",
-            f"must be positive semi-definite, its smallest eigenvalue is {eigenvalues[0]:.3g}",
+            f"must be positive semi-definite, its smallest eigenvalue is {smallest:.3g}",
         )
-    try:
-        factor = np.linalg.cholesky(matrix)
-    except np.linalg.LinAlgError:
-        factor = vectors * np.sqrt(np.clip(eigenvalues, 0.0, None))
+    factor = semidefinite_cholesky(matrix)
     matrix.setflags(write=False)
     factor = np.ascontiguousarray(factor)
     factor.setflags(write=False)
     return Correlation(tuple(names), matrix, factor)
+
+
+# Pivots of the Cholesky factor below this, relative to the matrix's scale (its largest
+# eigenvalue is at most k for a k x k correlation matrix), are zero: a rank-deficient matrix
+# whose rounding leaves a pivot of 1e-17 instead of 0 must not give its factor a column of
+# 3e-9. Eigenvalues down to -PSD_TOLERANCE * k are rounding too.
+PSD_TOLERANCE = 1e-10
+
+
+def semidefinite_cholesky(matrix):
+    """Lower-triangular F with F F^T = ``matrix``, for a positive semi-definite matrix.
+
+    The Cholesky algorithm in plain Python (k is a handful of launch quantities), where a pivot
+    below PSD_TOLERANCE * k is zero and so is the rest of its column: for a semi-definite matrix
+    that column is zero in exact arithmetic. No LAPACK, so the factor, and the samples drawn
+    with it, do not depend on which BLAS kernel the machine runs.
+    """
+    k = matrix.shape[0]
+    factor = np.zeros((k, k))
+    for j in range(k):
+        pivot = matrix[j, j] - sum(factor[j, m] * factor[j, m] for m in range(j))
+        if pivot <= PSD_TOLERANCE * k:
+            continue
+        factor[j, j] = math.sqrt(pivot)
+        # Times the reciprocal, as LAPACK's dpotrf scales a column: the same factor, to the
+        # bit, for the library's matrices.
+        scale = 1.0 / factor[j, j]
+        for i in range(j + 1, k):
+            dot = sum(factor[i, m] * factor[j, m] for m in range(j))
+            factor[i, j] = (matrix[i, j] - dot) * scale
+    return factor
 
 
 _FILE_CACHE: dict = {}

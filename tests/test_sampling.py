@@ -310,6 +310,21 @@ def test_semi_definite_correlation(tmp_path):
     assert np.std(z_speed) == pytest.approx(1.0, rel=0.04)
 
 
+def test_semidefinite_factor_is_exact_and_blas_free():
+    """A rank-one correlation matrix, perturbed by rounding as an eigen-solver would leave it,
+    gets a factor with exactly zero columns: no sample of one quantity leaks into another's
+    noise (an eigenvalue of 9e-18 once gave a column of 3e-9 on some BLAS kernels)."""
+    one = np.array([[1.0, 1.0, -1.0], [1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]])
+    for noise in (0.0, 1e-17, -1e-17):
+        matrix = one + noise * np.array([[0, 0, 0], [0, 1, 0], [0, 0, 1]])
+        factor = sc.semidefinite_cholesky(matrix)
+        assert np.array_equal(factor[:, 1:], np.zeros((3, 2)))
+        assert np.array_equal(factor[:, 0], [1.0, 1.0, -1.0])
+    # Full rank: the Cholesky factor itself (the library's matrix, to the bit).
+    matrix = np.array([[1.0, 0.1, -0.3], [0.1, 1.0, -0.4], [-0.3, -0.4, 1.0]])
+    assert np.array_equal(sc.semidefinite_cholesky(matrix), np.linalg.cholesky(matrix))
+
+
 # --- resampling measured shots -------------------------------------------------------------------
 
 
