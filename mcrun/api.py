@@ -318,10 +318,7 @@ def bounce_once(speed_mps, angle_deg, backspin_radps, turf="green", **turf_overr
     backspin = float(backspin_radps)
     if not abs(backspin) <= RANGES["spin_radps"][1]:
         raise InputError(f"backspin = {backspin:g} rad/s is outside [-2000, 2000]")
-    result = bounce_in_plane(
-        speed, float(angle_deg) * DEG, backspin, resolve_turf(turf, **turf_overrides)
-    )
-    result["critical_backspin_radps"] = critical_backspin_radps(
-        speed, float(angle_deg) * DEG, resolve_turf(turf, **turf_overrides).softness
-    )
+    turf = resolve_turf(turf, **turf_overrides)
+    result = bounce_in_plane(speed, float(angle_deg) * DEG, backspin, turf)
+    result["critical_backspin_radps"] = critical_backspin_radps(speed, float(angle_deg) * DEG, turf)
     return result

@@ -395,6 +395,22 @@ N_BOUNCE_ROWS = 36
 N_LANDING = 12
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _bounce_turf(b, k):
+    """The turf of bounce lane k, as far as the impact needs it (no rolling resistance)."""
+    return Turf(
+        b[MU * LANES + k],
+        b[SOFTNESS * LANES + k],
+        b[E0 * LANES + k],
+        b[E1 * LANES + k],
+        b[E2 * LANES + k],
+        b[E_BREAK * LANES + k],
+        b[E_HIGH * LANES + k],
+        0.0,
+        b[CRITICAL * LANES + k],
+    )
+
+
 @njit(cache=True, error_model="numpy")
 def _impact_lanes(b):
     """One impact, and the hop it starts, for every bounce lane: ``shot.impact`` in two
@@ -403,7 +419,7 @@ def _impact_lanes(b):
     for k in range(LANES):
         ex, ey, ez, vne, _ = incidence(
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BNX * LANES + k],
-            b[BNY * LANES + k], b[BNZ * LANES + k], b[SOFTNESS * LANES + k],
+            b[BNY * LANES + k], b[BNZ * LANES + k], _bounce_turf(b, k),
         )  # fmt: skip
         b[EX * LANES + k] = ex
         b[EY * LANES + k] = ey
@@ -411,17 +427,7 @@ def _impact_lanes(b):
         b[VNE * LANES + k] = vne
     ended = 0
     for k in range(LANES):
-        turf = Turf(
-            b[MU * LANES + k],
-            b[SOFTNESS * LANES + k],
-            b[E0 * LANES + k],
-            b[E1 * LANES + k],
-            b[E2 * LANES + k],
-            b[E_BREAK * LANES + k],
-            b[E_HIGH * LANES + k],
-            0.0,
-            b[CRITICAL * LANES + k],
-        )
+        turf = _bounce_turf(b, k)
         bounces = b[BOUNCES * LANES + k]
         vx, vy, vz, wx, wy, wz, height, hop_time, then = impact_rebound(
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BWX * LANES + k],

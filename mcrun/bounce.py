@@ -36,17 +36,39 @@ def restitution(normal_speed, turf):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def equivalent_surface_tilt(speed, phi, softness):
-    """theta_c (rad) of eq. (8), scaled by the turf's softness and capped at phi.
+def no_return_tilt(phi, sin_phi, e):
+    """The largest tilt (rad) of the equivalent surface from which a ball without spin, met at
+    phi from the ground's normal and rebounding with restitution e, still leaves forwards.
 
-    Eq. (8) grows without bound; the cap keeps the equivalent surface facing the ball.
+    The slowest forward exit is the rolling one (eq. 3; a sliding exit keeps more of the
+    tangential speed): (5/7) v sin(phi - theta) along the equivalent surface and
+    e v cos(phi - theta) off it. Its component along the ground, (v/2) [(5/7 - e) sin(phi)
+    + (5/7 + e) sin(phi - 2 theta)], is >= 0 for theta <= (phi + asin(k sin phi)) / 2 with
+    k = (5 - 7e) / (5 + 7e). For e <= 5/7 the bound is at least phi / 2; it never exceeds phi.
     """
-    theta_c = softness * THETA_C_REF_RAD * (speed / SPEED_REF_MPS) * (phi / PHI_REF_RAD)
-    return min(theta_c, phi)
+    x = (5.0 - 7.0 * e) / (5.0 + 7.0 * e) * sin_phi
+    a = atan2_first_quadrant(abs(x), math.sqrt(1.0 - x * x))
+    return 0.5 * (phi + (a if x >= 0.0 else -a))
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def incidence(vx, vy, vz, nx, ny, nz, softness):
+def equivalent_surface_tilt(speed, phi, sin_phi, normal_speed, turf):
+    """theta_c (rad): eq. (8) scaled by the turf's softness, bounded by ``no_return_tilt``.
+
+    Eq. (8) is Penner's fit to one impact (18.6 m/s at 44.4 deg) and grows without bound; far
+    from it (fast, shallow impacts) it would tilt the equivalent surface until it faced the
+    ball and threw it back. The bound keeps every ball without spin going forwards, with e
+    evaluated at ``normal_speed`` = |v.n| of the real ground: the equivalent surface's normal
+    speed is larger and e(v) does not grow with speed (``turf.check_turf``), so that e is the
+    largest the impact can have and the bound holds for the e it gets. Inside the range where
+    the paper uses eq. (8) (18-28 m/s, 34-68 deg) the bound is not reached.
+    """
+    theta_c = turf.softness * THETA_C_REF_RAD * (speed / SPEED_REF_MPS) * (phi / PHI_REF_RAD)
+    return min(theta_c, no_return_tilt(phi, sin_phi, restitution(normal_speed, turf)))
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def incidence(vx, vy, vz, nx, ny, nz, turf):
     """The first half of ``bounce``: the equivalent surface the ball at velocity v meets on turf
     of normal n. Returns its unit normal (ex, ey, ez), the normal velocity v.e and theta_c."""
     vn = vx * nx + vy * ny + vz * nz
@@ -60,7 +82,8 @@ def incidence(vx, vy, vz, nx, ny, nz, softness):
     tz *= inverse_vt
     speed = math.sqrt(vx * vx + vy * vy + vz * vz)
     phi = atan2_first_quadrant(vt, abs(vn))
-    theta_c = equivalent_surface_tilt(speed, phi, softness)
+    sin_phi = vt * (1.0 / speed) if speed > 0.0 else 0.0
+    theta_c = equivalent_surface_tilt(speed, phi, sin_phi, abs(vn), turf)
     s, c = sincos_first_quadrant(theta_c)
     # Equivalent surface normal, tilted towards the incoming ball (eqs. 6, 7).
     ex = c * nx - s * tx
@@ -116,7 +139,7 @@ def bounce(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf):
     slides through the impact (eq. 2). In two halves, ``incidence`` and ``rebound``, that a
     loop over many shots runs one after the other (``batch``).
     """
-    ex, ey, ez, vne, theta_c = incidence(vx, vy, vz, nx, ny, nz, turf.softness)
+    ex, ey, ez, vne, theta_c = incidence(vx, vy, vz, nx, ny, nz, turf)
     vx, vy, vz, wx, wy, wz, e, mu_c, rolling = rebound(
         vx, vy, vz, wx, wy, wz, ex, ey, ez, vne, turf
     )
@@ -156,11 +179,17 @@ def bounce_in_plane(speed_mps, angle_from_vertical_rad, backspin_radps, turf):
     }
 
 
-def critical_backspin_radps(speed_mps, angle_from_vertical_rad, softness=1.0):
+def critical_backspin_radps(speed_mps, angle_from_vertical_rad, turf):
     """Backspin above which a rolling exit goes backwards along the equivalent surface, eq. (10).
 
-    omega_c = 5 v_ix' / (2 r), with theta_c from eq. (8).
+    omega_c = 5 v_ix' / (2 r), with theta_c from eq. (8) (``equivalent_surface_tilt``).
     """
-    theta_c = equivalent_surface_tilt(speed_mps, angle_from_vertical_rad, softness)
+    theta_c = equivalent_surface_tilt(
+        speed_mps,
+        angle_from_vertical_rad,
+        math.sin(angle_from_vertical_rad),
+        speed_mps * math.cos(angle_from_vertical_rad),
+        turf,
+    )
     v_x_tilted = speed_mps * math.sin(angle_from_vertical_rad - theta_c)  # eq. (6a)
     return 2.5 * v_x_tilted / BALL_RADIUS_M

@@ -375,7 +375,7 @@ def our_values():
         ours[case, EXIT] = b["mode"]
         ours[case, FIRST_HEIGHT] = b["hop_height_m"]
     speed, angle = NINE_IRON_LANDING
-    ours[NINE, CRITICAL] = critical_backspin_radps(speed, math.radians(angle))
+    ours[NINE, CRITICAL] = critical_backspin_radps(speed, math.radians(angle), PRESETS["green"])
     for w in NINE_IRON_SPINS_RADPS:
         b = bounce_once(speed, angle, w, turf="green")
         ours[_nine_green(w), MU_C] = b["mu_c"]

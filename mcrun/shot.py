@@ -102,9 +102,10 @@ N_OUTCOME = len(OUTCOME_FIELDS)
 
 
 @njit(cache=True)
-def fail(out, i, status):
-    """Record that shot i ended with ``status``: its flight and run fields are NaN."""
-    for k in range(3, N_OUTCOME):
+def fail(out, i, status, first=CARRY):
+    """Record that shot i ended with ``status``: its fields from ``first`` on (the flight's and
+    the run's, or the run's alone when the flight was complete) are NaN."""
+    for k in range(first, N_OUTCOME):
         out[i, k] = math.nan
     out[i, STATUS] = status
 
@@ -121,7 +122,7 @@ def impact(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, bounces, previous_height):
     and duration of the hop it starts, and whether the ball HOPS, ROLLS (the hop would be lower
     than the critical height, Penner 2002, or no lower than HOP_DECAY_LIMIT times the one
     before) or has bounced TOO_MANY times. Branch-free, for loops over many shots."""
-    ex, ey, ez, vne, _ = incidence(vx, vy, vz, nx, ny, nz, turf.softness)
+    ex, ey, ez, vne, _ = incidence(vx, vy, vz, nx, ny, nz, turf)
     return impact_rebound(
         vx, vy, vz, wx, wy, wz, nx, ny, nz, ex, ey, ez, vne, turf, bounces, previous_height
     )
@@ -230,8 +231,8 @@ def run_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, dt):
     (ours: hops that no longer die out are a rolling ball); then ``roll.roll``. Trajectory
     points go into ``traj`` from row n, every dt. Returns (x, y, z, t, status, bounces,
     first_bounce_height_m, first_bounce_length_m, n) at rest; first_bounce_length_m is
-    measured along x. Status TOO_MANY_BOUNCES leaves the
-    position where the bouncing stopped.
+    measured along x. Status TOO_MANY_BOUNCES (a safety bound the rules above end every
+    sequence well within) leaves the position where the bouncing stopped.
     """
     first_height = 0.0
     first_length = 0.0
@@ -465,7 +466,7 @@ def land(x, y, z, vx, vy, vz, w, z1, vz1, t, apex, ctx, slope, fall_line, dt, ou
 def write_run(out, i, landing_x, x, y, t, status, bounces, first_height, first_length):
     """Write the run fields of shot i, which landed at x = landing_x and rests at (x, y)."""
     if status == TOO_MANY_BOUNCES:
-        fail(out, i, TOO_MANY_BOUNCES)
+        fail(out, i, TOO_MANY_BOUNCES, BOUNCES)  # the flight's fields stand
         return
     out[i, BOUNCES] = bounces
     out[i, FIRST_BOUNCE_HEIGHT] = first_height

@@ -89,4 +89,14 @@ def check_turf(turf):
     for field in ("e0", "e1", "e2"):
         if not abs(getattr(turf, field)) < 10.0:
             raise ValueError(f"turf {field} = {getattr(turf, field)} is not a finite coefficient")
+    # e(v) must not grow with the impact speed, as no measured restitution does: the bound on
+    # theta_c (bounce.equivalent_surface_tilt) relies on it. The slope of the quadratic (5a)
+    # is linear in v, so its ends decide; (5b) must not jump above (5a) at the break.
+    v = turf.e_break_speed_mps
+    at_break = turf.e0 + turf.e1 * v + turf.e2 * v * v
+    if turf.e1 > 0.0 or turf.e1 + 2.0 * turf.e2 * v > 0.0 or turf.e_high > max(at_break, 0.0):
+        raise ValueError(
+            f"turf restitution e0 + e1 v + e2 v^2 = {turf.e0:g} + {turf.e1:g} v + {turf.e2:g} "
+            f"v^2 up to {v:g} m/s, then {turf.e_high:g}, grows with the impact speed: it must not"
+        )
     return turf

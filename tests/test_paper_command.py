@@ -127,7 +127,7 @@ def test_bounce_rows_equal_the_bounce_model(rows):
         assert row(rows, prefix, "leaves")["mcrun"] == b["mode"]
     assert_printed(
         row(rows, "9-iron: lands", "critical backspin")["mcrun"],
-        critical_backspin_radps(23.8, math.radians(34.0)),
+        critical_backspin_radps(23.8, math.radians(34.0), PRESETS["green"]),
     )
     for w in (809, 1000, 1200):
         b = bounce_once(23.8, 34.0, w)
