@@ -217,9 +217,9 @@ def _sweep_columns(points):
 # drawn float64 that zstd cannot compress: 8 B per column and shot.
 BYTES_PER_COLUMN_SHOT = 8
 # Each row group (a chunk, at least one per point) adds its column chunks' page headers and
-# footer entries: about 150 B per column (measured: a 100 x 100 sweep of 10 shots a point),
-# bounded at 300.
-BYTES_PER_ROW_GROUP_COLUMN = 300
+# footer entries: about 365 B per column (measured: a 100 x 100 sweep of 10 shots a point
+# wrote 179 MB, 17.9 kB a row group of 49 columns), bounded at 500.
+BYTES_PER_ROW_GROUP_COLUMN = 500
 # A trajectory is recorded every 10 ms to rest (a drive: about 1,500 rows of 7 columns, 35 kB
 # in Parquet); the bound is that of a 30 s shot, 3,000 rows at 40 B.
 BYTES_PER_TRAJECTORY = 120_000
@@ -228,10 +228,10 @@ BYTES_PER_TRAJECTORY = 120_000
 BYTES_SUMMARY = 100_000
 BYTES_SUMMARY_POINT = 2_000
 # Time: end to end about 4e5 shots/s on two cores (README, Performance: 451,000 for 1e7
-# pga-driver shots), and per point about 1 ms (sampling a block of 4,096 and the point's
-# summary row, measured on a 100 x 100 sweep of 10 shots a point).
+# pga-driver shots), and per point about 5 ms (its row group's write, 3.5 ms, sampling a block
+# of 4,096 and its summary row: a 100 x 100 sweep of 10 shots a point ran in 55 s).
 SHOTS_PER_S = 4e5
-SECONDS_PER_POINT = 1e-3
+SECONDS_PER_POINT = 5e-3
 # The columns of shots.parquet besides the sampled inputs: point, group, label, shot, the
 # outcome fields and status_name.
 _FIXED_COLUMNS = 5 + len(OUTCOME_FIELDS)
