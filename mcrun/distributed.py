@@ -329,7 +329,9 @@ def run_chunk(chunk, point, start, stop, job):
     """
     numba.set_num_threads(NUMBA_THREADS_PER_TASK)
     scenario = _scenario(job["scenario_text"], job["scenario_path"], job["seed"])
-    inputs, sampled = sampling.sample(scenario, scenario.points[point], start, stop)
+    inputs, sampled = sampling.sample(
+        scenario, scenario.points[point], start, stop, job["input_names"]
+    )
     out = simulate_batch(inputs)
     point_stats = stats.PointStats(job["drivers"][point])
     point_stats.update(out, sampled)
@@ -483,6 +485,8 @@ def run_scenario(
     budget_bytes=stats.DEFAULT_BUDGET_BYTES,
     retries=RETRIES,
     chunk_task=run_chunk,
+    ignore_disk_space=False,
+    announce=None,
 ):
     """Run a scenario on a Dask cluster and write its folder; return a DaskRunResult.
 
@@ -493,6 +497,8 @@ def run_scenario(
     ----------
     path_or_scenario, n, seed, chunk_size, trajectories_every, progress, force, budget_bytes
         As ``mcrun.run.run_scenario``; ``chunk_size`` is also the shots per task.
+    ignore_disk_space, announce
+        As ``mcrun.run.run_scenario``; the free space is checked for a folder, not for a URL.
     out_dir : str or Path, optional
         A folder that the client and every worker reach (local, or shared and mounted at the
         same path), or an fsspec URL (``s3://bucket/run``). Default ``runs/<name>-<seed>``.
@@ -534,9 +540,11 @@ def run_scenario(
         out_dir = run.default_out_dir(scenario, seed)
     url = str(out_dir).rstrip("/") if _is_url(str(out_dir)) else None
 
-    # The columns and the models, as the local engine finds them (one sampled row per point).
-    input_names = list(sampling.sampled_columns(scenario))
-    first_inputs, integer_columns = run.first_samples(scenario, points)
+    # The columns and the models, as the local engine finds them.
+    input_names, integer_columns = run.run_columns(scenario)
+    plan = run.plan(scenario, n, chunk_size, trajectories_every, input_names)
+    if not (ignore_disk_space or url):
+        run.check_disk_space(plan, out_dir)
     input_types = dict.fromkeys(integer_columns, "int64")
     drivers = [run.driver_inputs(point, input_names) for point in points]
     partitioned = any(p.group for p in points)
@@ -549,6 +557,8 @@ def run_scenario(
     connecting = time.perf_counter()
     with destination, _connect(client, scheduler, scheduler_file, workers) as dask_client:
         address, n_workers, threads = _cluster_size(dask_client)
+        if announce is not None:
+            announce(plan.line())
         # The run's time starts once the cluster is up (a local cluster takes seconds to
         # start: recorded apart, as cluster_start_s).
         started = time.perf_counter()
@@ -559,7 +569,7 @@ def run_scenario(
             "format_version": 1,
             "backend": "dask",
             "layout": "dataset",
-            **run.describe_run(scenario, seed, n, points, first_inputs),
+            **run.describe_run(scenario, seed, n, points),
             "versions": {
                 **output.versions(),
                 "dask": dask.__version__,
@@ -864,4 +874,6 @@ def run_from_args(args):
         trajectories_every=args.trajectories,
         progress=not args.quiet,
         force=args.force,
+        ignore_disk_space=args.ignore_disk_space,
+        announce=None if args.quiet else run._say,
     )

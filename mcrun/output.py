@@ -174,9 +174,9 @@ class ShotsWriter(_ParquetWriter):
         self._outcomes = [
             (k, name) for k, name in enumerate(OUTCOME_FIELDS) if name not in self.input_types
         ]
-        group_names = list(dict.fromkeys(groups))
-        self._group_dictionary = pa.array(group_names, pa.string())
-        self._group_index = [group_names.index(g) for g in groups]
+        group_index = {g: k for k, g in enumerate(dict.fromkeys(groups))}
+        self._group_dictionary = pa.array(list(group_index), pa.string())
+        self._group_index = [group_index[g] for g in groups]
         self._label_dictionary = pa.array(list(labels), pa.string())
         self.schema = shots_schema(self.input_names, self.input_types, metadata)
         self.row_groups = {}  # point -> list of row group indices

@@ -19,6 +19,7 @@ import copy
 import dataclasses
 import json
 import math
+import shutil
 import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -30,13 +31,13 @@ import numba
 import numpy as np
 import pandas as pd
 import pyarrow as pa
+import pyarrow.parquet as pq
 
 from mcrun import aero, output, sampling, stats
 from mcrun import scenario as scenario_module
 from mcrun.api import InputError
-from mcrun.batch import COLUMN, N_INPUT, simulate_batch, trajectory_of
-from mcrun.flight import WIND_PROFILES
-from mcrun.shot import N_OUTCOME
+from mcrun.batch import N_INPUT, simulate_batch, trajectory_of
+from mcrun.shot import N_OUTCOME, OUTCOME_FIELDS
 from mcrun.units import UnitError
 
 DEFAULT_CHUNK_SIZE = 65536
@@ -189,12 +190,11 @@ def driver_inputs(point, columns):
     return [name for name in columns if name in names]
 
 
-def _model_names(first_inputs):
-    """Names of the aerodynamic models and wind profiles used, from each point's first row."""
-    aero_names = {v: k for k, v in aero.MODELS.items()}
-    profile_names = {v: k for k, v in WIND_PROFILES.items()}
-    models = sorted({aero_names[int(row[COLUMN["aero_model"]])] for row in first_inputs})
-    profiles = sorted({profile_names[int(row[COLUMN["wind_profile"]])] for row in first_inputs})
+def _model_names(points):
+    """Names of the aerodynamic models and wind profiles used: choices, so the same for every
+    sample of a point, read from its parameters (no sampling)."""
+    models = sorted({p.params["models.aero"] for p in points})
+    profiles = sorted({p.params["weather.wind_profile"] for p in points})
     return {"aero": models, "bounce": ["penner2002"], "wind_profile": profiles}
 
 
@@ -207,6 +207,115 @@ def _sweep_columns(points):
         numeric = all(isinstance(v, int | float) and not isinstance(v, bool) for v in values)
         columns[key] = [float(v) for v in values] if numeric else [str(v) for v in values]
     return columns
+
+
+# --- the plan: what a run will be, said before it starts ---------------------------------------
+
+# Bytes of Parquet per shot, an upper bound: shots.parquet of pga-driver (every launch input
+# drawn) measured 150 B a shot at 1e6 shots in chunks of 65,536; a scenario that draws more
+# inputs (wind, temperature, turf) writes up to about 250 B. The bound takes every column as a
+# drawn float64 that zstd cannot compress: 8 B per column and shot.
+BYTES_PER_COLUMN_SHOT = 8
+# Each row group (a chunk, at least one per point) adds its column chunks' page headers and
+# footer entries: about 365 B per column (measured: a 100 x 100 sweep of 10 shots a point
+# wrote 179 MB, 17.9 kB a row group of 49 columns), bounded at 500.
+BYTES_PER_ROW_GROUP_COLUMN = 500
+# A trajectory is recorded every 10 ms to rest (a drive: about 1,500 rows of 7 columns, 35 kB
+# in Parquet); the bound is that of a 30 s shot, 3,000 rows at 40 B.
+BYTES_PER_TRAJECTORY = 120_000
+# summary.parquet: about 60 kB for one point (its metadata holds the scenario and the schema
+# of about 120 columns) and 1.5 kB per further point (measured on 4 and 100 points).
+BYTES_SUMMARY = 100_000
+BYTES_SUMMARY_POINT = 2_000
+# Time: end to end about 4e5 shots/s on two cores (README, Performance: 451,000 for 1e7
+# pga-driver shots), and per point about 5 ms (its row group's write, 3.5 ms, sampling a block
+# of 4,096 and its summary row: a 100 x 100 sweep of 10 shots a point ran in 55 s).
+SHOTS_PER_S = 4e5
+SECONDS_PER_POINT = 5e-3
+# The columns of shots.parquet besides the sampled inputs: point, group, label, shot, the
+# outcome fields and status_name.
+_FIXED_COLUMNS = 5 + len(OUTCOME_FIELDS)
+
+
+@dataclass(frozen=True)
+class Plan:
+    """What a run will be: its points, shots per point, total shots, an estimate of its time
+    (s) and of the Parquet it writes (bytes, an upper bound)."""
+
+    points: int
+    n: int
+    shots: int
+    seconds: float
+    bytes: int
+
+    def line(self):
+        """One line for the terminal, e.g. ``mcrun: 4 points x 10 shots = 40 shots; ...``."""
+        points = f"{self.points:,} point" + ("s" if self.points != 1 else "")
+        return (
+            f"mcrun: {points} x {self.n:,} shots = {self.shots:,} shots; "
+            f"{'under' if self.seconds < 0.05 else 'about'} {duration_text(self.seconds)} of "
+            f"simulation, about {size_text(self.bytes)} of Parquet"
+        )
+
+
+def size_text(n_bytes):
+    """A size in B, kB, MB, GB, TB or PB (powers of 1000), two or three digits."""
+    value = float(n_bytes)
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if value < 999.5:
+            return f"{value:.0f} {unit}" if unit == "B" or value >= 9.95 else f"{value:.1f} {unit}"
+        value /= 1000.0
+    return f"{value:,.0f} PB"
+
+
+def duration_text(seconds):
+    """A duration in s, min, h or days."""
+    for unit, size in (("days", 86400.0), ("h", 3600.0), ("min", 60.0)):
+        if seconds >= 2 * size:
+            return f"{seconds / size:,.0f} {unit}"
+    if seconds < 0.05:
+        return "0.1 s"
+    return f"{seconds:.1f} s" if seconds < 10 else f"{seconds:.0f} s"
+
+
+def plan(scenario, n, chunk_size=DEFAULT_CHUNK_SIZE, trajectories_every=None, columns=None):
+    """The ``Plan`` of a run of ``n`` shots per point of a loaded scenario.
+
+    ``columns``: the run's sampled columns, when known (``run_columns``). The size is an upper
+    bound (constants above); the time assumes the 2-core machine of the benchmarks.
+    """
+    points = len(scenario.points)
+    shots = points * n
+    if columns is None:
+        columns, _ = run_columns(scenario)
+    width = len(columns) + _FIXED_COLUMNS
+    row_groups = points * -(-n // chunk_size)
+    size = shots * width * BYTES_PER_COLUMN_SHOT + row_groups * width * BYTES_PER_ROW_GROUP_COLUMN
+    size += BYTES_SUMMARY + points * BYTES_SUMMARY_POINT
+    if trajectories_every is not None:
+        size += points * -(-n // trajectories_every) * BYTES_PER_TRAJECTORY
+    seconds = shots / SHOTS_PER_S + points * SECONDS_PER_POINT
+    return Plan(points, n, shots, seconds, size)
+
+
+def free_space(out_dir):
+    """(folder, free bytes) of the nearest existing folder of ``out_dir`` (itself or a parent),
+    where the run will be written."""
+    folder = Path(out_dir).absolute()
+    while not folder.exists() and folder.parent != folder:
+        folder = folder.parent
+    return folder, shutil.disk_usage(folder).free
+
+
+def check_disk_space(the_plan, out_dir):
+    """Refuse (OutputError) a run whose estimated size is not under the free space."""
+    folder, free = free_space(out_dir)
+    if the_plan.bytes >= free:
+        raise output.OutputError(
+            f"the run would write about {size_text(the_plan.bytes)} of Parquet "
+            f"({the_plan.shots:,} shots) but {folder} has {size_text(free)} free: lower -n, "
+            "choose another folder with -o, or pass --ignore-disk-space to run anyway"
+        )
 
 
 # --- the run -----------------------------------------------------------------------------------
@@ -225,9 +334,9 @@ def _trajectories(writer, inputs, point, start, stop, every, buffer):
     return buffer
 
 
-def describe_run(scenario, seed, n, points, first_inputs):
+def describe_run(scenario, seed, n, points):
     """The provenance every backend records: the scenario, its seed and size, its points and
-    the models of their first inputs."""
+    their models."""
     return {
         "scenario_name": scenario.name,
         "scenario_path": str(scenario.path),
@@ -237,22 +346,19 @@ def describe_run(scenario, seed, n, points, first_inputs):
         "block_size": scenario.block_size,
         "points": [p.label for p in points],
         "groups": [p.group for p in points],
-        "models": _model_names(first_inputs),
+        "models": _model_names(points),
     }
 
 
-def first_samples(scenario, points):
-    """Each point's first kernel inputs (one sample each), and the sampled columns that hold
-    integers."""
-    first_inputs = []
-    integer_columns = []
-    for point in points:
-        inputs, sampled = sampling.sample(scenario, point, 0, 1)
-        first_inputs.append(inputs[0])
-        for name, values in sampled.items():
-            if np.issubdtype(np.asarray(values).dtype, np.integer) and name not in integer_columns:
-                integer_columns.append(name)
-    return first_inputs, integer_columns
+def run_columns(scenario):
+    """The sampled columns of a run (the same for every point), and those that hold integers.
+
+    Found once from the scenario's points, without sampling: ``sampling.sampled_columns``
+    looks at every point, so it is not asked again per point or per chunk.
+    """
+    names = list(sampling.sampled_columns(scenario))
+    integers = [n for n in names if np.issubdtype(sampling.column_dtype(n), np.integer)]
+    return names, integers
 
 
 def run_scenario(
@@ -266,6 +372,8 @@ def run_scenario(
     progress=True,
     force=False,
     budget_bytes=stats.DEFAULT_BUDGET_BYTES,
+    ignore_disk_space=False,
+    announce=None,
 ):
     """Run a scenario and write its folder; return a RunResult.
 
@@ -292,13 +400,18 @@ def run_scenario(
         Replace an existing run folder.
     budget_bytes : int
         Memory for the exact percentiles per column (``stats.exact_quantiles``).
+    ignore_disk_space : bool
+        Run even when the estimated size (``plan``) is not under the free space of the output's
+        disk.
+    announce : callable, optional
+        Called with the plan's line (``Plan.line``) before the run starts.
 
     Raises
     ------
     InputError
-        (ScenarioError, OutputError) on a bad scenario, argument or output folder, before
-        anything is written. KeyboardInterrupt is re-raised after the temporary files are
-        removed.
+        (ScenarioError, OutputError) on a bad scenario, argument or output folder, or a run
+        that would not fit on the disk, before anything is written. KeyboardInterrupt is
+        re-raised after the temporary files are removed.
     """
     scenario = _load(path_or_scenario)
     n = _positive_int(scenario.shots if n is None else n, "n")
@@ -312,9 +425,10 @@ def run_scenario(
     points = list(scenario.points)
     out_dir = Path(default_out_dir(scenario, seed) if out_dir is None else out_dir)
 
-    # The columns (the same for every point) and each point's first inputs (one block each).
-    input_names = list(sampling.sampled_columns(scenario))
-    first_inputs, integer_columns = first_samples(scenario, points)
+    input_names, integer_columns = run_columns(scenario)
+    the_plan = plan(scenario, n, chunk_size, trajectories_every, input_names)
+    if not ignore_disk_space:
+        check_disk_space(the_plan, out_dir)
     input_types = dict.fromkeys(integer_columns, pa.int64())
     drivers_per_point = [driver_inputs(point, input_names) for point in points]
 
@@ -327,7 +441,7 @@ def run_scenario(
     base = {
         "format_version": 1,
         "backend": "local",
-        **describe_run(scenario, seed, n, points, first_inputs),
+        **describe_run(scenario, seed, n, points),
         "versions": output.versions(),
         "threads": numba.get_num_threads(),
         "chunk_size": chunk_size,
@@ -342,6 +456,8 @@ def run_scenario(
 
     try:
         with output.AtomicFolder(out_dir, force=force) as folder:
+            if announce is not None:  # once the output folder is accepted
+                announce(the_plan.line())
             shots_writer = output.ShotsWriter(
                 folder.file(output.SHOTS_FILE),
                 input_names,
@@ -360,6 +476,7 @@ def run_scenario(
                 point_stats = _stream(
                     scenario,
                     points,
+                    input_names,
                     drivers_per_point,
                     n,
                     chunk_size,
@@ -408,7 +525,16 @@ def run_scenario(
 
 
 def _stream(
-    scenario, points, drivers_per_point, n, chunk_size, shots_writer, traj_writer, every, progress
+    scenario,
+    points,
+    input_names,
+    drivers_per_point,
+    n,
+    chunk_size,
+    shots_writer,
+    traj_writer,
+    every,
+    progress,
 ):
     """The chunked loop; returns the PointStats of every point."""
     from tqdm import tqdm
@@ -423,11 +549,12 @@ def _stream(
     buffers = [np.empty((chunk_size, N_OUTCOME), order="F") if full else None for _ in range(2)]
     traj_buffer = np.empty((4096, 5))
     all_stats = [stats.PointStats(drivers) for drivers in drivers_per_point]
-    chunks = [
+    # The chunks one after the other, never as a list: n may be huge.
+    chunks = (
         (j, point, start, min(start + chunk_size, n))
         for j, point in enumerate(points)
         for start in range(0, n, chunk_size)
-    ]
+    )
 
     def finish(point_stats, point, start, sampled, out):
         point_stats.update(out, sampled)
@@ -441,15 +568,21 @@ def _stream(
             total=n * len(points), unit="shot", unit_scale=True, disable=not show, smoothing=0.1
         ) as bar,
     ):
-        sampling_next = (
-            sampler.submit(sampling.sample, scenario, *chunks[0][1:]) if chunks else None
-        )
-        for k, (j, point, start, stop) in enumerate(chunks):
+
+        def sample_next():
+            chunk = next(chunks, None)
+            if chunk is None:
+                return None, None
+            return chunk, sampler.submit(sampling.sample, scenario, *chunk[1:], input_names)
+
+        following, sampling_next = sample_next()
+        k = 0
+        while following is not None:
+            j, point, start, stop = following
             if len(points) > 1 and start == 0:
                 bar.set_description(point.label or f"point {point.index}")
             inputs, sampled = sampling_next.result()
-            if k + 1 < len(chunks):
-                sampling_next = sampler.submit(sampling.sample, scenario, *chunks[k + 1][1:])
+            following, sampling_next = sample_next()
             out = buffers[k % 2] if stop - start == chunk_size else None
             out = simulate_batch(inputs, out)
             if writing is not None:
@@ -461,6 +594,7 @@ def _stream(
                 )
                 traj_writer.flush()
             bar.update(stop - start)
+            k += 1
         if writing is not None:
             writing.result()
     return all_stats
@@ -469,15 +603,17 @@ def _stream(
 def _summary_rows(points, point_stats, shots_path, row_groups, budget_bytes):
     rows = []
     sweep = _sweep_columns(points)
-    for point, one in zip(points, point_stats, strict=True):
-        row = {"point": point.index, "group": point.group, "label": point.label}
-        for key, values in sweep.items():
-            row[key] = values[point.index]
-        columns = stats.ShotsColumns(shots_path, row_groups.get(point.index, []))
-        row.update(
-            stats.summarise(one, columns, target_m=point.target_m, budget_bytes=budget_bytes)
-        )
-        rows.append(row)
+    # One open file for every point: its footer lists every row group of the run.
+    with pq.ParquetFile(shots_path) as shots_file:
+        for point, one in zip(points, point_stats, strict=True):
+            row = {"point": point.index, "group": point.group, "label": point.label}
+            for key, values in sweep.items():
+                row[key] = values[point.index]
+            columns = stats.ShotsColumns(shots_file, row_groups.get(point.index, []))
+            row.update(
+                stats.summarise(one, columns, target_m=point.target_m, budget_bytes=budget_bytes)
+            )
+            rows.append(row)
     return pd.DataFrame(rows)
 
 
@@ -576,6 +712,10 @@ def _error(err):
     return 2
 
 
+def _say(line):
+    print(line, file=sys.stderr, flush=True)
+
+
 def _interrupted():
     print(_INTERRUPTED, file=sys.stderr)
     return 130
@@ -604,6 +744,8 @@ def _cmd_run(args):
                 trajectories_every=args.trajectories,
                 progress=not args.quiet,
                 force=args.force,
+                ignore_disk_space=args.ignore_disk_space,
+                announce=None if args.quiet else _say,
             )
     except (InputError, UnitError) as err:
         return _error(err)
@@ -649,9 +791,8 @@ def describe(scenario):
     )
     names = sampling.sampled_columns(scenario)
     for point in scenario.points:
-        inputs, _ = sampling.sample(scenario, point, 0, 1)
         varying = driver_inputs(point, names)
-        model = {v: k for k, v in aero.MODELS.items()}[int(inputs[0, COLUMN["aero_model"]])]
+        model = point.params["models.aero"]
         label = point.label or "(single point)"
         lines.append(
             f"  {point.index}: {label}: aero {model}; sampled: "
@@ -755,7 +896,15 @@ def register(subparsers):
         help=f"shots per chunk and row group (default {DEFAULT_CHUNK_SIZE}); results do not "
         "depend on it",
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument(
+        "--ignore-disk-space",
+        action="store_true",
+        help="run even when the estimated size of the output is not under the free space of "
+        "its disk (by default such a run is refused before it starts)",
+    )
+    p.add_argument(
+        "--quiet", action="store_true", help="no progress bar, and no line saying the run's size"
+    )
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     _add_dask_options(p)
     p.set_defaults(func=_cmd_run)

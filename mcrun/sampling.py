@@ -42,6 +42,7 @@ from mcrun.turf import PRESETS, rho_g_from_stimp
 
 __all__ = [
     "block_generator",
+    "column_dtype",
     "draw_block",
     "sample",
     "sampled_columns",
@@ -436,12 +437,16 @@ def _convert(scenario, point, raw, columns, inputs=None):
     return inputs, sampled
 
 
-def _dtype(name):
+def column_dtype(name):
+    """The dtype of a sampled column: int64 for ``source_row``, float64 for the others."""
     return np.int64 if name == "source_row" else float
 
 
-def sample(scenario, point, start, stop):
+def sample(scenario, point, start, stop, columns=None):
     """The kernel inputs and the sampled columns of samples ``start`` .. ``stop - 1`` of a point.
+
+    ``columns``: ``sampled_columns(scenario)``, when the caller has it: that function looks at
+    every point, so a run computes it once rather than once per chunk.
 
     Returns
     -------
@@ -457,11 +462,12 @@ def sample(scenario, point, start, stop):
         raise ValueError(f"need 0 <= start <= stop, got {start}, {stop}")
     size = scenario.block_size
     n = stop - start
-    columns = sampled_columns(scenario)
+    if columns is None:
+        columns = sampled_columns(scenario)
     inputs = np.empty((n, N_INPUT), order="F")
     sampled = {}
     if n == 0:
-        return inputs, {name: np.empty(0, dtype=_dtype(name)) for name in columns}
+        return inputs, {name: np.empty(0, dtype=column_dtype(name)) for name in columns}
     for block in range(start // size, (stop - 1) // size + 1):
         first = block * size
         lo = max(start, first) - first
@@ -483,6 +489,6 @@ def sample(scenario, point, start, stop):
                 sampled[name] = np.broadcast_to(values[:1], (n,))
                 continue
             if name not in sampled:
-                sampled[name] = np.empty(n, dtype=_dtype(name))
+                sampled[name] = np.empty(n, dtype=column_dtype(name))
             sampled[name][at : at + hi - lo] = values[lo:hi]
     return inputs, sampled

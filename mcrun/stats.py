@@ -482,19 +482,31 @@ def _select(requests, chunks, cap, sums=None):
 
 
 class ShotsColumns:
-    """Ok-status values of one point's columns in a shots.parquet, row group by row group."""
+    """Ok-status values of one point's columns in a shots.parquet, row group by row group.
 
-    def __init__(self, path, row_groups):
-        self.path = path
+    ``source``: the file's path, or a ``pyarrow.parquet.ParquetFile`` already open. A run's
+    summary passes every point the same open file: opening it reads the footer, which lists
+    every row group of the run, so opening it per point would make the summary quadratic in
+    the number of points.
+    """
+
+    def __init__(self, source, row_groups):
+        self.source = source
         self.row_groups = list(row_groups)
 
     def chunks(self, columns):
         """Iterator of dicts column -> ok values, one per row group."""
-        with pq.ParquetFile(self.path) as f:
-            for g in self.row_groups:
-                table = f.read_row_group(g, columns=[*columns, "status"])
-                ok = table.column("status").to_numpy() == status_codes.OK
-                yield {c: table.column(c).to_numpy()[ok] for c in columns}
+        if isinstance(self.source, pq.ParquetFile):
+            yield from self._chunks(self.source, columns)
+            return
+        with pq.ParquetFile(self.source) as f:
+            yield from self._chunks(f, columns)
+
+    def _chunks(self, f, columns):
+        for g in self.row_groups:
+            table = f.read_row_group(g, columns=[*columns, "status"])
+            ok = table.column("status").to_numpy() == status_codes.OK
+            yield {c: table.column(c).to_numpy()[ok] for c in columns}
 
 
 def _percentile_name(p):
