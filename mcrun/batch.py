@@ -628,10 +628,23 @@ def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS):
     """Simulate every row of ``inputs`` (n, N_INPUT); return ``out`` (n, N_OUTCOME), F-order."""
     if inputs.ndim != 2 or inputs.shape[1] != N_INPUT:
         raise ValueError(f"inputs must have shape (n, {N_INPUT}), got {inputs.shape}")
+    n = inputs.shape[0]
+    if n < 2:
+        # Numba types an array of fewer than two rows as C-contiguous (it is both), which would
+        # compile the kernel again for that layout: such a batch runs as two rows, padded with
+        # zeros (a shot of speed 0, answered with invalid_input at once).
+        padded = np.zeros((2, N_INPUT), order="F")
+        padded[:n] = inputs
+        result = np.empty((2, N_OUTCOME), order="F")
+        _simulate_batch(padded, table, result)
+        if out is None:
+            out = np.empty((n, N_OUTCOME), order="F")
+        out[:] = result[:n]
+        return out
     # One compiled layout: a slice of the rows (not contiguous) is copied, not compiled again.
     inputs = np.asfortranarray(inputs, dtype=np.float64)
     if out is None:
-        out = np.empty((inputs.shape[0], N_OUTCOME), order="F")
+        out = np.empty((n, N_OUTCOME), order="F")
     _simulate_batch(inputs, table, out)
     return out
 
