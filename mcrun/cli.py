@@ -15,6 +15,7 @@ import os
 import re
 import sys
 import textwrap
+import time
 
 from mcrun import aero, api, atmosphere, status, turf, units
 from mcrun.api import InputError
@@ -584,22 +585,46 @@ SIMULATING_COMMANDS = {
 }
 
 
-def _say_if_compiling(kind):
-    """One line on stderr when the command's kernel is not in numba's on-disk cache yet (the
-    first run after an install or an upgrade compiles it, which takes a while)."""
+def _kernel_cached(kind):
+    """Whether the command's kernel is in numba's on-disk cache (None when it cannot be told)."""
     from mcrun.batch import _simulate_batch
     from mcrun.shot import simulate_shot
 
     kernel = simulate_shot if kind == "single" else _simulate_batch
     try:
-        missing = not os.path.exists(kernel._cache._cache_file._index_path)
-    except AttributeError:  # numba's cache internals moved: say nothing
+        return os.path.exists(kernel._cache._cache_file._index_path)
+    except AttributeError:  # numba's cache internals moved
+        return None
+
+
+def _compile(kind):
+    """Compile the command's kernel (or load it from numba's cache)."""
+    if kind == "single":
+        api.simulate(ball_speed_mps=70.0, launch_angle_deg=12.0, spin_radps=250.0)
+    else:
+        import numpy as np
+
+        from mcrun.batch import N_INPUT, simulate_batch
+
+        simulate_batch(np.zeros((0, N_INPUT)))
+
+
+def _compile_if_needed(kind):
+    """When the command's kernel is not in numba's on-disk cache yet (the first run after an
+    install or an upgrade compiles it, which takes a while), compile it before the command
+    starts, saying so on stderr with the time it took: a run's rate is then its own."""
+    if _kernel_cached(kind) is not False:
         return
-    if missing:
-        print(
-            "mcrun: compiling the kernels (first run after install; cached for the next runs)",
-            file=sys.stderr,
-        )
+    print(
+        "mcrun: compiling the kernels (first run after install; cached for the next runs)",
+        file=sys.stderr,
+        flush=True,
+    )
+    started = time.perf_counter()
+    _compile(kind)
+    print(
+        f"mcrun: compiled the kernels in {time.perf_counter() - started:.0f} s", file=sys.stderr
+    )
 
 
 def main(argv=None):
@@ -610,13 +635,16 @@ def main(argv=None):
         args = parser.parse_args(_attach_negative_values(argv))
     except SystemExit as exit_:  # --help, or a usage error argparse has already reported
         return exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
-    if args.command in SIMULATING_COMMANDS:
-        _say_if_compiling(SIMULATING_COMMANDS[args.command])
     try:
+        if args.command in SIMULATING_COMMANDS:
+            _compile_if_needed(SIMULATING_COMMANDS[args.command])
         return args.func(args)
     except (InputError, UnitError, CommandError) as err:
         print("mcrun: error: " + " ".join(str(err).split()), file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # Ctrl-C in a command that does not say more itself (validate)
+        print("mcrun: interrupted", file=sys.stderr)
+        return 130
     except BrokenPipeError:  # e.g. `mcrun shot ... | head -3`: the reader has gone, not a bug
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
         return 1

@@ -7,6 +7,7 @@ Most tests call ``main([...])`` in the test process; one runs the installed cons
 
 import json
 import math
+import re
 import shutil
 import subprocess
 import sys
@@ -328,3 +329,32 @@ def test_installed_console_script_exits_2_without_traceback():
     assert result.stderr.splitlines() == [
         "mcrun: error: --ball-speed: cannot read 'nan' as a speed: not a finite number"
     ]
+
+
+# --- compiling -----------------------------------------------------------------------------------
+
+
+def test_run_says_the_compile_apart_from_its_rate(tmp_path, capsys, monkeypatch):
+    """When the kernel is not in numba's cache, the command line compiles it before the run,
+    says so and how long it took on stderr; the run's line gives its own time and rate."""
+    monkeypatch.setattr(cli, "_kernel_cached", lambda kind: False)
+    scenario = Path(__file__).parents[1] / "scenarios" / "pga-driver.toml"
+    code, out, err = run(
+        capsys, "run", str(scenario), "-n", "200", "-o", str(tmp_path / "run"), "--quiet"
+    )
+    assert code == 0, err
+    lines = err.splitlines()
+    assert len(lines) == 2 and lines[0].startswith("mcrun: compiling the kernels"), err
+    assert re.fullmatch(r"mcrun: compiled the kernels in \d+ s", lines[1]), err
+    rate = re.search(r"^200 shots in (\d+\.\d) s \(([\d,]+) shots/s", out, re.MULTILINE)
+    assert rate is not None, out
+    assert float(rate[1]) < 5.0  # the run of 200 shots alone, not a compile
+
+
+def test_compile_of_the_single_shot_kernel(capsys, monkeypatch):
+    monkeypatch.setattr(cli, "_kernel_cached", lambda kind: False)
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--json")
+    assert code == 0 and json.loads(out)["status_name"] == "ok"
+    assert re.fullmatch(
+        r"mcrun: compiling the kernels [^\n]*\nmcrun: compiled the kernels in \d+ s\n", err
+    ), err
