@@ -622,9 +622,7 @@ def _compile_if_needed(kind):
     )
     started = time.perf_counter()
     _compile(kind)
-    print(
-        f"mcrun: compiled the kernels in {time.perf_counter() - started:.0f} s", file=sys.stderr
-    )
+    print(f"mcrun: compiled the kernels in {time.perf_counter() - started:.0f} s", file=sys.stderr)
 
 
 def main(argv=None):

@@ -358,3 +358,20 @@ def test_compile_of_the_single_shot_kernel(capsys, monkeypatch):
     assert re.fullmatch(
         r"mcrun: compiling the kernels [^\n]*\nmcrun: compiled the kernels in \d+ s\n", err
     ), err
+
+
+def test_ctrl_c_in_validate_is_one_line_and_exit_130(capsys, monkeypatch):
+    """Ctrl-C during a long ``mcrun validate`` (here while it describes the points) ends like
+    Ctrl-C in ``mcrun run``: one line on stderr, exit code 130, no traceback."""
+    from mcrun import run as run_module
+
+    def interrupted(scenario):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(run_module, "describe", interrupted)
+    try:
+        code, out, err = run(capsys, "validate", "pga-driver")
+    except KeyboardInterrupt:
+        pytest.fail("Ctrl-C escaped mcrun validate as a traceback")
+    assert code == 130 and out == ""
+    assert err == "mcrun: interrupted\n"
