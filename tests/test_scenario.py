@@ -491,6 +491,32 @@ def test_resample_file_with_a_bad_value(tmp_path):
     )
 
 
+def test_resample_file_malformed_or_a_folder(tmp_path):
+    """``launch.file`` reads through the reader of ``mcrun replay``: a header only, a row with
+    a field more than the header, a folder: one line naming the scenario, the key, the file
+    and what is wrong."""
+    lines = SESSION_CSV.read_text(encoding="utf-8").splitlines()
+    header = next(line for line in lines if not line.startswith("#"))
+    first = lines[lines.index(header) + 1]
+    cases = {
+        "header.csv": (header + "\n", "no shots: the file has a header only"),
+        "extra.csv": (f"{header}\n{first},1.0\n", "row 1 has 6 fields, the header has 5"),
+    }
+    for name, (text, what) in cases.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+        path = write(tmp_path, f'[launch]\nfile = "{name}"\n')
+        with pytest.raises(sc.ScenarioError) as info:
+            sc.load(path)
+        assert str(info.value) == f"{path}: launch.file: {tmp_path / name}: {what}"
+    (tmp_path / "folder.csv").mkdir()
+    path = write(tmp_path, '[launch]\nfile = "folder.csv"\n')
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value) == (
+        f"{path}: launch.file: {tmp_path / 'folder.csv'}: is a directory, not a CSV or Parquet file"
+    )
+
+
 def test_correlation_broken_by_a_group_names_the_point(tmp_path):
     text = (
         "[launch]\n"
