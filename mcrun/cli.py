@@ -54,6 +54,9 @@ def _number(text, option):
     """A plain dimensionless number (friction, scale factors, ...), or None when not given."""
     if text is None:
         return None
+    foreign = units.foreign_digits(text)
+    if foreign is not None:
+        raise InputError(f"{option}: cannot read {text!r} as a number: {foreign}")
     try:
         value = float(text)
     except ValueError:

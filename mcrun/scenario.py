@@ -53,7 +53,15 @@ from mcrun.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA, STANDA
 from mcrun.flight import WIND_PROFILES
 from mcrun.shot import default_dt_s
 from mcrun.turf import PRESETS
-from mcrun.units import KINDS, UnitError, from_column_name, parse_quantity, to_unit
+from mcrun.units import (
+    KINDS,
+    UnitError,
+    foreign_digits,
+    from_column_name,
+    parse_quantity,
+    shown,
+    to_unit,
+)
 
 __all__ = [
     "BOUNCE_MODELS",
@@ -432,8 +440,7 @@ def _spread_in(value_si, kind):
 
 
 def _shown(value):
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
+    return shown(value, 60)
 
 
 _LEADING_NUMBER = re.compile(r"^\s*[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
@@ -467,6 +474,9 @@ def _read(ctx, where, value, kind, key_unit, spread=False):
     """One value of a quantity (a number or a string with an optional unit) in SI."""
     if kind == "number" or key_unit is not None and kind != "choice":
         if isinstance(value, str):
+            foreign = foreign_digits(value)
+            if foreign is not None:
+                raise ctx.error(where, f"cannot read {_shown(value)}: {foreign}")
             try:
                 value = float(value)
             except ValueError:

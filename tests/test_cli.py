@@ -375,3 +375,23 @@ def test_ctrl_c_in_validate_is_one_line_and_exit_130(capsys, monkeypatch):
         pytest.fail("Ctrl-C escaped mcrun validate as a traceback")
     assert code == 130 and out == ""
     assert err == "mcrun: interrupted\n"
+
+
+def test_only_ascii_digits_and_the_degree_sign(capsys):
+    """``１６７mph`` (full-width digits, which float() reads) is refused in one line, for a
+    quantity and for a plain number; ``10.9°`` is ``10.9deg``."""
+    cases = [
+        ("--ball-speed", "１６７mph", ["--launch", "10.9", "--spin", "2686rpm"]),
+        ("--mu", "０.４", DRIVE_ARGS),
+    ]
+    for option, value, others in cases:
+        code, out, err = run(capsys, "shot", *others, option, value)
+        assert code == 2 and out == ""
+        assert err == (
+            f"mcrun: error: {option}: cannot read {value!r} as "
+            f"{'a speed' if option == '--ball-speed' else 'a number'}: "
+            f"only ASCII digits (0-9) are accepted, not {value[0]!r}\n"
+        )
+    degrees = ["--ball-speed", "167mph", "--launch", "10.9°", "--spin", "2686rpm", "--json"]
+    code, out, err = run(capsys, "shot", *degrees)
+    assert code == 0 and json.loads(out)["launch_angle_deg"] == 10.9
