@@ -141,17 +141,30 @@ def _print_json(mapping):
     print(json.dumps({k: _json_value(v) for k, v in mapping.items()}, allow_nan=False))
 
 
-def _status_note(code):
-    """Why a shot ended with a non-OK status, in one line."""
+def _not_stopped_reason(slope_deg, rho_g):
+    """Why a ball may still roll at the roll's bounds, for the ground it rolled on."""
+    bounds = f"still rolling after {status.MAX_ROLL_TIME_S:g} s or {status.MAX_ROLL_DISTANCE_M:g} m"
+    if slope_deg > 0.0 and math.tan(math.radians(slope_deg)) > rho_g:
+        return (
+            f"{bounds} (on a slope of {slope_deg:g} deg, steeper than atan(rho_g) = "
+            f"{math.degrees(math.atan(rho_g)):.2g} deg, the ball never stops)"
+        )
+    if slope_deg == 0.0 and rho_g == 0.0:
+        return (
+            f"{bounds} (with no rolling resistance, rho_g 0, a ball on level ground never "
+            "stops rolling)"
+        )
+    return bounds
+
+
+def _status_note(code, slope_deg=0.0, rho_g=None):
+    """Why a shot ended with a non-OK status, in one line (``slope_deg`` and ``rho_g``: the
+    ground the ball rolled on)."""
     reasons = {
         status.INVALID_INPUT: "a non-finite or out-of-range input reached the kernel",
         status.NOT_LANDED: f"still in the air after {status.MAX_FLIGHT_TIME_S:g} s",
         status.TOO_MANY_BOUNCES: f"still bouncing after {status.MAX_BOUNCES} bounces",
-        status.NOT_STOPPED: (
-            f"still rolling after {status.MAX_ROLL_TIME_S:g} s or "
-            f"{status.MAX_ROLL_DISTANCE_M:g} m (on a slope steeper than atan(rho_g) the ball "
-            "never stops)"
-        ),
+        status.NOT_STOPPED: _not_stopped_reason(slope_deg, math.inf if rho_g is None else rho_g),
     }
     name = status.NAMES.get(code, str(code))
     reason = reasons.get(code)
@@ -220,7 +233,8 @@ def _shot_kwargs(args):
 
 
 def _run_shot(args):
-    result = api.simulate(trajectory=args.trajectory is not None, **_shot_kwargs(args))
+    kwargs = _shot_kwargs(args)
+    result = api.simulate(trajectory=args.trajectory is not None, **kwargs)
     if args.trajectory is not None:
         try:
             result.trajectory.to_csv(args.trajectory, index=False)
@@ -235,7 +249,8 @@ def _run_shot(args):
         rows = [(k, v) for k, v in outcome.items() if k not in ("status", "status_name")]
         _print_table([*rows, ("status", outcome["status_name"])])
     if outcome["status"] != status.OK:
-        print(f"mcrun: warning: {_status_note(outcome['status'])}", file=sys.stderr)
+        ground = {"slope_deg": kwargs.get("slope_deg", 0.0), "rho_g": kwargs["turf"].rho_g}
+        print(f"mcrun: warning: {_status_note(outcome['status'], **ground)}", file=sys.stderr)
     return 0
 
 

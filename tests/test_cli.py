@@ -395,3 +395,20 @@ def test_only_ascii_digits_and_the_degree_sign(capsys):
     degrees = ["--ball-speed", "167mph", "--launch", "10.9°", "--spin", "2686rpm", "--json"]
     code, out, err = run(capsys, "shot", *degrees)
     assert code == 0 and json.loads(out)["launch_angle_deg"] == 10.9
+
+
+def test_not_stopped_warning_names_the_ground(capsys):
+    """On level ground with rho_g 0 the ball never stops rolling (it ends not_stopped at the
+    roll's bounds): the warning says so and talks of no slope; on a slope steeper than
+    atan(rho_g) it names the slope."""
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--rho-g", "0")
+    assert code == 0 and table(out)["status"] == "not_stopped"
+    assert err == (
+        "mcrun: warning: the shot ended with status not_stopped: still rolling after 120 s or "
+        "1000 m (with no rolling resistance, rho_g 0, a ball on level ground never stops "
+        "rolling)\n"
+    )
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--turf", "green", "--slope", "10")
+    assert code == 0 and table(out)["status"] == "not_stopped"
+    assert err.startswith("mcrun: warning: the shot ended with status not_stopped: ")
+    assert "(on a slope of 10 deg, steeper than atan(rho_g) = 7.5 deg, the ball never stops)" in err
