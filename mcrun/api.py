@@ -16,6 +16,7 @@ from mcrun.launch import launch_from_club
 from mcrun.shot import N_OUTCOME, OUTCOME_FIELDS, default_dt_s, simulate_shot
 from mcrun.trajectory import PHASE_NAMES
 from mcrun.turf import Turf, check_turf, rho_g_from_stimp, turf_preset
+from mcrun.units import shown
 
 
 class InputError(ValueError):
@@ -63,7 +64,7 @@ def check_range(name, value):
     try:
         value = float(value)
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {value!r}") from None
+        raise InputError(f"{name} must be a number, got {shown(value)}") from None
     if not math.isfinite(value):
         raise InputError(f"{name} must be finite, got {value}")
     if not lo <= value <= hi:

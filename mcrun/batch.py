@@ -635,23 +635,40 @@ def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS):
     """Simulate every row of ``inputs`` (n, N_INPUT); return ``out`` (n, N_OUTCOME), F-order."""
     if inputs.ndim != 2 or inputs.shape[1] != N_INPUT:
         raise ValueError(f"inputs must have shape (n, {N_INPUT}), got {inputs.shape}")
+    n = inputs.shape[0]
+    if n < 2:
+        # Numba types an array of fewer than two rows as C-contiguous (it is both), which would
+        # compile the kernel again for that layout: such a batch runs as two rows, padded with
+        # zeros (a shot of speed 0, answered with invalid_input at once).
+        padded = np.zeros((2, N_INPUT), order="F")
+        padded[:n] = inputs
+        result = np.empty((2, N_OUTCOME), order="F")
+        _run(padded, table, result)
+        if out is None:
+            out = np.empty((n, N_OUTCOME), order="F")
+        out[:] = result[:n]
+        return out
     # One compiled layout: a slice of the rows (not contiguous) is copied, not compiled again.
     inputs = np.asfortranarray(inputs, dtype=np.float64)
     if out is None:
-        out = np.empty((inputs.shape[0], N_OUTCOME), order="F")
+        out = np.empty((n, N_OUTCOME), order="F")
+    _run(inputs, table, out)
+    return out
+
+
+def _run(inputs, table, out):
+    """``_simulate_batch``, on this thread alone when the batch is one task: waking the other
+    threads gains nothing, and their barrier can wait a whole time slice when the cores are
+    busy (a sweep's small chunks took 4 ms each, for 20 us of work)."""
     threads = numba.get_num_threads()
     if inputs.shape[0] <= TASK_SHOTS and threads > 1:
-        # One task: run it on this thread alone. Waking the other threads gains nothing, and
-        # their barrier can wait a whole time slice when the cores are busy (a sweep's small
-        # chunks took 4 ms each, for 20 us of work).
         numba.set_num_threads(1)
         try:
             _simulate_batch(inputs, table, out)
         finally:
             numba.set_num_threads(threads)
-        return out
-    _simulate_batch(inputs, table, out)
-    return out
+    else:
+        _simulate_batch(inputs, table, out)
 
 
 @njit(cache=True, error_model="numpy")

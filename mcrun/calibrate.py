@@ -31,7 +31,7 @@ from mcrun.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA
 from mcrun.shot import APEX as APEX_FIELD
 from mcrun.shot import CARRY, DEFAULT_DT_S, N_OUTCOME, simulate_shot
 from mcrun.shot import LANDING_ANGLE as LANDING_ANGLE_FIELD
-from mcrun.units import parse_quantity
+from mcrun.units import parse_quantity, shown
 
 DEFAULT_DATA = resources.files("mcrun") / "data" / "trackman_tour_averages_2019.csv"
 
@@ -143,7 +143,7 @@ def load_measured(path=None):
             row = int(np.flatnonzero(bad)[0])
             _fail(
                 f"measured table {path}, data row {row + 1}, column {column}: "
-                f"{raw[column].iloc[row]!r} is not a finite number"
+                f"{shown(raw[column].iloc[row])} is not a finite number"
             )
         values = values.to_numpy(dtype=float) * factor
         for row, value in enumerate(values):

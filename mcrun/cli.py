@@ -15,6 +15,7 @@ import os
 import re
 import sys
 import textwrap
+import time
 
 from mcrun import aero, api, atmosphere, status, turf, units
 from mcrun.api import InputError
@@ -53,6 +54,9 @@ def _number(text, option):
     """A plain dimensionless number (friction, scale factors, ...), or None when not given."""
     if text is None:
         return None
+    foreign = units.foreign_digits(text)
+    if foreign is not None:
+        raise InputError(f"{option}: cannot read {text!r} as a number: {foreign}")
     try:
         value = float(text)
     except ValueError:
@@ -137,17 +141,30 @@ def _print_json(mapping):
     print(json.dumps({k: _json_value(v) for k, v in mapping.items()}, allow_nan=False))
 
 
-def _status_note(code):
-    """Why a shot ended with a non-OK status, in one line."""
+def _not_stopped_reason(slope_deg, rho_g):
+    """Why a ball may still roll at the roll's bounds, for the ground it rolled on."""
+    bounds = f"still rolling after {status.MAX_ROLL_TIME_S:g} s or {status.MAX_ROLL_DISTANCE_M:g} m"
+    if slope_deg > 0.0 and math.tan(math.radians(slope_deg)) > rho_g:
+        return (
+            f"{bounds} (on a slope of {slope_deg:g} deg, steeper than atan(rho_g) = "
+            f"{math.degrees(math.atan(rho_g)):.2g} deg, the ball never stops)"
+        )
+    if slope_deg == 0.0 and rho_g == 0.0:
+        return (
+            f"{bounds} (with no rolling resistance, rho_g 0, a ball on level ground never "
+            "stops rolling)"
+        )
+    return bounds
+
+
+def _status_note(code, slope_deg=0.0, rho_g=None):
+    """Why a shot ended with a non-OK status, in one line (``slope_deg`` and ``rho_g``: the
+    ground the ball rolled on)."""
     reasons = {
         status.INVALID_INPUT: "a non-finite or out-of-range input reached the kernel",
         status.NOT_LANDED: f"still in the air after {status.MAX_FLIGHT_TIME_S:g} s",
         status.TOO_MANY_BOUNCES: f"still bouncing after {status.MAX_BOUNCES} bounces",
-        status.NOT_STOPPED: (
-            f"still rolling after {status.MAX_ROLL_TIME_S:g} s or "
-            f"{status.MAX_ROLL_DISTANCE_M:g} m (on a slope steeper than atan(rho_g) the ball "
-            "never stops)"
-        ),
+        status.NOT_STOPPED: _not_stopped_reason(slope_deg, math.inf if rho_g is None else rho_g),
     }
     name = status.NAMES.get(code, str(code))
     reason = reasons.get(code)
@@ -216,7 +233,8 @@ def _shot_kwargs(args):
 
 
 def _run_shot(args):
-    result = api.simulate(trajectory=args.trajectory is not None, **_shot_kwargs(args))
+    kwargs = _shot_kwargs(args)
+    result = api.simulate(trajectory=args.trajectory is not None, **kwargs)
     if args.trajectory is not None:
         try:
             result.trajectory.to_csv(args.trajectory, index=False)
@@ -231,7 +249,8 @@ def _run_shot(args):
         rows = [(k, v) for k, v in outcome.items() if k not in ("status", "status_name")]
         _print_table([*rows, ("status", outcome["status_name"])])
     if outcome["status"] != status.OK:
-        print(f"mcrun: warning: {_status_note(outcome['status'])}", file=sys.stderr)
+        ground = {"slope_deg": kwargs.get("slope_deg", 0.0), "rho_g": kwargs["turf"].rho_g}
+        print(f"mcrun: warning: {_status_note(outcome['status'], **ground)}", file=sys.stderr)
     return 0
 
 
@@ -584,22 +603,44 @@ SIMULATING_COMMANDS = {
 }
 
 
-def _say_if_compiling(kind):
-    """One line on stderr when the command's kernel is not in numba's on-disk cache yet (the
-    first run after an install or an upgrade compiles it, which takes a while)."""
+def _kernel_cached(kind):
+    """Whether the command's kernel is in numba's on-disk cache (None when it cannot be told)."""
     from mcrun.batch import _simulate_batch
     from mcrun.shot import simulate_shot
 
     kernel = simulate_shot if kind == "single" else _simulate_batch
     try:
-        missing = not os.path.exists(kernel._cache._cache_file._index_path)
-    except AttributeError:  # numba's cache internals moved: say nothing
+        return os.path.exists(kernel._cache._cache_file._index_path)
+    except AttributeError:  # numba's cache internals moved
+        return None
+
+
+def _compile(kind):
+    """Compile the command's kernel (or load it from numba's cache)."""
+    if kind == "single":
+        api.simulate(ball_speed_mps=70.0, launch_angle_deg=12.0, spin_radps=250.0)
+    else:
+        import numpy as np
+
+        from mcrun.batch import N_INPUT, simulate_batch
+
+        simulate_batch(np.zeros((0, N_INPUT)))
+
+
+def _compile_if_needed(kind):
+    """When the command's kernel is not in numba's on-disk cache yet (the first run after an
+    install or an upgrade compiles it, which takes a while), compile it before the command
+    starts, saying so on stderr with the time it took: a run's rate is then its own."""
+    if _kernel_cached(kind) is not False:
         return
-    if missing:
-        print(
-            "mcrun: compiling the kernels (first run after install; cached for the next runs)",
-            file=sys.stderr,
-        )
+    print(
+        "mcrun: compiling the kernels (first run after install; cached for the next runs)",
+        file=sys.stderr,
+        flush=True,
+    )
+    started = time.perf_counter()
+    _compile(kind)
+    print(f"mcrun: compiled the kernels in {time.perf_counter() - started:.0f} s", file=sys.stderr)
 
 
 def main(argv=None):
@@ -610,13 +651,16 @@ def main(argv=None):
         args = parser.parse_args(_attach_negative_values(argv))
     except SystemExit as exit_:  # --help, or a usage error argparse has already reported
         return exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
-    if args.command in SIMULATING_COMMANDS:
-        _say_if_compiling(SIMULATING_COMMANDS[args.command])
     try:
+        if args.command in SIMULATING_COMMANDS:
+            _compile_if_needed(SIMULATING_COMMANDS[args.command])
         return args.func(args)
     except (InputError, UnitError, CommandError) as err:
         print("mcrun: error: " + " ".join(str(err).split()), file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # Ctrl-C in a command that does not say more itself (validate)
+        print("mcrun: interrupted", file=sys.stderr)
+        return 130
     except BrokenPipeError:  # e.g. `mcrun shot ... | head -3`: the reader has gone, not a bug
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
         return 1

@@ -116,6 +116,8 @@ def replay(shots, source=None, **conditions):
         source = source or str(shots)
         shots = read_launch_table(shots)
     source = source or "the shots"
+    if len(shots) == 0:
+        raise InputError(f"{source}: no shots: the table has no rows")
     values, valid = launches(shots, source)
     fixed = conditions_inputs(**conditions)
     n = len(shots)

@@ -38,7 +38,7 @@ from mcrun import scenario as scenario_module
 from mcrun.api import InputError
 from mcrun.batch import N_INPUT, simulate_batch, trajectory_of
 from mcrun.shot import N_OUTCOME, OUTCOME_FIELDS
-from mcrun.units import UnitError
+from mcrun.units import UnitError, shown
 
 DEFAULT_CHUNK_SIZE = 65536
 RUNS_FOLDER = Path("runs")
@@ -136,7 +136,7 @@ class RunResult:
 
 def _positive_int(value, name, minimum=1):
     """An integer >= minimum from an int, a float with an integral value or a text ("1e6")."""
-    wrong = InputError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    wrong = InputError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
     if isinstance(value, bool):
         raise wrong
     try:

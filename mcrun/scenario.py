@@ -34,6 +34,7 @@ then makes that shot's kernel input invalid, so the kernel returns status ``inva
 it (bound a quantity with a truncnormal to avoid that).
 """
 
+import csv
 import itertools
 import math
 import numbers
@@ -52,7 +53,15 @@ from mcrun.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA, STANDA
 from mcrun.flight import WIND_PROFILES
 from mcrun.shot import default_dt_s
 from mcrun.turf import PRESETS
-from mcrun.units import KINDS, UnitError, from_column_name, parse_quantity, to_unit
+from mcrun.units import (
+    KINDS,
+    UnitError,
+    foreign_digits,
+    from_column_name,
+    parse_quantity,
+    shown,
+    to_unit,
+)
 
 __all__ = [
     "BOUNCE_MODELS",
@@ -431,8 +440,7 @@ def _spread_in(value_si, kind):
 
 
 def _shown(value):
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
+    return shown(value, 60)
 
 
 _LEADING_NUMBER = re.compile(r"^\s*[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
@@ -466,6 +474,9 @@ def _read(ctx, where, value, kind, key_unit, spread=False):
     """One value of a quantity (a number or a string with an optional unit) in SI."""
     if kind == "number" or key_unit is not None and kind != "choice":
         if isinstance(value, str):
+            foreign = foreign_digits(value)
+            if foreign is not None:
+                raise ctx.error(where, f"cannot read {_shown(value)}: {foreign}")
             try:
                 value = float(value)
             except ValueError:
@@ -856,18 +867,69 @@ def launch_columns(frame, source="the shots"):
     return found
 
 
-def read_launch_table(path):
-    """A launch-monitor file (CSV or Parquet) as a DataFrame; InputError if unreadable."""
-    path = Path(path)
+def _check_file(path):
+    """InputError naming ``path`` unless it is a file."""
+    if path.is_dir():
+        raise InputError(f"{path}: is a directory, not a CSV or Parquet file")
     if not path.is_file():
         raise InputError(f"{path}: no such file")
+
+
+def _data_lines(path):
+    """The lines of a CSV as pandas reads them with ``comment="#"``: the text after a ``#``
+    outside quotes dropped, blank lines skipped."""
+    with open(path, encoding="utf-8", errors="replace", newline="") as file:
+        for line in file:
+            quoted = False
+            for k, char in enumerate(line):
+                if char == '"':
+                    quoted = not quoted
+                elif char == "#" and not quoted:
+                    line = line[:k]
+                    break
+            if line.strip():
+                yield line
+
+
+def _check_field_counts(path):
+    """InputError when a data row has more fields than the header: pandas would take the
+    first columns as the index (or drop the extra fields), shifting every value silently. A
+    short row reads as missing values."""
+    rows = csv.reader(_data_lines(path), skipinitialspace=True)
+    header = next(rows, None)
+    if header is None:
+        return
+    for k, fields in enumerate(rows, start=1):
+        if len(fields) > len(header):
+            raise InputError(
+                f"{path}: row {k} has {len(fields)} fields, the header has {len(header)}"
+            )
+
+
+def read_launch_table(path):
+    """A launch-monitor file (CSV or Parquet) as a DataFrame of at least one row; InputError
+    naming the file if it is not a readable file, has no rows, or (CSV) a row with more fields
+    than the header. ``mcrun replay`` and a scenario's ``launch.file`` both read through it."""
+    path = Path(path)
+    _check_file(path)
+    parquet = path.suffix.lower() in (".parquet", ".pq")
     try:
-        if path.suffix.lower() in (".parquet", ".pq"):
-            return pd.read_parquet(path)
-        return pd.read_csv(path, comment="#", skipinitialspace=True)
+        if parquet:
+            frame = pd.read_parquet(path)
+        else:
+            _check_field_counts(path)
+            frame = pd.read_csv(path, comment="#", skipinitialspace=True, index_col=False)
+    except InputError:
+        raise
+    except pd.errors.EmptyDataError:
+        raise InputError(f"{path}: no shots: the file is empty") from None
     except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
         first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
         raise InputError(f"{path}: cannot read it as CSV or Parquet: {first}") from None
+    if len(frame) == 0:
+        what = "the file has no rows" if parquet else "the file has a header only"
+        raise InputError(f"{path}: no shots: {what}")
+    return frame
 
 
 def _read_shots(ctx, where, path):
@@ -880,8 +942,6 @@ def _read_shots(ctx, where, path):
         found = launch_columns(frame, str(path))
     except InputError as err:
         raise ctx.error(where, str(err)) from None
-    if len(frame) == 0:
-        raise ctx.error(where, f"{path}: has no rows")
     columns = {}
     for quantity, (column, unit) in found.items():
         param = PARAMETERS["launch"][quantity]
@@ -917,6 +977,8 @@ def _resample(ctx, leaf, jitter_leaf, scenario_dir):
     path = Path(leaf.value)
     if not path.is_absolute():
         path = scenario_dir / path
+    if path.is_dir():
+        raise ctx.error(where, f"{path}: is a directory, not a CSV or Parquet file")
     if not path.is_file():
         raise ctx.error(where, f"no such file: {path}")
     columns = _read_shots(ctx, where, path)

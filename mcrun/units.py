@@ -4,7 +4,9 @@ The physics core works in SI only; this module is the edge where numbers typed b
 line options, scenario files, CSV columns) become SI floats, and where SI results go back out.
 
 A quantity is a number with an optional unit, e.g. ``"167mph"``, ``"167 mph"``, ``"74.3"``,
-``"74.3 m/s"``. Unit names are case-insensitive and spaces inside them are ignored. A bare number
+``"74.3 m/s"``. Unit names are case-insensitive and spaces inside them are ignored; ``°`` is
+degrees (``"10°"`` is ``"10deg"``, ``"20°C"`` is ``"20C"``). Digits are ASCII only (``"１６７"``
+in full-width digits is refused, though Python's ``float`` reads it). A bare number
 is taken in the kind's *bare unit*, which is SI except for two golf conventions:
 
 - angles: a bare number is in **degrees** (``"12"`` is 12 deg, not 12 rad);
@@ -21,9 +23,11 @@ import re
 __all__ = [
     "KINDS",
     "UnitError",
+    "foreign_digits",
     "from_column_name",
     "parse_quantity",
     "parse_vector",
+    "shown",
     "to_unit",
 ]
 
@@ -178,9 +182,17 @@ def _build_lookup() -> dict[str, dict[str, str]]:
 _LOOKUP = _build_lookup()
 
 _NUMBER = re.compile(
-    r"\s*(?P<num>[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(?P<unit>.*?)\s*",
+    r"\s*(?P<num>[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)\s*(?P<unit>.*?)\s*",
     re.DOTALL,
 )
+
+
+def foreign_digits(text: str) -> str | None:
+    """Why ``text`` cannot be read when it holds a decimal digit other than 0-9 (``１６７``, full
+    width), else None. Python's ``float`` reads any Unicode decimal digit, but a value that
+    looks like a number and is not the one typed is refused: only ASCII digits are accepted."""
+    digit = next((c for c in text if c.isdecimal() and not c.isascii()), None)
+    return None if digit is None else f"only ASCII digits (0-9) are accepted, not {digit!r}"
 
 
 class _Unreadable(Exception):
@@ -209,14 +221,33 @@ def _prefix(name: str | None) -> str:
     return "" if name is None else " ".join(str(name).split()) + ": "
 
 
-def _shown(value: object) -> str:
-    text = repr(value)
-    return text if len(text) <= 80 else text[:77] + "..."
+def shown(value: object, limit: int = 80) -> str:
+    """``value`` as a message shows it: a number plainly (``1.5``, ``nan``, ``3``, where numpy
+    2's repr gives ``np.float64(1.5)``), a list or tuple of them the same, anything else by its
+    repr (a string in quotes); cut to ``limit`` characters."""
+    text = _plain(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _plain(value: object) -> str:
+    if isinstance(value, bool) or getattr(value, "dtype", None) is not None and value.dtype == "?":
+        return str(bool(value))
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return str(value)  # numpy's str is the plain shortest form: 1.5, nan, 0.1 (float32)
+    if isinstance(value, list | tuple):
+        inner = ", ".join(_plain(v) for v in value)
+        return f"[{inner}]" if isinstance(value, list) else f"({inner}{',' * (len(value) == 1)})"
+    return repr(value)
 
 
 def _read(value: object, kind: str) -> tuple[float, bool]:
     """Read one quantity; return (SI value, whether a unit was given) or raise _Unreadable."""
     if isinstance(value, str):
+        foreign = foreign_digits(value)
+        if foreign is not None:
+            raise _Unreadable(foreign)
         match = _NUMBER.fullmatch(value)
         if match is None:
             try:
@@ -280,7 +311,7 @@ def parse_quantity(value: str | float, kind: str, name: str | None = None) -> fl
         return _read(value, kind)[0]
     except _Unreadable as exc:
         raise UnitError(
-            f"{_prefix(name)}cannot read {_shown(value)} as {_article(kind)} {kind}: {exc}"
+            f"{_prefix(name)}cannot read {shown(value)} as {_article(kind)} {kind}: {exc}"
         ) from None
 
 
@@ -316,7 +347,7 @@ def parse_vector(
     _check_kind(kind)
     if not isinstance(size, int) or size < 1:
         raise ValueError(f"size must be a positive integer, got {size!r}")
-    head = f"{_prefix(name)}cannot read {_shown(value)} as {_article(kind)} {kind} vector"
+    head = f"{_prefix(name)}cannot read {shown(value)} as {_article(kind)} {kind} vector"
     if isinstance(value, str):
         parts: list[object] = value.split(",")
     elif isinstance(value, (tuple, list)):
@@ -335,7 +366,7 @@ def parse_vector(
         try:
             si, has_unit = _read(part, kind)
         except _Unreadable as exc:
-            raise UnitError(f"{head}: component {i} ({_shown(part)}): {exc}") from None
+            raise UnitError(f"{head}: component {i} ({shown(part)}): {exc}") from None
         values.append(si)
         with_unit.append(has_unit)
     if any(with_unit) and not all(with_unit):
@@ -371,7 +402,7 @@ def to_unit(value_si: float, kind: str, unit: str) -> float:
     _check_kind(kind)
     canonical = _LOOKUP[kind].get(_key(unit)) if isinstance(unit, str) else None
     if canonical is None:
-        raise UnitError(f"unknown {kind} unit {_shown(unit)}: expected one of {_unit_list(kind)}")
+        raise UnitError(f"unknown {kind} unit {shown(unit)}: expected one of {_unit_list(kind)}")
     factor, offset = KINDS[kind][1][canonical]
     return (float(value_si) - offset) / factor
 

@@ -114,3 +114,16 @@ def test_short_roll_is_roll_out_on_level_ground():
         slope = np.radians(4.0)
         n = (np.sin(slope), 0.0, np.cos(slope))
         assert not roll_out_short(1.0, 2.0, 0.0, *v, *w, *n, turf.mu, turf.rho_g, 3.0)[3]
+
+
+def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):
+    """Numba types an array of fewer than two rows as C-contiguous: a batch of 0 or 1 rows
+    (the warm-up before a run's clock starts, a point's last chunk of one shot) must not
+    compile the kernel a second time during the run, and gives the single-shot results."""
+    from mcrun.batch import _simulate_batch
+
+    for n in (0, 1, 2, 50):
+        assert same(simulate_batch(inputs[:n]), alone[:n]), n
+    out = np.empty((1, N_OUTCOME), order="F")
+    assert simulate_batch(inputs[3:4], out) is out and same(out, alone[3:4])
+    assert len(_simulate_batch.signatures) == 1, _simulate_batch.signatures

@@ -7,6 +7,7 @@ Most tests call ``main([...])`` in the test process; one runs the installed cons
 
 import json
 import math
+import re
 import shutil
 import subprocess
 import sys
@@ -328,3 +329,86 @@ def test_installed_console_script_exits_2_without_traceback():
     assert result.stderr.splitlines() == [
         "mcrun: error: --ball-speed: cannot read 'nan' as a speed: not a finite number"
     ]
+
+
+# --- compiling -----------------------------------------------------------------------------------
+
+
+def test_run_says_the_compile_apart_from_its_rate(tmp_path, capsys, monkeypatch):
+    """When the kernel is not in numba's cache, the command line compiles it before the run,
+    says so and how long it took on stderr; the run's line gives its own time and rate."""
+    monkeypatch.setattr(cli, "_kernel_cached", lambda kind: False)
+    scenario = Path(__file__).parents[1] / "scenarios" / "pga-driver.toml"
+    code, out, err = run(
+        capsys, "run", str(scenario), "-n", "200", "-o", str(tmp_path / "run"), "--quiet"
+    )
+    assert code == 0, err
+    lines = err.splitlines()
+    assert len(lines) == 2 and lines[0].startswith("mcrun: compiling the kernels"), err
+    assert re.fullmatch(r"mcrun: compiled the kernels in \d+ s", lines[1]), err
+    rate = re.search(r"^200 shots in (\d+\.\d) s \(([\d,]+) shots/s", out, re.MULTILINE)
+    assert rate is not None, out
+    assert float(rate[1]) < 5.0  # the run of 200 shots alone, not a compile
+
+
+def test_compile_of_the_single_shot_kernel(capsys, monkeypatch):
+    monkeypatch.setattr(cli, "_kernel_cached", lambda kind: False)
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--json")
+    assert code == 0 and json.loads(out)["status_name"] == "ok"
+    assert re.fullmatch(
+        r"mcrun: compiling the kernels [^\n]*\nmcrun: compiled the kernels in \d+ s\n", err
+    ), err
+
+
+def test_ctrl_c_in_validate_is_one_line_and_exit_130(capsys, monkeypatch):
+    """Ctrl-C during a long ``mcrun validate`` (here while it describes the points) ends like
+    Ctrl-C in ``mcrun run``: one line on stderr, exit code 130, no traceback."""
+    from mcrun import run as run_module
+
+    def interrupted(scenario):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(run_module, "describe", interrupted)
+    try:
+        code, out, err = run(capsys, "validate", "pga-driver")
+    except KeyboardInterrupt:
+        pytest.fail("Ctrl-C escaped mcrun validate as a traceback")
+    assert code == 130 and out == ""
+    assert err == "mcrun: interrupted\n"
+
+
+def test_only_ascii_digits_and_the_degree_sign(capsys):
+    """``１６７mph`` (full-width digits, which float() reads) is refused in one line, for a
+    quantity and for a plain number; ``10.9°`` is ``10.9deg``."""
+    cases = [
+        ("--ball-speed", "１６７mph", ["--launch", "10.9", "--spin", "2686rpm"]),
+        ("--mu", "０.４", DRIVE_ARGS),
+    ]
+    for option, value, others in cases:
+        code, out, err = run(capsys, "shot", *others, option, value)
+        assert code == 2 and out == ""
+        assert err == (
+            f"mcrun: error: {option}: cannot read {value!r} as "
+            f"{'a speed' if option == '--ball-speed' else 'a number'}: "
+            f"only ASCII digits (0-9) are accepted, not {value[0]!r}\n"
+        )
+    degrees = ["--ball-speed", "167mph", "--launch", "10.9°", "--spin", "2686rpm", "--json"]
+    code, out, err = run(capsys, "shot", *degrees)
+    assert code == 0 and json.loads(out)["launch_angle_deg"] == 10.9
+
+
+def test_not_stopped_warning_names_the_ground(capsys):
+    """On level ground with rho_g 0 the ball never stops rolling (it ends not_stopped at the
+    roll's bounds): the warning says so and talks of no slope; on a slope steeper than
+    atan(rho_g) it names the slope."""
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--rho-g", "0")
+    assert code == 0 and table(out)["status"] == "not_stopped"
+    assert err == (
+        "mcrun: warning: the shot ended with status not_stopped: still rolling after 120 s or "
+        "1000 m (with no rolling resistance, rho_g 0, a ball on level ground never stops "
+        "rolling)\n"
+    )
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--turf", "green", "--slope", "10")
+    assert code == 0 and table(out)["status"] == "not_stopped"
+    assert err.startswith("mcrun: warning: the shot ended with status not_stopped: ")
+    assert "(on a slope of 10 deg, steeper than atan(rho_g) = 7.5 deg, the ball never stops)" in err

@@ -166,3 +166,35 @@ def test_replay_parquet_source_and_force(tmp_path, capsys):
             frame.loc[k, ["carry_m", "total_m", "final_y_m"]].to_numpy(dtype=float),
             [want["carry_m"], want["total_m"], want["final_y_m"]],
         )
+
+
+def test_replay_of_a_malformed_file_is_one_line_exit_2_and_writes_nothing(tmp_path, capsys):
+    """A file with a header only, or whose first data row has one field more than the header
+    (pandas would take the first column as the index and shift every value), a folder: one
+    line naming the file and what is wrong, exit 2, nothing written."""
+    header, row = SESSION.splitlines()[:2]
+    header_only = tmp_path / "header.csv"
+    header_only.write_text(header + "\n")
+    extra = tmp_path / "extra.csv"
+    extra.write_text(f"{header}\n{row},9\n{SESSION.splitlines()[2]}\n")
+    extra_later = tmp_path / "extra_later.csv"
+    extra_later.write_text(f"{header}\n{row}\n{row},9\n")
+    folder = tmp_path / "session.csv"
+    folder.mkdir()
+    out = tmp_path / "out.parquet"
+    cases = [
+        (header_only, "no shots: the file has a header only"),
+        (extra, "row 1 has 8 fields, the header has 7"),
+        (extra_later, "row 2 has 8 fields, the header has 7"),
+        (folder, "is a directory, not a CSV or Parquet file"),
+    ]
+    before = sorted(os.listdir(tmp_path))
+    for source, what in cases:
+        code = run.main(["replay", str(source), "-o", str(out)])
+        stdout, stderr = capsys.readouterr()
+        assert code == 2 and stdout == "", (source, stderr)
+        assert stderr == f"mcrun: error: {source}: {what}\n"
+        assert sorted(os.listdir(tmp_path)) == before
+    empty = pd.read_csv(header_only)
+    with pytest.raises(replay.InputError, match="no shots"):
+        replay.replay(empty, **CONDITIONS)

@@ -491,6 +491,68 @@ def test_resample_file_with_a_bad_value(tmp_path):
     )
 
 
+def test_resample_file_malformed_or_a_folder(tmp_path):
+    """``launch.file`` reads through the reader of ``mcrun replay``: a header only, a row with
+    a field more than the header, a folder: one line naming the scenario, the key, the file
+    and what is wrong."""
+    lines = SESSION_CSV.read_text(encoding="utf-8").splitlines()
+    header = next(line for line in lines if not line.startswith("#"))
+    first = lines[lines.index(header) + 1]
+    cases = {
+        "header.csv": (header + "\n", "no shots: the file has a header only"),
+        "extra.csv": (f"{header}\n{first},1.0\n", "row 1 has 6 fields, the header has 5"),
+    }
+    for name, (text, what) in cases.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+        path = write(tmp_path, f'[launch]\nfile = "{name}"\n')
+        with pytest.raises(sc.ScenarioError) as info:
+            sc.load(path)
+        assert str(info.value) == f"{path}: launch.file: {tmp_path / name}: {what}"
+    (tmp_path / "folder.csv").mkdir()
+    path = write(tmp_path, '[launch]\nfile = "folder.csv"\n')
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value) == (
+        f"{path}: launch.file: {tmp_path / 'folder.csv'}: is a directory, not a CSV or Parquet file"
+    )
+
+
+def test_resample_file_with_a_missing_value_shows_it_plainly(tmp_path):
+    """The message shows the missing value as nan, not numpy 2's np.float64(nan)."""
+    text = SESSION_CSV.read_text(encoding="utf-8").replace("2855", "")
+    (tmp_path / "shots.csv").write_text(text, encoding="utf-8")
+    path = write(tmp_path, '[launch]\nfile = "shots.csv"\n')
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value) == (
+        f"{path}: launch.file: {tmp_path / 'shots.csv'}: column 'spin_rpm' row 1: not a number "
+        "(nan); every row must be complete"
+    )
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "where"),
+    [
+        ('"10.9 deg"', '"１０.９ deg"', "launch.launch_angle"),  # a value with its unit
+        ('spin = "2686 rpm"', 'spin_rpm = "２６８６"', "launch.spin_rpm"),  # the unit in the key
+    ],
+)
+def test_full_width_digits_are_refused(tmp_path, old, new, where):
+    """Python's float() reads full-width digits; a scenario value must use ASCII digits."""
+    path = write(tmp_path, BALL.replace(old, new))
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    message = str(info.value)
+    assert message.startswith(f"{path}: {where}: cannot read "), message
+    assert "only ASCII digits (0-9) are accepted" in message, message
+
+
+def test_degree_sign_in_a_scenario(tmp_path):
+    a = sc.load(write(tmp_path, BALL.replace("10.9 deg", "10.9°"), "a.toml"))
+    b = sc.load(write(tmp_path, BALL, "b.toml"))
+    assert a.points[0].params["launch.launch_angle"] == b.points[0].params["launch.launch_angle"]
+
+
 def test_correlation_broken_by_a_group_names_the_point(tmp_path):
     text = (
         "[launch]\n"

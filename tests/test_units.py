@@ -10,6 +10,7 @@ from mcrun.units import (
     from_column_name,
     parse_quantity,
     parse_vector,
+    shown,
     to_unit,
 )
 
@@ -439,3 +440,57 @@ def test_unknown_kind_is_a_plain_value_error():
 def test_bad_vector_size(size):
     with pytest.raises(ValueError, match="size must be a positive integer"):
         parse_vector("1,2", "speed", size=size)
+
+
+# --- degrees sign, digits, values in messages --------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "same_as"),
+    [
+        ("10°", "angle", "10deg"),
+        ("10 °", "angle", "10 deg"),
+        ("-2.5°", "angle", "-2.5deg"),
+        ("20°C", "temperature", "20 C"),
+    ],
+)
+def test_degree_sign_is_degrees(text, kind, same_as):
+    """``°`` is accepted on purpose (documented in the README): ``10°`` is ``10deg``."""
+    assert parse_quantity(text, kind) == parse_quantity(same_as, kind)
+
+
+@pytest.mark.parametrize(
+    ("value", "kind", "digit"),
+    [
+        ("１６７mph", "speed", "１"),  # full-width digits: float() reads them
+        ("１６７", "speed", "１"),
+        ("10.٥", "angle", "٥"),  # Arabic-Indic five
+        ("２６８６ rpm", "spin", "２"),
+    ],
+)
+def test_only_ascii_digits(value, kind, digit):
+    """Python's float() reads any Unicode decimal digit; the unit reader refuses them in one
+    line saying that only ASCII digits are accepted."""
+    with pytest.raises(UnitError) as exc_info:
+        parse_quantity(value, kind, name="--ball-speed")
+    assert _one_line(exc_info) == (
+        f"--ball-speed: cannot read {value!r} as {'an' if kind == 'angle' else 'a'} {kind}: "
+        f"only ASCII digits (0-9) are accepted, not {digit!r}"
+    )
+    with pytest.raises(UnitError, match="only ASCII digits"):
+        parse_vector(f"{value},0", kind)
+
+
+def test_values_in_messages_are_plain_numbers():
+    """numpy 2's reprs (np.float64(nan)) do not reach a message: numbers read as typed."""
+    np = pytest.importorskip("numpy")
+    assert shown(np.float64("nan")) == "nan"
+    assert shown(np.float64(1.5)) == "1.5"
+    assert shown(np.float32(0.1)) == "0.1"
+    assert shown(np.int64(3)) == "3"
+    assert shown(np.bool_(True)) == "True"
+    assert shown([np.float64(1.0), 2]) == "[1.0, 2]"
+    assert shown("167 mpg") == "'167 mpg'"
+    with pytest.raises(UnitError) as exc_info:
+        parse_quantity(np.float64("nan"), "speed", name="--ball-speed")
+    assert str(exc_info.value) == "--ball-speed: cannot read nan as a speed: not a finite number"
