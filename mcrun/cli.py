@@ -16,7 +16,7 @@ import re
 import sys
 import textwrap
 
-from mcrun import aero, api, atmosphere, status, turf, units
+from mcrun import aero, api, atmosphere, exits, status, turf, units
 from mcrun.api import InputError
 from mcrun.units import UnitError
 
@@ -610,9 +610,19 @@ def main(argv=None):
         args = parser.parse_args(_attach_negative_values(argv))
     except SystemExit as exit_:  # --help, or a usage error argparse has already reported
         return exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
-    if args.command in SIMULATING_COMMANDS:
-        _say_if_compiling(SIMULATING_COMMANDS[args.command])
+    # SIGTERM stops a command as Ctrl-C does (the commands clean up on KeyboardInterrupt).
+    with exits.sigterm_interrupts() as terminated:
+        code = _run_command(args)
+    if terminated and code == exits.EXIT_INTERRUPTED:
+        return exits.EXIT_TERMINATED
+    return code
+
+
+def _run_command(args):
+    """``args.func(args)``, with every error a user can cause as one line and exit code 2."""
     try:
+        if args.command in SIMULATING_COMMANDS:
+            _say_if_compiling(SIMULATING_COMMANDS[args.command])
         return args.func(args)
     except (InputError, UnitError, CommandError) as err:
         print("mcrun: error: " + " ".join(str(err).split()), file=sys.stderr)
@@ -620,3 +630,14 @@ def main(argv=None):
     except BrokenPipeError:  # e.g. `mcrun shot ... | head -3`: the reader has gone, not a bug
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
         return 1
+    except OSError as err:
+        if not exits.is_name_too_long(err):
+            raise
+        print(f"mcrun: error: {exits.name_too_long(err)}", file=sys.stderr)
+        return 2
+    except exits.Terminated:
+        print("mcrun: terminated (SIGTERM)", file=sys.stderr)
+        return exits.EXIT_TERMINATED
+    except KeyboardInterrupt:
+        print("mcrun: interrupted", file=sys.stderr)
+        return exits.EXIT_INTERRUPTED
