@@ -48,6 +48,29 @@ def sigterm_interrupts():
         signal.signal(signal.SIGTERM, previous)
 
 
+@contextlib.contextmanager
+def interrupts_deferred():
+    """Within the block, Ctrl-C and SIGTERM wait: they take effect as the block ends (for a step
+    that cannot be undone once interrupted, as a Dask cluster half started). Outside the main
+    thread nothing is deferred."""
+    received = []
+    signums = (signal.SIGINT, signal.SIGTERM)
+    try:
+        previous = {
+            s: signal.signal(s, lambda signum, frame: received.append(signum)) for s in signums
+        }
+    except ValueError:  # not the main thread of the main interpreter
+        yield
+        return
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, signal.SIG_DFL if handler is None else handler)
+        for signum in dict.fromkeys(received):
+            signal.raise_signal(signum)  # now handled as it would have been
+
+
 def shorten(text, most=_SHOWN):
     """``text`` with its middle replaced by "..." when it has more than ``most`` characters."""
     if len(text) <= most:
