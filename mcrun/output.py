@@ -20,9 +20,12 @@ chunk size and backend. ``read_provenance`` decodes them. ``mcrun.elapsed_s`` is
 the start of the run to the completion of that file.
 
 Atomicity: ``AtomicFolder`` and ``AtomicFile`` write under a hidden temporary name beside the
-destination and rename it into place only when everything is written; on an error or an
-interrupt the temporary files are removed, so a folder or file with the final name is always
-complete.
+destination (``.NAME.partial-HOST-PID-TOKEN``) and rename it into place only when everything is
+written; on an error or an interrupt the temporary files are removed, so a folder or file with
+the final name is always complete. A destination the rename could not replace (a mount point,
+an immutable folder) is refused before anything is written; should the rename still fail, the
+finished output is moved into an empty destination folder or kept beside it (``OutputKept``).
+What a killed process left, the next one removes (``remove_stale``).
 """
 
 import contextlib
