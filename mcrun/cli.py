@@ -17,7 +17,7 @@ import sys
 import textwrap
 import time
 
-from mcrun import aero, api, atmosphere, status, turf, units
+from mcrun import aero, api, atmosphere, exits, status, turf, units
 from mcrun.api import InputError
 from mcrun.units import UnitError
 
@@ -651,6 +651,16 @@ def main(argv=None):
         args = parser.parse_args(_attach_negative_values(argv))
     except SystemExit as exit_:  # --help, or a usage error argparse has already reported
         return exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
+    # SIGTERM stops a command as Ctrl-C does (the commands clean up on KeyboardInterrupt).
+    with exits.sigterm_interrupts() as terminated:
+        code = _run_command(args)
+    if terminated and code == exits.EXIT_INTERRUPTED:
+        return exits.EXIT_TERMINATED
+    return code
+
+
+def _run_command(args):
+    """``args.func(args)``, with every error a user can cause as one line and exit code 2."""
     try:
         if args.command in SIMULATING_COMMANDS:
             _compile_if_needed(SIMULATING_COMMANDS[args.command])
@@ -658,9 +668,17 @@ def main(argv=None):
     except (InputError, UnitError, CommandError) as err:
         print("mcrun: error: " + " ".join(str(err).split()), file=sys.stderr)
         return 2
-    except KeyboardInterrupt:  # Ctrl-C in a command that does not say more itself (validate)
-        print("mcrun: interrupted", file=sys.stderr)
-        return 130
     except BrokenPipeError:  # e.g. `mcrun shot ... | head -3`: the reader has gone, not a bug
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
         return 1
+    except OSError as err:
+        if not exits.is_name_too_long(err):
+            raise
+        print(f"mcrun: error: {exits.name_too_long(err)}", file=sys.stderr)
+        return 2
+    except exits.Terminated:
+        print("mcrun: terminated (SIGTERM)", file=sys.stderr)
+        return exits.EXIT_TERMINATED
+    except KeyboardInterrupt:
+        print("mcrun: interrupted", file=sys.stderr)
+        return exits.EXIT_INTERRUPTED

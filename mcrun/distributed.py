@@ -96,7 +96,7 @@ import pyarrow as pa
 import pyarrow.fs as pafs
 import pyarrow.parquet as pq
 
-from mcrun import output, run, sampling, stats
+from mcrun import exits, output, run, sampling, stats
 from mcrun import scenario as scenario_module
 from mcrun import status as status_codes
 from mcrun.api import InputError
@@ -406,12 +406,16 @@ def _connect(client, scheduler, scheduler_file, workers):
         target = {"address": scheduler}
         where = f"the Dask scheduler {scheduler}"
     else:
-        cluster = local_cluster(workers, silence_logs=logging.ERROR)
+        cluster = None
         try:
+            # Interrupted while it starts, a cluster can be neither used nor closed.
+            with exits.interrupts_deferred():
+                cluster = local_cluster(workers, silence_logs=logging.ERROR)
             with distributed.Client(cluster) as own:
                 yield own
         finally:
-            cluster.close()
+            if cluster is not None:
+                cluster.close()
         return
     try:
         own = distributed.Client(**target, timeout=f"{CONNECT_TIMEOUT_S}s")

@@ -20,16 +20,27 @@ chunk size and backend. ``read_provenance`` decodes them. ``mcrun.elapsed_s`` is
 the start of the run to the completion of that file.
 
 Atomicity: ``AtomicFolder`` and ``AtomicFile`` write under a hidden temporary name beside the
-destination and rename it into place only when everything is written; on an error or an
-interrupt the temporary files are removed, so a folder or file with the final name is always
-complete.
+destination (``.NAME.partial-HOST-PID-TOKEN``) and rename it into place only when everything is
+written; on an error or an interrupt the temporary files are removed, so a folder or file with
+the final name is always complete. A destination the rename could not replace (a mount point,
+an immutable folder) is refused before anything is written; should the rename still fail, the
+finished output is moved into an empty destination folder or kept beside it (``OutputKept``).
+What a killed process left, the next one removes (``remove_stale``).
 """
 
+import contextlib
+import errno
 import json
 import os
 import platform
+import re
 import secrets
 import shutil
+import socket
+import stat
+import struct
+import sys
+import time
 from pathlib import Path
 
 import numba
@@ -318,9 +329,86 @@ def write_table(path, frame, metadata):
 
 # --- atomic destinations -----------------------------------------------------------------------
 
+# Temporary names say which process wrote them: ".NAME.partial-HOST-PID-TOKEN" (the folder or
+# file being written) and ".NAME.old-HOST-PID-TOKEN" (an earlier run being replaced). A process
+# stopped by SIGKILL (or a machine that went down) cannot remove them: ``remove_stale`` does,
+# at the next run into the same folder, for those of this host whose process is gone.
+_TEMPORARY = re.compile(
+    r"\.(?P<name>.*)\.(?P<kind>partial|old)-(?P<host>[A-Za-z0-9_-]+)-(?P<pid>\d+)-[0-9a-f]{8}",
+    re.DOTALL,
+)
+_HOST = re.sub(r"[^A-Za-z0-9-]", "_", socket.gethostname().split(".")[0])[:32] or "host"
+# What a reader takes for a complete run, moved last when a run is moved file by file.
+_WRITTEN_LAST = (SUMMARY_FILE, "_SUCCESS")
+# Linux's FS_IOC_GETFLAGS, _IOR('f', 1, long), and the attributes that forbid a rename.
+_FS_IOC_GETFLAGS = 0x80006601 | (struct.calcsize("l") << 16)
+_FS_IMMUTABLE_FL = 0x10
+_FS_APPEND_FL = 0x20
+
+
+class OutputKept(OutputError):
+    """The output is complete but could not be moved to where it was asked for; ``kept`` is
+    where it is."""
+
+    def __init__(self, message, kept):
+        super().__init__(message)
+        self.kept = kept
+
 
 def _reason(err):
     return err.strerror or str(err)
+
+
+def _temporary(path, kind="partial"):
+    """A new hidden name beside ``path`` for this process: ``.NAME.<kind>-HOST-PID-TOKEN``,
+    NAME cut so that the whole stays within a name's 255 bytes."""
+    suffix = f".{kind}-{_HOST}-{os.getpid()}-{secrets.token_hex(4)}"
+    room = 255 - 1 - len(suffix)
+    name = os.fsdecode(os.fsencode(path.name)[:room])
+    return path.parent / f".{name}{suffix}"
+
+
+def _alive(pid):
+    """Whether a process ``pid`` runs on this machine (one of another user counts)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (OSError, OverflowError):  # another user's process, or not a pid: leave it
+        return True
+    return True
+
+
+def remove_stale(folder):
+    """Remove the temporary folders and files that mcrun processes of this host left in
+    ``folder`` and that are gone (stopped by SIGKILL); return the paths removed.
+
+    Only names of the ``_TEMPORARY`` pattern are considered, only those of this host and of a
+    process id that no longer runs, and an ``.old-`` copy of an earlier run only once the run
+    that replaced it is in place.
+    """
+    removed = []
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return removed
+    for entry in entries:
+        match = _TEMPORARY.fullmatch(entry.name)
+        if match is None or match["host"] != _HOST or _alive(int(match["pid"])):
+            continue
+        if match["kind"] == "old" and not os.path.lexists(os.path.join(folder, match["name"])):
+            continue  # stopped between the two renames: this is the only copy of the run
+        try:
+            if entry.is_dir(follow_symlinks=False):
+                shutil.rmtree(entry.path)
+            else:
+                os.unlink(entry.path)
+        except OSError:
+            continue
+        removed.append(Path(entry.path))
+    return removed
 
 
 def _make_parents(path):
@@ -357,12 +445,110 @@ def _is_run_folder(path):
     return any((path / name).exists() for name in RUN_FILES)
 
 
+def _immutable(path):
+    """Whether ``path`` has Linux's immutable or append-only attribute (``chattr +i``, ``+a``),
+    which forbid renaming or removing it; False where that cannot be told."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        import fcntl
+
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOFOLLOW)
+    except (ImportError, OSError):
+        return False
+    try:
+        flags = fcntl.ioctl(fd, _FS_IOC_GETFLAGS, bytes(8))
+    except OSError:  # a filesystem without these attributes (tmpfs, NFS, ...)
+        return False
+    finally:
+        os.close(fd)
+    return bool(int.from_bytes(flags[:4], sys.byteorder) & (_FS_IMMUTABLE_FL | _FS_APPEND_FL))
+
+
+def _check_replaceable(path):
+    """Refuse, before anything is written, an existing destination that the final rename
+    could not replace."""
+    if os.path.ismount(path):
+        raise OutputError(
+            f"the output {path} is a mount point, which a run cannot replace: write into a "
+            f"folder inside it (-o {path / 'run'})"
+        )
+    if _immutable(path):
+        raise OutputError(
+            f"the output {path} is immutable or append-only (chattr +i or +a): a run cannot "
+            "replace it; choose another with -o"
+        )
+    parent = os.stat(path.parent)
+    if parent.st_mode & stat.S_ISVTX and os.geteuid() not in (
+        0,
+        parent.st_uid,
+        os.lstat(path).st_uid,
+    ):
+        raise OutputError(
+            f"the output {path} belongs to another user in a folder with the sticky bit "
+            f"({path.parent}): a run cannot replace it; choose another with -o"
+        )
+
+
+def _move(source, destination):
+    try:
+        os.rename(source, destination)
+    except OSError as err:
+        if err.errno != errno.EXDEV:
+            raise
+        shutil.move(source, destination)  # another filesystem (a bind mount): copy
+
+
+def _move_into(tmp, path):
+    """Move what ``tmp`` holds into the empty folder ``path``, the summary and the success
+    marker last; on a failure move back what was moved and return False."""
+    names = sorted(
+        os.listdir(tmp),
+        key=lambda n: _WRITTEN_LAST.index(n) + 1 if n in _WRITTEN_LAST else 0,
+    )
+    moved = []
+    try:
+        for name in names:
+            _move(tmp / name, path / name)
+            moved.append(name)
+    except OSError:
+        for name in reversed(moved):
+            with contextlib.suppress(OSError):
+                _move(path / name, tmp / name)
+        return False
+    with contextlib.suppress(OSError):
+        tmp.rmdir()
+    return True
+
+
+def _keep(tmp, path):
+    """Give the finished ``tmp`` a visible name beside ``path``, ``NAME.complete-<time>``
+    (``STEM.complete-<time>.SUFFIX`` for a file); return where it is."""
+    stamp = time.strftime("%Y%m%d-%H%M%S")
+    stem, suffix = (path.name, "") if tmp.is_dir() else (path.stem, path.suffix)
+    for k in range(100):
+        tag = f".complete-{stamp}" + (f"-{k}" if k else "") + suffix
+        room = 255 - len(os.fsencode(tag))
+        kept = path.parent / (os.fsdecode(os.fsencode(stem)[:room]) + tag)
+        if os.path.lexists(kept):
+            continue
+        try:
+            os.rename(tmp, kept)
+        except OSError:
+            break
+        return kept
+    return tmp
+
+
 class AtomicFolder:
     """A run folder written under a temporary name and renamed into place on ``commit``.
 
     Refuses (OutputError, before anything is written) a destination that is a file, a
-    non-empty folder that is not a run folder, or a run folder unless ``force``; with
-    ``force`` the old run is replaced only once the new one is complete.
+    non-empty folder that is not a run folder, or a run folder unless ``force``, and one the
+    final rename could not replace (a mount point, an immutable folder); with ``force`` the
+    old run is replaced only once the new one is complete. Removes what killed runs left
+    beside it (``remove_stale``). A finished run is never lost to the final rename: see
+    ``commit``.
     """
 
     def __init__(self, path, force=False):
@@ -388,8 +574,10 @@ class AtomicFolder:
                         f"the output folder {path} already holds a run: use --force to "
                         "replace it, or choose another with -o"
                     )
+            _check_replaceable(path)
         self._created = _make_parents(path)
-        self.tmp = path.parent / f".{path.name}.partial-{secrets.token_hex(4)}"
+        remove_stale(path.parent)
+        self.tmp = _temporary(path)
         try:
             self.tmp.mkdir()
         except OSError as err:
@@ -401,12 +589,37 @@ class AtomicFolder:
         return self.tmp / name
 
     def commit(self):
+        """Rename the finished folder into place (replacing an earlier run). Should that fail
+        (a busy or immutable destination), the run is moved file by file into the destination
+        when that is an empty folder, else kept beside it as ``NAME.complete-<time>`` and
+        ``OutputKept`` says where."""
+        try:
+            self._replace()
+        except OSError as err:
+            self._committed = True  # from here on the temporary folder is a finished run
+            path = self.path
+            if path.is_dir() and not path.is_symlink() and not any(path.iterdir()):
+                if _move_into(self.tmp, path):
+                    return
+            kept = _keep(self.tmp, path)
+            raise OutputKept(
+                f"the run is complete but could not be moved to {path}: {_reason(err)}; "
+                f"it is in {kept}",
+                kept,
+            ) from None
+
+    def _replace(self):
         path = self.path
         old = None
-        if path.exists():
-            old = path.parent / f".{path.name}.old-{secrets.token_hex(4)}"
+        if path.exists() and not (path.is_dir() and not any(path.iterdir())):
+            old = _temporary(path, "old")  # an empty folder the rename replaces by itself
             os.rename(path, old)
-        os.rename(self.tmp, path)
+        try:
+            os.rename(self.tmp, path)
+        except OSError:
+            if old is not None:
+                os.rename(old, path)
+            raise
         self._committed = True
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)
@@ -420,7 +633,8 @@ class AtomicFolder:
 
 
 class AtomicFile:
-    """One file written under a temporary name beside it and renamed on ``commit``."""
+    """One file written under a temporary name beside it and renamed on ``commit``; the same
+    checks as ``AtomicFolder``."""
 
     def __init__(self, path, force=False):
         self.path = Path(path)
@@ -433,10 +647,13 @@ class AtomicFile:
         path = self.path
         if path.is_dir():
             raise OutputError(f"the output {path} is a folder")
-        if path.exists() and not self.force:
-            raise OutputError(f"the output {path} already exists: use --force to replace it")
+        if path.exists():
+            if not self.force:
+                raise OutputError(f"the output {path} already exists: use --force to replace it")
+            _check_replaceable(path)
         self._created = _make_parents(path)
-        self.tmp = path.parent / f".{path.name}.partial-{secrets.token_hex(4)}"
+        remove_stale(path.parent)
+        self.tmp = _temporary(path)
         try:
             self.tmp.touch(exist_ok=False)
         except OSError as err:
@@ -445,7 +662,18 @@ class AtomicFile:
         return self
 
     def commit(self):
-        os.replace(self.tmp, self.path)
+        """Rename the finished file into place; should that fail, it is kept beside the
+        destination as ``STEM.complete-<time>.SUFFIX`` and ``OutputKept`` says where."""
+        try:
+            os.replace(self.tmp, self.path)
+        except OSError as err:
+            self._committed = True
+            kept = _keep(self.tmp, self.path)
+            raise OutputKept(
+                f"{self.path} is complete but could not be moved into place: {_reason(err)}; "
+                f"it is in {kept}",
+                kept,
+            ) from None
         self._committed = True
 
     def __exit__(self, exc_type, exc, tb):

@@ -49,7 +49,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from mcrun import output, stats
+from mcrun import exits, output, stats
 from mcrun import status as status_codes
 from mcrun.api import InputError
 from mcrun.paper import DPI_RANGE, dpi_value
@@ -1065,6 +1065,8 @@ def _writable_folder(out_dir):
         probe.write_bytes(b"")
         probe.unlink()
     except OSError as err:
+        if exits.is_name_too_long(err):
+            raise  # the command line's one line for every path too long
         raise PlotError(f"-o: cannot write to {out_dir}: {reason_of(err)}") from None
     return out_dir
 

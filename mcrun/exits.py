@@ -1,0 +1,101 @@
+"""How a command ends when the process is stopped or the system refuses a path.
+
+- SIGTERM (``kill``, ``docker stop``, Slurm at the end of a job's time) is turned into
+  ``Terminated``, a ``KeyboardInterrupt``, raised in the main thread where Ctrl-C's would be:
+  a run stops the same way, removes its temporary files and exits with ``EXIT_TERMINATED``
+  (128 + 15, the shell's code for a process ended by SIGTERM) instead of ``EXIT_INTERRUPTED``
+  (128 + 2, Ctrl-C). SIGKILL cannot be caught: what it leaves, a later run removes
+  (``mcrun.output.remove_stale``).
+- A path with a name longer than the filesystem allows (ENAMETOOLONG, 255 bytes on most) is
+  one line naming the path, shortened when it is long itself: ``name_too_long``.
+
+Light on purpose: ``mcrun.cli`` imports it before any command module.
+"""
+
+import contextlib
+import errno
+import os
+import signal
+
+EXIT_INTERRUPTED = 130
+EXIT_TERMINATED = 143
+NAME_MAX_BYTES = 255  # most filesystems (ext4, XFS, btrfs, APFS, NTFS in UTF-16 units)
+_SHOWN = 100  # characters of a long path shown in a message: the start and the end
+
+
+class Terminated(KeyboardInterrupt):
+    """The process received SIGTERM; handled wherever Ctrl-C's KeyboardInterrupt is."""
+
+
+@contextlib.contextmanager
+def sigterm_interrupts():
+    """Within the block, SIGTERM raises ``Terminated`` in the main thread; yields a list that
+    holds the signal once received. Outside the main thread SIGTERM is left as it is."""
+    received = []
+
+    def handler(signum, frame):
+        received.append(signum)
+        raise Terminated
+
+    try:
+        previous = signal.signal(signal.SIGTERM, handler)
+    except ValueError:  # not the main thread of the main interpreter
+        yield received
+        return
+    try:
+        yield received
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+@contextlib.contextmanager
+def interrupts_deferred():
+    """Within the block, Ctrl-C and SIGTERM wait: they take effect as the block ends (for a step
+    that cannot be undone once interrupted, as a Dask cluster half started). Outside the main
+    thread nothing is deferred."""
+    received = []
+    signums = (signal.SIGINT, signal.SIGTERM)
+    try:
+        previous = {
+            s: signal.signal(s, lambda signum, frame: received.append(signum)) for s in signums
+        }
+    except ValueError:  # not the main thread of the main interpreter
+        yield
+        return
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, signal.SIG_DFL if handler is None else handler)
+        for signum in dict.fromkeys(received):
+            signal.raise_signal(signum)  # now handled as it would have been
+
+
+def shorten(text, most=_SHOWN):
+    """``text`` with its middle replaced by "..." when it has more than ``most`` characters."""
+    if len(text) <= most:
+        return text
+    head = most * 2 // 3
+    return f"{text[:head]}...{text[head - most + 3 :]}"
+
+
+def is_name_too_long(err):
+    """Whether an exception is the system's refusal of a name or path that is too long."""
+    return isinstance(err, OSError) and err.errno == errno.ENAMETOOLONG
+
+
+def name_too_long(err):
+    """The one-line message of an ENAMETOOLONG OSError: the path (shortened) and its longest
+    name, or the length of the whole path when no single name is too long."""
+    path = err.filename if err.filename is not None else ""
+    path = os.fsdecode(path) if isinstance(path, bytes) else str(path)
+    names = [part for part in path.split(os.sep) if part]
+    longest = max((len(os.fsencode(part)) for part in names), default=0)
+    if longest > NAME_MAX_BYTES:
+        reason = (
+            f"a name in this path is too long ({longest} bytes; a file or folder name may "
+            f"have at most {NAME_MAX_BYTES})"
+        )
+    else:
+        reason = f"the path is too long ({len(os.fsencode(path))} bytes)"
+    return f"{shorten(path)}: {reason}"

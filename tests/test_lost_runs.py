@@ -1,0 +1,295 @@
+"""Runs lost or left behind: the output folder checked before a run, a finished run kept when
+the final rename fails, names too long, SIGTERM, and the temporary folders of killed runs.
+
+A busy or immutable destination cannot be made without root: ``os.rename`` and ``os.replace``
+are patched to fail as they would (EBUSY) for that destination only.
+"""
+
+import errno
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from mcrun import cli, exits, output
+
+SCENARIO = """\
+[scenario]
+name = "lost-runs"
+shots = 200
+seed = 3
+
+[launch]
+ball_speed = { dist = "normal", mean = "70 m/s", sd = "1 m/s" }
+launch_angle = "11 deg"
+spin = "280 rad/s"
+"""
+
+LONG = "x" * 300  # a name over the 255 bytes of ext4, XFS, btrfs, APFS
+
+
+def write_scenario(folder, name="scenario.toml"):
+    path = Path(folder) / name
+    path.write_text(SCENARIO, encoding="utf-8")
+    return path
+
+
+def listing(folder):
+    return sorted(str(p.relative_to(folder)) for p in Path(folder).rglob("*"))
+
+
+def mcrun(capsys, *argv):
+    code = cli.main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def one_line(err):
+    return err.count("\n") == 1 and err.startswith("mcrun: ")
+
+
+def busy(monkeypatch, place, inside=True):
+    """Make a rename of or onto ``place`` (and, with ``inside``, into it) fail with EBUSY, as
+    of a mount point or an immutable folder."""
+    place = str(place)
+
+    def refuses(dst):
+        dst = str(dst)
+        return dst == place or (inside and dst.startswith(place + os.sep))
+
+    for name in ("rename", "replace"):
+        real = getattr(os, name)
+
+        def fake(src, dst, *args, _real=real, **kwargs):
+            if refuses(src) or refuses(dst):
+                raise OSError(errno.EBUSY, os.strerror(errno.EBUSY), str(dst))
+            return _real(src, dst, *args, **kwargs)
+
+        monkeypatch.setattr(os, name, fake)
+
+
+# --- before the run ----------------------------------------------------------------------------
+
+
+def test_a_destination_the_rename_cannot_replace_is_refused_before_the_run(
+    tmp_path, capsys, monkeypatch
+):
+    """An empty mount point, or an immutable folder: one line naming it and why, exit 2,
+    nothing written (not even a temporary folder)."""
+    scenario = write_scenario(tmp_path)
+    mount = tmp_path / "mnt"
+    mount.mkdir()
+    frozen = tmp_path / "frozen"
+    frozen.mkdir()
+    real_ismount = os.path.ismount
+    monkeypatch.setattr(os.path, "ismount", lambda p: Path(p) == mount or real_ismount(p))
+    monkeypatch.setattr(output, "_immutable", lambda p: Path(p) == frozen)
+    before = listing(tmp_path)
+    for folder, reason in ((mount, "is a mount point"), (frozen, "is immutable")):
+        code, out, err = mcrun(capsys, "run", scenario, "-o", folder, "--quiet")
+        assert (code, out) == (2, ""), err
+        assert one_line(err) and f"the output {folder} {reason}" in err, err
+        assert listing(tmp_path) == before
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["run", "{scenario}", "-o", f"{{tmp}}/{LONG}", "--quiet"],
+        ["run", "{scenario}", "-o", f"{{tmp}}/{LONG}/run", "--quiet"],
+        ["run", f"{{tmp}}/{LONG}.toml"],
+        ["validate", f"{{tmp}}/{LONG}.toml"],
+        ["run", "{launch_file}", "--quiet", "-o", "{tmp}/run"],
+        ["replay", f"{{tmp}}/{LONG}.csv", "-o", "{tmp}/replayed.parquet"],
+        ["replay", "{session}", "-o", f"{{tmp}}/{LONG}.parquet"],
+        ["plot", f"{{tmp}}/{LONG}"],
+        ["plot", "{tmp}/done", "-o", f"{{tmp}}/{LONG}"],
+        ["report", "{tmp}/done", "-o", f"{{tmp}}/{LONG}.html"],
+    ],
+)
+def test_a_name_too_long_is_one_line_and_exit_2(tmp_path, capsys, argv, done_run):
+    scenario = write_scenario(tmp_path)
+    launch_file = tmp_path / "launch-file.toml"
+    launch_file.write_text(
+        SCENARIO.split("[launch]")[0] + f'[launch]\nfile = "{LONG}.csv"\n', encoding="utf-8"
+    )
+    shutil.copytree(done_run, tmp_path / "done")
+    session = Path(__file__).parent / "data" / "launch_monitor_session.csv"
+    names = {"scenario": scenario, "tmp": tmp_path, "launch_file": launch_file}
+    argv = [a.format(session=session, **names) for a in argv]
+    before = listing(tmp_path)
+    code, out, err = mcrun(capsys, *argv)
+    assert (code, out) == (2, ""), err
+    assert one_line(err) and "is too long (30" in err, err
+    assert "..." in err and len(err) < 250, err  # the path, shortened
+    assert listing(tmp_path) == before
+
+
+@pytest.fixture(scope="module")
+def done_run(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("done")
+    scenario = write_scenario(folder)
+    assert cli.main(["run", str(scenario), "-o", str(folder / "run"), "--quiet"]) == 0
+    return folder / "run"
+
+
+# --- the final rename --------------------------------------------------------------------------
+
+
+def test_a_busy_empty_folder_gets_the_run_file_by_file(tmp_path, capsys, monkeypatch):
+    """The rename onto an existing empty folder fails: the files are moved into it, the run
+    is where it was asked for, exit 0, nothing left beside it."""
+    scenario = write_scenario(tmp_path)
+    target = tmp_path / "target"
+    target.mkdir()
+    busy(monkeypatch, target, inside=False)
+    code, out, err = mcrun(capsys, "run", scenario, "-o", target, "--quiet")
+    assert code == 0, err
+    assert sorted(os.listdir(target)) == ["shots.parquet", "summary.parquet"]
+    assert len(pd.read_parquet(target / "shots.parquet")) == 200
+    assert listing(tmp_path) == sorted(
+        ["scenario.toml", "target", "target/shots.parquet", "target/summary.parquet"]
+    )
+
+
+def test_a_finished_run_that_cannot_be_moved_is_kept_beside_it(tmp_path, capsys, monkeypatch):
+    """Neither the rename nor a move into the destination works: the complete run is kept as
+    NAME.complete-<time>, one line says where, exit 2; with --force the earlier run stays."""
+    scenario = write_scenario(tmp_path)
+    target = tmp_path / "target"
+    busy(monkeypatch, target)
+    code, out, err = mcrun(capsys, "run", scenario, "-o", target, "--quiet")
+    assert (code, out) == (2, "")
+    kept = [p for p in tmp_path.iterdir() if p.name.startswith("target.complete-")]
+    assert len(kept) == 1 and not target.exists()
+    assert one_line(err) and f"could not be moved to {target}" in err and str(kept[0]) in err
+    assert len(pd.read_parquet(kept[0] / "shots.parquet")) == 200
+    assert output.read_provenance(kept[0] / "summary.parquet")["n"] == 200
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+
+    monkeypatch.undo()
+    assert mcrun(capsys, "run", scenario, "-o", target, "--quiet", "-n", "100")[0] == 0
+    busy(monkeypatch, target)
+    code, _, err = mcrun(capsys, "run", scenario, "-o", target, "--quiet", "--force")
+    assert code == 2 and one_line(err)
+    assert output.read_provenance(target / "shots.parquet")["n"] == 100  # the earlier run
+    assert len([p for p in tmp_path.iterdir() if p.name.startswith("target.complete-")]) == 2
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+
+
+def test_a_replayed_file_that_cannot_be_moved_is_kept_beside_it(tmp_path, capsys, monkeypatch):
+    session = Path(__file__).parent / "data" / "launch_monitor_session.csv"
+    target = tmp_path / "replayed.parquet"
+    busy(monkeypatch, target)
+    code, out, err = mcrun(capsys, "replay", session, "-o", target)
+    assert (code, out) == (2, "")
+    (kept,) = [p for p in tmp_path.iterdir() if p.name.startswith("replayed.complete-")]
+    assert kept.suffix == ".parquet" and str(kept) in err and one_line(err)
+    assert len(pd.read_parquet(kept)) == len(pd.read_csv(session, comment="#"))
+
+
+# --- what killed runs leave --------------------------------------------------------------------
+
+
+def dead_pid():
+    """The id of a process that has ended."""
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    return child.pid
+
+
+def test_stale_temporary_folders_of_dead_processes_are_removed(tmp_path, capsys):
+    """At the next run into the folder: the temporary folder and file of a process that is gone
+    are removed; those of a live process, of another host, and anything not of the pattern
+    are kept."""
+    scenario = write_scenario(tmp_path)
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    host = output._HOST
+    dead = dead_pid()
+    stale = [
+        runs / f".other.partial-{host}-{dead}-0123abcd",  # another run, same folder
+        runs / f".run.partial-{host}-{dead}-89abcdef",
+    ]
+    kept = [
+        runs / f".run.partial-{host}-{os.getpid()}-0123abcd",  # alive
+        runs / f".run.partial-another-host-{dead}-0123abcd",  # not ours to judge
+        runs / ".run.partial-0123abcd",  # no process id
+        runs / f"run.partial-{host}-{dead}-0123abcd",  # not hidden: not ours
+        runs / f".run.old-{host}-{dead}-0123abcd",  # the earlier run's only copy
+    ]
+    for folder in stale + kept:
+        folder.mkdir()
+        (folder / "shots.parquet").write_bytes(b"partial")
+    stale_file = runs / f".replayed.parquet.partial-{host}-{dead}-0123abcd"
+    stale_file.write_bytes(b"partial")
+    code, _, err = mcrun(capsys, "run", scenario, "-o", runs / "run", "--quiet")
+    assert code == 0, err
+    assert sorted(p.name for p in runs.iterdir()) == sorted(["run", *(p.name for p in kept)])
+    # Once the run it replaced is in place, a left-over .old copy goes too.
+    assert output.remove_stale(runs) == [runs / f".run.old-{host}-{dead}-0123abcd"]
+
+
+def test_sigterm_stops_a_run_as_ctrl_c_does(tmp_path):
+    """SIGTERM in the middle of a run (the installed console script): exit 143, one line on
+    stderr, no folder and no temporary folder left."""
+    scenario = write_scenario(tmp_path)
+    script = shutil.which("mcrun") or str(Path(sys.executable).parent / "mcrun")
+    process = subprocess.Popen(
+        [script, "run", str(scenario), "-n", "1e8", "-o", str(tmp_path / "run"), "--quiet"],
+        cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    deadline = time.monotonic() + 120
+    while not list(tmp_path.glob(".run.partial-*/shots.parquet")):
+        assert process.poll() is None and time.monotonic() < deadline, process.communicate()
+        time.sleep(0.05)
+    process.send_signal(signal.SIGTERM)
+    out, err = process.communicate(timeout=60)
+    assert process.returncode == exits.EXIT_TERMINATED == 143, err
+    assert out == "" and one_line(err) and "interrupted" in err, err
+    assert listing(tmp_path) == ["scenario.toml"]
+
+
+def test_sigterm_stops_a_dask_run_and_its_cluster(tmp_path):
+    """The same on a local Dask cluster (SIGTERM to the whole process group, as Slurm sends
+    it): exit 143, one line, no folder, no warning of leaked resources."""
+    pytest.importorskip("dask.distributed")
+    scenario = write_scenario(tmp_path)
+    script = shutil.which("mcrun") or str(Path(sys.executable).parent / "mcrun")
+    argv = [script, "run", str(scenario), "-n", "1e8", "-o", str(tmp_path / "run"), "--quiet"]
+    process = subprocess.Popen(
+        [*argv, "--dask", "local", "--workers", "1"],
+        cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
+    deadline = time.monotonic() + 120
+    while not list(tmp_path.glob(".run.partial-*/shots/part-*.parquet")):
+        assert process.poll() is None and time.monotonic() < deadline, process.communicate()
+        time.sleep(0.05)
+    os.killpg(process.pid, signal.SIGTERM)
+    out, err = process.communicate(timeout=60)
+    assert process.returncode == 143, err
+    assert out == "" and one_line(err) and "interrupted" in err, err
+    assert listing(tmp_path) == ["scenario.toml"]
+
+
+def test_an_interrupt_waits_for_a_step_that_cannot_be_undone():
+    """Within ``interrupts_deferred`` SIGTERM waits; it stops the command as the step ends."""
+    with exits.sigterm_interrupts() as received, pytest.raises(exits.Terminated):
+        with exits.interrupts_deferred():
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(0.05)  # a signal is handled between two bytecodes: there were many
+            finished = True
+    assert finished and received == [signal.SIGTERM]
