@@ -216,9 +216,10 @@ def _sweep_columns(points):
 # inputs (wind, temperature, turf) writes up to about 250 B. The bound takes every column as a
 # drawn float64 that zstd cannot compress: 8 B per column and shot.
 BYTES_PER_COLUMN_SHOT = 8
-# Each row group (a chunk, at least one per point) adds its column chunks' page headers and
-# footer entries: about 365 B per column (measured: a 100 x 100 sweep of 10 shots a point
-# wrote 179 MB, 17.9 kB a row group of 49 columns), bounded at 500.
+# Each row group adds its column chunks' page headers and footer entries: about 365 B per
+# column (measured: a 100 x 100 sweep of 10 shots a point, one row group a point, wrote
+# 179 MB, 17.9 kB a row group of 49 columns), bounded at 500. Every row group but the last
+# holds output.ROW_GROUP_ROWS shots or more (``output.ShotsWriter``).
 BYTES_PER_ROW_GROUP_COLUMN = 500
 # A trajectory is recorded every 10 ms to rest (a drive: about 1,500 rows of 7 columns, 35 kB
 # in Parquet); the bound is that of a 30 s shot, 3,000 rows at 40 B.
@@ -289,7 +290,7 @@ def plan(scenario, n, chunk_size=DEFAULT_CHUNK_SIZE, trajectories_every=None, co
     if columns is None:
         columns, _ = run_columns(scenario)
     width = len(columns) + _FIXED_COLUMNS
-    row_groups = points * -(-n // chunk_size)
+    row_groups = shots // output.ROW_GROUP_ROWS + 1
     size = shots * width * BYTES_PER_COLUMN_SHOT + row_groups * width * BYTES_PER_ROW_GROUP_COLUMN
     size += BYTES_SUMMARY + points * BYTES_SUMMARY_POINT
     if trajectories_every is not None:
@@ -496,6 +497,7 @@ def run_scenario(
                 point_stats,
                 folder.file(output.SHOTS_FILE),
                 shots_writer.row_groups,
+                chunk_size,
                 budget_bytes,
             )
             output.write_table(
@@ -600,16 +602,19 @@ def _stream(
     return all_stats
 
 
-def _summary_rows(points, point_stats, shots_path, row_groups, budget_bytes):
+def _summary_rows(points, point_stats, shots_path, row_groups, chunk_size, budget_bytes):
     rows = []
     sweep = _sweep_columns(points)
-    # One open file for every point: its footer lists every row group of the run.
+    # One open file for every point: its footer lists every row group of the run; and one
+    # cache, for the points that share a row group.
+    cache = {}
     with pq.ParquetFile(shots_path) as shots_file:
         for point, one in zip(points, point_stats, strict=True):
             row = {"point": point.index, "group": point.group, "label": point.label}
             for key, values in sweep.items():
                 row[key] = values[point.index]
-            columns = stats.ShotsColumns(shots_file, row_groups.get(point.index, []))
+            groups = row_groups.get(point.index, [])
+            columns = stats.ShotsColumns(shots_file, groups, point.index, cache, chunk_size)
             row.update(
                 stats.summarise(one, columns, target_m=point.target_m, budget_bytes=budget_bytes)
             )
@@ -640,8 +645,20 @@ def _mean_sd(row, name, spec=".1f"):
     return f"{_fmt(row[f'{name}_mean'], spec)} ± {_fmt(row[f'{name}_std'], spec)}"
 
 
+# The points a terminal shows of a run or a scenario; a larger sweep's are all in its files.
+SHOWN_POINTS = 40
+
+
+def _more_points(total, shown, where):
+    """The line that says how many points were not shown, and where they are."""
+    return f"... and {total - shown:,} more points ({where})"
+
+
 def format_summary(summary, top=3):
-    """The summary as an aligned text table, one line per point, then the variance drivers."""
+    """The summary as an aligned text table, one line per point, then the variance drivers;
+    the first SHOWN_POINTS points of a larger sweep."""
+    total = len(summary)
+    summary = summary.iloc[:SHOWN_POINTS]
     header = [
         "point",
         "label",
@@ -693,6 +710,8 @@ def format_summary(summary, top=3):
                     f"point {row['point']}: variance of {y} from {parts} "
                     f"(R^2 {_fmt(row[f'{y}_r2'], '.2f')})"
                 )
+    if total > len(summary):
+        text.append(_more_points(total, len(summary), "every point is in summary.parquet"))
     return "\n".join(text)
 
 
@@ -790,7 +809,7 @@ def describe(scenario):
         f"block size {scenario.block_size}"
     )
     names = sampling.sampled_columns(scenario)
-    for point in scenario.points:
+    for point in scenario.points[:SHOWN_POINTS]:
         varying = driver_inputs(point, names)
         model = point.params["models.aero"]
         label = point.label or "(single point)"
@@ -798,6 +817,8 @@ def describe(scenario):
             f"  {point.index}: {label}: aero {model}; sampled: "
             + (", ".join(varying) if varying else "none (every input constant)")
         )
+    if len(scenario.points) > SHOWN_POINTS:
+        lines.append("  " + _more_points(len(scenario.points), SHOWN_POINTS, "in the sweep"))
     return "\n".join(lines)
 
 

@@ -487,12 +487,20 @@ class ShotsColumns:
     ``source``: the file's path, or a ``pyarrow.parquet.ParquetFile`` already open. A run's
     summary passes every point the same open file: opening it reads the footer, which lists
     every row group of the run, so opening it per point would make the summary quadratic in
-    the number of points.
+    the number of points. ``row_groups``: those that hold the point's shots; a row group may
+    hold several points (in order), and ``point`` picks its rows. ``cache``: a dict shared by
+    the points of one file, which keeps the row group read last, so that the points sharing it
+    read it once. ``chunk_rows``: the run's chunk size; the values come a chunk at a time, as
+    the run simulated them, so that sums over them (the mean distance) do not depend on how
+    the chunks were grouped in the file.
     """
 
-    def __init__(self, source, row_groups):
+    def __init__(self, source, row_groups, point=None, cache=None, chunk_rows=None):
         self.source = source
         self.row_groups = list(row_groups)
+        self.point = point
+        self.cache = {} if cache is None else cache
+        self.chunk_rows = chunk_rows
 
     def chunks(self, columns):
         """Iterator of dicts column -> ok values, one per row group."""
@@ -502,11 +510,25 @@ class ShotsColumns:
         with pq.ParquetFile(self.source) as f:
             yield from self._chunks(f, columns)
 
+    def _read(self, f, g, columns):
+        key = (g, tuple(columns))
+        if key not in self.cache:
+            self.cache.clear()
+            table = f.read_row_group(g, columns=[*columns, "status", "point"])
+            self.cache[key] = {c: table.column(c).to_numpy() for c in table.column_names}
+        return self.cache[key]
+
     def _chunks(self, f, columns):
         for g in self.row_groups:
-            table = f.read_row_group(g, columns=[*columns, "status"])
-            ok = table.column("status").to_numpy() == status_codes.OK
-            yield {c: table.column(c).to_numpy()[ok] for c in columns}
+            values = self._read(f, g, columns)
+            start, stop = 0, len(values["status"])
+            if self.point is not None:
+                start, stop = np.searchsorted(values["point"], [self.point, self.point + 1])
+            step = self.chunk_rows or max(stop - start, 1)
+            for lo in range(start, stop, step):
+                rows = slice(lo, min(lo + step, stop))
+                ok = values["status"][rows] == status_codes.OK
+                yield {c: values[c][rows][ok] for c in columns}
 
 
 def _percentile_name(p):

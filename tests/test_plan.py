@@ -13,10 +13,11 @@ import shutil
 from collections import namedtuple
 from pathlib import Path
 
+import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
-from mcrun import run, sampling, scenario
+from mcrun import output, run, sampling, scenario
 
 SWEEP = """\
 [scenario]
@@ -171,3 +172,17 @@ def test_an_absurd_n_allocates_nothing_before_it_is_refused(tmp_path, capsys, mo
     _, err = capsys.readouterr()
     assert code == 2 and "free" in err, err
     assert not os.path.exists(tmp_path / "run")
+
+
+def test_small_points_share_row_groups_and_nothing_else_changes(tmp_path, monkeypatch):
+    """A sweep of small points writes one row group for all of them, not one a point (each
+    cost 3.5 ms and 18 kB): the shots and the summary are the same, to the bit, as with a row
+    group per chunk."""
+    path = sweep(tmp_path, 4)
+    shared = run.run_scenario(path, n=300, chunk_size=128, out_dir=tmp_path / "a", progress=False)
+    monkeypatch.setattr(output, "ROW_GROUP_ROWS", 1)
+    apart = run.run_scenario(path, n=300, chunk_size=128, out_dir=tmp_path / "b", progress=False)
+    assert pq.ParquetFile(shared.shots_path).num_row_groups == 1
+    assert pq.ParquetFile(apart.shots_path).num_row_groups == 16 * 3
+    pd.testing.assert_frame_equal(shared.shots(), apart.shots(), check_exact=True)
+    pd.testing.assert_frame_equal(shared.summary(), apart.summary(), check_exact=True)

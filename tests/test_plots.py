@@ -247,12 +247,15 @@ def test_shots_are_read_a_row_group_and_the_drawn_columns_at_a_time(runs, monkey
     drawn = plots.read_point_shots(run, 1)
     assert drawn.n_ok == run.summary.loc[1, "n_ok"]
     metadata = pq.read_metadata(runs["sweep"] / output.SHOTS_FILE)
+    # Small points share row groups (output.ROW_GROUP_ROWS): those that may hold point 1.
     of_point_1 = [
         g
         for g in range(metadata.num_row_groups)
-        if metadata.row_group(g).column(0).statistics.min == 1
+        if metadata.row_group(g).column(0).statistics.min
+        <= 1
+        <= metadata.row_group(g).column(0).statistics.max
     ]
-    assert len(of_point_1) == 3
+    assert of_point_1
     assert [groups for groups, _ in calls] == [[g] for g in of_point_1]
     assert {columns for _, columns in calls} == {plots._SHOT_COLUMNS}
 
