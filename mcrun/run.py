@@ -229,10 +229,10 @@ BYTES_PER_TRAJECTORY = 120_000
 BYTES_SUMMARY = 100_000
 BYTES_SUMMARY_POINT = 2_000
 # Time: end to end about 4e5 shots/s on two cores (README, Performance: 451,000 for 1e7
-# pga-driver shots), and per point about 5 ms (its row group's write, 3.5 ms, sampling a block
-# of 4,096 and its summary row: a 100 x 100 sweep of 10 shots a point ran in 55 s).
+# pga-driver shots), and per point about 1.7 ms of Python (sampling its block, building its
+# table and its summary row: a 100 x 100 sweep of 10 shots a point ran in 17 s).
 SHOTS_PER_S = 4e5
-SECONDS_PER_POINT = 5e-3
+SECONDS_PER_POINT = 2e-3
 # The columns of shots.parquet besides the sampled inputs: point, group, label, shot, the
 # outcome fields and status_name.
 _FIXED_COLUMNS = 5 + len(OUTCOME_FIELDS)
