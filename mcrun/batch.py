@@ -385,12 +385,15 @@ def _file_landings(g, count, out, start, landings, pending, n_landed):
 # Rows of the bounce lane table:
 (BX, BY, BZ, BVX, BVY, BVZ, BWX, BWY, BWZ, BNX, BNY, BNZ, BT, BOUNCES, PREVIOUS, FIRST_HEIGHT,
  FIRST_LENGTH, THEN, MU, SOFTNESS, E0, E1, E2, E_BREAK, E_HIGH, CRITICAL) = range(26)  # fmt: skip
-# The equivalent surface of the impact under way (``bounce.incidence``): its normal and v.e.
-(EX, EY, EZ, VNE) = range(26, 30)
 # The turf's rolling resistance, and, in the roll table only (below), the shot and where and
 # when ``shot.roll_out_short`` brings it to rest, if it does (SHORT).
-(RHO_G, BSHOT, REST_X, REST_Y, REST_T, SHORT) = range(30, 36)
-N_BOUNCE_ROWS = 36
+(RHO_G, BSHOT, REST_X, REST_Y, REST_T, SHORT) = range(26, 32)
+N_BOUNCE_ROWS = 32
+# The equivalent surface of the impact under way (``bounce.incidence``), a table of its own:
+# its normal and v.e. (Written into the bounce table, which the same loop reads, it kept the
+# compiler from vectorising the loop: 12 % of the kernel's time.)
+(EX, EY, EZ, VNE) = range(4)
+N_SURFACE_ROWS = 4
 # The landing of a shot, kept until its bounces run: (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny,
 # nz) in the core's frame.
 N_LANDING = 12
@@ -413,7 +416,7 @@ def _bounce_turf(b, k):
 
 
 @njit(cache=True, error_model="numpy")
-def _impact_lanes(b):
+def _impact_lanes(b, e):
     """One impact, and the hop it starts, for every bounce lane: ``shot.impact`` in two
     vectorised loops (as ``_step_lanes``, so that the lanes' long chains overlap). Returns the
     number of lanes (empty ones included) whose ball no longer hops."""
@@ -422,10 +425,10 @@ def _impact_lanes(b):
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BNX * LANES + k],
             b[BNY * LANES + k], b[BNZ * LANES + k], _bounce_turf(b, k),
         )  # fmt: skip
-        b[EX * LANES + k] = ex
-        b[EY * LANES + k] = ey
-        b[EZ * LANES + k] = ez
-        b[VNE * LANES + k] = vne
+        e[EX * LANES + k] = ex
+        e[EY * LANES + k] = ey
+        e[EZ * LANES + k] = ez
+        e[VNE * LANES + k] = vne
     ended = 0
     for k in range(LANES):
         turf = _bounce_turf(b, k)
@@ -433,8 +436,8 @@ def _impact_lanes(b):
         vx, vy, vz, wx, wy, wz, height, hop_time, then = impact_rebound(
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BWX * LANES + k],
             b[BWY * LANES + k], b[BWZ * LANES + k], b[BNX * LANES + k], b[BNY * LANES + k],
-            b[BNZ * LANES + k], b[EX * LANES + k], b[EY * LANES + k], b[EZ * LANES + k],
-            b[VNE * LANES + k], turf, bounces, b[PREVIOUS * LANES + k],
+            b[BNZ * LANES + k], e[EX * LANES + k], e[EY * LANES + k], e[EZ * LANES + k],
+            e[VNE * LANES + k], turf, bounces, b[PREVIOUS * LANES + k],
         )  # fmt: skip
         x = b[BX * LANES + k]
         x1, y1, z1, vz1 = hop(x, b[BY * LANES + k], b[BZ * LANES + k], vx, vy, vz, hop_time)
@@ -544,13 +547,14 @@ def _bounce_all(inputs, start, landings, pending, out):
     stops hopping waits in the roll table until LANES shots roll out together."""
     b = np.zeros(N_BOUNCE_ROWS * LANES)
     r = np.zeros(N_BOUNCE_ROWS * LANES)  # the roll table
+    e = np.zeros(N_SURFACE_ROWS * LANES)  # the equivalent surfaces of the impacts
     waiting = 0  # shots in it
     shot = np.full(LANES, -1)
     next_j = 0
     for k in range(LANES):
         next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
     while _any_lane_busy(shot):
-        if _impact_lanes(b) == 0:
+        if _impact_lanes(b, e) == 0:
             continue
         for k in range(LANES):
             i = shot[k]
