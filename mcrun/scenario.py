@@ -977,10 +977,10 @@ def _resample(ctx, leaf, jitter_leaf, scenario_dir):
     path = Path(leaf.value)
     if not path.is_absolute():
         path = scenario_dir / path
-    if path.is_dir():
-        raise ctx.error(where, f"{path}: is a directory, not a CSV or Parquet file")
-    if not path.is_file():
-        raise ctx.error(where, f"no such file: {path}")
+    try:
+        _check_file(path)  # before _read_shots looks at its time stamp
+    except InputError as err:
+        raise ctx.error(where, str(err)) from None
     columns = _read_shots(ctx, where, path)
     jitter = {}
     if jitter_leaf is not None:
