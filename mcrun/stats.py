@@ -503,7 +503,8 @@ class ShotsColumns:
         self.chunk_rows = chunk_rows
 
     def chunks(self, columns):
-        """Iterator of dicts column -> ok values, one per row group."""
+        """Iterator of dicts column -> ok values, one per chunk of the point (``chunk_rows``),
+        or per row group."""
         if isinstance(self.source, pq.ParquetFile):
             yield from self._chunks(self.source, columns)
             return
