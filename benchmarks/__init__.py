@@ -7,7 +7,7 @@ quick mode writes ``quick.json`` and ``quick.md`` instead, so that it never repl
 results.
 
 - ``reference.py``: the reference integration (scipy DOP853 at rtol = atol = 1e-12), written
-  out again from the equations, independent of ``mcrun.flight``.
+  out again from the equations, independent of ``mcrun.physics.flight``.
 - ``baselines.py``: the flight alone as others would write it (solve_ivp per shot, NumPy
   vectorised RK4, Numba one shot per ``prange`` iteration), for comparison.
 - ``suite.py``: the five figures, the timing, the JSON and the Markdown.

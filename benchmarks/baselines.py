@@ -10,13 +10,13 @@ shot:
   shots that have landed;
 - ``numba_carry``: a plain ``@njit`` RK4 loop, one shot per ``prange`` iteration.
 
-The aerodynamic coefficients are a quadratic row of ``mcrun.aero.QUADRATIC_COEFFICIENTS``
+The aerodynamic coefficients are a quadratic row of ``mcrun.physics.aero.QUADRATIC_COEFFICIENTS``
 (``trackman2019`` for the benchmarks): C_D = a0 + a1 S + a2 S^2, C_L = b0 + b1 S + b2 S^2,
 S = r w / |v| clipped at s_max. The RK4 baselines locate the landing by linear interpolation of
 z inside the last step (0.1 mm at dt = 10 ms, where the path bends over a radius of ~80 m).
 
 ``FlightSet.from_inputs`` takes the shots from rows of the kernel's inputs
-(``mcrun.batch.INPUT_FIELDS``), so that every implementation flies exactly the same shots.
+(``mcrun.engine.batch.INPUT_FIELDS``), so that every implementation flies exactly the same shots.
 """
 
 import math
@@ -26,8 +26,8 @@ import numpy as np
 from numba import njit, prange
 from scipy.integrate import solve_ivp
 
-from mcrun.aero import MODELS, QUADRATIC_COEFFICIENTS
-from mcrun.batch import COLUMN
+from mcrun.engine.batch import COLUMN
+from mcrun.physics.aero import MODELS, QUADRATIC_COEFFICIENTS
 
 R = 0.021335  # ball radius (m)
 M = 0.04593  # ball mass (kg)

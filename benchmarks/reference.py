@@ -1,17 +1,17 @@
 """The reference integration: a shot's flight by scipy's DOP853 at rtol = atol = 1e-12.
 
 The equations of motion of physics.md ("Flight") are written out again here, without calling
-``mcrun.flight`` or ``mcrun.launch``, so that the kernel is checked against something it does
-not share code with:
+``mcrun.physics.flight`` or ``mcrun.physics.launch``, so that the kernel is checked against
+something it does not share code with:
 
     dv/dt = -g z - k C_D |u| u + k C_L |u|^2 (w x u) / |w x u|,   u = v - wind(z),
     dw/dt = -2e-5 |u| / r w,    k = rho A / (2 m),    S = r |w| / |u|,
 
 with a terminal event at the ground (z = 0, falling). From that landing state the run (bounces,
-slide and roll) is ``mcrun.shot.run_out``, the same as the kernel uses: what is checked is the
-flight and the hand-over to the ground, and how a landing error carries into the total.
+slide and roll) is ``mcrun.engine.shot.run_out``, the same as the kernel uses: what is checked is
+the flight and the hand-over to the ground, and how a landing error carries into the total.
 
-A shot is one row of the kernel's inputs (``mcrun.batch.INPUT_FIELDS``: SI, the user's frame,
+A shot is one row of the kernel's inputs (``mcrun.engine.batch.INPUT_FIELDS``: SI, the user's frame,
 y to the right). The integration runs in the core's frame (x along the target line, y to the
 LEFT, z up), as ``run_out`` expects.
 """
@@ -21,11 +21,11 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from mcrun.aero import QUADRATIC_COEFFICIENTS
-from mcrun.batch import COLUMN
-from mcrun.flight import WIND_PROFILES
-from mcrun.shot import run_out
-from mcrun.turf import Turf
+from mcrun.engine.batch import COLUMN
+from mcrun.engine.shot import run_out
+from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
+from mcrun.physics.flight import WIND_PROFILES
+from mcrun.physics.turf import Turf
 
 R = 0.021335  # ball radius (m), physics.md
 M = 0.04593  # ball mass (kg)
@@ -128,7 +128,7 @@ def reference_landing(row):
 
 def reference_shot(row):
     """Carry and total (m, along the target line) of the shot ``row``: the DOP853 flight, then
-    ``mcrun.shot.run_out`` from its landing state. Returns a dict with the landing too."""
+    ``mcrun.engine.shot.run_out`` from its landing state. Returns a dict with the landing too."""
     c = {name: row[k] for name, k in COLUMN.items()}
     t, x, y, vx, vy, vz, spin, axis = reference_landing(row)
     turf = Turf(

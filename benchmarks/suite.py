@@ -1,8 +1,8 @@
 """The benchmark suite: five figures, measured side by side, written as JSON and Markdown.
 
-1. ``kernel``: complete shots (flight, bounces, roll) per second of ``mcrun.batch.simulate_batch``
-   on the ``pga-driver`` scenario, 1 and 2 threads, and its carry and total against the DOP853
-   reference (``reference.py``).
+1. ``kernel``: complete shots (flight, bounces, roll) per second of
+   ``mcrun.engine.batch.simulate_batch`` on the ``pga-driver`` scenario, 1 and 2 threads, and its
+   carry and total against the DOP853 reference (``reference.py``).
 2. ``baselines``: the flight alone as others write it (``baselines.py``) beside mcrun's kernel
    (complete shots).
 3. ``steps``: carry and total error against DOP853 versus the RK4 step, for a driver, a 7-iron
@@ -37,10 +37,11 @@ import numpy as np
 
 from benchmarks import baselines
 from benchmarks.reference import reference_shot
-from mcrun import aero, sampling
-from mcrun import scenario as scenario_module
-from mcrun.batch import COLUMN, simulate_batch
-from mcrun.shot import CARRY, DEFAULT_DT_S, OUTCOME_FIELDS, STATUS, TOTAL
+from mcrun.engine.batch import COLUMN, simulate_batch
+from mcrun.engine.shot import CARRY, DEFAULT_DT_S, OUTCOME_FIELDS, STATUS, TOTAL
+from mcrun.physics import aero
+from mcrun.run import sampling
+from mcrun.run import scenario as scenario_module
 from mcrun.status import NAMES as STATUS_NAMES
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -238,7 +239,7 @@ def figure_kernel(config, inputs):
     total_error = max(s["total_error_cm"] for s in per_shot)
     result["accuracy"] = {
         "reference": "scipy DOP853, rtol = atol = 1e-12, terminal ground event; "
-        "then mcrun.shot.run_out from its landing state",
+        "then mcrun.engine.shot.run_out from its landing state",
         "shots": len(per_shot),
         "dt_s": float(rows[0, COLUMN["dt_s"]]),
         "max_carry_error_cm": carry_error,
@@ -430,13 +431,18 @@ def mcrun_command():
 
 
 def mcrun_run_command():
-    """argv prefix of ``mcrun run``: the CLI's, or ``mcrun.run``'s own parser if the CLI does
+    """argv prefix of ``mcrun run``: the CLI's, or ``mcrun.run.local``'s own parser if the CLI does
     not have ``run`` (yet)."""
     prefix = mcrun_command()
     probe = subprocess.run([*prefix, "run", "--help"], capture_output=True, text=True)
     if probe.returncode == 0:
         return [*prefix, "run"]
-    return [sys.executable, "-c", "import sys; from mcrun.run import main; sys.exit(main())", "run"]
+    return [
+        sys.executable,
+        "-c",
+        "import sys; from mcrun.run.local import main; sys.exit(main())",
+        "run",
+    ]
 
 
 @dataclass
@@ -892,7 +898,7 @@ def _md_kernel(r):
     lines = [
         f"### Kernel throughput: complete shots (flight, bounces, roll), {r['scenario']}",
         "",
-        f"{_n(r['n'])} shots sampled once, `mcrun.batch.simulate_batch`, "
+        f"{_n(r['n'])} shots sampled once, `mcrun.engine.batch.simulate_batch`, "
         f"status: {', '.join(f'{k} {v:,}' for k, v in r['status_counts'].items())}.",
         "",
         "| threads | best time (s) | shots/s |",
@@ -981,7 +987,11 @@ def _md_end_to_end(r):
         "### End to end: `mcrun run` to Parquet, as a child process",
         "",
         f"`{r['command']}`"
-        + ("" if r.get("via_cli", True) else " (through `mcrun.run.main`: not in the CLI yet)")
+        + (
+            ""
+            if r.get("via_cli", True)
+            else " (through `mcrun.run.local.main`: not in the CLI yet)"
+        )
         + "; wall time includes start-up; run time is what the run itself reports. Peak memory "
         "is the child's maximum resident set (wait4).",
         "",

@@ -8,14 +8,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mcrun import aero, atmosphere, status
-from mcrun.bounce import bounce_in_plane, critical_backspin_radps
-from mcrun.constants import DEG, STANDARD_HUMIDITY
-from mcrun.flight import WIND_PROFILES, make_flight_params
-from mcrun.launch import launch_from_club
-from mcrun.shot import N_OUTCOME, OUTCOME_FIELDS, default_dt_s, simulate_shot
+from mcrun import status
+from mcrun.engine.shot import N_OUTCOME, OUTCOME_FIELDS, default_dt_s, simulate_shot
+from mcrun.physics import aero, atmosphere
+from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
+from mcrun.physics.constants import DEG, STANDARD_HUMIDITY
+from mcrun.physics.flight import WIND_PROFILES, make_flight_params
+from mcrun.physics.launch import launch_from_club
+from mcrun.physics.turf import Turf, check_turf, rho_g_from_stimp, turf_preset
 from mcrun.trajectory import PHASE_NAMES
-from mcrun.turf import Turf, check_turf, rho_g_from_stimp, turf_preset
 from mcrun.units import shown
 
 

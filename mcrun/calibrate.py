@@ -25,12 +25,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun import aero
 from mcrun.api import InputError, check_range, flight_params, resolve_turf
-from mcrun.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA
-from mcrun.shot import APEX as APEX_FIELD
-from mcrun.shot import CARRY, DEFAULT_DT_S, N_OUTCOME, simulate_shot
-from mcrun.shot import LANDING_ANGLE as LANDING_ANGLE_FIELD
+from mcrun.engine.shot import APEX as APEX_FIELD
+from mcrun.engine.shot import CARRY, DEFAULT_DT_S, N_OUTCOME, simulate_shot
+from mcrun.engine.shot import LANDING_ANGLE as LANDING_ANGLE_FIELD
+from mcrun.physics import aero
+from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA
 from mcrun.units import parse_quantity, shown
 
 DEFAULT_DATA = resources.files("mcrun") / "data" / "trackman_tour_averages_2019.csv"

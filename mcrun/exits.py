@@ -5,7 +5,7 @@
   a run stops the same way, removes its temporary files and exits with ``EXIT_TERMINATED``
   (128 + 15, the shell's code for a process ended by SIGTERM) instead of ``EXIT_INTERRUPTED``
   (128 + 2, Ctrl-C). SIGKILL cannot be caught: what it leaves, a later run removes
-  (``mcrun.output.remove_stale``).
+  (``mcrun.results.output.remove_stale``).
 - A path with a name longer than the filesystem allows (ENAMETOOLONG, 255 bytes on most) is
   one line naming the path, shortened when it is long itself: ``name_too_long``.
 

@@ -28,12 +28,12 @@ import numpy as np
 
 from mcrun import __version__
 from mcrun.api import bounce_once, simulate
-from mcrun.bounce import critical_backspin_radps
-from mcrun.launch import launch_from_club
-from mcrun.shot import DEFAULT_DT_S, run_out
+from mcrun.engine.shot import DEFAULT_DT_S, run_out
+from mcrun.physics.bounce import critical_backspin_radps
+from mcrun.physics.launch import launch_from_club
+from mcrun.physics.turf import PRESETS
 from mcrun.status import NAMES, OK
 from mcrun.trajectory import BOUNCE, FLIGHT, ROLL
-from mcrun.turf import PRESETS
 
 MISSING_MATPLOTLIB = "mcrun paper needs matplotlib: pip install 'mcrun[plot]'"
 

@@ -1,10 +1,10 @@
 """Accuracy of the flight integration against a high-accuracy reference.
 
-The reference integrates the equations of motion of physics.md ("Flight"), written out again
-here without calling ``mcrun.flight``, with scipy's DOP853 at rtol = atol = 1e-12 and a terminal
+The reference integrates the equations of motion of physics.md ("Flight"), written out again here
+without calling ``mcrun.physics.flight``, with scipy's DOP853 at rtol = atol = 1e-12 and a terminal
 event at the ground. The kernel (fixed-step RK4 at ``shot.default_dt_s``, with a Hermite landing
-root) must agree within 1 cm on carry, lateral and apex, and within 1e-3 m/s on the landing
-speed, for every aerodynamic model, with spin axis, crosswind and a log wind profile.
+root) must agree within 1 cm on carry, lateral and apex, and within 1e-3 m/s on the landing speed,
+for every aerodynamic model, with spin axis, crosswind and a log wind profile.
 
 Frame of the reference: right-handed, x along the target line, y to the LEFT, z up; the user's
 lateral (positive right) is -y.
@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from mcrun.aero import QUADRATIC_COEFFICIENTS
 from mcrun.api import WIND_PROFILE_DEFAULTS, air_properties, simulate
-from mcrun.shot import default_dt_s
+from mcrun.engine.shot import default_dt_s
+from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
 
 R = 0.021335  # ball radius (m), physics.md
 M = 0.04593  # ball mass (kg)

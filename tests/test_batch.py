@@ -10,11 +10,12 @@ import numba
 import numpy as np
 import pytest
 
-from mcrun import aero, api
-from mcrun.batch import COLUMN, N_INPUT, _shot, simulate_batch
-from mcrun.flight import WIND_PROFILES
-from mcrun.shot import N_OUTCOME, default_dt_s, roll_out, roll_out_short
-from mcrun.turf import PRESETS
+from mcrun import api
+from mcrun.engine.batch import COLUMN, N_INPUT, _shot, simulate_batch
+from mcrun.engine.shot import N_OUTCOME, default_dt_s, roll_out, roll_out_short
+from mcrun.physics import aero
+from mcrun.physics.flight import WIND_PROFILES
+from mcrun.physics.turf import PRESETS
 
 N = 400
 
@@ -120,7 +121,7 @@ def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):
     """Numba types an array of fewer than two rows as C-contiguous: a batch of 0 or 1 rows
     (the warm-up before a run's clock starts, a point's last chunk of one shot) must not
     compile the kernel a second time during the run, and gives the single-shot results."""
-    from mcrun.batch import _simulate_batch
+    from mcrun.engine.batch import _simulate_batch
 
     for n in (0, 1, 2, 50):
         assert same(simulate_batch(inputs[:n]), alone[:n]), n

@@ -19,9 +19,10 @@ import json
 import numpy as np
 import pytest
 
-from mcrun import aero, calibrate
+from mcrun import calibrate
 from mcrun.api import InputError
 from mcrun.cli import main
+from mcrun.physics import aero
 
 
 @pytest.fixture(scope="module")

@@ -16,8 +16,9 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from mcrun import aero, api, cli, status, turf
-from mcrun.shot import OUTCOME_FIELDS
+from mcrun import api, cli, status
+from mcrun.engine.shot import OUTCOME_FIELDS
+from mcrun.physics import aero, turf
 
 MPH = 0.44704  # m/s, exact
 RPM = 2.0 * math.pi / 60.0  # rad/s
@@ -363,7 +364,7 @@ def test_compile_of_the_single_shot_kernel(capsys, monkeypatch):
 def test_ctrl_c_in_validate_is_one_line_and_exit_130(capsys, monkeypatch):
     """Ctrl-C during a long ``mcrun validate`` (here while it describes the points) ends like
     Ctrl-C in ``mcrun run``: one line on stderr, exit code 130, no traceback."""
-    from mcrun import run as run_module
+    from mcrun.run import local as run_module
 
     def interrupted(scenario):
         raise KeyboardInterrupt

@@ -1,8 +1,8 @@
-"""The Dask backend (mcrun.distributed) against the local engine (mcrun.run): the same shots and
-the same summary, bit for bit, for the same seed and chunk size, with and without groups; a
-worker killed mid-run loses and duplicates no shot; the dataset reads back in pandas, polars
-and DuckDB with the local engine's rows; chunks that keep failing are reported in one line and
-leave nothing that looks like a run; the command line's --scheduler path and its errors.
+"""The Dask backend (mcrun.run.distributed) against the local engine (mcrun.run.local): the same
+shots and the same summary, bit for bit, for the same seed and chunk size, with and without groups;
+a worker killed mid-run loses and duplicates no shot; the dataset reads back in pandas, polars and
+DuckDB with the local engine's rows; chunks that keep failing are reported in one line and leave
+nothing that looks like a run; the command line's --scheduler path and its errors.
 
 One LocalCluster of 2 worker processes x 1 thread serves the whole module (CI has 2 cores).
 Runs are small (a few thousand shots) in chunks of 1,000-5,000 shots, so that every run has
@@ -26,7 +26,9 @@ pytest.importorskip("dask.distributed")
 import cloudpickle  # noqa: E402 (a dependency of dask.distributed)
 from dask.distributed import Client  # noqa: E402
 
-from mcrun import distributed, output, run  # noqa: E402
+from mcrun.results import output  # noqa: E402
+from mcrun.run import distributed  # noqa: E402
+from mcrun.run import local as run  # noqa: E402
 
 # The wrapped tasks below are defined here and run on the workers, which cannot import this
 # file: ship them by value.

@@ -1,7 +1,7 @@
-"""The Monte Carlo run end to end (mcrun.run, mcrun.output, mcrun.stats over the sampler and the
-batch kernel): determinism, the prefix property, the summary against pandas on shots.parquet,
-provenance, atomic writes, the command line's errors, and Penner (2002) Fig. 4 at zero
-dispersion against the single-shot API.
+"""The Monte Carlo run end to end (mcrun.run.local, mcrun.results.output, mcrun.results.stats over
+the sampler and the batch kernel): determinism, the prefix property, the summary against pandas on
+shots.parquet, provenance, atomic writes, the command line's errors, and Penner (2002) Fig. 4 at
+zero dispersion against the single-shot API.
 
 Runs are small (a few thousand shots) with a small sampler block, so that chunks cross block
 boundaries. Statistics use ddof = 1 (pandas' default) and pandas' default linear-interpolation
@@ -21,9 +21,11 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 import pytest
 
-from mcrun import batch, output, run, stats
 from mcrun.api import simulate
-from mcrun.shot import OUTCOME_FIELDS
+from mcrun.engine import batch
+from mcrun.engine.shot import OUTCOME_FIELDS
+from mcrun.results import output, stats
+from mcrun.run import local as run
 from mcrun.status import INVALID_INPUT, OK
 
 REL = 1e-9

@@ -17,7 +17,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from mcrun import cli, exits, output
+from mcrun import cli, exits
+from mcrun.results import output
 
 SCENARIO = """\
 [scenario]

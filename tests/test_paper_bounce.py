@@ -11,8 +11,8 @@ import math
 import pytest
 
 from mcrun.api import bounce_once
-from mcrun.bounce import bounce_in_plane, critical_backspin_radps
-from mcrun.turf import PRESETS
+from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
+from mcrun.physics.turf import PRESETS
 
 REL = 0.01  # 1 % on the paper's three-digit numbers
 ABS = 0.01  # on the paper's two-digit mu_c and e

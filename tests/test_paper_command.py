@@ -16,11 +16,11 @@ import pytest
 
 from mcrun import paper
 from mcrun.api import bounce_once, simulate
-from mcrun.bounce import critical_backspin_radps
-from mcrun.launch import launch_from_club
-from mcrun.shot import run_out
+from mcrun.engine.shot import run_out
+from mcrun.physics.bounce import critical_backspin_radps
+from mcrun.physics.launch import launch_from_club
+from mcrun.physics.turf import PRESETS
 from mcrun.status import OK
-from mcrun.turf import PRESETS
 
 DPI = 40
 FIGURES = ("fig3", "fig4", "fig5", "fig6", "fig7", "fig8")

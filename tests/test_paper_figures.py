@@ -26,9 +26,9 @@ import pytest
 from scipy.optimize import brentq
 
 from mcrun.api import bounce_once, simulate
-from mcrun.shot import run_out
+from mcrun.engine.shot import run_out
+from mcrun.physics.turf import PRESETS
 from mcrun.status import OK
-from mcrun.turf import PRESETS
 
 PENNER_AIR = {"aero_model": "penner2002", "air_density_kgpm3": 1.204}
 NINE_IRON_LANDING = (23.8, 34.0)  # m/s, deg from the vertical (section 3.2)

@@ -9,7 +9,7 @@ import math
 import pytest
 
 from mcrun.api import simulate
-from mcrun.launch import launch_from_club
+from mcrun.physics.launch import launch_from_club
 
 REL = 0.01
 

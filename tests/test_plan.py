@@ -17,7 +17,9 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
-from mcrun import output, run, sampling, scenario
+from mcrun.results import output
+from mcrun.run import local as run
+from mcrun.run import sampling, scenario
 
 SWEEP = """\
 [scenario]

@@ -21,8 +21,10 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
-from mcrun import output, plots, report, stats
-from mcrun.run import run_scenario
+from mcrun.report import html as report
+from mcrun.report import plots
+from mcrun.results import output, stats
+from mcrun.run.local import run_scenario
 
 pytest.importorskip("matplotlib")  # the optional extra mcrun[plot]
 

@@ -17,11 +17,11 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from mcrun import status
-from mcrun.aero import MODELS
 from mcrun.api import RANGES, simulate
-from mcrun.bounce import bounce
-from mcrun.constants import BALL_INERTIA_FACTOR, BALL_RADIUS_M
-from mcrun.turf import PRESETS, Turf, check_turf
+from mcrun.physics.aero import MODELS
+from mcrun.physics.bounce import bounce
+from mcrun.physics.constants import BALL_INERTIA_FACTOR, BALL_RADIUS_M
+from mcrun.physics.turf import PRESETS, Turf, check_turf
 
 SETTINGS = settings(
     max_examples=150,
@@ -340,7 +340,7 @@ def test_tour_drive_ends_on_a_sloped_green(slope_deg):
 def test_a_failed_run_keeps_the_flight():
     """A shot whose bouncing hits the safety bound keeps its flight's outcome (carry, landing);
     only the run's fields are NaN. (They were all NaN, carry included.)"""
-    from mcrun import shot
+    from mcrun.engine import shot
 
     out = np.zeros((1, shot.N_OUTCOME))
     shot.write_landing(out, 0, 230.0, -4.0, 6.5, 30.0, 27.8, 50.3, 221.0)

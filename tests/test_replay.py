@@ -1,4 +1,4 @@
-"""Replaying measured shots (mcrun.replay, ``mcrun replay``): every row of a launch-monitor
+"""Replaying measured shots (mcrun.run.replay, ``mcrun replay``): every row of a launch-monitor
 file flown as given must be exactly the single-shot API's result for that launch in the same
 conditions; a row with an unusable value gets status invalid_input; user errors exit 2 with one
 line and write nothing.
@@ -12,9 +12,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from mcrun import output, replay, run
 from mcrun.api import simulate
-from mcrun.shot import OUTCOME_FIELDS
+from mcrun.engine.shot import OUTCOME_FIELDS
+from mcrun.results import output
+from mcrun.run import local as run
+from mcrun.run import replay
 from mcrun.status import INVALID_INPUT, OK
 
 MPH = 0.44704

@@ -1,4 +1,4 @@
-"""The sampler (mcrun.sampling): determinism, distributions, correlation, resampling and the
+"""The sampler (mcrun.run.sampling): determinism, distributions, correlation, resampling and the
 conversions into the kernel's inputs.
 
 Statistical tolerances, at N = 20,000 samples: a mean within 4 standard errors; a standard
@@ -16,20 +16,21 @@ import pandas as pd
 import pytest
 from scipy import stats
 
-from mcrun import api, atmosphere
-from mcrun import scenario as sc
-from mcrun.batch import COLUMN, INPUT_FIELDS, N_INPUT, simulate_batch
-from mcrun.constants import DEG
-from mcrun.launch import launch_from_club
-from mcrun.sampling import (
+from mcrun import api
+from mcrun.engine.batch import COLUMN, INPUT_FIELDS, N_INPUT, simulate_batch
+from mcrun.engine.shot import OUTCOME_FIELDS, default_dt_s
+from mcrun.physics import atmosphere
+from mcrun.physics.constants import DEG
+from mcrun.physics.launch import launch_from_club
+from mcrun.physics.turf import PRESETS, rho_g_from_stimp
+from mcrun.run import scenario as sc
+from mcrun.run.sampling import (
     block_generator,
     draw_block,
     sample,
     sampled_columns,
     truncnormal_standard,
 )
-from mcrun.shot import OUTCOME_FIELDS, default_dt_s
-from mcrun.turf import PRESETS, rho_g_from_stimp
 
 N = 20_000
 LIBRARY = Path(__file__).resolve().parent.parent / "scenarios"

@@ -1,4 +1,5 @@
-"""Scenario files: the library, every schema error, units, groups and sweeps (mcrun.scenario)."""
+"""Scenario files (``mcrun.run.scenario``): the library, every schema error, units, groups and
+sweeps."""
 
 import math
 import textwrap
@@ -7,10 +8,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mcrun import scenario as sc
 from mcrun.api import InputError
-from mcrun.constants import DEG
-from mcrun.sampling import sample
+from mcrun.physics.constants import DEG
+from mcrun.run import scenario as sc
+from mcrun.run.sampling import sample
 
 LIBRARY = Path(__file__).resolve().parent.parent / "scenarios"
 SESSION_CSV = Path(__file__).resolve().parent / "data" / "launch_monitor_session.csv"

@@ -1,4 +1,4 @@
-"""Dispersion statistics (mcrun.stats) against direct computations on synthetic samples.
+"""Dispersion statistics (mcrun.results.stats) against direct computations on synthetic samples.
 
 The streaming sums must give what pandas gives on the whole sample (means, std with ddof = 1,
 covariances) to rounding, the percentiles must be pandas' default (linear interpolation)
@@ -14,8 +14,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from mcrun import stats
-from mcrun.shot import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.engine.shot import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.results import stats
 from mcrun.status import INVALID_INPUT, NOT_STOPPED, OK
 
 Q = np.array(stats.PERCENTILES) / 100.0

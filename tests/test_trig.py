@@ -1,4 +1,4 @@
-"""The kernel's branch-free arctangent, sine and cosine (mcrun.trig) against the C library.
+"""The kernel's branch-free arctangent, sine and cosine (mcrun.physics.trig) against the C library.
 
 Cephes' approximations are accurate to about one unit in the last place; the tests allow two
 (4.5e-16 absolute on values of magnitude at most 1, 4.5e-16 relative on the arctangent).
@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from mcrun.trig import atan2_first_quadrant, sincos, sincos_first_quadrant
+from mcrun.physics.trig import atan2_first_quadrant, sincos, sincos_first_quadrant
 
 ULP2 = 4.5e-16
 

@@ -5,7 +5,7 @@ per point, the unit in each header), every plot of ``mcrun plot`` embedded as a 
 and the provenance (seed, N, versions, times, threads, backend, the summary's conventions). Inline
 CSS, no script, no link to anything outside the page (its only links are to its own sections),
 so that it can be mailed to someone who will not run Python. The plots are drawn one at a time
-and encoded at once; shots.parquet is read as ``mcrun plot`` reads it (``mcrun.plots``).
+and encoded at once; shots.parquet is read as ``mcrun plot`` reads it (``mcrun.report.plots``).
 """
 
 import argparse
@@ -17,9 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun import output, stats
 from mcrun.api import InputError
-from mcrun.plots import (
+from mcrun.report.plots import (
     DPI_RANGE,
     SCATTER_MAX_SHOTS,
     TRAJECTORIES_PER_POINT,
@@ -32,6 +31,7 @@ from mcrun.plots import (
     reason_of,
     require_matplotlib,
 )
+from mcrun.results import output, stats
 from mcrun.units import UnitError
 
 DEFAULT_REPORT_DPI = 100
@@ -398,7 +398,7 @@ def _cmd_report(args):
 
 
 def register(subparsers):
-    """Add ``report`` to an argparse subparsers object (once: ``mcrun.plots.register`` calls
+    """Add ``report`` to an argparse subparsers object (once: ``mcrun.report.plots.register`` calls
     this too)."""
     if "report" in subparsers.choices:
         return

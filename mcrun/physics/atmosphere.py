@@ -5,7 +5,7 @@ All functions accept floats or NumPy arrays (the Monte Carlo engine samples weat
 
 import numpy as np
 
-from mcrun.constants import STANDARD_HUMIDITY, STANDARD_PRESSURE_PA, STANDARD_TEMPERATURE_K
+from mcrun.physics.constants import STANDARD_HUMIDITY, STANDARD_PRESSURE_PA, STANDARD_TEMPERATURE_K
 
 R_DRY_J_PER_KG_K = 287.058
 R_VAPOUR_J_PER_KG_K = 461.495

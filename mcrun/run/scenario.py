@@ -4,7 +4,7 @@ A scenario file names every input of a shot (the ball launch or the club deliver
 the weather, the models), each a constant or a distribution, and may hold several groups (a bag
 of clubs) and a grid sweep over any parameter. ``load`` reads it into plain objects: a
 ``Scenario`` with one ``Point`` per group and sweep combination, each point holding the fully
-resolved parameter specs (defaults filled in, SI) that ``mcrun.sampling`` draws from.
+resolved parameter specs (defaults filled in, SI) that ``mcrun.run.sampling`` draws from.
 
 Every mistake a user can make in a file ends in a ``ScenarioError`` whose message is one line
 naming the file, the key path and what is allowed, e.g.
@@ -47,12 +47,17 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun import aero
 from mcrun.api import RANGES, WIND_PROFILE_DEFAULTS, InputError
-from mcrun.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA, STANDARD_TEMPERATURE_K
-from mcrun.flight import WIND_PROFILES
-from mcrun.shot import default_dt_s
-from mcrun.turf import PRESETS
+from mcrun.engine.shot import default_dt_s
+from mcrun.physics import aero
+from mcrun.physics.constants import (
+    DEG,
+    STANDARD_HUMIDITY,
+    STANDARD_PRESSURE_PA,
+    STANDARD_TEMPERATURE_K,
+)
+from mcrun.physics.flight import WIND_PROFILES
+from mcrun.physics.turf import PRESETS
 from mcrun.units import (
     KINDS,
     UnitError,
@@ -138,8 +143,8 @@ PARAMETERS: dict[str, dict[str, Param]] = {
     },
     "turf": {
         "preset": Param("choice", choices=tuple(PRESETS)),
-        # Limits of mcrun.turf.check_turf; restitution scales e0, e1, e2 and e_high, and above
-        # 1.9 the paper's e0 = 0.510 would exceed 0.97.
+        # Limits of mcrun.physics.turf.check_turf; restitution scales e0, e1, e2 and e_high, and
+        # above 1.9 the paper's e0 = 0.510 would exceed 0.97.
         "mu": Param("number", (0.0, 2.0)),
         "softness": Param("number", (0.0, 5.0)),
         "restitution": Param("number", (0.0, 1.9)),
@@ -353,7 +358,7 @@ def library_folder():
         if not folder.is_dir():
             raise ScenarioError(f"{ENV_LIBRARY}={env}: not a folder of scenario files")
         return folder
-    folder = Path(__file__).resolve().parent.parent / "scenarios"
+    folder = Path(__file__).resolve().parents[2] / "scenarios"
     if folder.is_dir():
         return folder
     raise ScenarioError(

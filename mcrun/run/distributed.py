@@ -1,7 +1,7 @@
 """The same run on a Dask cluster: the local engine's shots and summary, bit for bit.
 
 ``run_scenario`` (``mcrun run SCENARIO --dask local``, ``--scheduler tcp://HOST:8786`` or
-``--scheduler-file PATH``) runs a scenario as ``mcrun.run.run_scenario`` does, with the chunks
+``--scheduler-file PATH``) runs a scenario as ``mcrun.run.local.run_scenario`` does, with the chunks
 of sample indices as Dask tasks. Dask is an optional extra (``pip install 'mcrun[dask]'``);
 this module imports it only when a run asks for it.
 
@@ -96,11 +96,14 @@ import pyarrow as pa
 import pyarrow.fs as pafs
 import pyarrow.parquet as pq
 
-from mcrun import exits, output, run, sampling, stats
-from mcrun import scenario as scenario_module
+from mcrun import exits
 from mcrun import status as status_codes
 from mcrun.api import InputError
-from mcrun.batch import simulate_batch
+from mcrun.engine.batch import simulate_batch
+from mcrun.results import output, stats
+from mcrun.run import local as run
+from mcrun.run import sampling
+from mcrun.run import scenario as scenario_module
 
 DEFAULT_CHUNK_SIZE = run.DEFAULT_CHUNK_SIZE
 RETRIES = 2
@@ -494,15 +497,15 @@ def run_scenario(
 ):
     """Run a scenario on a Dask cluster and write its folder; return a DaskRunResult.
 
-    The same shots and summary as ``mcrun.run.run_scenario`` with the same ``n``, ``seed``
+    The same shots and summary as ``mcrun.run.local.run_scenario`` with the same ``n``, ``seed``
     and ``chunk_size``, bit for bit.
 
     Parameters
     ----------
     path_or_scenario, n, seed, chunk_size, trajectories_every, progress, force, budget_bytes
-        As ``mcrun.run.run_scenario``; ``chunk_size`` is also the shots per task.
+        As ``mcrun.run.local.run_scenario``; ``chunk_size`` is also the shots per task.
     ignore_disk_space, announce
-        As ``mcrun.run.run_scenario``; the free space is checked for a folder, not for a URL.
+        As ``mcrun.run.local.run_scenario``; the free space is checked for a folder, not for a URL.
     out_dir : str or Path, optional
         A folder that the client and every worker reach (local, or shared and mounted at the
         same path), or an fsspec URL (``s3://bucket/run``). Default ``runs/<name>-<seed>``.

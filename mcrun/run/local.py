@@ -10,7 +10,7 @@ percentiles are computed exactly from shots.parquet (``stats.summarise``), summa
 written, and the temporary folder is renamed into place.
 
 The command line: ``mcrun run``, ``mcrun validate``, ``mcrun scenarios`` (``register``) and
-``mcrun replay`` (``mcrun.replay``). The default output folder of ``mcrun run`` is
+``mcrun replay`` (``mcrun.run.replay``). The default output folder of ``mcrun run`` is
 ``runs/<scenario name>-<seed>`` under the current folder.
 """
 
@@ -33,11 +33,13 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from mcrun import aero, output, sampling, stats
-from mcrun import scenario as scenario_module
 from mcrun.api import InputError
-from mcrun.batch import N_INPUT, simulate_batch, trajectory_of
-from mcrun.shot import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.engine.batch import N_INPUT, simulate_batch, trajectory_of
+from mcrun.engine.shot import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.physics import aero
+from mcrun.results import output, stats
+from mcrun.run import sampling
+from mcrun.run import scenario as scenario_module
 from mcrun.units import UnitError, shown
 
 DEFAULT_CHUNK_SIZE = 65536
@@ -741,7 +743,7 @@ def _interrupted():
 
 
 def _dask_backend(args):
-    """Whether ``mcrun run`` was asked for the Dask backend (``mcrun.distributed``)."""
+    """Whether ``mcrun run`` was asked for the Dask backend (``mcrun.run.distributed``)."""
     names = ("dask", "scheduler", "scheduler_file", "workers")
     return any(getattr(args, name, None) is not None for name in names)
 
@@ -749,7 +751,7 @@ def _dask_backend(args):
 def _cmd_run(args):
     try:
         if _dask_backend(args):
-            from mcrun import distributed
+            from mcrun.run import distributed
 
             result = distributed.run_from_args(args)
         else:
@@ -857,7 +859,7 @@ def _cmd_scenarios(args):
 
 
 def _add_dask_options(p):
-    """The Dask backend's options of ``mcrun run`` (``mcrun.distributed``)."""
+    """The Dask backend's options of ``mcrun run`` (``mcrun.run.distributed``)."""
     group = p.add_argument_group(
         "Dask backend (pip install 'mcrun[dask]')",
         "Run the chunks as tasks on a Dask cluster: the same shots and summary as the local "
@@ -956,7 +958,7 @@ def register(subparsers):
     p.add_argument("--json", action="store_true", help="print JSON instead")
     p.set_defaults(func=_cmd_scenarios)
 
-    from mcrun import replay
+    from mcrun.run import replay
 
     replay.register(subparsers)
 

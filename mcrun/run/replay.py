@@ -24,13 +24,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun import api, output, status
+from mcrun import api, status
 from mcrun.api import InputError
-from mcrun.batch import COLUMN, N_INPUT, simulate_batch
 from mcrun.cli import add_conditions_options, conditions_kwargs
-from mcrun.constants import DEG
-from mcrun.scenario import PARAMETERS, launch_columns, read_launch_table
-from mcrun.shot import OUTCOME_FIELDS, default_dt_s
+from mcrun.engine.batch import COLUMN, N_INPUT, simulate_batch
+from mcrun.engine.shot import OUTCOME_FIELDS, default_dt_s
+from mcrun.physics.constants import DEG
+from mcrun.results import output
+from mcrun.run.scenario import PARAMETERS, launch_columns, read_launch_table
 from mcrun.units import KINDS, UnitError
 
 # The launch columns of the output, by quantity (scenario.FILE_COLUMNS): (name, SI -> factor).

@@ -16,8 +16,8 @@ import math
 
 from numba import njit
 
-from mcrun.constants import BALL_RADIUS_M, DEG, G_MPS2
-from mcrun.trig import atan2_first_quadrant, sincos_first_quadrant
+from mcrun.physics.constants import BALL_RADIUS_M, DEG, G_MPS2
+from mcrun.physics.trig import atan2_first_quadrant, sincos_first_quadrant
 
 # Haake's impact (18.6 m/s at 44.4 deg) fitted with theta_c = 15.4 deg: Penner (2002) eq. (8).
 THETA_C_REF_RAD = 15.4 * DEG

@@ -7,7 +7,7 @@ A run is a folder:
   ``shot.OUTCOME_FIELDS`` (status as an int8 code, bounces as a nullable int32, the rest
   float64, NaN where a failed shot did not get that far) and status_name. The outcome's
   launch_angle_deg is the sampled column of that name (the same launch, not written twice).
-  (The Dask backend, ``mcrun.distributed``, writes the same rows as a dataset of parts
+  (The Dask backend, ``mcrun.run.distributed``, writes the same rows as a dataset of parts
   instead, ``shots/part-NNNNN.parquet``, one per chunk, with a ``_SUCCESS`` marker.)
 - ``summary.parquet``: one row per point (``stats.summarise``).
 - ``trajectories.parquet`` (optional): long format, one row per point of the path of every k-th
@@ -50,7 +50,7 @@ import pyarrow.parquet as pq
 
 import mcrun
 from mcrun.api import InputError
-from mcrun.shot import OUTCOME_FIELDS
+from mcrun.engine.shot import OUTCOME_FIELDS
 from mcrun.status import NAMES as STATUS_NAMES
 from mcrun.trajectory import PHASE_NAMES
 
@@ -181,7 +181,7 @@ class ShotsWriter(_ParquetWriter):
     ``groups`` and ``labels``: the group name and label of every point (by point index);
     ``input_names``: the sampled columns (a point that lacks one gets NaN); ``input_types``:
     their Arrow types (default float64). With ``path`` None nothing is opened: ``table`` then
-    builds the chunks' tables for a writer elsewhere (the parts of ``mcrun.distributed``).
+    builds the chunks' tables for a writer elsewhere (the parts of ``mcrun.run.distributed``).
     """
 
     def __init__(self, path, input_names, groups, labels, metadata, input_types=None):

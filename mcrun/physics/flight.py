@@ -18,8 +18,8 @@ from typing import NamedTuple
 
 from numba import njit
 
-from mcrun.aero import coefficients, quadratic
-from mcrun.constants import BALL_AREA_M2, BALL_MASS_KG, BALL_RADIUS_M, G_MPS2, SPIN_DECAY_K
+from mcrun.physics.aero import coefficients, quadratic
+from mcrun.physics.constants import BALL_AREA_M2, BALL_MASS_KG, BALL_RADIUS_M, G_MPS2, SPIN_DECAY_K
 
 WIND_UNIFORM = 0
 WIND_LOG = 1

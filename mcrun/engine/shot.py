@@ -19,11 +19,19 @@ import math
 
 from numba import njit
 
-from mcrun.bounce import hop_height, incidence, rebound
-from mcrun.constants import G_MPS2
-from mcrun.flight import hermite_root, rk4_step
-from mcrun.launch import initial_state
-from mcrun.roll import contact_slip, plane_gravity, roll, roll_step, rolled_too_far, slide_step
+from mcrun.physics.bounce import hop_height, incidence, rebound
+from mcrun.physics.constants import G_MPS2
+from mcrun.physics.flight import hermite_root, rk4_step
+from mcrun.physics.launch import initial_state
+from mcrun.physics.roll import (
+    contact_slip,
+    plane_gravity,
+    roll,
+    roll_step,
+    rolled_too_far,
+    slide_step,
+)
+from mcrun.physics.trig import atan2_first_quadrant
 from mcrun.status import (
     INVALID_INPUT,
     MAX_BOUNCES,
@@ -33,7 +41,6 @@ from mcrun.status import (
     TOO_MANY_BOUNCES,
 )
 from mcrun.trajectory import BOUNCE, FLIGHT, ROLL, record
-from mcrun.trig import atan2_first_quadrant
 
 # A hop higher than this fraction of the one before ends the bouncing (see run_out). On level
 # turf the hops shrink by 5 % or more each time; on a downhill, gravity along the slope during

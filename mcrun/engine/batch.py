@@ -14,19 +14,7 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-from mcrun.aero import QUADRATIC_COEFFICIENTS, is_quadratic
-from mcrun.bounce import incidence
-from mcrun.constants import BALL_AREA_M2, BALL_MASS_KG
-from mcrun.flight import (
-    WIND_UNIFORM,
-    derivatives_quadratic,
-    hermite_root,
-    make_flight_params,
-    rk4_combine,
-    rk4_stage_quadratic,
-)
-from mcrun.launch import initial_state
-from mcrun.shot import (
+from mcrun.engine.shot import (
     HOPS,
     N_OUTCOME,
     TOO_MANY,
@@ -45,8 +33,20 @@ from mcrun.shot import (
     write_landing,
     write_run,
 )
+from mcrun.physics.aero import QUADRATIC_COEFFICIENTS, is_quadratic
+from mcrun.physics.bounce import incidence
+from mcrun.physics.constants import BALL_AREA_M2, BALL_MASS_KG
+from mcrun.physics.flight import (
+    WIND_UNIFORM,
+    derivatives_quadratic,
+    hermite_root,
+    make_flight_params,
+    rk4_combine,
+    rk4_stage_quadratic,
+)
+from mcrun.physics.launch import initial_state
+from mcrun.physics.turf import Turf
 from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, OK, TOO_MANY_BOUNCES
-from mcrun.turf import Turf
 
 INPUT_FIELDS = (
     "ball_speed_mps",

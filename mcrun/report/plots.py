@@ -14,7 +14,7 @@
   against the swept parameter or per group (means with 5-95 % bars), and ``finish.png``, the
   mean finish and 95 % ellipse of every point on one top view.
 
-``mcrun report`` (``mcrun.report``) embeds the same plots in one self-contained HTML page.
+``mcrun report`` (``mcrun.report.html``) embeds the same plots in one self-contained HTML page.
 
 Memory, whatever the number of shots: shots.parquet is read one point at a time (the row
 groups whose statistics hold that point), only the columns the plots need, in batches of
@@ -49,10 +49,11 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from mcrun import exits, output, stats
+from mcrun import exits
 from mcrun import status as status_codes
 from mcrun.api import InputError
 from mcrun.paper import DPI_RANGE, dpi_value
+from mcrun.results import output, stats
 from mcrun.units import UnitError
 
 MISSING_MATPLOTLIB = "mcrun {} needs matplotlib: pip install 'mcrun[plot]'"
@@ -1108,7 +1109,7 @@ def _cmd_plot(args):
 
 
 def register(subparsers):
-    """Add ``plot`` and ``report`` (``mcrun.report``) to an argparse subparsers object."""
+    """Add ``plot`` and ``report`` (``mcrun.report.html``) to an argparse subparsers object."""
     p = subparsers.add_parser(
         "plot",
         help="plot a finished run: positions, distances, trajectories, the sweep",
@@ -1139,7 +1140,7 @@ def register(subparsers):
     )
     p.set_defaults(func=_cmd_plot)
 
-    from mcrun import report
+    from mcrun.report import html as report
 
     report.register(subparsers)  # a no-op when ``report`` is registered already
 

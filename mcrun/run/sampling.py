@@ -10,14 +10,14 @@ change them, and the first N samples of a longer run are those of a shorter run.
 blocks, so that every value comes out of the same operation on arrays of the same shape,
 whichever chunk asks for it. Nothing here touches NumPy's global random state.
 
-Conversions at this edge (the kernel sees only SI floats, ``mcrun.batch.INPUT_FIELDS``):
+Conversions at this edge (the kernel sees only SI floats, ``mcrun.engine.batch.INPUT_FIELDS``):
 
-- club delivery -> ball launch with ``mcrun.launch.launch_from_club`` (Penner 2001);
+- club delivery -> ball launch with ``mcrun.physics.launch.launch_from_club`` (Penner 2001);
 - temperature, pressure or altitude, humidity -> air density and kinematic viscosity
-  (``mcrun.atmosphere``), as ``mcrun.api.air_properties`` does;
+  (``mcrun.physics.atmosphere``), as ``mcrun.api.air_properties`` does;
 - wind speed and the direction it blows TOWARDS (0 tailwind, 90 deg left to right) ->
   (wind_x_mps, wind_right_mps);
-- Stimp reading -> rho_g (``mcrun.turf.rho_g_from_stimp``); restitution scale -> e0, e1, e2
+- Stimp reading -> rho_g (``mcrun.physics.turf.rho_g_from_stimp``); restitution scale -> e0, e1, e2
   and e_high of the preset scaled.
 
 A constant stays a Python float through these conversions (computed once, as the single-shot
@@ -32,13 +32,13 @@ import math
 import numpy as np
 from numba import njit
 
-from mcrun import aero, atmosphere
-from mcrun.batch import COLUMN, N_INPUT
-from mcrun.constants import DEG
-from mcrun.flight import WIND_PROFILES
-from mcrun.launch import launch_from_club
-from mcrun.scenario import PARAMETERS
-from mcrun.turf import PRESETS, rho_g_from_stimp
+from mcrun.engine.batch import COLUMN, N_INPUT
+from mcrun.physics import aero, atmosphere
+from mcrun.physics.constants import DEG
+from mcrun.physics.flight import WIND_PROFILES
+from mcrun.physics.launch import launch_from_club
+from mcrun.physics.turf import PRESETS, rho_g_from_stimp
+from mcrun.run.scenario import PARAMETERS
 
 __all__ = [
     "block_generator",
@@ -451,7 +451,7 @@ def sample(scenario, point, start, stop, columns=None):
     Returns
     -------
     inputs : ndarray, shape (stop - start, N_INPUT), Fortran order
-        Columns ``mcrun.batch.INPUT_FIELDS``, SI, user frame.
+        Columns ``mcrun.engine.batch.INPUT_FIELDS``, SI, user frame.
     sampled : dict of str -> ndarray
         ``sampled_columns(scenario)``, each of length stop - start, with units in the names;
         a column that is constant for the point is a read-only broadcast view.

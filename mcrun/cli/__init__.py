@@ -17,8 +17,9 @@ import sys
 import textwrap
 import time
 
-from mcrun import aero, api, atmosphere, exits, status, turf, units
+from mcrun import api, exits, status, units
 from mcrun.api import InputError
+from mcrun.physics import aero, atmosphere, turf
 from mcrun.units import UnitError
 
 
@@ -563,14 +564,14 @@ def _add_lists(subparsers):
 # Commands of their own modules, which bring pandas, pyarrow or matplotlib: imported only
 # when the command line may need them, so that `mcrun shot` starts quickly.
 COMMAND_MODULES = {
-    "run": "mcrun.run",
-    "validate": "mcrun.run",
-    "scenarios": "mcrun.run",
-    "replay": "mcrun.run",
+    "run": "mcrun.run.local",
+    "validate": "mcrun.run.local",
+    "scenarios": "mcrun.run.local",
+    "replay": "mcrun.run.local",
     "calibrate": "mcrun.calibrate",
     "paper": "mcrun.paper",
-    "plot": "mcrun.plots",
-    "report": "mcrun.plots",
+    "plot": "mcrun.report.plots",
+    "report": "mcrun.report.plots",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 
@@ -605,8 +606,8 @@ SIMULATING_COMMANDS = {
 
 def _kernel_cached(kind):
     """Whether the command's kernel is in numba's on-disk cache (None when it cannot be told)."""
-    from mcrun.batch import _simulate_batch
-    from mcrun.shot import simulate_shot
+    from mcrun.engine.batch import _simulate_batch
+    from mcrun.engine.shot import simulate_shot
 
     kernel = simulate_shot if kind == "single" else _simulate_batch
     try:
@@ -622,7 +623,7 @@ def _compile(kind):
     else:
         import numpy as np
 
-        from mcrun.batch import N_INPUT, simulate_batch
+        from mcrun.engine.batch import N_INPUT, simulate_batch
 
         simulate_batch(np.zeros((0, N_INPUT)))
 

@@ -16,7 +16,7 @@ import math
 
 from numba import njit
 
-from mcrun.constants import BALL_RADIUS_M, G_MPS2
+from mcrun.physics.constants import BALL_RADIUS_M, G_MPS2
 from mcrun.status import MAX_ROLL_DISTANCE_M, MAX_ROLL_TIME_S, NOT_STOPPED, OK
 from mcrun.trajectory import ROLL, record
 

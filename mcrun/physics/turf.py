@@ -8,7 +8,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mcrun.constants import G_MPS2
+from mcrun.physics.constants import G_MPS2
 
 # Stimpmeter: the ball leaves the ramp at 1.83 m/s (USGA); a green of reading S_t (m)
 # decelerates a rolling ball at a = v0^2 / (2 S_t).

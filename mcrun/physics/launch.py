@@ -8,8 +8,8 @@ import math
 
 from numba import njit
 
-from mcrun.constants import BALL_MASS_KG, BALL_RADIUS_M
-from mcrun.trig import sincos
+from mcrun.physics.constants import BALL_MASS_KG, BALL_RADIUS_M
+from mcrun.physics.trig import sincos
 
 
 @njit(cache=True)
