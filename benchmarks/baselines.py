@@ -16,7 +16,7 @@ S = r w / |v| clipped at s_max. The RK4 baselines locate the landing by linear i
 z inside the last step (0.1 mm at dt = 10 ms, where the path bends over a radius of ~80 m).
 
 ``FlightSet.from_inputs`` takes the shots from rows of the kernel's inputs
-(``mcrun.engine.batch.INPUT_FIELDS``), so that every implementation flies exactly the same shots.
+(``mcrun.engine.schema.INPUT_FIELDS``), so that every implementation flies exactly the same shots.
 """
 
 import math
@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit, prange
 from scipy.integrate import solve_ivp
 
-from mcrun.engine.batch import COLUMN
+from mcrun.engine.schema import COLUMN
 from mcrun.physics.aero import MODELS, QUADRATIC_COEFFICIENTS
 
 R = 0.021335  # ball radius (m)

@@ -11,7 +11,7 @@ with a terminal event at the ground (z = 0, falling). From that landing state th
 slide and roll) is ``mcrun.engine.shot.run_out``, the same as the kernel uses: what is checked is
 the flight and the hand-over to the ground, and how a landing error carries into the total.
 
-A shot is one row of the kernel's inputs (``mcrun.engine.batch.INPUT_FIELDS``: SI, the user's frame,
+A shot is one row of the kernel's inputs (``mcrun.engine.schema.INPUT_FIELDS``: SI, the user's frame,
 y to the right). The integration runs in the core's frame (x along the target line, y to the
 LEFT, z up), as ``run_out`` expects.
 """
@@ -21,7 +21,7 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from mcrun.engine.batch import COLUMN
+from mcrun.engine.schema import COLUMN
 from mcrun.engine.shot import run_out
 from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
 from mcrun.physics.flight import WIND_PROFILES

@@ -37,8 +37,9 @@ import numpy as np
 
 from benchmarks import baselines
 from benchmarks.reference import reference_shot
-from mcrun.engine.batch import COLUMN, simulate_batch
-from mcrun.engine.shot import CARRY, DEFAULT_DT_S, OUTCOME_FIELDS, STATUS, TOTAL
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.schema import CARRY, COLUMN, OUTCOME_FIELDS, STATUS, TOTAL
+from mcrun.engine.shot import DEFAULT_DT_S
 from mcrun.physics import aero
 from mcrun.run import sampling
 from mcrun.run import scenario as scenario_module

@@ -9,7 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcrun import status
-from mcrun.engine.shot import N_OUTCOME, OUTCOME_FIELDS, default_dt_s, simulate_shot
+from mcrun.engine.schema import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.engine.shot import default_dt_s, simulate_shot
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
 from mcrun.physics.constants import DEG, STANDARD_HUMIDITY

@@ -26,9 +26,10 @@ import numpy as np
 import pandas as pd
 
 from mcrun.api import InputError, check_range, flight_params, resolve_turf
-from mcrun.engine.shot import APEX as APEX_FIELD
-from mcrun.engine.shot import CARRY, DEFAULT_DT_S, N_OUTCOME, simulate_shot
-from mcrun.engine.shot import LANDING_ANGLE as LANDING_ANGLE_FIELD
+from mcrun.engine.schema import APEX as APEX_FIELD
+from mcrun.engine.schema import CARRY, N_OUTCOME
+from mcrun.engine.schema import LANDING_ANGLE as LANDING_ANGLE_FIELD
+from mcrun.engine.shot import DEFAULT_DT_S, simulate_shot
 from mcrun.physics import aero
 from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA
 from mcrun.units import parse_quantity, shown

@@ -11,8 +11,10 @@ import numpy as np
 import pytest
 
 from mcrun import api
-from mcrun.engine.batch import COLUMN, N_INPUT, _shot, simulate_batch
-from mcrun.engine.shot import N_OUTCOME, default_dt_s, roll_out, roll_out_short
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.batch import _shot
+from mcrun.engine.schema import COLUMN, N_INPUT, N_OUTCOME
+from mcrun.engine.shot import default_dt_s, roll_out, roll_out_short
 from mcrun.physics import aero
 from mcrun.physics.flight import WIND_PROFILES
 from mcrun.physics.turf import PRESETS

@@ -20,8 +20,8 @@ if str(ROOT) not in sys.path:  # benchmarks/ is beside the package, not installe
     sys.path.insert(0, str(ROOT))
 
 from benchmarks import baselines, suite  # noqa: E402
-from mcrun.engine.batch import simulate_batch  # noqa: E402
-from mcrun.engine.shot import CARRY  # noqa: E402
+from mcrun.engine.backend import simulate_batch  # noqa: E402
+from mcrun.engine.schema import CARRY  # noqa: E402
 
 TINY = replace(
     suite.QUICK,

@@ -17,7 +17,7 @@ import pandas as pd
 import pytest
 
 from mcrun import api, cli, status
-from mcrun.engine.shot import OUTCOME_FIELDS
+from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.physics import aero, turf
 
 MPH = 0.44704  # m/s, exact

@@ -23,7 +23,7 @@ import pytest
 
 from mcrun.api import simulate
 from mcrun.engine import batch
-from mcrun.engine.shot import OUTCOME_FIELDS
+from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.results import output, stats
 from mcrun.run import local as run
 from mcrun.status import INVALID_INPUT, OK

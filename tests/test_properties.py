@@ -340,12 +340,12 @@ def test_tour_drive_ends_on_a_sloped_green(slope_deg):
 def test_a_failed_run_keeps_the_flight():
     """A shot whose bouncing hits the safety bound keeps its flight's outcome (carry, landing);
     only the run's fields are NaN. (They were all NaN, carry included.)"""
-    from mcrun.engine import shot
+    from mcrun.engine import schema, shot
 
-    out = np.zeros((1, shot.N_OUTCOME))
+    out = np.zeros((1, schema.N_OUTCOME))
     shot.write_landing(out, 0, 230.0, -4.0, 6.5, 30.0, 27.8, 50.3, 221.0)
     shot.write_run(out, 0, 230.0, 260.0, -5.0, 14.0, status.TOO_MANY_BOUNCES, 1000, 1.8, 6.0)
-    row = dict(zip(shot.OUTCOME_FIELDS, out[0], strict=True))
+    row = dict(zip(schema.OUTCOME_FIELDS, out[0], strict=True))
     assert row["status"] == status.TOO_MANY_BOUNCES
     assert (row["carry_m"], row["carry_lateral_m"], row["landing_speed_mps"]) == (230.0, 4.0, 27.8)
-    assert all(math.isnan(row[k]) for k in shot.OUTCOME_FIELDS[shot.BOUNCES : shot.STATUS])
+    assert all(math.isnan(row[k]) for k in schema.OUTCOME_FIELDS[schema.BOUNCES : schema.STATUS])

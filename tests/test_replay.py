@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 from mcrun.api import simulate
-from mcrun.engine.shot import OUTCOME_FIELDS
+from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.results import output
 from mcrun.run import local as run
 from mcrun.run import replay

@@ -17,8 +17,9 @@ import pytest
 from scipy import stats
 
 from mcrun import api
-from mcrun.engine.batch import COLUMN, INPUT_FIELDS, N_INPUT, simulate_batch
-from mcrun.engine.shot import OUTCOME_FIELDS, default_dt_s
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.schema import COLUMN, INPUT_FIELDS, N_INPUT, OUTCOME_FIELDS
+from mcrun.engine.shot import default_dt_s
 from mcrun.physics import atmosphere
 from mcrun.physics.constants import DEG
 from mcrun.physics.launch import launch_from_club

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from mcrun.engine.shot import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.engine.schema import N_OUTCOME, OUTCOME_FIELDS
 from mcrun.results import stats
 from mcrun.status import INVALID_INPUT, NOT_STOPPED, OK
 

@@ -623,7 +623,8 @@ def _compile(kind):
     else:
         import numpy as np
 
-        from mcrun.engine.batch import N_INPUT, simulate_batch
+        from mcrun.engine.backend import simulate_batch
+        from mcrun.engine.schema import N_INPUT
 
         simulate_batch(np.zeros((0, N_INPUT)))
 

@@ -3,7 +3,7 @@
 ``simulate_batch`` simulates the rows of ``inputs``, an (n, N_INPUT) float64 array in Fortran
 order (each column contiguous, named by ``INPUT_FIELDS``, SI, user frame), in ``prange`` over
 tasks of TASK_SHOTS shots, and writes ``out``, an (n, N_OUTCOME) float64 array in Fortran order
-whose columns are ``shot.OUTCOME_FIELDS``. Within a task the shots fly, land, bounce and
+whose columns are ``schema.OUTCOME_FIELDS``. Within a task the shots fly, land, bounce and
 roll out in lockstep lanes (below); each lane does exactly what ``shot.simulate_shot`` does
 for one shot.
 Every shot is independent of the others, of its lane and of the thread that runs it, so the
@@ -14,9 +14,9 @@ import numba
 import numpy as np
 from numba import njit, prange
 
+from mcrun.engine.schema import N_INPUT, N_OUTCOME
 from mcrun.engine.shot import (
     HOPS,
-    N_OUTCOME,
     TOO_MANY,
     TRAJECTORY_DT_S,
     apex_after_step,
@@ -47,38 +47,6 @@ from mcrun.physics.flight import (
 from mcrun.physics.launch import initial_state
 from mcrun.physics.turf import Turf
 from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, OK, TOO_MANY_BOUNCES
-
-INPUT_FIELDS = (
-    "ball_speed_mps",
-    "launch_angle_rad",
-    "azimuth_rad",
-    "spin_radps",
-    "spin_axis_rad",
-    "air_density_kgpm3",
-    "kinematic_viscosity_m2ps",
-    "aero_model",
-    "cd_scale",
-    "cl_scale",
-    "wind_x_mps",
-    "wind_right_mps",
-    "wind_profile",
-    "wind_reference_height_m",
-    "wind_profile_parameter",
-    "mu",
-    "softness",
-    "e0",
-    "e1",
-    "e2",
-    "e_break_speed_mps",
-    "e_high",
-    "rho_g",
-    "critical_height_m",
-    "slope_rad",
-    "fall_line_rad",
-    "dt_s",
-)
-N_INPUT = len(INPUT_FIELDS)
-COLUMN = {name: k for k, name in enumerate(INPUT_FIELDS)}
 
 
 @njit(cache=True, error_model="numpy")

@@ -19,6 +19,28 @@ import math
 
 from numba import njit
 
+from mcrun.engine.schema import (
+    APEX,
+    BOUNCES,
+    CARRY,
+    CARRY_LATERAL,
+    FINAL_X,
+    FINAL_Y,
+    FIRST_BOUNCE_HEIGHT,
+    FIRST_BOUNCE_LENGTH,
+    FLIGHT_TIME,
+    LANDING_ANGLE,
+    LANDING_SPEED,
+    LANDING_SPIN,
+    LAUNCH_ANGLE,
+    LAUNCH_SPEED,
+    LAUNCH_SPIN,
+    N_OUTCOME,
+    RUN,
+    STATUS,
+    TOTAL,
+    TOTAL_TIME,
+)
 from mcrun.physics.bounce import hop_height, incidence, rebound
 from mcrun.physics.constants import G_MPS2
 from mcrun.physics.flight import hermite_root, rk4_step
@@ -61,51 +83,6 @@ TRAJECTORY_DT_S = 0.01
 def default_dt_s(wind_profile="uniform"):
     """The default flight step (s) for a wind profile given by name."""
     return DEFAULT_DT_S if wind_profile == "uniform" else DEFAULT_DT_WIND_PROFILE_S
-
-
-OUTCOME_FIELDS = (
-    "launch_speed_mps",
-    "launch_angle_deg",
-    "launch_spin_radps",
-    "carry_m",
-    "carry_lateral_m",
-    "apex_m",
-    "flight_time_s",
-    "landing_speed_mps",
-    "landing_angle_deg",
-    "landing_spin_radps",
-    "bounces",
-    "first_bounce_height_m",
-    "first_bounce_length_m",
-    "run_m",
-    "total_m",
-    "final_x_m",
-    "final_y_m",
-    "total_time_s",
-    "status",
-)
-(
-    LAUNCH_SPEED,
-    LAUNCH_ANGLE,
-    LAUNCH_SPIN,
-    CARRY,
-    CARRY_LATERAL,
-    APEX,
-    FLIGHT_TIME,
-    LANDING_SPEED,
-    LANDING_ANGLE,
-    LANDING_SPIN,
-    BOUNCES,
-    FIRST_BOUNCE_HEIGHT,
-    FIRST_BOUNCE_LENGTH,
-    RUN,
-    TOTAL,
-    FINAL_X,
-    FINAL_Y,
-    TOTAL_TIME,
-    STATUS,
-) = range(len(OUTCOME_FIELDS))
-N_OUTCOME = len(OUTCOME_FIELDS)
 
 
 @njit(cache=True)

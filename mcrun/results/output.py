@@ -4,7 +4,7 @@ A run is a folder:
 
 - ``shots.parquet``: one row per shot, written as the run goes (one row group per chunk, zstd):
   point, group, label, shot (the global sample index i), the sampled inputs, every field of
-  ``shot.OUTCOME_FIELDS`` (status as an int8 code, bounces as a nullable int32, the rest
+  ``schema.OUTCOME_FIELDS`` (status as an int8 code, bounces as a nullable int32, the rest
   float64, NaN where a failed shot did not get that far) and status_name. The outcome's
   launch_angle_deg is the sampled column of that name (the same launch, not written twice).
   (The Dask backend, ``mcrun.run.distributed``, writes the same rows as a dataset of parts
@@ -50,7 +50,7 @@ import pyarrow.parquet as pq
 
 import mcrun
 from mcrun.api import InputError
-from mcrun.engine.shot import OUTCOME_FIELDS
+from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.status import NAMES as STATUS_NAMES
 from mcrun.trajectory import PHASE_NAMES
 

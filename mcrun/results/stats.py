@@ -51,7 +51,7 @@ import numpy as np
 import pyarrow.parquet as pq
 
 from mcrun import status as status_codes
-from mcrun.engine.shot import OUTCOME_FIELDS
+from mcrun.engine.schema import OUTCOME_FIELDS
 
 QUANTITIES = (
     "carry_m",

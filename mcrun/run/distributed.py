@@ -99,7 +99,7 @@ import pyarrow.parquet as pq
 from mcrun import exits
 from mcrun import status as status_codes
 from mcrun.api import InputError
-from mcrun.engine.batch import simulate_batch
+from mcrun.engine.backend import simulate_batch
 from mcrun.results import output, stats
 from mcrun.run import local as run
 from mcrun.run import sampling

@@ -34,8 +34,9 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from mcrun.api import InputError
-from mcrun.engine.batch import N_INPUT, simulate_batch, trajectory_of
-from mcrun.engine.shot import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.batch import trajectory_of
+from mcrun.engine.schema import N_INPUT, N_OUTCOME, OUTCOME_FIELDS
 from mcrun.physics import aero
 from mcrun.results import output, stats
 from mcrun.run import sampling

@@ -11,7 +11,7 @@ A row with a missing value or a value outside ``mcrun.api.RANGES`` is not simula
 its place with status ``invalid_input`` (a session often holds a misread shot; one bad row
 should not stop the others). The output keeps the file's own columns (renamed ``input_<name>``
 where a name is also an output column), then the launch in SI-named columns, the outcome of
-``shot.OUTCOME_FIELDS`` and status_name, with the provenance in the Parquet metadata.
+``schema.OUTCOME_FIELDS`` and status_name, with the provenance in the Parquet metadata.
 """
 
 import argparse
@@ -27,8 +27,9 @@ import pandas as pd
 from mcrun import api, status
 from mcrun.api import InputError
 from mcrun.cli import add_conditions_options, conditions_kwargs
-from mcrun.engine.batch import COLUMN, N_INPUT, simulate_batch
-from mcrun.engine.shot import OUTCOME_FIELDS, default_dt_s
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.schema import COLUMN, N_INPUT, OUTCOME_FIELDS
+from mcrun.engine.shot import default_dt_s
 from mcrun.physics.constants import DEG
 from mcrun.results import output
 from mcrun.run.scenario import PARAMETERS, launch_columns, read_launch_table

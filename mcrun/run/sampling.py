@@ -10,7 +10,7 @@ change them, and the first N samples of a longer run are those of a shorter run.
 blocks, so that every value comes out of the same operation on arrays of the same shape,
 whichever chunk asks for it. Nothing here touches NumPy's global random state.
 
-Conversions at this edge (the kernel sees only SI floats, ``mcrun.engine.batch.INPUT_FIELDS``):
+Conversions at this edge (the kernel sees only SI floats, ``mcrun.engine.schema.INPUT_FIELDS``):
 
 - club delivery -> ball launch with ``mcrun.physics.launch.launch_from_club`` (Penner 2001);
 - temperature, pressure or altitude, humidity -> air density and kinematic viscosity
@@ -32,7 +32,7 @@ import math
 import numpy as np
 from numba import njit
 
-from mcrun.engine.batch import COLUMN, N_INPUT
+from mcrun.engine.schema import COLUMN, N_INPUT
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.constants import DEG
 from mcrun.physics.flight import WIND_PROFILES
@@ -451,7 +451,7 @@ def sample(scenario, point, start, stop, columns=None):
     Returns
     -------
     inputs : ndarray, shape (stop - start, N_INPUT), Fortran order
-        Columns ``mcrun.engine.batch.INPUT_FIELDS``, SI, user frame.
+        Columns ``mcrun.engine.schema.INPUT_FIELDS``, SI, user frame.
     sampled : dict of str -> ndarray
         ``sampled_columns(scenario)``, each of length stop - start, with units in the names;
         a column that is constant for the point is a read-only broadcast view.
