@@ -11,8 +11,8 @@ with a terminal event at the ground (z = 0, falling). From that landing state th
 slide and roll) is ``mcrun.engine.shot.run_out``, the same as the kernel uses: what is checked is
 the flight and the hand-over to the ground, and how a landing error carries into the total.
 
-A shot is one row of the kernel's inputs (``mcrun.engine.schema.INPUT_FIELDS``: SI, the user's frame,
-y to the right). The integration runs in the core's frame (x along the target line, y to the
+A shot is one row of the kernel's inputs (``mcrun.engine.schema.INPUT_FIELDS``: SI, the user's
+frame, y to the right). The integration runs in the core's frame (x along the target line, y to the
 LEFT, z up), as ``run_out`` expects.
 """
 
