@@ -9,11 +9,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcrun import status
-from mcrun.engine.schema import N_OUTCOME, OUTCOME_FIELDS
+from mcrun.engine.schema import INPUT_FIELDS, N_OUTCOME, OUTCOME_FIELDS, pack
 from mcrun.engine.shot import default_dt_s, simulate_shot
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
-from mcrun.physics.constants import DEG, STANDARD_HUMIDITY
+from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_WIND_HEIGHT_M
 from mcrun.physics.flight import WIND_PROFILES, make_flight_params
 from mcrun.physics.launch import launch_from_club
 from mcrun.physics.turf import Turf, check_turf, rho_g_from_stimp, turf_preset
@@ -196,7 +196,7 @@ def flight_params(
     cl_scale=1.0,
     wind_mps=(0.0, 0.0),
     wind_profile="uniform",
-    wind_reference_height_m=10.0,
+    wind_reference_height_m=STANDARD_WIND_HEIGHT_M,
     wind_profile_parameter=None,
     **air,
 ):
@@ -236,7 +236,36 @@ def flight_params(
     )
 
 
-def simulate(
+def conditions_inputs(turf="green", slope_deg=0.0, fall_line_deg=0.0, dt_s=None, **conditions):
+    """The kernel's input columns that do not depend on the launch (turf, ground, air, wind,
+    models, step), checked: {name of ``schema.INPUT_FIELDS``: float}. ``turf`` is a preset name
+    or a Turf; ``conditions`` are the keyword arguments of ``flight_params``."""
+    slope = check_range("slope_deg", slope_deg) * DEG
+    fall_line = check_range("fall_line_deg", fall_line_deg) * DEG
+    if dt_s is None:
+        dt_s = default_dt_s(conditions.get("wind_profile", "uniform"))
+    dt = check_range("dt_s", dt_s)
+    turf = resolve_turf(turf)
+    params = flight_params(**conditions)
+    return {
+        "air_density_kgpm3": params.air_density_kgpm3,
+        "kinematic_viscosity_m2ps": params.kinematic_viscosity_m2ps,
+        "aero_model": float(params.aero_model),
+        "cd_scale": params.cd_scale,
+        "cl_scale": params.cl_scale,
+        "wind_x_mps": params.wind_x_mps,
+        "wind_right_mps": -params.wind_y_mps,  # FlightParams is in the core's frame, y left
+        "wind_profile": float(params.wind_profile),
+        "wind_reference_height_m": params.wind_reference_height_m,
+        "wind_profile_parameter": params.wind_profile_parameter,
+        **turf._asdict(),
+        "slope_rad": slope,
+        "fall_line_rad": fall_line,
+        "dt_s": dt,
+    }
+
+
+def shot_inputs(
     *,
     ball_speed_mps=None,
     launch_angle_deg=None,
@@ -246,49 +275,70 @@ def simulate(
     club_speed_mps=None,
     club_mass_kg=None,
     loft_deg=None,
-    turf="green",
-    slope_deg=0.0,
-    fall_line_deg=0.0,
-    dt_s=None,
-    trajectory=False,
     **conditions,
 ):
+    """The kernel's inputs of one shot, checked: (inputs, launch angle).
+
+    The arguments are those of ``simulate`` (``conditions``: ``conditions_inputs``'). Returns
+    the (1, N_INPUT) array of ``schema.pack`` and the launch angle in degrees, as given or as
+    the club delivery gives it (the kernel reports it back through radians, which may move its
+    last bit).
+    """
+    speed, angle_deg, spin = launch_conditions(
+        ball_speed_mps, launch_angle_deg, spin_radps, club_speed_mps, club_mass_kg, loft_deg
+    )
+    launch = {
+        "ball_speed_mps": speed,
+        "launch_angle_rad": angle_deg * DEG,
+        "azimuth_rad": check_range("azimuth_deg", azimuth_deg) * DEG,
+        "spin_radps": spin,
+        "spin_axis_rad": check_range("spin_axis_deg", spin_axis_deg) * DEG,
+    }
+    return pack({**launch, **conditions_inputs(**conditions)}, 1), angle_deg
+
+
+def simulate(*, trajectory=False, **shot):
     """Simulate one shot from launch to rest.
 
     Give the ball launch as a launch monitor reports it (``ball_speed_mps``,
     ``launch_angle_deg`` above the horizontal, ``spin_radps``, ``azimuth_deg`` and
     ``spin_axis_deg``, both positive to the right) or the club delivery (``club_speed_mps``,
-    ``club_mass_kg``, ``loft_deg``; Penner 2001). ``turf`` is a preset name or a Turf;
-    ``conditions`` are the keyword arguments of ``flight_params`` (aero model, scales, wind,
-    weather). Returns a ShotResult; ``trajectory=True`` adds its path.
+    ``club_mass_kg``, ``loft_deg``; Penner 2001), and the conditions: ``turf`` (a preset name
+    or a Turf), ``slope_deg``, ``fall_line_deg``, ``dt_s`` and the keyword arguments of
+    ``flight_params`` (aero model, scales, wind, weather); the defaults are those of
+    ``shot_inputs`` and ``conditions_inputs``. Returns a ShotResult; ``trajectory=True`` adds
+    its path.
     """
-    speed, angle_deg, spin = launch_conditions(
-        ball_speed_mps, launch_angle_deg, spin_radps, club_speed_mps, club_mass_kg, loft_deg
+    inputs, angle_deg = shot_inputs(**shot)
+    c = {name: float(v) for name, v in zip(INPUT_FIELDS, inputs[0], strict=True)}
+    params = make_flight_params(
+        c["air_density_kgpm3"],
+        c["kinematic_viscosity_m2ps"],
+        int(c["aero_model"]),
+        c["cd_scale"],
+        c["cl_scale"],
+        c["wind_x_mps"],
+        c["wind_right_mps"],
+        int(c["wind_profile"]),
+        c["wind_reference_height_m"],
+        c["wind_profile_parameter"],
     )
-    azimuth = check_range("azimuth_deg", azimuth_deg) * DEG
-    axis = check_range("spin_axis_deg", spin_axis_deg) * DEG
-    slope = check_range("slope_deg", slope_deg) * DEG
-    fall_line = check_range("fall_line_deg", fall_line_deg) * DEG
-    if dt_s is None:
-        dt_s = default_dt_s(conditions.get("wind_profile", "uniform"))
-    dt = check_range("dt_s", dt_s)
-    turf = resolve_turf(turf)
-    params = flight_params(**conditions)
+    turf = Turf(*(c[name] for name in Turf._fields))
     out = np.empty((1, N_OUTCOME))
     size = 4096 if trajectory else 0
     while True:
         traj = np.empty((size, 5))
         n = simulate_shot(
-            speed,
-            angle_deg * DEG,
-            azimuth,
-            spin,
-            axis,
+            c["ball_speed_mps"],
+            c["launch_angle_rad"],
+            c["azimuth_rad"],
+            c["spin_radps"],
+            c["spin_axis_rad"],
             params,
             turf,
-            slope,
-            fall_line,
-            dt,
+            c["slope_rad"],
+            c["fall_line_rad"],
+            c["dt_s"],
             aero.QUADRATIC_COEFFICIENTS,
             out,
             0,

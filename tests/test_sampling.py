@@ -509,39 +509,18 @@ def test_fig4_inputs_equal_the_single_shot_api():
         "club.speed=45 m/s",
         "club.speed=55 m/s",
     ]
-    green = api.resolve_turf("green")
     for point, club_speed in zip(s.points, (35.0, 45.0, 55.0), strict=True):
         inputs, x = sample(s, point, 0, 3)
-        speed, angle_deg, spin = api.launch_conditions(
-            club_speed_mps=club_speed, club_mass_kg=0.200, loft_deg=13.3
+        row, _ = api.shot_inputs(
+            club_speed_mps=club_speed,
+            club_mass_kg=0.200,
+            loft_deg=13.3,
+            aero_model="penner2002",
+            temperature_c=20.0,
+            altitude_m=0.0,
+            relative_humidity=0.0,
         )
-        p = api.flight_params(
-            aero_model="penner2002", temperature_c=20.0, altitude_m=0.0, relative_humidity=0.0
-        )
-        expected = {
-            "ball_speed_mps": speed,
-            "launch_angle_rad": angle_deg * DEG,
-            "azimuth_rad": 0.0,
-            "spin_radps": spin,
-            "spin_axis_rad": 0.0,
-            "air_density_kgpm3": p.air_density_kgpm3,
-            "kinematic_viscosity_m2ps": p.kinematic_viscosity_m2ps,
-            "aero_model": float(p.aero_model),
-            "cd_scale": p.cd_scale,
-            "cl_scale": p.cl_scale,
-            "wind_x_mps": p.wind_x_mps,
-            "wind_right_mps": -p.wind_y_mps,
-            "wind_profile": float(p.wind_profile),
-            "wind_reference_height_m": p.wind_reference_height_m,
-            "wind_profile_parameter": p.wind_profile_parameter,
-            **green._asdict(),
-            "slope_rad": 0.0,
-            "fall_line_rad": 0.0,
-            "dt_s": default_dt_s("uniform"),
-        }
-        assert set(expected) == set(INPUT_FIELDS)
-        for name, value in expected.items():
-            assert (inputs[:, COLUMN[name]] == value).all(), name
+        assert inputs.tobytes() == np.repeat(row, 3, axis=0).tobytes()
         assert x["air_density_kgpm3"][0] == pytest.approx(1.204, abs=5e-4)  # Penner's air
 
 

@@ -345,14 +345,14 @@ examples:
 def add_conditions_options(p):
     """The options of everything but the launch (turf and ground, aerodynamics and wind, air,
     step), shared by ``mcrun shot`` and ``mcrun replay``; ``conditions_kwargs`` reads them."""
-    sim = api.simulate
+    conditions = api.conditions_inputs
     fp = api.flight_params
     air = api.air_properties
     ground = p.add_argument_group("turf and ground")
     ground.add_argument(
         "--turf",
         metavar="NAME",
-        default=_api_default(sim, "turf"),
+        default=_api_default(conditions, "turf"),
         help=f"turf preset: {', '.join(turf.PRESETS)} (default %(default)s; "
         f"{' and '.join(turf.ESTIMATED_PRESETS)} are estimates; see 'mcrun turfs')",
     )
@@ -374,14 +374,14 @@ def add_conditions_options(p):
     ground.add_argument(
         "--slope",
         metavar="ANGLE",
-        help=f"ground slope (bare: deg; default {_api_default(sim, 'slope_deg'):g})",
+        help=f"ground slope (bare: deg; default {_api_default(conditions, 'slope_deg'):g})",
     )
     ground.add_argument(
         "--fall-line",
         metavar="ANGLE",
         help="downhill direction from the target line, positive to the right: 0 = downhill "
         f"towards the target, 180 = uphill (bare: deg; default "
-        f"{_api_default(sim, 'fall_line_deg'):g})",
+        f"{_api_default(conditions, 'fall_line_deg'):g})",
     )
     flight = p.add_argument_group("aerodynamics and wind")
     flight.add_argument(
@@ -460,7 +460,7 @@ def add_conditions_options(p):
 
 
 def _add_shot(subparsers):
-    sim = api.simulate
+    sim = api.shot_inputs
     p = subparsers.add_parser(
         "shot",
         help="simulate one shot from launch to rest",

@@ -1,10 +1,17 @@
 """The kernel's schemas: the columns of its inputs and of its outcomes.
 
 Inputs: an (n, N_INPUT) float64 array, one row a shot, its columns ``INPUT_FIELDS`` (SI, the
-user's frame: y and every angle positive to the right). Outcomes: an (n, N_OUTCOME) float64
-array whose columns are ``OUTCOME_FIELDS``, NaN where a shot did not get that far, with the
-status code (``mcrun.status``) in the last.
+user's frame: y and every angle positive to the right), built by ``pack``. Outcomes: an
+(n, N_OUTCOME) float64 array whose columns are ``OUTCOME_FIELDS``, NaN where a shot did not get
+that far, with the status code (``mcrun.status``) in the last; ``encode_outcomes`` types them.
 """
+
+import math
+
+import numpy as np
+
+from mcrun.physics.constants import STANDARD_WIND_HEIGHT_M
+from mcrun.physics.flight import WIND_UNIFORM
 
 INPUT_FIELDS = (
     "ball_speed_mps",
@@ -37,6 +44,57 @@ INPUT_FIELDS = (
 )
 N_INPUT = len(INPUT_FIELDS)
 COLUMN = {name: k for k, name in enumerate(INPUT_FIELDS)}
+
+# The inputs ``pack`` fills when they are not given: a straight shot without sidespin, in still
+# air (the reference height of a wind profile then matters not), on level ground, with the
+# aerodynamic model's coefficients unscaled.
+INPUT_DEFAULTS = {
+    "azimuth_rad": 0.0,
+    "spin_axis_rad": 0.0,
+    "cd_scale": 1.0,
+    "cl_scale": 1.0,
+    "wind_x_mps": 0.0,
+    "wind_right_mps": 0.0,
+    "wind_profile": float(WIND_UNIFORM),
+    "wind_reference_height_m": STANDARD_WIND_HEIGHT_M,
+    "wind_profile_parameter": 0.0,
+    "slope_rad": 0.0,
+    "fall_line_rad": 0.0,
+}
+
+
+def pack(columns, n, out=None, invalid=None):
+    """The kernel's inputs, (n, N_INPUT) float64 in Fortran order, from named SI columns.
+
+    Parameters
+    ----------
+    columns : dict of str -> array of n or float
+        Values by name of ``INPUT_FIELDS`` (ids, such as ``aero_model``, as floats); a name
+        left out takes its ``INPUT_DEFAULTS`` value. ValueError for an unknown name, or a
+        missing one without a default.
+    n : int
+        The number of shots.
+    out : ndarray, optional
+        The (n, N_INPUT) array to fill (a view of the rows of a larger one, say).
+    invalid : bool array of n, optional
+        Shots the kernel must refuse: their ball speed is NaN, which it answers with status
+        ``invalid_input``.
+    """
+    unknown = sorted(set(columns) - set(COLUMN))
+    if unknown:
+        raise ValueError(f"unknown kernel input(s): {', '.join(unknown)}")
+    missing = [k for k in INPUT_FIELDS if k not in columns and k not in INPUT_DEFAULTS]
+    if missing:
+        raise ValueError(f"missing kernel input(s): {', '.join(missing)}")
+    if out is None:
+        out = np.empty((n, N_INPUT), order="F")
+    elif out.shape != (n, N_INPUT):
+        raise ValueError(f"out must have shape ({n}, {N_INPUT}), got {out.shape}")
+    for k, name in enumerate(INPUT_FIELDS):
+        out[:, k] = columns[name] if name in columns else INPUT_DEFAULTS[name]
+    if invalid is not None:
+        out[invalid, COLUMN["ball_speed_mps"]] = math.nan
+    return out
 
 
 OUTCOME_FIELDS = (

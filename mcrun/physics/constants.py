@@ -21,5 +21,7 @@ SPIN_DECAY_K = 2.0e-5
 STANDARD_TEMPERATURE_K = 293.15
 STANDARD_PRESSURE_PA = 101325.0
 STANDARD_HUMIDITY = 0.5
+# The height at which a wind speed is given unless said otherwise: a weather station's 10 m.
+STANDARD_WIND_HEIGHT_M = 10.0
 
 DEG = math.pi / 180.0

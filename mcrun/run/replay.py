@@ -15,7 +15,6 @@ where a name is also an output column), then the launch in SI-named columns, the
 """
 
 import argparse
-import math
 import sys
 import time
 from datetime import UTC, datetime
@@ -24,12 +23,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun import api, status
-from mcrun.api import InputError
+from mcrun import status
+from mcrun.api import InputError, conditions_inputs
 from mcrun.cli import add_conditions_options, conditions_kwargs
 from mcrun.engine.backend import simulate_batch
-from mcrun.engine.schema import COLUMN, N_INPUT, OUTCOME_FIELDS
-from mcrun.engine.shot import default_dt_s
+from mcrun.engine.schema import OUTCOME_FIELDS, pack
 from mcrun.physics.constants import DEG
 from mcrun.results import output
 from mcrun.run.scenario import PARAMETERS, launch_columns, read_launch_table
@@ -66,52 +64,12 @@ def launches(frame, source="the shots"):
     return values, valid
 
 
-def conditions_inputs(
-    turf="green",
-    slope_deg=0.0,
-    fall_line_deg=0.0,
-    dt_s=None,
-    **conditions,
-):
-    """The kernel input columns that do not depend on the launch, checked by ``mcrun.api``
-    exactly as ``api.simulate`` checks them (``conditions``: ``api.flight_params``'s)."""
-    turf = api.resolve_turf(turf)
-    params = api.flight_params(**conditions)
-    return {
-        "air_density_kgpm3": params.air_density_kgpm3,
-        "kinematic_viscosity_m2ps": params.kinematic_viscosity_m2ps,
-        "aero_model": float(params.aero_model),
-        "cd_scale": params.cd_scale,
-        "cl_scale": params.cl_scale,
-        "wind_x_mps": params.wind_x_mps,
-        "wind_right_mps": -params.wind_y_mps,  # FlightParams is in the core's frame, y left
-        "wind_profile": float(params.wind_profile),
-        "wind_reference_height_m": params.wind_reference_height_m,
-        "wind_profile_parameter": params.wind_profile_parameter,
-        "mu": turf.mu,
-        "softness": turf.softness,
-        "e0": turf.e0,
-        "e1": turf.e1,
-        "e2": turf.e2,
-        "e_break_speed_mps": turf.e_break_speed_mps,
-        "e_high": turf.e_high,
-        "rho_g": turf.rho_g,
-        "critical_height_m": turf.critical_height_m,
-        "slope_rad": api.check_range("slope_deg", slope_deg) * DEG,
-        "fall_line_rad": api.check_range("fall_line_deg", fall_line_deg) * DEG,
-        "dt_s": api.check_range(
-            "dt_s",
-            default_dt_s(conditions.get("wind_profile", "uniform")) if dt_s is None else dt_s,
-        ),
-    }
-
-
 def replay(shots, source=None, **conditions):
     """Simulate every measured shot of ``shots`` (a DataFrame, or a CSV/Parquet path).
 
-    ``conditions``: turf, slope_deg, fall_line_deg, dt_s and the keyword arguments of
-    ``api.flight_params`` (aero_model, wind_mps, temperature_c, altitude_m, ...), the same for
-    every shot, as for ``api.simulate``. Returns a DataFrame, one row per shot (see the module
+    ``conditions``: the keyword arguments of ``api.conditions_inputs`` (turf, slope_deg,
+    aero_model, wind_mps, temperature_c, altitude_m, ...), the same for every shot, as for
+    ``api.simulate``. Returns a DataFrame, one row per shot (see the module
     docstring); rows with an unusable launch get status invalid_input.
     """
     if isinstance(shots, str | Path):
@@ -121,19 +79,16 @@ def replay(shots, source=None, **conditions):
     if len(shots) == 0:
         raise InputError(f"{source}: no shots: the table has no rows")
     values, valid = launches(shots, source)
-    fixed = conditions_inputs(**conditions)
     n = len(shots)
-    inputs = np.empty((n, N_INPUT), order="F")
-    for name, value in fixed.items():
-        inputs[:, COLUMN[name]] = value
-    inputs[:, COLUMN["ball_speed_mps"]] = values["ball_speed"]
-    inputs[:, COLUMN["launch_angle_rad"]] = values["launch_angle"]
-    inputs[:, COLUMN["spin_radps"]] = values["spin"]
-    inputs[:, COLUMN["spin_axis_rad"]] = values["spin_axis"]
-    inputs[:, COLUMN["azimuth_rad"]] = values["azimuth"]
+    launch = {
+        "ball_speed_mps": values["ball_speed"],
+        "launch_angle_rad": values["launch_angle"],
+        "spin_radps": values["spin"],
+        "spin_axis_rad": values["spin_axis"],
+        "azimuth_rad": values["azimuth"],
+    }
     # An unusable row reaches the kernel as a NaN speed, which it answers with invalid_input.
-    inputs[~valid, COLUMN["ball_speed_mps"]] = math.nan
-    out = simulate_batch(inputs)
+    out = simulate_batch(pack({**conditions_inputs(**conditions), **launch}, n, invalid=~valid))
 
     frame = {"row": np.arange(n, dtype=np.int64)}
     launch_names = [name for name, _ in LAUNCH_COLUMNS.values()]

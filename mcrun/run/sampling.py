@@ -32,7 +32,7 @@ import math
 import numpy as np
 from numba import njit
 
-from mcrun.engine.schema import COLUMN, N_INPUT
+from mcrun.engine.schema import N_INPUT, pack
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.constants import DEG
 from mcrun.physics.flight import WIND_PROFILES
@@ -348,9 +348,15 @@ def _convert(scenario, point, raw, columns, inputs=None):
         stimp = math.nan
         rho_g = raw["turf.rho_g"]
 
-    if inputs is None:
-        inputs = np.empty((n, N_INPUT), order="F")
-    values = {
+    # Drawn values outside their documented range: the kernel must refuse the shot.
+    bad = np.zeros(n, dtype=bool)
+    for key, value in raw.items():
+        if isinstance(value, float) or key == "launch.file.rows":
+            continue
+        section, _, name = key.partition(".")
+        lo, hi = PARAMETERS[section][name].limits
+        bad |= ~((value >= lo) & (value <= hi))
+    kernel_inputs = {
         "ball_speed_mps": launch["ball_speed"],
         "launch_angle_rad": launch["launch_angle"],
         "azimuth_rad": launch["azimuth"],
@@ -379,19 +385,7 @@ def _convert(scenario, point, raw, columns, inputs=None):
         "fall_line_rad": raw["turf.fall_line"],
         "dt_s": raw["models.dt"],
     }
-    for name, value in values.items():
-        inputs[:, COLUMN[name]] = value
-
-    # Drawn values outside their documented range: the kernel must refuse the shot.
-    bad = np.zeros(n, dtype=bool)
-    for key, value in raw.items():
-        if isinstance(value, float) or key == "launch.file.rows":
-            continue
-        section, _, name = key.partition(".")
-        lo, hi = PARAMETERS[section][name].limits
-        bad |= ~((value >= lo) & (value <= hi))
-    if bad.any():
-        inputs[bad, COLUMN["ball_speed_mps"]] = math.nan
+    inputs = pack(kernel_inputs, n, out=inputs, invalid=bad)
 
     nan = math.nan
     club = point.mode == "club"

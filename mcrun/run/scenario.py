@@ -55,6 +55,7 @@ from mcrun.physics.constants import (
     STANDARD_HUMIDITY,
     STANDARD_PRESSURE_PA,
     STANDARD_TEMPERATURE_K,
+    STANDARD_WIND_HEIGHT_M,
 )
 from mcrun.physics.flight import WIND_PROFILES
 from mcrun.physics.turf import PRESETS
@@ -1127,7 +1128,7 @@ def _resolve(ctx, sections, scenario_dir, context):
     quantity("weather", "wind_speed", 0.0)
     quantity("weather", "wind_direction", 0.0)
     profile = choice("weather", "wind_profile", "uniform")
-    reference = quantity("weather", "wind_reference_height", 10.0).value
+    reference = quantity("weather", "wind_reference_height", STANDARD_WIND_HEIGHT_M).value
     parameter = quantity("weather", "wind_profile_parameter", WIND_PROFILE_DEFAULTS[profile]).value
     if "wind_profile_parameter" in weather:
         where = weather["wind_profile_parameter"].where
