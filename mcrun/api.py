@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcrun import status
-from mcrun.engine.schema import INPUT_FIELDS, N_OUTCOME, OUTCOME_FIELDS, pack
+from mcrun.engine.schema import INPUT_FIELDS, N_OUTCOME, outcome_record, pack
 from mcrun.engine.shot import default_dt_s, simulate_shot
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
@@ -76,7 +76,8 @@ def check_range(name, value):
 
 @dataclass(frozen=True)
 class ShotResult:
-    """Outcome of one shot (``outcome``, SI, field names with units) and, on request, its
+    """Outcome of one shot (``outcome``, SI, field names with units; ``schema.outcome_record``:
+    NaN, or None for the bounces, where the shot did not get that far) and, on request, its
     trajectory (DataFrame t_s, x_m, y_m, z_m, phase; y positive to the right)."""
 
     outcome: dict
@@ -347,10 +348,8 @@ def simulate(*, trajectory=False, **shot):
         if n <= size or not trajectory:
             break
         size = n
-    outcome = dict(zip(OUTCOME_FIELDS, (float(v) for v in out[0]), strict=True))
+    outcome = outcome_record(out)
     outcome["launch_angle_deg"] = angle_deg  # as given, not back from radians
-    outcome["bounces"] = int(outcome["bounces"]) if math.isfinite(outcome["bounces"]) else -1
-    outcome["status"] = int(outcome["status"])
     frame = None
     if trajectory:
         import pandas as pd  # only here: a shot without its path starts faster

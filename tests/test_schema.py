@@ -12,9 +12,13 @@ from mcrun.engine.schema import (
     INPUT_DEFAULTS,
     INPUT_FIELDS,
     N_INPUT,
+    OUTCOME_FIELDS,
+    encode_outcomes,
+    outcome_record,
     pack,
 )
 from mcrun.physics.constants import DEG
+from mcrun.results.output import ShotsWriter
 
 
 def _required(n):
@@ -71,3 +75,32 @@ def test_shot_inputs_launch_in_radians_and_the_angle_as_given():
     assert row.shape == (1, N_INPUT)
     assert row[0, COLUMN["launch_angle_rad"]] == 10.9 * DEG
     assert row[0, COLUMN["azimuth_rad"]] == -2.0 * DEG
+
+
+def _ok_and_invalid():
+    """The kernel's outcomes of a 7-iron that flies and of one it refuses."""
+    return simulate_batch(pack(_required(2), 2, invalid=np.array([False, True])))
+
+
+def test_encode_outcomes_types_and_masks():
+    encoded = encode_outcomes(_ok_and_invalid())
+    assert list(encoded) == list(OUTCOME_FIELDS)
+    bounces, missing = encoded["bounces"]
+    assert bounces.dtype == np.int32 and list(missing) == [False, True] and bounces[1] == 0
+    assert bounces[0] >= 1
+    codes, none = encoded["status"]
+    assert codes.dtype == np.int8 and none is None
+    assert list(codes) == [status.OK, status.INVALID_INPUT]
+    carry, none = encoded["carry_m"]
+    assert carry.dtype == np.float64 and none is None and math.isnan(carry[1])
+
+
+def test_a_shot_that_did_not_get_that_far_has_no_bounces_in_the_api_as_in_parquet():
+    """bounces is None in the API's dict (JSON null) where Parquet holds a null, not -1."""
+    out = _ok_and_invalid()
+    table = ShotsWriter(None, [], ["g"], ["p"], {}).table(0, 0, {}, out)
+    records = [outcome_record(out, i) for i in range(2)]
+    assert [r["bounces"] for r in records] == table.column("bounces").to_pylist()
+    assert records[1]["bounces"] is None and isinstance(records[0]["bounces"], int)
+    assert records[1]["status"] == status.INVALID_INPUT and math.isnan(records[1]["carry_m"])
+    assert [r["status"] for r in records] == table.column("status").to_pylist()

@@ -140,3 +140,38 @@ OUTCOME_FIELDS = (
     STATUS,
 ) = range(len(OUTCOME_FIELDS))
 N_OUTCOME = len(OUTCOME_FIELDS)
+
+# The outcomes that are counts or codes, and their types; the others are float64. A count is
+# missing (NaN in the kernel's outcomes) where a shot did not get that far; the status never is.
+OUTCOME_DTYPES = {"bounces": np.int32, "status": np.int8}
+
+
+def encode_outcomes(outcomes, names=OUTCOME_FIELDS):
+    """The columns ``names`` of ``outcomes`` (n, N_OUTCOME), typed: {name: (values, missing)}.
+
+    ``values`` is contiguous, of ``OUTCOME_DTYPES[name]`` or float64 (NaN kept where a shot did
+    not get that far); ``missing`` is a boolean mask for a count (bounces), the rows that have
+    no value (their ``values`` 0), and None for the others. The one encoding of the outcomes:
+    Parquet, the replay's DataFrame and the API's dict (None) are made from it.
+    """
+    encoded = {}
+    for name in names:
+        column = outcomes[:, OUTCOME_FIELDS.index(name)]
+        dtype = OUTCOME_DTYPES.get(name)
+        if dtype is None:
+            encoded[name] = (np.ascontiguousarray(column), None)
+        elif name == "status":
+            encoded[name] = (column.astype(dtype), None)
+        else:
+            missing = ~np.isfinite(column)
+            encoded[name] = (np.where(missing, 0, column).astype(dtype), missing)
+    return encoded
+
+
+def outcome_record(outcomes, i=0):
+    """Row ``i`` of ``outcomes`` as ``encode_outcomes`` types it, in Python values: a float
+    (NaN where the shot did not get that far), an int, or None for a missing count."""
+    return {
+        name: None if missing is not None and missing[0] else values[0].item()
+        for name, (values, missing) in encode_outcomes(outcomes[i : i + 1]).items()
+    }

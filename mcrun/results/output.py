@@ -50,7 +50,7 @@ import pyarrow.parquet as pq
 
 import mcrun
 from mcrun.api import InputError
-from mcrun.engine.schema import OUTCOME_FIELDS
+from mcrun.engine.schema import OUTCOME_DTYPES, OUTCOME_FIELDS, encode_outcomes
 from mcrun.status import NAMES as STATUS_NAMES
 from mcrun.trajectory import PHASE_NAMES
 
@@ -70,8 +70,6 @@ _TEXT_FIELDS = ("scenario_text", "scenario_path", "scenario_name", "start_time_u
 
 _STATUS_DICTIONARY = pa.array([STATUS_NAMES[k] for k in sorted(STATUS_NAMES)])
 _PHASE_DICTIONARY = pa.array(list(PHASE_NAMES))
-_BOUNCES = OUTCOME_FIELDS.index("bounces")
-_STATUS = OUTCOME_FIELDS.index("status")
 
 
 class OutputError(InputError):
@@ -137,12 +135,8 @@ def shots_schema(input_names, input_types=None, metadata=None):
     ]
     fields += [pa.field(name, input_types.get(name, pa.float64())) for name in input_names]
     for name in outcome_columns(input_names):
-        if name == "bounces":
-            fields.append(pa.field(name, pa.int32()))
-        elif name == "status":
-            fields.append(pa.field(name, pa.int8()))
-        else:
-            fields.append(pa.field(name, pa.float64()))
+        dtype = np.dtype(OUTCOME_DTYPES.get(name, np.float64))
+        fields.append(pa.field(name, pa.from_numpy_dtype(dtype)))
     fields.append(pa.field("status_name", pa.dictionary(pa.int32(), pa.string())))
     return pa.schema(fields, metadata=metadata)
 
@@ -188,9 +182,7 @@ class ShotsWriter(_ParquetWriter):
         self.path = None if path is None else Path(path)
         self.input_names = tuple(input_names)
         self.input_types = {n: (input_types or {}).get(n, pa.float64()) for n in input_names}
-        self._outcomes = [
-            (k, name) for k, name in enumerate(OUTCOME_FIELDS) if name not in self.input_types
-        ]
+        self._outcomes = outcome_columns(self.input_types)
         group_index = {g: k for k, g in enumerate(dict.fromkeys(groups))}
         self._group_dictionary = pa.array(list(group_index), pa.string())
         self._group_index = [group_index[g] for g in groups]
@@ -263,18 +255,11 @@ class ShotsWriter(_ParquetWriter):
             else:
                 dtype = kind.to_pandas_dtype()
                 columns.append(pa.array(np.broadcast_to(np.asarray(values, dtype=dtype), (m,))))
-        codes = outcomes[:, _STATUS].astype(np.int8)
-        for k, name in self._outcomes:
-            column = outcomes[:, k]
-            if name == "bounces":
-                missing = ~np.isfinite(column)
-                columns.append(
-                    pa.array(np.where(missing, 0, column).astype(np.int32), mask=missing)
-                )
-            elif name == "status":
-                columns.append(pa.array(codes))
-            else:
-                columns.append(pa.array(np.ascontiguousarray(column)))
+        encoded = encode_outcomes(outcomes, dict.fromkeys((*self._outcomes, "status")))
+        for name in self._outcomes:
+            values, missing = encoded[name]
+            columns.append(pa.array(values, mask=missing))
+        codes = encoded["status"][0]
         columns.append(
             pa.DictionaryArray.from_arrays(pa.array(codes.astype(np.int32)), _STATUS_DICTIONARY)
         )

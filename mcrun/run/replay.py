@@ -27,7 +27,7 @@ from mcrun import status
 from mcrun.api import InputError, conditions_inputs
 from mcrun.cli import add_conditions_options, conditions_kwargs
 from mcrun.engine.backend import simulate_batch
-from mcrun.engine.schema import OUTCOME_FIELDS, pack
+from mcrun.engine.schema import OUTCOME_FIELDS, encode_outcomes, pack
 from mcrun.physics.constants import DEG
 from mcrun.results import output
 from mcrun.run.scenario import PARAMETERS, launch_columns, read_launch_table
@@ -98,21 +98,13 @@ def replay(shots, source=None, **conditions):
         frame[f"input_{name}" if name in taken else name] = shots[column].to_numpy()
     for quantity, (name, factor) in LAUNCH_COLUMNS.items():
         frame[name] = values[quantity] * factor
-    for k, name in enumerate(OUTCOME_FIELDS):
+    encoded = encode_outcomes(out)
+    for name, (values, missing) in encoded.items():
         if name in frame:  # launch_angle_deg: the measured launch above
             continue
-        if name == "bounces":
-            missing = ~np.isfinite(out[:, k])
-            bounces = pd.array(np.where(missing, 0, out[:, k]).astype(np.int32), dtype="Int32")
-            bounces[missing] = pd.NA
-            frame[name] = bounces
-        elif name == "status":
-            frame[name] = out[:, k].astype(np.int8)
-        else:
-            frame[name] = out[:, k]
-    codes = out[:, OUTCOME_FIELDS.index("status")].astype(int)
+        frame[name] = values if missing is None else pd.arrays.IntegerArray(values, missing)
     frame["status_name"] = pd.Categorical.from_codes(
-        codes, [status.NAMES[k] for k in sorted(status.NAMES)]
+        encoded["status"][0].astype(int), [status.NAMES[k] for k in sorted(status.NAMES)]
     )
     return pd.DataFrame(frame)
 
