@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from mcrun.api import InputError
+from mcrun.physics import turf
 from mcrun.physics.constants import DEG
 from mcrun.run import scenario as sc
 from mcrun.run.sampling import sample
@@ -745,3 +746,27 @@ def test_club_scenario_and_file_scenario(tmp_path):
     assert set(spec.columns) == {"ball_speed", "launch_angle", "spin", "spin_axis"}
     assert spec.jitter == {"spin": pytest.approx(50 * math.pi / 30)}
     assert resampled.params["launch.azimuth"].value == 0.0  # not in the file
+
+
+# The scenario's turf quantities that are fields of a Turf, by the field's name.
+_TURF_FIELDS = {
+    "mu": "mu",
+    "softness": "softness",
+    "rho_g": "rho_g",
+    "critical_height": "critical_height_m",
+}
+
+
+@pytest.mark.parametrize("name", _TURF_FIELDS)
+def test_turf_limits_are_those_of_check_turf(tmp_path, name):
+    """A turf quantity is bounded in a scenario where check_turf bounds it: its upper limit
+    loads, and a value above it is refused by both."""
+    field = _TURF_FIELDS[name]
+    lo, hi = turf.LIMITS[field]
+    assert sc.PARAMETERS["turf"][name].limits == (lo, hi)
+    turf.check_turf(turf.PRESETS["green"]._replace(**{field: hi}))
+    with pytest.raises(ValueError, match=f"turf {field} = "):
+        turf.check_turf(turf.PRESETS["green"]._replace(**{field: hi * 1.01}))
+    sc.load(write(tmp_path, BALL + f"[turf]\n{name} = {hi}\n"))
+    with pytest.raises(sc.ScenarioError, match=f"turf.{name}"):
+        sc.load(write(tmp_path, BALL + f"[turf]\n{name} = {hi * 1.01}\n"))

@@ -72,17 +72,21 @@ def turf_preset(name):
         raise ValueError(f"unknown turf '{name}': choose one of {', '.join(PRESETS)}") from None
 
 
+# The allowed range (inclusive, SI) of each Turf field that has one; the restitution
+# coefficients e0, e1, e2 are bounded by the rule of check_turf instead.
+LIMITS = {
+    "mu": (0.0, 2.0),
+    "softness": (0.0, 5.0),
+    "e_break_speed_mps": (0.0, 200.0),
+    "e_high": (0.0, 1.0),
+    "rho_g": (0.0, 5.0),
+    "critical_height_m": (0.0, 1.0),
+}
+
+
 def check_turf(turf):
     """ValueError with one line naming the first out-of-range field of ``turf``."""
-    limits = {
-        "mu": (0.0, 2.0),
-        "softness": (0.0, 5.0),
-        "e_break_speed_mps": (0.0, 200.0),
-        "e_high": (0.0, 1.0),
-        "rho_g": (0.0, 5.0),
-        "critical_height_m": (0.0, 1.0),
-    }
-    for field, (lo, hi) in limits.items():
+    for field, (lo, hi) in LIMITS.items():
         value = getattr(turf, field)
         if not lo <= value <= hi:
             raise ValueError(f"turf {field} = {value} is outside [{lo}, {hi}]")

@@ -58,6 +58,7 @@ from mcrun.physics.constants import (
     STANDARD_WIND_HEIGHT_M,
 )
 from mcrun.physics.flight import WIND_PROFILES
+from mcrun.physics.turf import LIMITS as TURF_LIMITS
 from mcrun.physics.turf import PRESETS
 from mcrun.units import (
     KINDS,
@@ -146,12 +147,12 @@ PARAMETERS: dict[str, dict[str, Param]] = {
         "preset": Param("choice", choices=tuple(PRESETS)),
         # Limits of mcrun.physics.turf.check_turf; restitution scales e0, e1, e2 and e_high, and
         # above 1.9 the paper's e0 = 0.510 would exceed 0.97.
-        "mu": Param("number", (0.0, 2.0)),
-        "softness": Param("number", (0.0, 5.0)),
+        "mu": Param("number", TURF_LIMITS["mu"]),
+        "softness": Param("number", TURF_LIMITS["softness"]),
         "restitution": Param("number", (0.0, 1.9)),
-        "rho_g": Param("number", (0.0, 5.0)),
+        "rho_g": Param("number", TURF_LIMITS["rho_g"]),
         "stimp": Param("length", (0.1, 6.0)),
-        "critical_height": Param("length", (0.0, 1.0)),
+        "critical_height": Param("length", TURF_LIMITS["critical_height_m"]),
         "slope": Param("angle", _range_si("slope_deg")),
         "fall_line": Param("angle", _range_si("fall_line_deg")),
     },
