@@ -15,7 +15,7 @@ from mcrun.physics import aero, atmosphere
 from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
 from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_WIND_HEIGHT_M
 from mcrun.physics.flight import WIND_PROFILES, make_flight_params
-from mcrun.physics.launch import launch_from_club
+from mcrun.physics.launch import DEFAULT_CLUB_MASS_KG, launch_from_club
 from mcrun.physics.turf import Turf, check_turf, rho_g_from_stimp, turf_preset
 from mcrun.trajectory import PHASE_NAMES
 from mcrun.units import shown
@@ -51,9 +51,6 @@ RANGES = {
     "impact_angle_deg": (0.0, 89.9),
     "backspin_radps": (-2000.0, 2000.0),
 }
-
-# Penner (2002) section 3.1: a 200 g driver head.
-DEFAULT_CLUB_MASS_KG = 0.200
 
 # Default parameter of each wind profile: roughness length z0 (m) of the log law over short
 # grass, and the 1/7 exponent of the power law.

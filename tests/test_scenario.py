@@ -11,6 +11,7 @@ import pytest
 from mcrun.api import InputError
 from mcrun.physics import turf
 from mcrun.physics.constants import DEG
+from mcrun.physics.launch import DEFAULT_CLUB_MASS_KG
 from mcrun.run import scenario as sc
 from mcrun.run.sampling import sample
 
@@ -736,7 +737,7 @@ def test_club_scenario_and_file_scenario(tmp_path):
     club = sc.load(write(tmp_path, '[club]\nspeed = "45 m/s"\nloft = 13.3\n', "c.toml"))
     point = club.points[0]
     assert point.mode == "club"
-    assert point.params["club.mass"].value == 0.200
+    assert point.params["club.mass"].value == DEFAULT_CLUB_MASS_KG == 0.200  # Penner's driver
     assert "launch.ball_speed" not in point.params
     text = f'[launch]\nfile = "{SESSION_CSV}"\njitter = {{ spin_rpm = 50 }}\n'
     resampled = sc.load(write(tmp_path, text, "f.toml")).points[0]

@@ -11,6 +11,10 @@ from numba import njit
 from mcrun.physics.constants import BALL_MASS_KG, BALL_RADIUS_M
 from mcrun.physics.trig import sincos
 
+# The club-head mass of a club delivery that does not give one: Penner's driver, 200 g (Penner
+# 2002 section 3.1).
+DEFAULT_CLUB_MASS_KG = 0.200
+
 
 @njit(cache=True)
 def club_restitution(normal_speed_mps):

@@ -58,6 +58,7 @@ from mcrun.physics.constants import (
     STANDARD_WIND_HEIGHT_M,
 )
 from mcrun.physics.flight import WIND_PROFILES
+from mcrun.physics.launch import DEFAULT_CLUB_MASS_KG
 from mcrun.physics.turf import LIMITS as TURF_LIMITS
 from mcrun.physics.turf import PRESETS
 from mcrun.units import (
@@ -188,7 +189,6 @@ _GROUP_KEYS = ("name", "target", *_SECTIONS)
 _BALL = ("ball_speed", "launch_angle", "spin")
 _CLUB = ("speed", "loft")
 _OPTIONAL_LAUNCH = ("azimuth", "spin_axis")
-DEFAULT_CLUB_MASS_KG = 0.200  # as mcrun.api.simulate
 
 DISTRIBUTIONS = {
     # dist: its keys, in the order of Dist.args; "sd"-like keys are spreads (no unit offset).
