@@ -360,14 +360,9 @@ def bounce_once(speed_mps, angle_deg, backspin_radps, turf="green", **turf_overr
     """One impact on level turf in the paper's terms (angles from the vertical, backspin
     positive): theta_c_deg, e, mu_c, mode, rebound speed, angle and spin, hop height."""
     speed = check_range("ball_speed_mps", speed_mps)
-    if not 0.0 <= float(angle_deg) < 90.0:
-        raise InputError(
-            f"the impact angle from the vertical must be within [0, 90) deg, got {angle_deg}"
-        )
-    backspin = float(backspin_radps)
-    if not abs(backspin) <= RANGES["spin_radps"][1]:
-        raise InputError(f"backspin = {backspin:g} rad/s is outside [-2000, 2000]")
+    angle = check_range("impact_angle_deg", angle_deg) * DEG
+    backspin = check_range("backspin_radps", backspin_radps)
     turf = resolve_turf(turf, **turf_overrides)
-    result = bounce_in_plane(speed, float(angle_deg) * DEG, backspin, turf)
-    result["critical_backspin_radps"] = critical_backspin_radps(speed, float(angle_deg) * DEG, turf)
+    result = bounce_in_plane(speed, angle, backspin, turf)
+    result["critical_backspin_radps"] = critical_backspin_radps(speed, angle, turf)
     return result

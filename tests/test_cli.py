@@ -296,6 +296,18 @@ def test_bad_bounce_input_is_one_line_and_exit_2(capsys, argv):
     assert err.startswith("mcrun: error: ")
 
 
+def test_bounce_input_ranges_are_those_of_the_api(capsys):
+    """mcrun bounce checks its angle and backspin against api.RANGES, as every input."""
+    for name, value in (("impact_angle_deg", 89.95), ("backspin_radps", -2000.5)):
+        lo, hi = api.RANGES[name]
+        angle, spin = (value, 224.0) if name == "impact_angle_deg" else (68.0, value)
+        with pytest.raises(api.InputError, match=rf"{name} = .* \[{lo:g}, {hi:g}\]"):
+            api.bounce_once(26.8, angle, spin)
+    api.bounce_once(26.8, api.RANGES["impact_angle_deg"][1], api.RANGES["backspin_radps"][0])
+    _, _, err = run(capsys, "bounce", "--speed", "26.8", "--angle", "95", "--spin", "224")
+    assert "impact_angle_deg" in err and "[0, 89.9]" in err
+
+
 def test_error_messages_name_the_problem(capsys):
     """The one line says what is wrong and what is allowed."""
     _, _, err = run(capsys, "shot", "--ball-speed", "500", "--launch", "10.9", "--spin", "1")
