@@ -53,8 +53,8 @@ STANDARD_CONDITIONS = dict(
     temperature_c=20.0, pressure_pa=STANDARD_PRESSURE_PA, relative_humidity=STANDARD_HUMIDITY
 )
 
-# Models compared by ``--compare``, in the order they are listed.
-COMPARED_MODELS = ("ferguson2022", "smits_smith1994", "lyu2018", "penner2002", "trackman2019")
+# Models compared by ``--compare``: every model, in the order aero.MODELS lists them.
+COMPARED_MODELS = tuple(aero.MODELS)
 
 # Measurement scales that turn residuals into comparable numbers (the fit's weights, and the
 # denominators of the ``scaled_rms`` score). They are the size of the mismatch one should expect
