@@ -24,6 +24,7 @@ import pytest
 from mcrun.report import html as report
 from mcrun.report import plots
 from mcrun.results import output, stats
+from mcrun.run import scenario as sc
 from mcrun.run.local import run_scenario
 
 pytest.importorskip("matplotlib")  # the optional extra mcrun[plot]
@@ -392,3 +393,16 @@ def test_missing_matplotlib_is_one_line(runs, tmp_path, monkeypatch, capsys, com
     code = main([command, str(runs["groups"]), "-o", str(tmp_path / "out")])
     one_line_error(capsys, code, f"mcrun {command} needs matplotlib", "mcrun[plot]")
     assert not (tmp_path / "out").exists()
+
+
+def test_the_report_reads_the_question_as_the_scenario_does(tmp_path):
+    """A ``# Question:`` line comes before ``[scenario] question``, in the library's list, the
+    loaded scenario and the report's title alike."""
+    text = '# Question: from the comment?\n[scenario]\nquestion = "from the table?"\n'
+    text += "[launch]\nball_speed = 70\nlaunch_angle = 12\nspin = 300\n"
+    path = tmp_path / "q.toml"
+    path.write_text(text, encoding="utf-8")
+    assert sc.list_library(tmp_path)[0][2] == "from the comment?"
+    assert sc.load(path).question == "from the comment?"
+    run = plots.Run(tmp_path, pd.DataFrame(), {"scenario_text": text}, [], False)
+    assert run.question == "from the comment?"

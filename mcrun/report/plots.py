@@ -54,6 +54,7 @@ from mcrun import status as status_codes
 from mcrun.api import InputError
 from mcrun.paper import DPI_RANGE, dpi_value
 from mcrun.results import output, stats
+from mcrun.run.scenario import question_of
 from mcrun.units import UnitError
 
 MISSING_MATPLOTLIB = "mcrun {} needs matplotlib: pip install 'mcrun[plot]'"
@@ -139,7 +140,7 @@ class Run:
 
     @property
     def question(self):
-        return _question(self.provenance.get("scenario_text") or "")
+        return question_of(self.provenance.get("scenario_text") or "")
 
     @property
     def explicit_target(self):
@@ -155,21 +156,6 @@ class Run:
 
     def file(self, name):
         return self.path / name
-
-
-def _question(text):
-    """The question a scenario answers: ``[scenario] question``, else a ``# Question:`` line."""
-    try:
-        question = tomllib.loads(text).get("scenario", {}).get("question", "")
-    except (tomllib.TOMLDecodeError, AttributeError):
-        question = ""
-    if isinstance(question, str) and question.strip():
-        return question.strip()
-    for line in text.splitlines():
-        match = re.match(r"#\s*Question:\s*(.+)", line.strip())
-        if match:
-            return match[1].strip()
-    return ""
 
 
 def reason_of(err):

@@ -89,6 +89,7 @@ __all__ = [
     "library_folder",
     "list_library",
     "load",
+    "question_of",
 ]
 
 
@@ -372,9 +373,10 @@ def library_folder():
 _QUESTION = re.compile(r"^#\s*Question:\s*(.*?)\s*$")
 
 
-def _question_of(text):
-    """The question a scenario answers: its first ``# Question:`` comment line, else
-    ``[scenario] question``, else ""."""
+def question_of(text):
+    """The question the scenario ``text`` answers: its first ``# Question:`` comment line,
+    else ``[scenario] question``, else "" (the library's list, ``load`` and the report's title
+    all read it here)."""
     for line in text.splitlines():
         match = _QUESTION.match(line.strip())
         if match:
@@ -396,7 +398,7 @@ def list_library(folder=None):
             text = path.read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError):
             text = ""
-        entries.append((path.stem, path, _question_of(text)))
+        entries.append((path.stem, path, question_of(text)))
     return entries
 
 
@@ -1222,7 +1224,7 @@ def loads(text, path):
         if key in head and not isinstance(head[key], str):
             raise ctx.error(f"scenario.{key}", f"must be a string, got {_shown(head[key])}")
     name = head.get("name", path.stem)
-    question = _question_of(text)
+    question = question_of(text)
     shots = _integer(ctx, "scenario.shots", head.get("shots", 100_000), 1)
     seed = _integer(ctx, "scenario.seed", head.get("seed", 0), 0)
     block_size = _integer(
