@@ -80,7 +80,7 @@ def test_batch_equals_single_shot_kernel_bit_for_bit(inputs, alone):
 
 def test_mix_is_real(alone, inputs):
     """The rows exercise both paths and every status the mix should give."""
-    quadratic = np.isin(inputs[:, COLUMN["aero_model"]], [0, 3, 4])
+    quadratic = np.isin(inputs[:, COLUMN["aero_model"]], aero.QUADRATIC_MODELS)
     uniform = inputs[:, COLUMN["wind_profile"]] == 0
     assert 0.2 < np.mean(quadratic & uniform) < 0.8
     assert set(np.unique(alone[:, -1])) >= {0.0, 1.0}  # ok and invalid_input

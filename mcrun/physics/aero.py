@@ -100,10 +100,16 @@ def coefficients(model, spin_ratio, reynolds, table):
     return quadratic(s, c[0], c[1], c[2], c[3], c[4], c[5], c[6])
 
 
+# The models of the quadratic form, whose rows of QUADRATIC_COEFFICIENTS are used and whose shots
+# may fly in the batch kernel's quadratic lanes. A list of those that are, so that a model added
+# with a form of its own is not taken for one.
+QUADRATIC_MODELS = (FERGUSON2022, PENNER2002, TRACKMAN2019)
+
+
 @njit(cache=True, error_model="numpy")
 def is_quadratic(model):
     """Whether the model with this id has the quadratic form (its row of the table is used)."""
-    return model != SMITS_SMITH1994 and model != LYU2018
+    return model in QUADRATIC_MODELS
 
 
 def model_id(name):
