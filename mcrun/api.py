@@ -9,8 +9,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcrun import status
-from mcrun.engine.schema import N_OUTCOME, OUTCOME_FIELDS
-from mcrun.engine.shot import default_dt_s, simulate_shot
+from mcrun.engine.backend import simulate_batch, simulate_traced
+from mcrun.engine.schema import COLUMN, INPUT_FIELDS, N_INPUT, OUTCOME_FIELDS
+from mcrun.engine.shot import default_dt_s
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
 from mcrun.physics.constants import DEG, STANDARD_HUMIDITY
@@ -72,6 +73,28 @@ def check_range(name, value):
     if not lo <= value <= hi:
         raise InputError(f"{name} = {value:g} is outside the allowed range [{lo:g}, {hi:g}]")
     return value
+
+
+def shot_row(speed, launch_angle, azimuth, spin, spin_axis, params, turf, slope, fall_line, dt):
+    """The kernel's input row (1, N_INPUT) of one shot: launch (m/s, rad, rad/s), FlightParams
+    (core frame), Turf, slope and fall line (rad) and flight step (s)."""
+    row = np.zeros((1, N_INPUT))
+    values = {
+        "ball_speed_mps": speed,
+        "launch_angle_rad": launch_angle,
+        "azimuth_rad": azimuth,
+        "spin_radps": spin,
+        "spin_axis_rad": spin_axis,
+        **params._asdict(),
+        "wind_right_mps": -params.wind_y_mps,
+        **turf._asdict(),
+        "slope_rad": slope,
+        "fall_line_rad": fall_line,
+        "dt_s": dt,
+    }
+    for name in INPUT_FIELDS:
+        row[0, COLUMN[name]] = values[name]
+    return row
 
 
 @dataclass(frozen=True)
@@ -274,29 +297,11 @@ def simulate(
     dt = check_range("dt_s", dt_s)
     turf = resolve_turf(turf)
     params = flight_params(**conditions)
-    out = np.empty((1, N_OUTCOME))
-    size = 4096 if trajectory else 0
-    while True:
-        traj = np.empty((size, 5))
-        n = simulate_shot(
-            speed,
-            angle_deg * DEG,
-            azimuth,
-            spin,
-            axis,
-            params,
-            turf,
-            slope,
-            fall_line,
-            dt,
-            aero.QUADRATIC_COEFFICIENTS,
-            out,
-            0,
-            traj,
-        )
-        if n <= size or not trajectory:
-            break
-        size = n
+    row = shot_row(speed, angle_deg * DEG, azimuth, spin, axis, params, turf, slope, fall_line, dt)
+    if trajectory:
+        out, traj = simulate_traced(row)
+    else:
+        out = simulate_batch(row)
     outcome = dict(zip(OUTCOME_FIELDS, (float(v) for v in out[0]), strict=True))
     outcome["launch_angle_deg"] = angle_deg  # as given, not back from radians
     outcome["bounces"] = int(outcome["bounces"]) if math.isfinite(outcome["bounces"]) else -1
@@ -305,7 +310,7 @@ def simulate(
     if trajectory:
         import pandas as pd  # only here: a shot without its path starts faster
 
-        frame = pd.DataFrame(traj[:n], columns=["t_s", "x_m", "y_m", "z_m", "phase"])
+        frame = pd.DataFrame(traj, columns=["t_s", "x_m", "y_m", "z_m", "phase"])
         frame["phase"] = pd.Categorical.from_codes(frame["phase"].astype(int), PHASE_NAMES)
     return ShotResult(outcome, frame)
 

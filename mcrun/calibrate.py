@@ -25,11 +25,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun.api import InputError, check_range, flight_params, resolve_turf
+from mcrun.api import InputError, check_range, flight_params, resolve_turf, shot_row
+from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import APEX as APEX_FIELD
-from mcrun.engine.schema import CARRY, N_OUTCOME
+from mcrun.engine.schema import CARRY
 from mcrun.engine.schema import LANDING_ANGLE as LANDING_ANGLE_FIELD
-from mcrun.engine.shot import DEFAULT_DT_S, simulate_shot
+from mcrun.engine.shot import DEFAULT_DT_S
 from mcrun.physics import aero
 from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA
 from mcrun.units import parse_quantity, shown
@@ -193,25 +194,13 @@ def predict(model_name, frame, table=None):
     speed = frame["ball_speed_mps"].to_numpy(dtype=float)
     angle = frame["launch_angle_deg"].to_numpy(dtype=float) * DEG
     spin = frame["spin_radps"].to_numpy(dtype=float)
-    out = np.empty((len(frame), N_OUTCOME))
-    no_trajectory = np.empty((0, 5))
-    for i in range(len(frame)):
-        simulate_shot(
-            speed[i],
-            angle[i],
-            0.0,
-            spin[i],
-            0.0,
-            params,
-            turf,
-            0.0,
-            0.0,
-            DEFAULT_DT_S,
-            table,
-            out,
-            i,
-            no_trajectory,
-        )
+    rows = np.concatenate(
+        [
+            shot_row(speed[i], angle[i], 0.0, spin[i], 0.0, params, turf, 0.0, 0.0, DEFAULT_DT_S)
+            for i in range(len(frame))
+        ]
+    )
+    out = simulate_batch(rows, table=table)
     result = pd.DataFrame(
         {
             "carry_m": out[:, CARRY],
