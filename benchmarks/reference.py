@@ -8,12 +8,13 @@ something it does not share code with:
     dw/dt = -2e-5 |u| / r w,    k = rho A / (2 m),    S = r |w| / |u|,
 
 with a terminal event at the ground (z = 0, falling). From that landing state the run (bounces,
-slide and roll) is ``mcrun.engine.shot.run_out``, the same as the kernel uses: what is checked is
-the flight and the hand-over to the ground, and how a landing error carries into the total.
+slide and roll) is the kernel's own shot loop from the landing on
+(``mcrun.engine.backend.simulate_landed``): what is checked is the flight and the hand-over to the
+ground, and how a landing error carries into the total.
 
 A shot is one row of the kernel's inputs (``mcrun.engine.schema.INPUT_FIELDS``: SI, the user's
-frame, y to the right). The integration runs in the core's frame (x along the target line, y to the
-LEFT, z up), as ``run_out`` expects.
+frame, y to the right). The integration runs in the core's frame (x along the target line, y to
+the LEFT, z up), as the landing the shot loop takes.
 """
 
 import math
@@ -21,11 +22,10 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from mcrun.engine.schema import COLUMN
-from mcrun.engine.shot import run_out
+from mcrun.engine.backend import simulate_landed
+from mcrun.engine.schema import COLUMN, FINAL_X, FINAL_Y, STATUS
 from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
 from mcrun.physics.flight import WIND_PROFILES
-from mcrun.physics.turf import Turf
 
 R = 0.021335  # ball radius (m), physics.md
 M = 0.04593  # ball mass (kg)
@@ -128,20 +128,10 @@ def reference_landing(row):
 
 def reference_shot(row):
     """Carry and total (m, along the target line) of the shot ``row``: the DOP853 flight, then
-    ``mcrun.engine.shot.run_out`` from its landing state. Returns a dict with the landing too."""
+    the kernel's run from its landing state (``simulate_landed``). Returns a dict with the
+    landing too."""
     c = {name: row[k] for name, k in COLUMN.items()}
     t, x, y, vx, vy, vz, spin, axis = reference_landing(row)
-    turf = Turf(
-        c["mu"],
-        c["softness"],
-        c["e0"],
-        c["e1"],
-        c["e2"],
-        c["e_break_speed_mps"],
-        c["e_high"],
-        c["rho_g"],
-        c["critical_height_m"],
-    )
     # The ground: the plane of the slope through the landing point, its normal tilted towards
     # the fall line (positive right in the user's frame, so -y in the core's).
     slope = c["slope_rad"]
@@ -150,17 +140,15 @@ def reference_shot(row):
     ny = -math.sin(slope) * math.sin(fall_line)
     nz = math.cos(slope)
     w = spin * axis
-    no_trajectory = np.empty((0, 5))
-    result = run_out(
-        x, y, 0.0, vx, vy, vz, w[0], w[1], w[2], nx, ny, nz, turf, t, no_trajectory, 0, c["dt_s"]
-    )
-    final_x, final_y, status = result[0], result[1], result[4]
+    landing = [[x, y, vx, vy, vz, w[0], w[1], w[2], t, nx, ny, nz]]
+    out, _ = simulate_landed(row[None, :], np.array(landing))
+    final_x, final_y, status = out[0, FINAL_X], out[0, FINAL_Y], out[0, STATUS]
     return {
         "carry_m": x,
         "carry_lateral_m": -y,
         "flight_time_s": t,
         "landing_speed_mps": math.sqrt(vx * vx + vy * vy + vz * vz),
         "total_m": final_x,
-        "final_y_m": -final_y,
+        "final_y_m": final_y,
         "status": int(status),
     }

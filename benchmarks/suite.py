@@ -240,7 +240,7 @@ def figure_kernel(config, inputs):
     total_error = max(s["total_error_cm"] for s in per_shot)
     result["accuracy"] = {
         "reference": "scipy DOP853, rtol = atol = 1e-12, terminal ground event; "
-        "then mcrun.engine.shot.run_out from its landing state",
+        "then the kernel's run from its landing state (simulate_landed)",
         "shots": len(per_shot),
         "dt_s": float(rows[0, COLUMN["dt_s"]]),
         "max_carry_error_cm": carry_error,
@@ -961,8 +961,8 @@ def _md_steps(r):
             f"total {s['reference_total_m']:.2f} m"
             for s in r["shots"]
         )
-        + f"), {r['conditions']}. Total = flight + `run_out`. Speed: the kernel on pga-driver "
-        f"shots, {r['threads']} threads.",
+        + f"), {r['conditions']}. Total = flight + the kernel's run from that landing. "
+        f"Speed: the kernel on pga-driver shots, {r['threads']} threads.",
         "",
         "| dt (s) | "
         + " | ".join(f"{s} carry" for s in short)

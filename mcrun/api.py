@@ -6,11 +6,10 @@ command line and a Python user get the same one-line errors.
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from mcrun import status
-from mcrun.engine.schema import INPUT_FIELDS, N_OUTCOME, outcome_record, pack
-from mcrun.engine.shot import default_dt_s, simulate_shot
+from mcrun.engine.backend import simulate_batch, simulate_traced
+from mcrun.engine.schema import outcome_record, pack
+from mcrun.engine.shot import default_dt_s
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
 from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_WIND_HEIGHT_M
@@ -308,50 +307,17 @@ def simulate(*, trajectory=False, **shot):
     its path.
     """
     inputs, angle_deg = shot_inputs(**shot)
-    c = {name: float(v) for name, v in zip(INPUT_FIELDS, inputs[0], strict=True)}
-    params = make_flight_params(
-        c["air_density_kgpm3"],
-        c["kinematic_viscosity_m2ps"],
-        int(c["aero_model"]),
-        c["cd_scale"],
-        c["cl_scale"],
-        c["wind_x_mps"],
-        c["wind_right_mps"],
-        int(c["wind_profile"]),
-        c["wind_reference_height_m"],
-        c["wind_profile_parameter"],
-    )
-    turf = Turf(*(c[name] for name in Turf._fields))
-    out = np.empty((1, N_OUTCOME))
-    size = 4096 if trajectory else 0
-    while True:
-        traj = np.empty((size, 5))
-        n = simulate_shot(
-            c["ball_speed_mps"],
-            c["launch_angle_rad"],
-            c["azimuth_rad"],
-            c["spin_radps"],
-            c["spin_axis_rad"],
-            params,
-            turf,
-            c["slope_rad"],
-            c["fall_line_rad"],
-            c["dt_s"],
-            aero.QUADRATIC_COEFFICIENTS,
-            out,
-            0,
-            traj,
-        )
-        if n <= size or not trajectory:
-            break
-        size = n
+    if trajectory:
+        out, traj = simulate_traced(inputs)
+    else:
+        out = simulate_batch(inputs)
     outcome = outcome_record(out)
     outcome["launch_angle_deg"] = angle_deg  # as given, not back from radians
     frame = None
     if trajectory:
         import pandas as pd  # only here: a shot without its path starts faster
 
-        frame = pd.DataFrame(traj[:n], columns=["t_s", "x_m", "y_m", "z_m", "phase"])
+        frame = pd.DataFrame(traj, columns=["t_s", "x_m", "y_m", "z_m", "phase"])
         frame["phase"] = pd.Categorical.from_codes(frame["phase"].astype(int), PHASE_NAMES)
     return ShotResult(outcome, frame)
 

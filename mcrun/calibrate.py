@@ -25,11 +25,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun.api import InputError, check_range, flight_params, resolve_turf
+from mcrun.api import InputError, check_range, conditions_inputs
+from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import APEX as APEX_FIELD
-from mcrun.engine.schema import CARRY, N_OUTCOME
+from mcrun.engine.schema import CARRY, pack
 from mcrun.engine.schema import LANDING_ANGLE as LANDING_ANGLE_FIELD
-from mcrun.engine.shot import DEFAULT_DT_S, simulate_shot
+from mcrun.engine.shot import DEFAULT_DT_S
 from mcrun.physics import aero
 from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA
 from mcrun.units import parse_quantity, shown
@@ -188,30 +189,15 @@ def predict(model_name, frame, table=None):
     if table is None:
         table = aero.QUADRATIC_COEFFICIENTS
     table = np.ascontiguousarray(table, dtype=np.float64)
-    params = flight_params(aero_model=model_name, **STANDARD_CONDITIONS)
-    turf = resolve_turf("green")
-    speed = frame["ball_speed_mps"].to_numpy(dtype=float)
-    angle = frame["launch_angle_deg"].to_numpy(dtype=float) * DEG
-    spin = frame["spin_radps"].to_numpy(dtype=float)
-    out = np.empty((len(frame), N_OUTCOME))
-    no_trajectory = np.empty((0, 5))
-    for i in range(len(frame)):
-        simulate_shot(
-            speed[i],
-            angle[i],
-            0.0,
-            spin[i],
-            0.0,
-            params,
-            turf,
-            0.0,
-            0.0,
-            DEFAULT_DT_S,
-            table,
-            out,
-            i,
-            no_trajectory,
-        )
+    fixed = conditions_inputs(
+        turf="green", dt_s=DEFAULT_DT_S, aero_model=model_name, **STANDARD_CONDITIONS
+    )
+    launch = {
+        "ball_speed_mps": frame["ball_speed_mps"].to_numpy(dtype=float),
+        "launch_angle_rad": frame["launch_angle_deg"].to_numpy(dtype=float) * DEG,
+        "spin_radps": frame["spin_radps"].to_numpy(dtype=float),
+    }
+    out = simulate_batch(pack({**fixed, **launch}, len(frame)), table=table)
     result = pd.DataFrame(
         {
             "carry_m": out[:, CARRY],

@@ -11,8 +11,8 @@ How each figure is made:
 - Figs. 4 and 6: full shots from the club (Penner 2001 club model, ``penner2002`` aerodynamics in
   air of 1.204 kg/m^3, the paper's green), ``api.simulate(..., trajectory=True)``.
 - Fig. 5: a sweep of the driver's club-head speed, run against launch speed.
-- Figs. 7 and 8: the paper's 9-iron LANDING state run through ``shot.run_out``, the bounce-and-roll
-  kernel that ``simulate_shot`` hands its landing to.
+- Figs. 7 and 8: the paper's 9-iron LANDING state run through the shot loop from its landing on
+  (``backend.simulate_landed``).
 
 matplotlib is optional (``mcrun[plot]``): it is imported only when a figure is drawn, and figures
 are rendered with the Agg canvas, so no display is needed.
@@ -28,7 +28,17 @@ import numpy as np
 
 from mcrun import __version__
 from mcrun.api import bounce_once, simulate
-from mcrun.engine.shot import DEFAULT_DT_S, run_out
+from mcrun.engine.backend import simulate_landed
+from mcrun.engine.schema import (
+    BOUNCES,
+    COLUMN,
+    FIRST_BOUNCE_HEIGHT,
+    FIRST_BOUNCE_LENGTH,
+    N_INPUT,
+    STATUS,
+    TOTAL,
+)
+from mcrun.engine.shot import DEFAULT_DT_S
 from mcrun.physics.bounce import critical_backspin_radps
 from mcrun.physics.launch import launch_from_club
 from mcrun.physics.turf import PRESETS
@@ -118,7 +128,8 @@ def _checked(result, what):
 
 
 def run_from_landing(speed_mps, angle_deg, backspin_radps, turf, trajectory=False):
-    """Bounces and roll (``shot.run_out``) of a ball landing on level turf at the origin.
+    """Bounces and roll (the shot loop from the landing on, ``backend.simulate_landed``) of a
+    ball landing on level turf at the origin.
 
     The ball moves along +x at ``speed_mps``, ``angle_deg`` from the vertical, with
     ``backspin_radps`` of backspin. Returns (summary, path): summary has final_x_m, bounces,
@@ -127,20 +138,17 @@ def run_from_landing(speed_mps, angle_deg, backspin_radps, turf, trajectory=Fals
     (t_s, x_m, y_m, z_m, phase) starting at the landing point, sampled every PLOT_DT_S.
     """
     a = math.radians(angle_deg)
-    size = 1 << 14 if trajectory else 0
-    while True:
-        traj = np.empty((size, 5))
-        # Core frame (y to the left): backspin is spin about v x z = -y.
-        x, _, _, _, status, bounces, height, length, n = run_out(
-            0.0, 0.0, 0.0,
-            speed_mps * math.sin(a), 0.0, -speed_mps * math.cos(a),
-            0.0, -backspin_radps, 0.0,
-            0.0, 0.0, 1.0,
-            PRESETS[turf], 0.0, traj, 0, PLOT_DT_S,
-        )  # fmt: skip
-        if n <= size or not trajectory:
-            break
-        size = n
+    row = np.zeros((1, N_INPUT))
+    for field, value in PRESETS[turf]._asdict().items():
+        row[0, COLUMN[field]] = value
+    # Core frame (y to the left): backspin is spin about v x z = -y.
+    landing = [[0.0, 0.0, speed_mps * math.sin(a), 0.0, -speed_mps * math.cos(a), 0.0,
+                -backspin_radps, 0.0, 0.0, 0.0, 0.0, 1.0]]  # fmt: skip
+    out, path = simulate_landed(
+        row, np.array(landing), traced=0 if trajectory else -1, dt_record_s=PLOT_DT_S
+    )
+    x, status, bounces = out[0, TOTAL], int(out[0, STATUS]), int(out[0, BOUNCES])
+    height, length = out[0, FIRST_BOUNCE_HEIGHT], out[0, FIRST_BOUNCE_LENGTH]
     if status != OK:
         raise RuntimeError(f"the run from landing ended with status {NAMES[status]}")
     summary = {
@@ -151,8 +159,7 @@ def run_from_landing(speed_mps, angle_deg, backspin_radps, turf, trajectory=Fals
     }
     if not trajectory:
         return summary, None
-    landing = np.array([[0.0, 0.0, 0.0, 0.0, float(BOUNCE)]])
-    return summary, np.vstack([landing, traj[:n]])
+    return summary, np.vstack([[[0.0, 0.0, 0.0, 0.0, float(BOUNCE)]], path])
 
 
 def nine_iron_run(backspin_radps, turf, trajectory=False):

@@ -18,7 +18,7 @@ NAMES = {
 
 # Bounds that make every shot end.
 MAX_FLIGHT_TIME_S = 60.0
-# The bouncing ends by the rules of ``shot.run_out`` (critical height, hop decay) within
+# The bouncing ends by the rules of ``bounce.impact`` (critical height, hop decay) within
 # about 110 impacts for any landing and slope (20,000 random landings on 0-10 deg); this bound
 # is only a guard against an endless loop.
 MAX_BOUNCES = 1000

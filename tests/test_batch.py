@@ -1,9 +1,10 @@
-"""The batch kernel against the single-shot kernel.
+"""The shot loop in lanes: each shot comes out bit for bit as it does alone.
 
 ``batch.simulate_batch`` flies shots of a quadratic aerodynamic model in uniform wind in
-lockstep lanes (a vectorised loop) and every other shot one at a time; either way each shot
-must come out bit for bit as ``shot.simulate_shot`` computes it alone, whatever the mix of
-shots, their order, the number of threads and the chunking.
+vectorised lanes and every other shot in lanes of the general form; every shot must come out
+bit for bit as it does alone (a batch of one row, which is the single-shot API, with its path
+recorded or not), whatever the mix of shots, their order, the number of threads and the
+chunking; and the two forms of lanes give the same numbers for a shot both can fly.
 """
 
 import numba
@@ -11,12 +12,13 @@ import numpy as np
 import pytest
 
 from mcrun import api
-from mcrun.engine.backend import simulate_batch
-from mcrun.engine.batch import _shot
+from mcrun.engine import batch
+from mcrun.engine.backend import simulate_batch, simulate_traced
 from mcrun.engine.schema import COLUMN, N_INPUT, N_OUTCOME
-from mcrun.engine.shot import default_dt_s, roll_out, roll_out_short
+from mcrun.engine.shot import default_dt_s
 from mcrun.physics import aero
 from mcrun.physics.flight import WIND_PROFILES
+from mcrun.physics.roll import roll_out, roll_out_short
 from mcrun.physics.turf import PRESETS
 
 N = 400
@@ -63,19 +65,43 @@ def inputs():
 
 @pytest.fixture(scope="module")
 def alone(inputs):
-    """Each row simulated by the single-shot kernel, one call per shot."""
-    out = np.empty((inputs.shape[0], N_OUTCOME))
-    for i in range(inputs.shape[0]):
-        _shot(inputs, i, aero.QUADRATIC_COEFFICIENTS, out, i, np.empty((0, 5)))
-    return out
+    """Each row simulated alone, one call per shot, its path recorded (the single-shot API's
+    ``trajectory=True``)."""
+    return np.concatenate([simulate_traced(inputs[i : i + 1])[0] for i in range(len(inputs))])
 
 
 def same(a, b):
     return np.array_equal(a, b, equal_nan=True)
 
 
-def test_batch_equals_single_shot_kernel_bit_for_bit(inputs, alone):
+def test_batch_equals_each_shot_alone_bit_for_bit(inputs, alone):
     assert same(simulate_batch(inputs), alone)
+
+
+def test_recording_the_path_changes_nothing(inputs, alone):
+    """A shot alone without its path (``mcrun shot``) is the same as with it."""
+    for i in range(0, len(inputs), 7):
+        assert same(simulate_batch(inputs[i : i + 1]), alone[i : i + 1]), i
+
+
+def test_general_lanes_fly_a_quadratic_shot_as_the_quadratic_lanes(inputs):
+    """The two forms of flight lanes (``flight.derivatives_quadratic`` in vectorised lanes,
+    ``flight.derivatives`` for any model and wind) give the same numbers for the shots both
+    can fly: every quadratic shot in uniform wind flown by each."""
+    n = len(inputs)
+    rows = np.asfortranarray(inputs)
+    outs = []
+    for fly in (batch._fly_quadratic, batch._fly_general):
+        out = np.full((n, N_OUTCOME), np.nan, order="F")
+        kinds = np.array([batch._kind(rows, i, out) for i in range(n)], dtype=np.int8)
+        landings = np.empty((n, batch.N_LANDING))
+        pending = np.empty(n, dtype=np.int64)
+        no_path, untraced = np.empty((0, 5)), np.full(4, -1.0)
+        fly(rows, kinds, batch.QUADRATIC, 0, n, aero.QUADRATIC_COEFFICIENTS, out, landings,
+            pending, 0, no_path, untraced)  # fmt: skip
+        outs.append(out[kinds == batch.QUADRATIC])
+    assert len(outs[0]) > 100
+    assert same(outs[0], outs[1])
 
 
 def test_mix_is_real(alone, inputs):
@@ -99,7 +125,7 @@ def test_any_order_and_thread_count(inputs, alone, threads):
 
 
 def test_short_roll_is_roll_out_on_level_ground():
-    """``shot.roll_out_short``, the roll out of the lanes, gives ``roll_out``'s rest bit for
+    """``roll.roll_out_short``, the roll out of the lanes, gives ``roll_out``'s rest bit for
     bit on level ground, and hands a ball on a slope back to it."""
     rng = np.random.default_rng(7)
     turf = PRESETS["fairway"]
@@ -122,7 +148,7 @@ def test_short_roll_is_roll_out_on_level_ground():
 def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):
     """Numba types an array of fewer than two rows as C-contiguous: a batch of 0 or 1 rows
     (the warm-up before a run's clock starts, a point's last chunk of one shot) must not
-    compile the kernel a second time during the run, and gives the single-shot results."""
+    compile the kernel a second time during the run, and gives each shot's results alone."""
     from mcrun.engine.batch import _simulate_batch
 
     for n in (0, 1, 2, 50):

@@ -16,11 +16,9 @@ import pytest
 
 from mcrun import paper
 from mcrun.api import bounce_once, simulate
-from mcrun.engine.shot import run_out
 from mcrun.physics.bounce import critical_backspin_radps
 from mcrun.physics.launch import launch_from_club
 from mcrun.physics.turf import PRESETS
-from mcrun.status import OK
 
 DPI = 40
 FIGURES = ("fig3", "fig4", "fig5", "fig6", "fig7", "fig8")
@@ -65,13 +63,8 @@ def assert_printed(cell, value):
 
 
 def run_from_landing(speed, angle_deg, backspin, turf):
-    a = math.radians(angle_deg)
-    x, _, _, _, status, _, _, length, _ = run_out(
-        0.0, 0.0, 0.0, speed * math.sin(a), 0.0, -speed * math.cos(a), 0.0, -backspin, 0.0,
-        0.0, 0.0, 1.0, PRESETS[turf], 0.0, np.empty((0, 5)), 0, 0.01,
-    )  # fmt: skip
-    assert status == OK
-    return x, length
+    summary, _ = paper.run_from_landing(speed, angle_deg, backspin, turf)
+    return summary["final_x_m"], summary["first_bounce_length_m"]
 
 
 # --- the files ---------------------------------------------------------------------------------
@@ -197,7 +190,7 @@ def test_whole_run_rows_equal_the_simulated_runs(rows):
 
 def test_fig8_backward_runs_have_the_papers_sign_and_order(rows):
     """Fig. 8, firm green (mu 0.25): negligible at 809 rad/s, then 1.11 m and 4.74 m back in the
-    paper. Ours are what run_out gives (first hop's landing point to rest), positive (back
+    paper. Ours are what the shot loop gives (first hop's landing point to rest), positive (back
     towards the player), growing with spin, and the 809 rad/s one is negligible."""
     back = {}
     for w in (809, 1000, 1200):

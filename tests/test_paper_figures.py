@@ -3,7 +3,7 @@
 Figs. 4, 5 and 6 are full shots (club model, ``penner2002`` flight in Penner's air of
 1.204 kg/m^3, bounce and roll). Figs. 7 and 8 start from the paper's 9-iron landing state
 (23.8 m/s at 34.0 deg from the vertical) with the backspins it names, and run only the bounces
-and the roll (``shot.run_out``, the same kernel ``simulate_shot`` hands the landing to).
+and the roll (the shot loop from the landing on, ``paper.run_from_landing``).
 
 Our numbers, beside the paper's (targets.md "Whole run"):
 
@@ -19,15 +19,11 @@ Fig. 8 run back            negligible, 1.11, 4.74 m    0.00 m, 0.94 m, 4.13 m
 =========================  ==========================  =====================================
 """
 
-import math
-
-import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+from mcrun import paper
 from mcrun.api import bounce_once, simulate
-from mcrun.engine.shot import run_out
-from mcrun.physics.turf import PRESETS
 from mcrun.status import OK
 
 PENNER_AIR = {"aero_model": "penner2002", "air_density_kgpm3": 1.204}
@@ -36,39 +32,13 @@ NINE_IRON_SPINS = (809.0, 1000.0, 1200.0)  # rad/s, Figs. 7 and 8
 
 
 def run_from_landing(speed_mps, angle_deg, backspin_radps, turf):
-    """Bounces and roll of a ball landing on level turf at the origin, moving along +x.
+    """Bounces and roll of a ball landing on level turf at the origin, moving along +x
+    (``paper.run_from_landing``: the shot loop from its landing on).
 
     Returns dict(final_x_m, bounces, first_bounce_height_m, first_bounce_length_m); the
     first hop's landing point is at x = first_bounce_length_m.
     """
-    a = math.radians(angle_deg)
-    # Core frame (y to the left): backspin is spin about v x z = -y.
-    x, _, _, _, status, bounces, height, length, _ = run_out(
-        0.0,
-        0.0,
-        0.0,
-        speed_mps * math.sin(a),
-        0.0,
-        -speed_mps * math.cos(a),
-        0.0,
-        -backspin_radps,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-        PRESETS[turf],
-        0.0,
-        np.empty((0, 5)),
-        0,
-        0.01,
-    )
-    assert status == OK
-    return {
-        "final_x_m": x,
-        "bounces": bounces,
-        "first_bounce_height_m": height,
-        "first_bounce_length_m": length,
-    }
+    return paper.run_from_landing(speed_mps, angle_deg, backspin_radps, turf)[0]
 
 
 def drive(club_speed_mps):

@@ -605,13 +605,12 @@ SIMULATING_COMMANDS = {
 
 
 def _kernel_cached(kind):
-    """Whether the command's kernel is in numba's on-disk cache (None when it cannot be told)."""
+    """Whether the kernel is in numba's on-disk cache (None when it cannot be told): the shot
+    loop, which a single shot runs too."""
     from mcrun.engine.batch import _simulate_batch
-    from mcrun.engine.shot import simulate_shot
 
-    kernel = simulate_shot if kind == "single" else _simulate_batch
     try:
-        return os.path.exists(kernel._cache._cache_file._index_path)
+        return os.path.exists(_simulate_batch._cache._cache_file._index_path)
     except AttributeError:  # numba's cache internals moved
         return None
 

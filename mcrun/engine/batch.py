@@ -1,175 +1,185 @@
-"""The batch kernel: many shots in parallel, structure-of-arrays in, structure-of-arrays out.
+"""The shot loop: every shot, from launch to rest, in lockstep lanes.
 
 ``simulate_batch`` simulates the rows of ``inputs``, an (n, N_INPUT) float64 array in Fortran
-order (each column contiguous, named by ``INPUT_FIELDS``, SI, user frame), in ``prange`` over
-tasks of TASK_SHOTS shots, and writes ``out``, an (n, N_OUTCOME) float64 array in Fortran order
-whose columns are ``schema.OUTCOME_FIELDS``. Within a task the shots fly, land, bounce and
-roll out in lockstep lanes (below); each lane does exactly what ``shot.simulate_shot`` does
-for one shot.
-Every shot is independent of the others, of its lane and of the thread that runs it, so the
-results are the same bit for bit whatever the thread count or the order of the rows.
+order (each column contiguous, named by ``schema.INPUT_FIELDS``, SI, user frame), in ``prange``
+over tasks of TASK_SHOTS shots, and writes ``out``, an (n, N_OUTCOME) float64 array in Fortran
+order whose columns are ``schema.OUTCOME_FIELDS``. A single shot, with its trajectory or
+without, is the same loop on one row (``simulate_traced``): there is no other.
+
+A task's shots go through the phases of a shot in lanes, LANES shots at a time, each phase
+written once: they fly (RK4 steps, ``physics.flight``), land (the root inside the last step,
+``engine.shot``), bounce (``physics.bounce.impact`` and ``hop``, until its rule ends the
+bouncing) and roll out (``physics.roll``), asking the ground (``mcrun.ground``) for its normal
+and turf. Every shot is independent of the others, of its lane and of the thread that runs it,
+so the results are the same bit for bit whatever the thread count or the order of the rows.
+
+Frames as in ``engine.shot``: user frame in and out, the core's (y to the LEFT) inside.
 """
 
 import numba
 import numpy as np
 from numba import njit, prange
 
-from mcrun.engine.schema import N_INPUT, N_OUTCOME
+from mcrun import ground
+from mcrun.engine.schema import COLUMN, INPUT_FIELDS, N_INPUT, N_OUTCOME
 from mcrun.engine.shot import (
-    HOPS,
-    TOO_MANY,
     TRAJECTORY_DT_S,
     apex_after_step,
     fail,
-    ground_normal,
-    hop,
-    impact_rebound,
     landing_newton,
     landing_speed_angle,
-    roll_out,
-    roll_out_short,
-    simulate_shot,
     start_shot,
     write_landing,
     write_run,
 )
 from mcrun.physics.aero import QUADRATIC_COEFFICIENTS, is_quadratic
-from mcrun.physics.bounce import incidence
-from mcrun.physics.constants import BALL_AREA_M2, BALL_MASS_KG
+from mcrun.physics.bounce import HOPS, TOO_MANY, hop, impact, impact_rebound, incidence
+from mcrun.physics.constants import BALL_AREA_M2, BALL_MASS_KG, G_MPS2
 from mcrun.physics.flight import (
     WIND_UNIFORM,
+    FlightParams,
+    derivatives,
     derivatives_quadratic,
     hermite_root,
     make_flight_params,
     rk4_combine,
+    rk4_stage,
     rk4_stage_quadratic,
+    rk4_step,
+    rk4_step_quadratic,
 )
 from mcrun.physics.launch import initial_state
+from mcrun.physics.roll import roll_out, roll_out_short
 from mcrun.physics.turf import Turf
 from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, OK, TOO_MANY_BOUNCES
+from mcrun.trajectory import BOUNCE, FLIGHT, record
+
+# Input columns, by name.
+(SPEED, LAUNCH_ANGLE, AZIMUTH, SPIN, SPIN_AXIS, AIR_DENSITY, VISCOSITY, AERO_MODEL, CD_SCALE,
+ CL_SCALE, WIND_X_IN, WIND_RIGHT, WIND_PROFILE, WIND_HEIGHT, WIND_PARAMETER, SLOPE, FALL_LINE,
+ DT_IN) = (COLUMN[name] for name in (
+    "ball_speed_mps", "launch_angle_rad", "azimuth_rad", "spin_radps", "spin_axis_rad",
+    "air_density_kgpm3", "kinematic_viscosity_m2ps", "aero_model", "cd_scale", "cl_scale",
+    "wind_x_mps", "wind_right_mps", "wind_profile", "wind_reference_height_m",
+    "wind_profile_parameter", "slope_rad", "fall_line_rad", "dt_s"))  # fmt: skip
+# The turf's columns are Turf's fields, in its order, from TURF on.
+TURF = COLUMN["mu"]
+assert INPUT_FIELDS[TURF : TURF + len(Turf._fields)] == Turf._fields
 
 
 @njit(cache=True, error_model="numpy")
 def _turf(inputs, i):
     """Turf of shot i."""
     c = inputs[i]
-    return Turf(c[15], c[16], c[17], c[18], c[19], c[20], c[21], c[22], c[23])
+    return Turf(
+        c[TURF], c[TURF + 1], c[TURF + 2], c[TURF + 3], c[TURF + 4], c[TURF + 5], c[TURF + 6],
+        c[TURF + 7], c[TURF + 8],
+    )  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy")
 def _params(inputs, i):
-    """FlightParams and Turf of shot i."""
+    """FlightParams of shot i."""
     c = inputs[i]
-    p = make_flight_params(
-        c[5], c[6], int(c[7]), c[8], c[9], c[10], c[11], int(c[12]), c[13], c[14]
-    )
-    return p, _turf(inputs, i)
+    return make_flight_params(
+        c[AIR_DENSITY], c[VISCOSITY], int(c[AERO_MODEL]), c[CD_SCALE], c[CL_SCALE],
+        c[WIND_X_IN], c[WIND_RIGHT], int(c[WIND_PROFILE]), c[WIND_HEIGHT], c[WIND_PARAMETER],
+    )  # fmt: skip
+
+
+# How a shot flies: a quadratic aerodynamic model in uniform wind (the usual case) in lanes
+# whose steps the compiler turns into vector instructions (``flight.derivatives_quadratic``),
+# any other model or wind profile in lanes of the general form (``flight.derivatives``).
+# Both are the same loop (``_make_flight``) and give the same numbers for a shot both can fly.
+INVALID = -1
+QUADRATIC = 0
+GENERAL = 1
 
 
 @njit(cache=True, error_model="numpy")
-def _shot(inputs, i, table, out, j, traj):
-    """Shot i of ``inputs`` into row j of ``out``, one at a time (any model, any wind)."""
+def _kind(inputs, i, out):
+    """Check shot i and write its launch fields (``shot.start_shot``); its flight kind, or
+    INVALID (status written) when an input is non-finite or non-physical."""
     c = inputs[i]
-    p, turf = _params(inputs, i)
-    return simulate_shot(
-        c[0], c[1], c[2], c[3], c[4], p, turf, c[24], c[25], c[26], table, out, j, traj
-    )
+    p = _params(inputs, i)
+    turf = _turf(inputs, i)
+    if not start_shot(
+        c[SPEED], c[LAUNCH_ANGLE], c[AZIMUTH], c[SPIN], c[SPIN_AXIS], p, turf, c[SLOPE],
+        c[FALL_LINE], c[DT_IN], out, i,
+    ):  # fmt: skip
+        return INVALID
+    return QUADRATIC if is_quadratic(p.aero_model) and p.wind_profile == WIND_UNIFORM else GENERAL
 
 
-# Lockstep flight: shots with a quadratic aerodynamic model in uniform wind (the usual case)
-# fly LANES at a time, a block of lanes stepped together by loops that the compiler turns into
-# vector instructions. A lane whose ball goes below the ground hands its last state to the
-# landing table and takes the next shot; once LANES shots wait there, their landings are
-# located together (``shot.land``, in vectorised loops), and they wait for the bounce lanes.
-# Every operation on a lane is the one ``shot.simulate_shot`` does, in the same order, so the
-# results are the same bit for bit.
+# Flight lanes: a block of LANES shots stepped together, one loop per RK4 stage over the lanes.
+# A lane whose ball goes below the ground hands its last state to the landing table and takes
+# the next shot; once LANES shots wait there, their landings are located together, and they
+# wait for the bounce lanes.
 LANES = 16
 # Rows of the lane table, a flat array whose row r of lane k is at r * LANES + k (a layout
 # whose offsets the compiler can see, so that it vectorises the loop over the lanes): the state,
-# the height and vertical speed at the end of the last step, the lane's constants, ...
-(X, Y, Z, VX, VY, VZ, W, Z1, VZ1, AXIS_X, AXIS_Y, AXIS_Z, WIND_X, WIND_Y, K_CD, K_CL, A0, A1,
- A2, B0, B1, B2, S_MAX, DT, T, APEX) = range(26)  # fmt: skip
+# the height and vertical speed at the end of the last step, the spin axis, the flight's
+# constants (C0.., below), the step, the time and the apex, ...
+(X, Y, Z, VX, VY, VZ, W, Z1, VZ1, AXIS_X, AXIS_Y, AXIS_Z) = range(12)
+C0 = 12  # 11 rows
+(DT, T, APEX) = range(23, 26)
 N_SHOT_ROWS = 26  # (the rows that go with a shot into the landing table)
 # ... the derivatives (K) and velocities (V) of the RK4 stages of the step under way, the rest
 # of the state at its end (with Z1 and VZ1), and, in the landing table only, the flight step,
-# the ground's normal, the shot, and the speed and angle at landing.
+# the ground's normal, the shot, the speed and angle at landing and the time of landing.
 K1, K2, K3 = 26, 30, 34  # four rows each: ax, ay, az, dspin/dt
 V2, V3 = 38, 41  # three rows each: vx, vy, vz
-(X1, Y1, VX1, VY1, W1, H_MAX, NX, NY, NZ, SHOT, SPEED, ANGLE) = range(44, 56)
-N_LANE_ROWS = 56
+(X1, Y1, VX1, VY1, W1, H_MAX, NX, NY, NZ, SHOT, SPEED_LANDING, ANGLE, T_LANDING) = range(44, 57)
+N_LANE_ROWS = 57
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _any_lane_busy(shot):
-    """Whether some lane still holds a shot (shot[k] is -1 for an empty lane)."""
-    for k in range(LANES):
-        if shot[k] >= 0:
-            return True
-    return False
-
-
-@njit(cache=True, error_model="numpy")
-def _load_lane(inputs, next_i, stop, table, out, lanes, shot, k):
-    """Put the next shot that can fly in lockstep into lane k; shots that cannot (another
-    model or wind profile) are simulated on the spot, invalid ones recorded as such. Returns
-    the index of the shot after the last one taken; shot[k] = -1 when none was left."""
-    no_trajectory = np.empty((0, 5))
-    while next_i < stop:
-        i = next_i
-        next_i += 1
-        c = inputs[i]
-        p, turf = _params(inputs, i)
-        if not start_shot(c[0], c[1], c[2], c[3], c[4], p, turf, c[24], c[25], c[26], out, i):
-            continue
-        if not (is_quadratic(p.aero_model) and p.wind_profile == WIND_UNIFORM):
-            _shot(inputs, i, table, out, i, no_trajectory)
-            continue
-        vx, vy, vz, ax, ay, az, w = initial_state(c[0], c[1], c[2], c[3], c[4])
-        k_air = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
-        row = table[p.aero_model]
-        for field, value in (
-            (X, 0.0),
-            (Y, 0.0),
-            (Z, 0.0),
-            (VX, vx),
-            (VY, vy),
-            (VZ, vz),
-            (W, w),
-            (AXIS_X, ax),
-            (AXIS_Y, ay),
-            (AXIS_Z, az),
-            (WIND_X, p.wind_x_mps),
-            (WIND_Y, p.wind_y_mps),
-            (K_CD, k_air * p.cd_scale),
-            (K_CL, k_air * p.cl_scale),
-            (A0, row[0]),
-            (A1, row[1]),
-            (A2, row[2]),
-            (B0, row[3]),
-            (B1, row[4]),
-            (B2, row[5]),
-            (S_MAX, row[6]),
-            (DT, c[26]),
-            (T, 0.0),
-            (APEX, 0.0),
-        ):
-            lanes[field * LANES + k] = value
-        shot[k] = i
-        return next_i
-    shot[k] = -1
-    return next_i
+def _quadratic_constants(lanes, k, p, table):
+    """Rows C0.. of lane k for a quadratic model in uniform wind: the wind, k C_D-scale and
+    k C_L-scale (k = rho A / 2m) and the model's row of ``table``."""
+    k_air = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
+    row = table[p.aero_model]
+    for j, value in enumerate((p.wind_x_mps, p.wind_y_mps, k_air * p.cd_scale,
+                               k_air * p.cl_scale, row[0], row[1], row[2], row[3], row[4],
+                               row[5], row[6])):  # fmt: skip
+        lanes[(C0 + j) * LANES + k] = value
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _lane_context(lanes, k):
+def _quadratic_context(lanes, k, table):
     """The ``flight.derivatives_quadratic`` context of lane k."""
     return (
         lanes[AXIS_X * LANES + k], lanes[AXIS_Y * LANES + k], lanes[AXIS_Z * LANES + k],
-        lanes[WIND_X * LANES + k], lanes[WIND_Y * LANES + k], lanes[K_CD * LANES + k],
-        lanes[K_CL * LANES + k], lanes[A0 * LANES + k], lanes[A1 * LANES + k],
-        lanes[A2 * LANES + k], lanes[B0 * LANES + k], lanes[B1 * LANES + k],
-        lanes[B2 * LANES + k], lanes[S_MAX * LANES + k],
+        lanes[C0 * LANES + k], lanes[(C0 + 1) * LANES + k], lanes[(C0 + 2) * LANES + k],
+        lanes[(C0 + 3) * LANES + k], lanes[(C0 + 4) * LANES + k],
+        lanes[(C0 + 5) * LANES + k], lanes[(C0 + 6) * LANES + k],
+        lanes[(C0 + 7) * LANES + k], lanes[(C0 + 8) * LANES + k],
+        lanes[(C0 + 9) * LANES + k], lanes[(C0 + 10) * LANES + k],
     )  # fmt: skip
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _general_constants(lanes, k, p, table):
+    """Rows C0.. of lane k for any model and wind: the FlightParams, field by field."""
+    for j, value in enumerate((p.air_density_kgpm3, p.kinematic_viscosity_m2ps,
+                               float(p.aero_model), p.cd_scale, p.cl_scale, p.wind_x_mps,
+                               p.wind_y_mps, float(p.wind_profile), p.wind_reference_height_m,
+                               p.wind_profile_parameter)):  # fmt: skip
+        lanes[(C0 + j) * LANES + k] = value
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _general_context(lanes, k, table):
+    """The ``flight.derivatives`` context of lane k."""
+    p = FlightParams(
+        lanes[C0 * LANES + k], lanes[(C0 + 1) * LANES + k], int(lanes[(C0 + 2) * LANES + k]),
+        lanes[(C0 + 3) * LANES + k], lanes[(C0 + 4) * LANES + k],
+        lanes[(C0 + 5) * LANES + k], lanes[(C0 + 6) * LANES + k],
+        int(lanes[(C0 + 7) * LANES + k]), lanes[(C0 + 8) * LANES + k],
+        lanes[(C0 + 9) * LANES + k],
+    )  # fmt: skip
+    return (lanes[AXIS_X * LANES + k], lanes[AXIS_Y * LANES + k], lanes[AXIS_Z * LANES + k], p,
+            table)  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -205,158 +215,308 @@ def _set_lane_derivative(lanes, row, k, d):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _lane_stage(lanes, k, c, derivative, vz_k):
-    """The RK4 stage of lane k at c times ``derivative`` (``flight.rk4_stage``)."""
-    return rk4_stage_quadratic(
-        lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
-        lanes[W * LANES + k], lanes[Z * LANES + k], c, derivative, vz_k,
-        _lane_context(lanes, k),
-    )  # fmt: skip
+def _any_lane_busy(shot):
+    """Whether some lane still holds a shot (shot[k] is -1 for an empty lane)."""
+    for k in range(LANES):
+        if shot[k] >= 0:
+            return True
+    return False
 
 
-@njit(cache=True, error_model="numpy")
-def _rk4_lanes(lanes):
-    """An RK4 step of length DT of every lane, from its state to rows X1..W1:
-    ``flight.rk4_step`` with ``flight.derivatives_quadratic``, split into one vectorised loop
-    per stage. The iterations of a loop are independent, so the processor overlaps their long
-    chains of square roots and divisions, where a single loop through the whole step waits on
-    them."""
-    for k in range(LANES):
-        _set_lane_derivative(
-            lanes,
-            K1,
-            k,
-            derivatives_quadratic(
-                lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
-                lanes[W * LANES + k], lanes[Z * LANES + k], _lane_context(lanes, k),
-            ),
-        )  # fmt: skip
-    # (The rows are named in each loop: passed as arguments, they stop it vectorising.)
-    for k in range(LANES):
-        v, d = _lane_stage(
-            lanes, k, 0.5 * lanes[DT * LANES + k], _lane_derivative(lanes, K1, k),
-            lanes[VZ * LANES + k],
-        )  # fmt: skip
-        _set_lane_velocity(lanes, V2, k, v)
-        _set_lane_derivative(lanes, K2, k, d)
-    for k in range(LANES):
-        v, d = _lane_stage(
-            lanes, k, 0.5 * lanes[DT * LANES + k], _lane_derivative(lanes, K2, k),
-            lanes[(V2 + 2) * LANES + k],
-        )  # fmt: skip
-        _set_lane_velocity(lanes, V3, k, v)
-        _set_lane_derivative(lanes, K3, k, d)
-    for k in range(LANES):
-        dt = lanes[DT * LANES + k]
-        v4, k4 = _lane_stage(
-            lanes, k, dt, _lane_derivative(lanes, K3, k), lanes[(V3 + 2) * LANES + k]
-        )
-        x1, y1, z1, vx1, vy1, vz1, w1 = rk4_combine(
-            lanes[X * LANES + k], lanes[Y * LANES + k], lanes[Z * LANES + k],
+# The trajectory of one shot (the traced one) is recorded as the loop takes it, into ``traj``
+# (rows t, x, y, z, phase; ``trajectory.record``). ``tracer`` holds the traced shot (or -1),
+# the next row of ``traj``, and the time of the next point of the run (its bounces and roll)
+# and the interval of those points; the flight's are every TRAJECTORY_DT_S.
+TRACED, ROW, T_NEXT, DT_RECORD = range(4)
+
+
+def _make_flight(derivative, stage, step, constants, context):
+    """The flight of a task's shots of one kind, in lanes: ``derivative`` (ax, ay, az,
+    dspin/dt), its RK4 ``stage`` and ``step`` (``flight._make_rk4``), and how a lane holds the
+    flight's constants (``constants``) and gives them back as the derivative's ``context``."""
+
+    @njit(cache=True, error_model="numpy", inline="always")
+    def lane_stage(lanes, k, c, d, vz_k, table):
+        """The RK4 stage of lane k at c times the derivative d."""
+        return stage(
             lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
-            lanes[W * LANES + k], dt, _lane_velocity(lanes, V2, k),
-            _lane_velocity(lanes, V3, k), v4, _lane_derivative(lanes, K1, k),
-            _lane_derivative(lanes, K2, k), _lane_derivative(lanes, K3, k), k4,
+            lanes[W * LANES + k], lanes[Z * LANES + k], c, d, vz_k, context(lanes, k, table),
         )  # fmt: skip
-        lanes[X1 * LANES + k] = x1
-        lanes[Y1 * LANES + k] = y1
-        lanes[Z1 * LANES + k] = z1
-        lanes[VX1 * LANES + k] = vx1
-        lanes[VY1 * LANES + k] = vy1
-        lanes[VZ1 * LANES + k] = vz1
-        lanes[W1 * LANES + k] = w1
 
-
-@njit(cache=True, error_model="numpy")
-def _step_lanes(lanes):
-    """One flight step of every lane. A lane whose ball stays in the air takes the new state,
-    its apex and time; one that went below the ground keeps the state before the step, for
-    ``_land_lanes``, and the step's z1 and vz1. Returns the number of lanes (empty ones
-    included) that went below the ground or past MAX_FLIGHT_TIME_S."""
-    _rk4_lanes(lanes)
-    events = 0
-    for k in range(LANES):
-        z = lanes[Z * LANES + k]
-        vz = lanes[VZ * LANES + k]
-        z1 = lanes[Z1 * LANES + k]
-        vz1 = lanes[VZ1 * LANES + k]
-        dt = lanes[DT * LANES + k]
-        landed = z1 < 0.0
-        apex = lanes[APEX * LANES + k]
-        lanes[APEX * LANES + k] = apex if landed else apex_after_step(apex, z, vz, z1, vz1, dt)
-        lanes[T * LANES + k] = lanes[T * LANES + k] if landed else lanes[T * LANES + k] + dt
-        lanes[X * LANES + k] = lanes[X * LANES + k] if landed else lanes[X1 * LANES + k]
-        lanes[Y * LANES + k] = lanes[Y * LANES + k] if landed else lanes[Y1 * LANES + k]
-        lanes[Z * LANES + k] = z if landed else z1
-        lanes[VX * LANES + k] = lanes[VX * LANES + k] if landed else lanes[VX1 * LANES + k]
-        lanes[VY * LANES + k] = lanes[VY * LANES + k] if landed else lanes[VY1 * LANES + k]
-        lanes[VZ * LANES + k] = vz if landed else vz1
-        lanes[W * LANES + k] = lanes[W * LANES + k] if landed else lanes[W1 * LANES + k]
-        events += 1 if landed | (lanes[T * LANES + k] > MAX_FLIGHT_TIME_S) else 0
-    return events
-
-
-@njit(cache=True, error_model="numpy")
-def _land_lanes(g):
-    """Locate the landing of the shots in the landing table ``g`` (lane table rows, the step
-    that went below the ground in Z1 and VZ1): ``shot.land``, for LANES shots at a time. Leaves
-    the landing state in rows X1..W1, its time in T, the apex in APEX and the speed and angle
-    at landing in SPEED and ANGLE."""
-    for k in range(LANES):
-        g[DT * LANES + k] = hermite_root(
-            g[Z * LANES + k], g[VZ * LANES + k], g[Z1 * LANES + k], g[VZ1 * LANES + k],
-            g[H_MAX * LANES + k],
-        )  # fmt: skip
-    for _ in range(2):
-        _rk4_lanes(g)
+    @njit(cache=True, error_model="numpy")
+    def rk4_lanes(lanes, table):
+        """An RK4 step of length DT of every lane, from its state to rows X1..W1, split into
+        one loop per stage. The iterations of a loop are independent, so the processor
+        overlaps their long chains of square roots and divisions, where a single loop through
+        the whole step waits on them."""
         for k in range(LANES):
-            g[DT * LANES + k] = landing_newton(
-                g[DT * LANES + k], g[Z1 * LANES + k], g[VZ1 * LANES + k], g[H_MAX * LANES + k]
+            _set_lane_derivative(
+                lanes, K1, k,
+                derivative(
+                    lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
+                    lanes[W * LANES + k], lanes[Z * LANES + k], context(lanes, k, table),
+                ),
+            )  # fmt: skip
+        # (The rows are named in each loop: passed as arguments, they stop it vectorising.)
+        for k in range(LANES):
+            v, d = lane_stage(
+                lanes, k, 0.5 * lanes[DT * LANES + k], _lane_derivative(lanes, K1, k),
+                lanes[VZ * LANES + k], table,
+            )  # fmt: skip
+            _set_lane_velocity(lanes, V2, k, v)
+            _set_lane_derivative(lanes, K2, k, d)
+        for k in range(LANES):
+            v, d = lane_stage(
+                lanes, k, 0.5 * lanes[DT * LANES + k], _lane_derivative(lanes, K2, k),
+                lanes[(V2 + 2) * LANES + k], table,
+            )  # fmt: skip
+            _set_lane_velocity(lanes, V3, k, v)
+            _set_lane_derivative(lanes, K3, k, d)
+        for k in range(LANES):
+            dt = lanes[DT * LANES + k]
+            v4, k4 = lane_stage(
+                lanes, k, dt, _lane_derivative(lanes, K3, k), lanes[(V3 + 2) * LANES + k], table
             )
-    _rk4_lanes(g)
-    for k in range(LANES):
-        h = g[DT * LANES + k]
-        vz1 = g[VZ1 * LANES + k]
-        g[APEX * LANES + k] = apex_after_step(
-            g[APEX * LANES + k], g[Z * LANES + k], g[VZ * LANES + k], 0.0, vz1, h
-        )
-        g[T * LANES + k] = g[T * LANES + k] + h
-        speed, angle_deg = landing_speed_angle(g[VX1 * LANES + k], g[VY1 * LANES + k], vz1)
-        g[SPEED * LANES + k] = speed
-        g[ANGLE * LANES + k] = angle_deg
+            x1, y1, z1, vx1, vy1, vz1, w1 = rk4_combine(
+                lanes[X * LANES + k], lanes[Y * LANES + k], lanes[Z * LANES + k],
+                lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
+                lanes[W * LANES + k], dt, _lane_velocity(lanes, V2, k),
+                _lane_velocity(lanes, V3, k), v4, _lane_derivative(lanes, K1, k),
+                _lane_derivative(lanes, K2, k), _lane_derivative(lanes, K3, k), k4,
+            )  # fmt: skip
+            lanes[X1 * LANES + k] = x1
+            lanes[Y1 * LANES + k] = y1
+            lanes[Z1 * LANES + k] = z1
+            lanes[VX1 * LANES + k] = vx1
+            lanes[VY1 * LANES + k] = vy1
+            lanes[VZ1 * LANES + k] = vz1
+            lanes[W1 * LANES + k] = w1
+
+    @njit(cache=True, error_model="numpy")
+    def record_step(lanes, k, h, table, traj, n):
+        """Trajectory points of lane k inside a flight step of length h from its state, every
+        TRAJECTORY_DT_S up to its end (exclusive), by RK4 from the step's start: the recorded
+        path does not depend on the step."""
+        ctx = context(lanes, k, table)
+        t = lanes[T * LANES + k]
+        j = 1
+        while j * TRAJECTORY_DT_S < h - 1e-9:
+            s = j * TRAJECTORY_DT_S
+            px, py, pz, _, _, _, _ = step(
+                lanes[X * LANES + k], lanes[Y * LANES + k], lanes[Z * LANES + k],
+                lanes[VX * LANES + k], lanes[VY * LANES + k], lanes[VZ * LANES + k],
+                lanes[W * LANES + k], s, ctx,
+            )  # fmt: skip
+            n = record(traj, n, t + s, px, py, pz, FLIGHT)
+            j += 1
+        return n
+
+    @njit(cache=True, error_model="numpy")
+    def step_lanes(lanes, shot, table, traj, tracer):
+        """One flight step of every lane. A lane whose ball stays in the air takes the new
+        state, its apex and time; one that went below the ground keeps the state before the
+        step, for ``land_lanes``, and the step's z1 and vz1. Returns the number of lanes (empty
+        ones included) that went below the ground or past MAX_FLIGHT_TIME_S."""
+        rk4_lanes(lanes, table)
+        traced = -1
+        if tracer[TRACED] >= 0:
+            for k in range(LANES):
+                if shot[k] == tracer[TRACED] and lanes[Z1 * LANES + k] >= 0.0:
+                    traced = k
+                    tracer[ROW] = record_step(
+                        lanes, k, lanes[DT * LANES + k], table, traj, int(tracer[ROW])
+                    )
+        events = 0
+        for k in range(LANES):
+            z = lanes[Z * LANES + k]
+            vz = lanes[VZ * LANES + k]
+            z1 = lanes[Z1 * LANES + k]
+            vz1 = lanes[VZ1 * LANES + k]
+            dt = lanes[DT * LANES + k]
+            landed = z1 < ground.height_at(None, lanes[X1 * LANES + k], lanes[Y1 * LANES + k])
+            apex = lanes[APEX * LANES + k]
+            lanes[APEX * LANES + k] = apex if landed else apex_after_step(apex, z, vz, z1, vz1, dt)
+            lanes[T * LANES + k] = lanes[T * LANES + k] if landed else lanes[T * LANES + k] + dt
+            lanes[X * LANES + k] = lanes[X * LANES + k] if landed else lanes[X1 * LANES + k]
+            lanes[Y * LANES + k] = lanes[Y * LANES + k] if landed else lanes[Y1 * LANES + k]
+            lanes[Z * LANES + k] = z if landed else z1
+            lanes[VX * LANES + k] = lanes[VX * LANES + k] if landed else lanes[VX1 * LANES + k]
+            lanes[VY * LANES + k] = lanes[VY * LANES + k] if landed else lanes[VY1 * LANES + k]
+            lanes[VZ * LANES + k] = vz if landed else vz1
+            lanes[W * LANES + k] = lanes[W * LANES + k] if landed else lanes[W1 * LANES + k]
+            events += 1 if landed | (lanes[T * LANES + k] > MAX_FLIGHT_TIME_S) else 0
+        if traced >= 0:
+            k = traced
+            tracer[ROW] = record(
+                traj, int(tracer[ROW]), lanes[T * LANES + k], lanes[X * LANES + k],
+                lanes[Y * LANES + k], lanes[Z * LANES + k], FLIGHT,
+            )  # fmt: skip
+        return events
+
+    @njit(cache=True, error_model="numpy")
+    def land_lanes(g, table):
+        """Locate the landing of the shots in the landing table ``g`` (lane table rows, the step
+        that went below the ground in Z1 and VZ1): the root of the cubic Hermite interpolant of
+        z, then an RK4 step of that length from the start of the step, refined by Newton steps
+        on z. Leaves the landing state in rows X1..W1, the step in DT, its time in T_LANDING,
+        the apex in APEX and the speed and angle at landing in SPEED_LANDING and ANGLE."""
+        for k in range(LANES):
+            g[DT * LANES + k] = hermite_root(
+                g[Z * LANES + k], g[VZ * LANES + k], g[Z1 * LANES + k], g[VZ1 * LANES + k],
+                g[H_MAX * LANES + k],
+            )  # fmt: skip
+        for _ in range(2):
+            rk4_lanes(g, table)
+            for k in range(LANES):
+                g[DT * LANES + k] = landing_newton(
+                    g[DT * LANES + k], g[Z1 * LANES + k], g[VZ1 * LANES + k],
+                    g[H_MAX * LANES + k],
+                )  # fmt: skip
+        rk4_lanes(g, table)
+        for k in range(LANES):
+            h = g[DT * LANES + k]
+            vz1 = g[VZ1 * LANES + k]
+            # The apex may lie in the landing step (a flight of one or two steps).
+            g[APEX * LANES + k] = apex_after_step(
+                g[APEX * LANES + k], g[Z * LANES + k], g[VZ * LANES + k], 0.0, vz1, h
+            )
+            g[T_LANDING * LANES + k] = g[T * LANES + k] + h
+            speed, angle_deg = landing_speed_angle(g[VX1 * LANES + k], g[VY1 * LANES + k], vz1)
+            g[SPEED_LANDING * LANES + k] = speed
+            g[ANGLE * LANES + k] = angle_deg
+
+    @njit(cache=True, error_model="numpy")
+    def file_landings(g, count, out, start, landings, pending, n_landed, table, traj, tracer):
+        """Land the first ``count`` shots of the landing table ``g``: write their flight fields
+        and their landings, and queue them in ``pending`` after the n_landed there. Returns
+        n_landed."""
+        land_lanes(g, table)
+        for j in range(count):
+            s = g[j::LANES]  # s[row] is row ``row`` of column j
+            i = int(s[SHOT])
+            w1 = s[W1]
+            if i == tracer[TRACED]:
+                n = record_step(g, j, s[DT], table, traj, int(tracer[ROW]))
+                tracer[ROW] = record(traj, n, s[T_LANDING], s[X1], s[Y1], 0.0, FLIGHT)
+                tracer[T_NEXT] = s[T_LANDING] + tracer[DT_RECORD]
+            write_landing(
+                out, i, s[X1], s[Y1], s[T_LANDING], s[APEX], s[SPEED_LANDING], s[ANGLE], w1
+            )
+            landings[i - start] = (
+                s[X1], s[Y1], s[VX1], s[VY1], s[VZ1], w1 * s[AXIS_X], w1 * s[AXIS_Y],
+                w1 * s[AXIS_Z], s[T_LANDING], s[NX], s[NY], s[NZ],
+            )  # fmt: skip
+            pending[n_landed] = i
+            n_landed += 1
+        return n_landed
+
+    @njit(cache=True, error_model="numpy")
+    def load_lane(inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj, tracer):
+        """Put the next shot of this ``kind`` into lane k. Returns the index of the shot after
+        it; shot[k] = -1 when none was left."""
+        while next_i < stop:
+            i = next_i
+            next_i += 1
+            if kinds[i - start] != kind:
+                continue
+            c = inputs[i]
+            p = _params(inputs, i)
+            vx, vy, vz, ax, ay, az, w = initial_state(
+                c[SPEED], c[LAUNCH_ANGLE], c[AZIMUTH], c[SPIN], c[SPIN_AXIS]
+            )
+            for row, value in ((X, 0.0), (Y, 0.0), (Z, 0.0), (VX, vx), (VY, vy), (VZ, vz),
+                               (W, w), (AXIS_X, ax), (AXIS_Y, ay), (AXIS_Z, az),
+                               (DT, c[DT_IN]), (T, 0.0), (APEX, 0.0)):  # fmt: skip
+                lanes[row * LANES + k] = value
+            constants(lanes, k, p, table)
+            shot[k] = i
+            if i == tracer[TRACED]:
+                tracer[ROW] = record(traj, 0, 0.0, 0.0, 0.0, 0.0, FLIGHT)
+            return next_i
+        shot[k] = -1
+        return next_i
+
+    @njit(cache=True, error_model="numpy")
+    def fly(inputs, kinds, kind, start, stop, table, out, landings, pending, n_landed, traj,
+            tracer):  # fmt: skip
+        """Fly shots start..stop-1 of ``inputs`` of this ``kind`` LANES at a time, land them
+        LANES at a time and queue them in ``pending``; returns the number queued there."""
+        lanes = np.zeros(N_LANE_ROWS * LANES)
+        g = np.zeros(N_LANE_ROWS * LANES)  # the landing table
+        waiting = 0  # shots in it
+        shot = np.full(LANES, -1)
+        next_i = start
+        for k in range(LANES):
+            next_i = load_lane(
+                inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj, tracer
+            )
+        while _any_lane_busy(shot):
+            if step_lanes(lanes, shot, table, traj, tracer) == 0:
+                continue
+            for k in range(LANES):
+                i = shot[k]
+                if i < 0:
+                    continue
+                if lanes[Z1 * LANES + k] < 0.0:
+                    for row in range(N_SHOT_ROWS):
+                        g[row * LANES + waiting] = lanes[row * LANES + k]
+                    nx, ny, nz = ground.normal_at(_ground(inputs, i), lanes[X * LANES + k],
+                                                  lanes[Y * LANES + k])  # fmt: skip
+                    for row, value in ((H_MAX, lanes[DT * LANES + k]), (NX, nx), (NY, ny),
+                                       (NZ, nz), (SHOT, float(i))):  # fmt: skip
+                        g[row * LANES + waiting] = value
+                    waiting += 1
+                    if waiting == LANES:
+                        n_landed = file_landings(
+                            g, waiting, out, start, landings, pending, n_landed, table, traj,
+                            tracer,
+                        )  # fmt: skip
+                        waiting = 0
+                    next_i = load_lane(
+                        inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj,
+                        tracer,
+                    )  # fmt: skip
+                elif lanes[T * LANES + k] > MAX_FLIGHT_TIME_S:
+                    fail(out, i, NOT_LANDED)
+                    next_i = load_lane(
+                        inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj,
+                        tracer,
+                    )  # fmt: skip
+        if waiting > 0:
+            n_landed = file_landings(
+                g, waiting, out, start, landings, pending, n_landed, table, traj, tracer
+            )
+        return n_landed
+
+    return fly
+
+
+_fly_quadratic = _make_flight(
+    derivatives_quadratic, rk4_stage_quadratic, rk4_step_quadratic, _quadratic_constants,
+    _quadratic_context,
+)  # fmt: skip
+_fly_general = _make_flight(derivatives, rk4_stage, rk4_step, _general_constants, _general_context)
 
 
 @njit(cache=True, error_model="numpy")
-def _file_landings(g, count, out, start, landings, pending, n_landed):
-    """Land the first ``count`` shots of the landing table ``g``: write their flight fields and
-    their landings, and queue them in ``pending`` after the n_landed there. Returns n_landed."""
-    _land_lanes(g)
-    for j in range(count):
-        s = g[j::LANES]  # s[row] is row ``row`` of column j
-        i = int(s[SHOT])
-        w1 = s[W1]
-        write_landing(out, i, s[X1], s[Y1], s[T], s[APEX], s[SPEED], s[ANGLE], w1)
-        landings[i - start] = (
-            s[X1], s[Y1], s[VX1], s[VY1], s[VZ1], w1 * s[AXIS_X], w1 * s[AXIS_Y],
-            w1 * s[AXIS_Z], s[T], s[NX], s[NY], s[NZ],
-        )  # fmt: skip
-        pending[n_landed] = i
-        n_landed += 1
-    return n_landed
+def _ground(inputs, i):
+    """The ground under shot i (``ground.plane``: its slope and turf)."""
+    return ground.plane(inputs[i, SLOPE], inputs[i, FALL_LINE], _turf(inputs, i))
 
 
 # Bounce lanes: once a task's shots have landed, their bounces run LANES at a time too, one
-# impact and hop of every lane per pass of vectorised loops (``shot.impact`` and ``shot.hop``,
-# the single-shot kernel's own functions); a lane whose ball stops bouncing hands it to the
-# roll table, where LANES shots roll out together (``shot.roll_out_short``, or
-# ``shot.roll_out`` on their own where that is not enough), and takes the next landed shot.
-# Rows of the bounce lane table:
+# impact and hop of every lane per pass of vectorised loops (``bounce.impact`` and
+# ``bounce.hop``); a lane whose ball stops bouncing hands it to the roll table, where LANES
+# shots roll out together (``roll.roll_out_short``, or ``roll.roll_out`` on their own where
+# that is not enough), and takes the next landed shot.
+# Rows of the bounce lane table: the ball, the bouncing so far, and the ground under it (its
+# normal, BNX.., and its turf, MU.., in Turf's order) ...
 (BX, BY, BZ, BVX, BVY, BVZ, BWX, BWY, BWZ, BNX, BNY, BNZ, BT, BOUNCES, PREVIOUS, FIRST_HEIGHT,
- FIRST_LENGTH, THEN, MU, SOFTNESS, E0, E1, E2, E_BREAK, E_HIGH, CRITICAL) = range(26)  # fmt: skip
-# The turf's rolling resistance, and, in the roll table only (below), the shot and where and
-# when ``shot.roll_out_short`` brings it to rest, if it does (SHORT).
-(RHO_G, BSHOT, REST_X, REST_Y, REST_T, SHORT) = range(26, 32)
-N_BOUNCE_ROWS = 32
+ FIRST_LENGTH, THEN, MU) = range(19)  # fmt: skip
+# ... and, in the roll table only, the shot and where and when ``roll.roll_out_short`` brings
+# it to rest, if it does (SHORT).
+(BSHOT, REST_X, REST_Y, REST_T, SHORT) = range(MU + len(Turf._fields), MU + len(Turf._fields) + 5)
+N_BOUNCE_ROWS = SHORT + 1
 # The equivalent surface of the impact under way (``bounce.incidence``), a table of its own:
 # its normal and v.e. (Written into the bounce table, which the same loop reads, it kept the
 # compiler from vectorising the loop: 12 % of the kernel's time.)
@@ -368,30 +528,28 @@ N_LANDING = 12
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _bounce_turf(b, k):
-    """The turf of bounce lane k, as far as the impact needs it (no rolling resistance)."""
-    return Turf(
-        b[MU * LANES + k],
-        b[SOFTNESS * LANES + k],
-        b[E0 * LANES + k],
-        b[E1 * LANES + k],
-        b[E2 * LANES + k],
-        b[E_BREAK * LANES + k],
-        b[E_HIGH * LANES + k],
-        0.0,
-        b[CRITICAL * LANES + k],
-    )
+def _lane_ground(b, k):
+    """The ground under bounce lane k."""
+    return ground.Plane(
+        b[BNX * LANES + k], b[BNY * LANES + k], b[BNZ * LANES + k],
+        Turf(b[MU * LANES + k], b[(MU + 1) * LANES + k], b[(MU + 2) * LANES + k],
+             b[(MU + 3) * LANES + k], b[(MU + 4) * LANES + k], b[(MU + 5) * LANES + k],
+             b[(MU + 6) * LANES + k], b[(MU + 7) * LANES + k], b[(MU + 8) * LANES + k]),
+    )  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy")
 def _impact_lanes(b, e):
-    """One impact, and the hop it starts, for every bounce lane: ``shot.impact`` in two
-    vectorised loops (as ``_step_lanes``, so that the lanes' long chains overlap). Returns the
-    number of lanes (empty ones included) whose ball no longer hops."""
+    """One impact, and the hop it starts, for every bounce lane: ``bounce.impact`` in two
+    vectorised loops (as ``step_lanes``, so that the lanes' long chains overlap), on the ground
+    under the ball. Returns the number of lanes (empty ones included) whose ball no longer
+    hops."""
     for k in range(LANES):
+        under = _lane_ground(b, k)
+        nx, ny, nz = ground.normal_at(under, b[BX * LANES + k], b[BY * LANES + k])
         ex, ey, ez, vne, _ = incidence(
-            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BNX * LANES + k],
-            b[BNY * LANES + k], b[BNZ * LANES + k], _bounce_turf(b, k),
+            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], nx, ny, nz,
+            ground.turf_at(under, b[BX * LANES + k], b[BY * LANES + k]),
         )  # fmt: skip
         e[EX * LANES + k] = ex
         e[EY * LANES + k] = ey
@@ -399,22 +557,24 @@ def _impact_lanes(b, e):
         e[VNE * LANES + k] = vne
     ended = 0
     for k in range(LANES):
-        turf = _bounce_turf(b, k)
+        under = _lane_ground(b, k)
+        x = b[BX * LANES + k]
+        y = b[BY * LANES + k]
+        nx, ny, nz = ground.normal_at(under, x, y)
         bounces = b[BOUNCES * LANES + k]
         vx, vy, vz, wx, wy, wz, height, hop_time, then = impact_rebound(
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BWX * LANES + k],
-            b[BWY * LANES + k], b[BWZ * LANES + k], b[BNX * LANES + k], b[BNY * LANES + k],
-            b[BNZ * LANES + k], e[EX * LANES + k], e[EY * LANES + k], e[EZ * LANES + k],
-            e[VNE * LANES + k], turf, bounces, b[PREVIOUS * LANES + k],
+            b[BWY * LANES + k], b[BWZ * LANES + k], nx, ny, nz, e[EX * LANES + k],
+            e[EY * LANES + k], e[EZ * LANES + k], e[VNE * LANES + k],
+            ground.turf_at(under, x, y), bounces, b[PREVIOUS * LANES + k],
         )  # fmt: skip
-        x = b[BX * LANES + k]
-        x1, y1, z1, vz1 = hop(x, b[BY * LANES + k], b[BZ * LANES + k], vx, vy, vz, hop_time)
+        x1, y1, z1, vz1 = hop(x, y, b[BZ * LANES + k], vx, vy, vz, hop_time)
         hops = then == HOPS
         first = hops & (bounces == 0)
         b[FIRST_HEIGHT * LANES + k] = height if first else b[FIRST_HEIGHT * LANES + k]
         b[FIRST_LENGTH * LANES + k] = x1 - x if first else b[FIRST_LENGTH * LANES + k]
         b[BX * LANES + k] = x1 if hops else x
-        b[BY * LANES + k] = y1 if hops else b[BY * LANES + k]
+        b[BY * LANES + k] = y1 if hops else y
         b[BZ * LANES + k] = z1 if hops else b[BZ * LANES + k]
         b[BVX * LANES + k] = vx
         b[BVY * LANES + k] = vy
@@ -431,56 +591,62 @@ def _impact_lanes(b, e):
 
 
 @njit(cache=True, error_model="numpy")
+def _record_hop(b, k, before, traj, tracer):
+    """The trajectory points of the hop bounce lane k has just started from the state
+    ``before`` (its rows before the impact): the impact taken again (``bounce.impact``, the
+    same numbers), then the ballistic arc every DT_RECORD."""
+    s = before
+    under = _lane_ground(b, k)
+    nx, ny, nz = ground.normal_at(under, s[BX], s[BY])
+    vx, vy, vz, _, _, _, _, hop_time, _ = impact(
+        s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ], nx, ny, nz,
+        ground.turf_at(under, s[BX], s[BY]), s[BOUNCES], s[PREVIOUS],
+    )  # fmt: skip
+    n = int(tracer[ROW])
+    t = s[BT]
+    while tracer[T_NEXT] < t + hop_time:
+        h = tracer[T_NEXT] - t
+        n = record(
+            traj, n, tracer[T_NEXT], s[BX] + vx * h, s[BY] + vy * h,
+            s[BZ] + vz * h - 0.5 * G_MPS2 * h * h, BOUNCE,
+        )  # fmt: skip
+        tracer[T_NEXT] += tracer[DT_RECORD]
+    tracer[ROW] = n
+
+
+@njit(cache=True, error_model="numpy")
 def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k):
     """Put the next landed shot of ``pending`` into bounce lane k (shot[k] = -1 if none)."""
     if next_j == pending.shape[0]:
         shot[k] = -1
         return next_j
     i = pending[next_j]
-    c = inputs[i]
     g = landings[i - start]
-    for field, value in (
-        (BX, g[0]),
-        (BY, g[1]),
-        (BZ, 0.0),
-        (BVX, g[2]),
-        (BVY, g[3]),
-        (BVZ, g[4]),
-        (BWX, g[5]),
-        (BWY, g[6]),
-        (BWZ, g[7]),
-        (BT, g[8]),
-        (BNX, g[9]),
-        (BNY, g[10]),
-        (BNZ, g[11]),
-        (BOUNCES, 0.0),
-        (PREVIOUS, 0.0),
-        (FIRST_HEIGHT, 0.0),
-        (FIRST_LENGTH, 0.0),
-        (MU, c[15]),
-        (SOFTNESS, c[16]),
-        (E0, c[17]),
-        (E1, c[18]),
-        (E2, c[19]),
-        (E_BREAK, c[20]),
-        (E_HIGH, c[21]),
-        (CRITICAL, c[23]),
-        (RHO_G, c[22]),
-    ):
-        b[field * LANES + k] = value
+    turf = _turf(inputs, i)
+    for row, value in ((BX, g[0]), (BY, g[1]), (BZ, 0.0), (BVX, g[2]), (BVY, g[3]), (BVZ, g[4]),
+                       (BWX, g[5]), (BWY, g[6]), (BWZ, g[7]), (BT, g[8]), (BNX, g[9]),
+                       (BNY, g[10]), (BNZ, g[11]), (BOUNCES, 0.0), (PREVIOUS, 0.0),
+                       (FIRST_HEIGHT, 0.0), (FIRST_LENGTH, 0.0)):  # fmt: skip
+        b[row * LANES + k] = value
+    for j, value in enumerate(turf):
+        b[(MU + j) * LANES + k] = value
     shot[k] = i
     return next_j + 1
 
 
 @njit(cache=True, error_model="numpy")
 def _roll_lanes(r):
-    """``shot.roll_out_short`` of every lane of the roll table ``r`` (the vectorised loop)."""
+    """``roll.roll_out_short`` of every lane of the roll table ``r`` (the vectorised loop)."""
     for k in range(LANES):
+        under = _lane_ground(r, k)
+        x = r[BX * LANES + k]
+        y = r[BY * LANES + k]
+        nx, ny, nz = ground.normal_at(under, x, y)
+        turf = ground.turf_at(under, x, y)
         x, y, t, short = roll_out_short(
-            r[BX * LANES + k], r[BY * LANES + k], r[BZ * LANES + k], r[BVX * LANES + k],
-            r[BVY * LANES + k], r[BVZ * LANES + k], r[BWX * LANES + k], r[BWY * LANES + k],
-            r[BWZ * LANES + k], r[BNX * LANES + k], r[BNY * LANES + k], r[BNZ * LANES + k],
-            r[MU * LANES + k], r[RHO_G * LANES + k], r[BT * LANES + k],
+            x, y, r[BZ * LANES + k], r[BVX * LANES + k], r[BVY * LANES + k],
+            r[BVZ * LANES + k], r[BWX * LANES + k], r[BWY * LANES + k], r[BWZ * LANES + k], nx,
+            ny, nz, turf.mu, turf.rho_g, r[BT * LANES + k],
         )  # fmt: skip
         r[REST_X * LANES + k] = x
         r[REST_Y * LANES + k] = y
@@ -489,41 +655,57 @@ def _roll_lanes(r):
 
 
 @njit(cache=True, error_model="numpy")
-def _file_rolls(inputs, start, landings, r, count, out):
+def _file_rolls(start, landings, r, count, out, traj, tracer):
     """Roll out the first ``count`` shots of the roll table ``r`` and write their run: LANES
-    at a time by ``_roll_lanes``, and on their own (``shot.roll_out``) where that is not
-    enough."""
+    at a time by ``_roll_lanes``, and on their own (``roll.roll_out``) where that is not
+    enough or the shot is traced."""
     _roll_lanes(r)
-    no_trajectory = np.empty((0, 5))
     for j in range(count):
         s = r[j::LANES]  # s[row] is row ``row`` of column j
         i = int(s[BSHOT])
         x, y, t, status = s[REST_X], s[REST_Y], s[REST_T], OK
-        if s[SHORT] == 0.0:
-            x, y, _, t, status, _ = roll_out(
-                s[BX], s[BY], s[BZ], s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ], s[BNX],
-                s[BNY], s[BNZ], _turf(inputs, i), s[BT], no_trajectory, 0, s[BT],
-                TRAJECTORY_DT_S,
+        traced = i == tracer[TRACED]
+        if s[SHORT] == 0.0 or traced:
+            under = _lane_ground(r, j)
+            nx, ny, nz = ground.normal_at(under, s[BX], s[BY])
+            x, y, _, t, status, n = roll_out(
+                s[BX], s[BY], s[BZ], s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ], nx, ny, nz,
+                ground.turf_at(under, s[BX], s[BY]), s[BT], traj if traced else traj[:0],
+                int(tracer[ROW]) if traced else 0, tracer[T_NEXT] if traced else s[BT],
+                tracer[DT_RECORD],
             )  # fmt: skip
+            if traced:
+                tracer[ROW] = n
         landing_x = landings[i - start, 0]
         write_run(out, i, landing_x, x, y, t, status, s[BOUNCES], s[FIRST_HEIGHT], s[FIRST_LENGTH])
 
 
 @njit(cache=True, error_model="numpy")
-def _bounce_all(inputs, start, landings, pending, out):
+def _bounce_all(inputs, start, landings, pending, out, traj, tracer):
     """The bounces and the roll of the landed shots ``pending``, LANES at a time; a shot that
     stops hopping waits in the roll table until LANES shots roll out together."""
     b = np.zeros(N_BOUNCE_ROWS * LANES)
     r = np.zeros(N_BOUNCE_ROWS * LANES)  # the roll table
     e = np.zeros(N_SURFACE_ROWS * LANES)  # the equivalent surfaces of the impacts
+    before = np.zeros(N_BOUNCE_ROWS)  # the traced lane before its impact
     waiting = 0  # shots in it
     shot = np.full(LANES, -1)
     next_j = 0
     for k in range(LANES):
         next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
     while _any_lane_busy(shot):
+        traced = -1
+        if tracer[TRACED] >= 0:
+            for k in range(LANES):
+                if shot[k] == tracer[TRACED]:
+                    traced = k
+                    before[:] = b[k::LANES]
         if _impact_lanes(b, e) == 0:
+            if traced >= 0:
+                _record_hop(b, traced, before, traj, tracer)
             continue
+        if traced >= 0 and b[THEN * LANES + traced] == HOPS:
+            _record_hop(b, traced, before, traj, tracer)
         for k in range(LANES):
             i = shot[k]
             if i < 0:
@@ -543,52 +725,34 @@ def _bounce_all(inputs, start, landings, pending, out):
                 r[BSHOT * LANES + waiting] = i
                 waiting += 1
                 if waiting == LANES:
-                    _file_rolls(inputs, start, landings, r, waiting, out)
+                    _file_rolls(start, landings, r, waiting, out, traj, tracer)
                     waiting = 0
             next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
     if waiting > 0:
-        _file_rolls(inputs, start, landings, r, waiting, out)
+        _file_rolls(start, landings, r, waiting, out, traj, tracer)
 
 
 @njit(cache=True, error_model="numpy")
-def _lockstep(inputs, start, stop, table, out):
-    """Simulate shots start..stop-1 of ``inputs`` into ``out``: their flights LANES at a time,
-    their landings LANES at a time, then their bounces LANES at a time, then each roll."""
-    lanes = np.zeros(N_LANE_ROWS * LANES)
-    g = np.zeros(N_LANE_ROWS * LANES)  # the landing table
-    waiting = 0  # shots in it
-    shot = np.full(LANES, -1)
+def _lockstep(inputs, start, stop, table, out, traj, tracer):
+    """Simulate shots start..stop-1 of ``inputs`` into ``out``: check them, fly each kind
+    LANES at a time and land them LANES at a time, then bounce and roll them out LANES at a
+    time."""
+    kinds = np.empty(stop - start, dtype=np.int8)
+    general = False
+    for i in range(start, stop):
+        kinds[i - start] = _kind(inputs, i, out)
+        general |= kinds[i - start] == GENERAL
     landings = np.empty((stop - start, N_LANDING))
     pending = np.empty(stop - start, dtype=np.int64)
-    n_landed = 0
-    next_i = start
-    for k in range(LANES):
-        next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
-    while _any_lane_busy(shot):
-        if _step_lanes(lanes) == 0:
-            continue
-        for k in range(LANES):
-            i = shot[k]
-            if i < 0:
-                continue
-            if lanes[Z1 * LANES + k] < 0.0:
-                for row in range(N_SHOT_ROWS):
-                    g[row * LANES + waiting] = lanes[row * LANES + k]
-                nx, ny, nz = ground_normal(inputs[i, 24], inputs[i, 25])
-                for row, value in ((H_MAX, lanes[DT * LANES + k]), (NX, nx), (NY, ny), (NZ, nz)):
-                    g[row * LANES + waiting] = value
-                g[SHOT * LANES + waiting] = i
-                waiting += 1
-                if waiting == LANES:
-                    n_landed = _file_landings(g, waiting, out, start, landings, pending, n_landed)
-                    waiting = 0
-                next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
-            elif lanes[T * LANES + k] > MAX_FLIGHT_TIME_S:
-                fail(out, i, NOT_LANDED)
-                next_i = _load_lane(inputs, next_i, stop, table, out, lanes, shot, k)
-    if waiting > 0:
-        n_landed = _file_landings(g, waiting, out, start, landings, pending, n_landed)
-    _bounce_all(inputs, start, landings, pending[:n_landed], out)
+    n_landed = _fly_quadratic(
+        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, 0, traj, tracer
+    )
+    if general:
+        n_landed = _fly_general(
+            inputs, kinds, GENERAL, start, stop, table, out, landings, pending, n_landed, traj,
+            tracer,
+        )  # fmt: skip
+    _bounce_all(inputs, start, landings, pending[:n_landed], out, traj, tracer)
 
 
 # Shots per parallel task: enough to keep the lanes full, few enough to balance two threads.
@@ -599,32 +763,40 @@ TASK_SHOTS = 2048
 def _simulate_batch(inputs, table, out):
     n = inputs.shape[0]
     tasks = (n + TASK_SHOTS - 1) // TASK_SHOTS
+    no_trajectory = np.empty((0, 5))
     for task in prange(tasks):
-        _lockstep(inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out)
+        untraced = np.full(4, -1.0)
+        _lockstep(
+            inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out,
+            no_trajectory, untraced,
+        )  # fmt: skip
+
+
+def _as_kernel_layout(inputs):
+    """``inputs`` as the one layout the kernel is compiled for: float64, Fortran order, at
+    least two rows. Numba types an array of fewer than two rows as C-contiguous (it is both),
+    which would compile the kernel again for that layout: such a batch runs as two rows,
+    padded with zeros (a shot of speed 0, answered with invalid_input at once)."""
+    if inputs.ndim != 2 or inputs.shape[1] != N_INPUT:
+        raise ValueError(f"inputs must have shape (n, {N_INPUT}), got {inputs.shape}")
+    if inputs.shape[0] < 2:
+        padded = np.zeros((2, N_INPUT), order="F")
+        padded[: inputs.shape[0]] = inputs
+        return padded
+    # A slice of the rows (not contiguous) is copied, not compiled again.
+    return np.asfortranarray(inputs, dtype=np.float64)
 
 
 def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS):
     """Simulate every row of ``inputs`` (n, N_INPUT); return ``out`` (n, N_OUTCOME), F-order."""
-    if inputs.ndim != 2 or inputs.shape[1] != N_INPUT:
-        raise ValueError(f"inputs must have shape (n, {N_INPUT}), got {inputs.shape}")
-    n = inputs.shape[0]
-    if n < 2:
-        # Numba types an array of fewer than two rows as C-contiguous (it is both), which would
-        # compile the kernel again for that layout: such a batch runs as two rows, padded with
-        # zeros (a shot of speed 0, answered with invalid_input at once).
-        padded = np.zeros((2, N_INPUT), order="F")
-        padded[:n] = inputs
-        result = np.empty((2, N_OUTCOME), order="F")
-        _run(padded, table, result)
-        if out is None:
-            out = np.empty((n, N_OUTCOME), order="F")
-        out[:] = result[:n]
-        return out
-    # One compiled layout: a slice of the rows (not contiguous) is copied, not compiled again.
-    inputs = np.asfortranarray(inputs, dtype=np.float64)
+    n = inputs.shape[0] if inputs.ndim == 2 else 0
+    rows = _as_kernel_layout(inputs)
     if out is None:
         out = np.empty((n, N_OUTCOME), order="F")
-    _run(inputs, table, out)
+    result = out if rows.shape[0] == n else np.empty((rows.shape[0], N_OUTCOME), order="F")
+    _run(rows, table, result)
+    if result is not out:
+        out[:] = result[:n]
     return out
 
 
@@ -644,7 +816,55 @@ def _run(inputs, table, out):
 
 
 @njit(cache=True, error_model="numpy")
-def trajectory_of(inputs, i, table, traj):
-    """Trajectory of shot i of ``inputs`` into ``traj`` (m, 5); returns its number of points."""
-    out = np.empty((1, N_OUTCOME))
-    return _shot(inputs, i, table, out, 0, traj)
+def _simulate_traced(inputs, shot, table, out, traj):
+    tracer = np.array([float(shot), 0.0, 0.0, TRAJECTORY_DT_S])
+    _lockstep(inputs, 0, inputs.shape[0], table, out, traj, tracer)
+    return int(tracer[ROW])
+
+
+def simulate_traced(inputs, shot, table=QUADRATIC_COEFFICIENTS, trajectory_rows=4096):
+    """Simulate the rows of ``inputs`` on this thread, recording the path of row ``shot``:
+    returns (outcomes (n, N_OUTCOME), trajectory (m, 5): t, x, y, z, phase, user frame). The
+    buffer grows until the whole path fits."""
+    n = inputs.shape[0]
+    rows = _as_kernel_layout(inputs)
+    out = np.empty((rows.shape[0], N_OUTCOME), order="F")
+    size = trajectory_rows
+    while True:
+        traj = np.empty((size, 5))
+        m = _simulate_traced(rows, shot, table, out, traj)
+        if m <= size:
+            return out[:n], traj[:m]
+        size = m
+
+
+@njit(cache=True, error_model="numpy")
+def _simulate_landed(inputs, landings, out, traj, tracer):
+    _bounce_all(inputs, 0, landings, np.arange(landings.shape[0]), out, traj, tracer)
+    return int(tracer[ROW])
+
+
+def simulate_landed(inputs, landings, traced=-1, dt_record_s=TRAJECTORY_DT_S, trajectory_rows=4096):
+    """The run alone (bounces, slide and roll) of balls that have landed: the loop from its
+    landing on, for studies of the bounce (Penner's figures start from a landing).
+
+    ``landings`` (n, N_LANDING): x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz of each ball as it
+    touches the ground, in the core's frame (y to the LEFT), with the ground's normal;
+    ``inputs`` (n, N_INPUT) gives each its turf. Returns (outcomes, trajectory): the run's
+    fields of ``schema.OUTCOME_FIELDS`` (from ``bounces`` on; total_m and final_x_m are the x
+    where the ball rests, run_m its distance from the landing), and the path of row
+    ``traced`` (rows t, x, y, z, phase every ``dt_record_s``, user frame; empty if none).
+    """
+    n = landings.shape[0]
+    rows = _as_kernel_layout(inputs)
+    landings = np.ascontiguousarray(landings, dtype=np.float64)
+    out = np.full((rows.shape[0], N_OUTCOME), np.nan, order="F")
+    size = trajectory_rows if traced >= 0 else 0
+    while True:
+        traj = np.empty((size, 5))
+        t_next = landings[traced, 8] + dt_record_s if traced >= 0 else 0.0
+        tracer = np.array([float(traced), 0.0, t_next, dt_record_s])
+        m = _simulate_landed(rows, landings, out, traj, tracer)
+        if m <= size:
+            return out[:n], traj[:m]
+        size = m

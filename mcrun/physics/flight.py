@@ -174,11 +174,12 @@ def _make_rk4(deriv):
     return rk4_stage, rk4_step
 
 
-# rk4_step(x, y, z, vx, vy, vz, spin, h, ctx) for any shot (ctx as for ``derivatives``), and
-# the RK4 stage of a quadratic model in uniform wind (ctx as for ``derivatives_quadratic``),
-# which a block of shots steps through one loop at a time (``batch``): the same numbers.
-_, rk4_step = _make_rk4(derivatives)
-rk4_stage_quadratic, _ = _make_rk4(derivatives_quadratic)
+# rk4_step(x, y, z, vx, vy, vz, spin, h, ctx) and its stage for any shot (ctx as for
+# ``derivatives``), and for a quadratic model in uniform wind (ctx as for
+# ``derivatives_quadratic``), which a block of shots steps through one loop at a time: the same
+# numbers.
+rk4_stage, rk4_step = _make_rk4(derivatives)
+rk4_stage_quadratic, rk4_step_quadratic = _make_rk4(derivatives_quadratic)
 
 
 # Newton steps of ``hermite_root``: three reach the root to 1e-14 s on the pga-driver shots.
@@ -192,7 +193,7 @@ def hermite_root(z0, vz0, z1, vz1, h):
 
     Newton's method on the cubic in s = t / h, safeguarded by bisection, a fixed number of
     steps without branches (for loops over many shots): the root only starts the Newton steps
-    on the RK4 step itself (``shot.land``). It starts from the chord's root, or, on a step that
+    on the RK4 step itself (``engine.batch``). It starts from the chord's root, or, on a step that
     starts on the ground (the launch: a flight shorter than one step), from the end of the step,
     so that a rising ball finds its landing and not its launch.
     """

@@ -218,3 +218,68 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
         if done and static:
             break
     return px, py, pz, t, OK, n
+
+
+@njit(cache=True)
+def roll_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, t_next, dt):
+    """After the last impact: the ball stays on the ground with its velocity along the plane,
+    slides and rolls to rest (``roll.roll``). Returns (x, y, z, t, status, n)."""
+    vn = vx * nx + vy * ny + vz * nz
+    x, y, z, t, status, n = roll(
+        x,
+        y,
+        z,
+        vx - vn * nx,
+        vy - vn * ny,
+        vz - vn * nz,
+        wx,
+        wy,
+        wz,
+        nx,
+        ny,
+        nz,
+        turf,
+        t,
+        traj,
+        n,
+        t_next,
+        dt,
+    )
+    n = record(traj, n, t, x, y, z, ROLL)
+    return x, y, z, t, status, n
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def roll_out_short(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, mu, rho_g, t):
+    """``roll_out`` without branches, for loops over many shots, when at most one step of
+    slide and one of roll bring the ball to rest (level ground: each step ends its phase).
+    Returns (x, y, t, short): where short is False (on a slope, say), the ball needs
+    ``roll_out`` itself."""
+    vn = vx * nx + vy * ny + vz * nz
+    vx = vx - vn * nx
+    vy = vy - vn * ny
+    vz = vz - vn * nz
+    g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
+    ux, uy, uz = contact_slip(vx, vy, vz, wx, wy, wz, nx, ny, nz)
+    u = math.sqrt(ux * ux + uy * uy + uz * uz)
+    slides = u > 1e-12
+    _, h, slid, x1, y1, z1, vx1, vy1, vz1, _, _, _ = slide_step(
+        x, y, z, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, mu * g_n, h_max, snap
+    )
+    px = x1 if slides else x
+    py = y1 if slides else y
+    pz = z1 if slides else z
+    vx = vx1 if slides else vx
+    vy = vy1 if slides else vy
+    vz = vz1 if slides else vz
+    t1 = t + h if slides else t
+    k_roll = rho_g * g_n
+    far = (t1 - t > MAX_ROLL_TIME_S) | rolled_too_far(px, py, x, y)
+    v = math.sqrt(vx * vx + vy * vy + vz * vz)
+    moving = v > 1e-12
+    _, h, stopped, x2, y2, _, _, _, _ = roll_step(
+        px, py, pz, vx, vy, vz, vx * (1.0 / v), vy * (1.0 / v), vz * (1.0 / v), gx, gy, gz,
+        k_roll, h_max, (5.0 / 7.0) * snap,
+    )  # fmt: skip
+    short = (slid | ~slides) & ~far & (g_t <= k_roll) & (stopped | ~moving)
+    return (x2 if moving else px), (y2 if moving else py), (t1 + h if moving else t1), short

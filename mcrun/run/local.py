@@ -34,10 +34,8 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from mcrun.api import InputError
-from mcrun.engine.backend import simulate_batch
-from mcrun.engine.batch import trajectory_of
+from mcrun.engine.backend import simulate_batch, simulate_traced
 from mcrun.engine.schema import N_INPUT, N_OUTCOME, OUTCOME_FIELDS
-from mcrun.physics import aero
 from mcrun.results import output, stats
 from mcrun.run import sampling
 from mcrun.run import scenario as scenario_module
@@ -329,12 +327,8 @@ def _trajectories(writer, inputs, point, start, stop, every, buffer):
     """Paths of the shots start <= i < stop with i % every == 0 (rows of ``inputs``)."""
     first = -(-start // every) * every
     for i in range(first, stop, every):
-        while True:
-            n = trajectory_of(inputs, i - start, aero.QUADRATIC_COEFFICIENTS, buffer)
-            if n <= buffer.shape[0]:
-                break
-            buffer = np.empty((2 * n, 5))
-        writer.add(point, i, buffer[:n])
+        _, path = simulate_traced(inputs[i - start : i - start + 1])
+        writer.add(point, i, path)
     return buffer
 
 
