@@ -19,6 +19,7 @@ import pytest
 
 from mcrun.results import output
 from mcrun.run import local as run
+from mcrun.run import plan as run_plan
 from mcrun.run import sampling, scenario
 
 SWEEP = """\
@@ -92,12 +93,12 @@ def test_a_sweeps_cost_per_point_does_not_grow_with_its_points(tmp_path, monkeyp
 
 def test_plan_counts_points_shots_time_and_size(tmp_path):
     loaded = scenario.load(sweep(tmp_path, 3))
-    plan = run.plan(loaded, 10)
-    assert (plan.points, plan.n, plan.shots) == (9, 10, 90)
+    plan = run_plan.plan(loaded, 10)
+    assert (len(plan.points), plan.n, plan.shots) == (9, 10, 90)
     assert plan.seconds > 0 and plan.bytes > 90 * 100
-    with_paths = run.plan(loaded, 10, trajectories_every=1)
+    with_paths = run_plan.plan(loaded, 10, trajectories_every=1)
     assert with_paths.bytes > plan.bytes
-    line = run.plan(loaded, 1_000_000).line()
+    line = run_plan.plan(loaded, 1_000_000).line()
     assert line.startswith("mcrun: 9 points x 1,000,000 shots = 9,000,000 shots; about 23 s ")
     assert "s of simulation" in line and "of Parquet" in line
 
@@ -108,7 +109,7 @@ def test_plan_size_is_an_upper_bound_of_what_a_run_writes(tmp_path):
         out = tmp_path / f"run-{n}"
         run.run_scenario(loaded, n=n, out_dir=out, trajectories_every=every, progress=False)
         written = sum(f.stat().st_size for f in out.iterdir())
-        estimate = run.plan(loaded, n, trajectories_every=every).bytes
+        estimate = run_plan.plan(loaded, n, trajectories_every=every).bytes
         # Conservative, but not absurdly so.
         assert written <= estimate <= 6 * written, (n, written, estimate)
 

@@ -245,7 +245,7 @@ def test_shots_are_read_a_row_group_and_the_drawn_columns_at_a_time(runs, monkey
             calls.append((kwargs.get("row_groups"), tuple(kwargs.get("columns"))))
             return super().iter_batches(*args, **kwargs)
 
-    monkeypatch.setattr(plots.pq, "ParquetFile", Recording)
+    monkeypatch.setattr(pq, "ParquetFile", Recording)
     run = plots.open_run(runs["sweep"])
     drawn = plots.read_point_shots(run, 1)
     assert drawn.n_ok == run.summary.loc[1, "n_ok"]

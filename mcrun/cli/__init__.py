@@ -571,7 +571,7 @@ COMMAND_MODULES = {
     "calibrate": "mcrun.calibrate",
     "paper": "mcrun.paper",
     "plot": "mcrun.report.plots",
-    "report": "mcrun.report.plots",
+    "report": "mcrun.report.html",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 

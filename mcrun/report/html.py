@@ -5,7 +5,8 @@ per point, the unit in each header), every plot of ``mcrun plot`` embedded as a 
 and the provenance (seed, N, versions, times, threads, backend, the summary's conventions). Inline
 CSS, no script, no link to anything outside the page (its only links are to its own sections),
 so that it can be mailed to someone who will not run Python. The plots are drawn one at a time
-and encoded at once; shots.parquet is read as ``mcrun plot`` reads it (``mcrun.report.plots``).
+and encoded at once; the run, local or Dask, is read as ``mcrun plot`` reads it
+(``mcrun.report.plots``, through ``mcrun.results.reader``).
 """
 
 import argparse
@@ -28,10 +29,10 @@ from mcrun.report.plots import (
     figures,
     open_run,
     png_bytes,
-    reason_of,
     require_matplotlib,
 )
 from mcrun.results import output, stats
+from mcrun.results.reader import reason_of
 from mcrun.units import UnitError
 
 DEFAULT_REPORT_DPI = 100
@@ -368,7 +369,7 @@ def write_report(run_dir, path=None, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER
     is written under a temporary name and renamed into place when complete."""
     run = open_run(run_dir)
     require_matplotlib("report")
-    path = Path(run.path / REPORT_FILE if path is None else path)
+    path = Path(run.beside(REPORT_FILE) if path is None else path)
     destination = output.AtomicFile(path, force=True)
     try:
         destination.__enter__()  # refuses a folder or an unwritable place, creates the parents
@@ -398,10 +399,7 @@ def _cmd_report(args):
 
 
 def register(subparsers):
-    """Add ``report`` to an argparse subparsers object (once: ``mcrun.report.plots.register`` calls
-    this too)."""
-    if "report" in subparsers.choices:
-        return
+    """Add ``report`` to an argparse subparsers object."""
     p = subparsers.add_parser(
         "report",
         help="one self-contained HTML page of a finished run",

@@ -1,6 +1,7 @@
 """``mcrun plot RUN_DIR -o DIR``: the pictures of a finished run, one PNG per plot.
 
-``mcrun plot`` writes one PNG per plot of a finished run folder (``mcrun run``):
+``mcrun plot`` writes one PNG per plot of a finished run folder (``mcrun run``, local or Dask:
+read through ``mcrun.results.reader``):
 
 - ``pointNN-positions.png``: (a) where the balls land (carry_m, carry_lateral_m) and (b) where
   they finish (final_x_m, final_y_m), seen from above with the target line pointing up, the
@@ -16,9 +17,9 @@
 
 ``mcrun report`` (``mcrun.report.html``) embeds the same plots in one self-contained HTML page.
 
-Memory, whatever the number of shots: shots.parquet is read one point at a time (the row
-groups whose statistics hold that point), only the columns the plots need, in batches of
-``BATCH_ROWS``. What is drawn from it:
+Memory, whatever the number of shots: the shots are read one point at a time (the row groups
+of shots.parquet, or the parts of a Dask run's dataset, that hold that point), only the
+columns the plots need, in batches of ``BATCH_ROWS``. What is drawn from them:
 
 - histograms (1-D of carry, run, total; 2-D of the landing and final positions) are BINNED,
   accumulated batch by batch over every ok shot of the point, on bins fixed beforehand from
@@ -46,14 +47,12 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-import pyarrow as pa
-import pyarrow.parquet as pq
 
 from mcrun import exits
 from mcrun import status as status_codes
 from mcrun.api import InputError
 from mcrun.paper import DPI_RANGE, dpi_value
-from mcrun.results import output, stats
+from mcrun.results import output, reader, stats
 from mcrun.run.scenario import question_of
 from mcrun.units import UnitError
 
@@ -114,17 +113,29 @@ class PlotError(InputError):
 
 @dataclass
 class Run:
-    """A run folder, opened: its summary, provenance and what it holds."""
+    """A run folder opened for its pictures: the reader's ``RunFolder`` (either layout), its
+    summary by point and the swept parameters (the summary's columns between label and
+    n_shots)."""
 
-    path: Path
+    folder: reader.RunFolder
     summary: pd.DataFrame
-    provenance: dict
     sweep_keys: list
-    has_trajectories: bool
+
+    @property
+    def path(self):
+        return self.folder.path
+
+    @property
+    def provenance(self):
+        return self.folder.provenance
+
+    @property
+    def has_trajectories(self):
+        return self.folder.has_trajectories
 
     @property
     def name(self):
-        return self.provenance.get("scenario_name") or self.path.name
+        return self.provenance.get("scenario_name") or Path(str(self.path)).name
 
     @property
     def n(self):
@@ -154,36 +165,18 @@ class Run:
             isinstance(g, dict) and "target" in g for g in groups
         )
 
-    def file(self, name):
-        return self.path / name
-
-
-def reason_of(err):
-    """The one-line reason of an OSError or an Arrow error."""
-    if isinstance(err, OSError):
-        return err.strerror or str(err)
-    return " ".join(str(err).split())
+    def beside(self, name):
+        """``name`` in the run folder: where its pictures go unless told (-o)."""
+        if self.folder.url is not None:
+            raise PlotError(f"{self.path} is a URL: give -o, a local file or folder to write")
+        return Path(self.path) / name
 
 
 def open_run(run_dir):
-    """Check that ``run_dir`` is a finished run folder and read its summary and provenance."""
-    path = Path(run_dir)
-    if not path.exists():
-        raise PlotError(f"{path}: no such run folder")
-    if not path.is_dir():
-        raise PlotError(f"{path} is not a folder: give the folder that 'mcrun run' wrote")
-    for name in (output.SUMMARY_FILE, output.SHOTS_FILE):
-        if not (path / name).is_file():
-            raise PlotError(
-                f"{path} is not an mcrun run folder: it has no {name} (write one with 'mcrun run')"
-            )
-    summary_path = path / output.SUMMARY_FILE
-    try:
-        summary = pd.read_parquet(summary_path)
-        provenance = output.read_provenance(summary_path)
-        shots_schema = pq.read_schema(path / output.SHOTS_FILE)
-    except (OSError, pa.ArrowException, ValueError) as err:
-        raise PlotError(f"cannot read the run in {path}: {reason_of(err)}") from None
+    """Open a finished run folder of either layout (``reader.open_run``) and check that it
+    holds what the plots draw."""
+    folder = reader.open_run(run_dir)
+    summary = folder.summary
     needed = (
         "point",
         "group",
@@ -196,58 +189,19 @@ def open_run(run_dir):
     )
     missing = [c for c in needed if c not in summary.columns]
     if missing:
-        raise PlotError(f"{summary_path} was not written by mcrun run: no column {missing[0]}")
-    missing = [c for c in _SHOT_COLUMNS if c not in shots_schema.names]
+        raise PlotError(
+            f"{folder.path}/{output.SUMMARY_FILE} was not written by mcrun run: no column "
+            f"{missing[0]}"
+        )
+    missing = [c for c in _SHOT_COLUMNS if c not in folder.shot_columns]
     if missing:
         raise PlotError(
-            f"{path / output.SHOTS_FILE} was not written by mcrun run: no column {missing[0]}"
+            f"the shots of {folder.path} were not written by mcrun run: no column {missing[0]}"
         )
     summary = summary.sort_values("point").reset_index(drop=True)
     columns = list(summary.columns)
     sweep_keys = columns[columns.index("label") + 1 : columns.index("n_shots")]
-    trajectories = path / output.TRAJECTORIES_FILE
-    return Run(path, summary, provenance, sweep_keys, trajectories.is_file())
-
-
-def _point_row_groups(parquet_file, point):
-    """Row groups of a file by mcrun whose ``point`` statistics may hold ``point``."""
-    metadata = parquet_file.metadata
-    names = [metadata.schema.column(j).name for j in range(metadata.num_columns)]
-    j = names.index("point")
-    groups = []
-    for i in range(metadata.num_row_groups):
-        st = metadata.row_group(i).column(j).statistics
-        if st is None or not st.has_min_max or st.min <= point <= st.max:
-            groups.append(i)
-    return groups
-
-
-def _batches(path, point, columns):
-    """Batches (dict column -> numpy array) of the rows of ``point``, ``BATCH_ROWS`` at most."""
-    try:
-        with pq.ParquetFile(path) as f:
-            # One row group at a time: given several, iter_batches buffers them all.
-            batches = (
-                batch
-                for group in _point_row_groups(f, point)
-                for batch in f.iter_batches(
-                    batch_size=BATCH_ROWS, row_groups=[group], columns=list(columns)
-                )
-            )
-            for batch in batches:
-                mine = batch.column("point").to_numpy() == point
-                if not mine.any():
-                    continue
-                out = {}
-                for name, column in zip(batch.schema.names, batch.columns, strict=True):
-                    if pa.types.is_dictionary(column.type):
-                        words = np.array(column.dictionary.to_pylist(), dtype=object)
-                        out[name] = words[column.indices.to_numpy()][mine]
-                    else:
-                        out[name] = column.to_numpy(zero_copy_only=False)[mine]
-                yield out
-    except (OSError, pa.ArrowException) as err:
-        raise PlotError(f"cannot read {path}: {reason_of(err)}") from None
+    return Run(folder, summary, sweep_keys)
 
 
 # --- what is drawn of one point ----------------------------------------------------------------
@@ -365,7 +319,7 @@ def read_point_shots(run, point, scatter_max=SCATTER_MAX_SHOTS):
     """PointShots of ``point`` (one pass over its row groups, the plotted columns only)."""
     row = run.summary.loc[run.summary["point"] == point].iloc[0].to_dict()
     shots = PointShots(row, scatter_max)
-    for batch in _batches(run.file(output.SHOTS_FILE), point, _SHOT_COLUMNS):
+    for batch in run.folder.shot_batches(point, _SHOT_COLUMNS, BATCH_ROWS):
         shots.update(batch)
     return shots
 
@@ -375,7 +329,7 @@ def sample_trajectories(run, point, limit=TRAJECTORIES_PER_POINT):
     (shot, x, y, z, phase names) arrays, in the file's order (shot index)."""
     paths = {}
     done = False
-    for batch in _batches(run.file(output.TRAJECTORIES_FILE), point, _TRAJECTORY_COLUMNS):
+    for batch in run.folder.trajectory_batches(point, _TRAJECTORY_COLUMNS, BATCH_ROWS):
         shot = batch["shot"]
         _, first = np.unique(shot, return_index=True)
         keep = np.zeros(len(shot), dtype=bool)
@@ -1054,7 +1008,7 @@ def _writable_folder(out_dir):
     except OSError as err:
         if exits.is_name_too_long(err):
             raise  # the command line's one line for every path too long
-        raise PlotError(f"-o: cannot write to {out_dir}: {reason_of(err)}") from None
+        raise PlotError(f"-o: cannot write to {out_dir}: {reader.reason_of(err)}") from None
     return out_dir
 
 
@@ -1063,14 +1017,14 @@ def write_plots(run_dir, out_dir=None, dpi=DEFAULT_PLOT_DPI, scatter_max=SCATTER
     [(path, caption)]."""
     run = open_run(run_dir)
     require_matplotlib()
-    out_dir = _writable_folder(run.path / PLOTS_FOLDER if out_dir is None else out_dir)
+    out_dir = _writable_folder(run.beside(PLOTS_FOLDER) if out_dir is None else out_dir)
     written = []
     for stem, caption, fig in figures(run, scatter_max):
         path = out_dir / f"{stem}.png"
         try:
             path.write_bytes(png_bytes(fig, dpi))
         except OSError as err:
-            raise PlotError(f"cannot write {path}: {reason_of(err)}") from None
+            raise PlotError(f"cannot write {path}: {reader.reason_of(err)}") from None
         written.append((path, caption))
     return written
 
@@ -1095,7 +1049,7 @@ def _cmd_plot(args):
 
 
 def register(subparsers):
-    """Add ``plot`` and ``report`` (``mcrun.report.html``) to an argparse subparsers object."""
+    """Add ``plot`` to an argparse subparsers object."""
     p = subparsers.add_parser(
         "plot",
         help="plot a finished run: positions, distances, trajectories, the sweep",
@@ -1126,13 +1080,9 @@ def register(subparsers):
     )
     p.set_defaults(func=_cmd_plot)
 
-    from mcrun.report import html as report
-
-    report.register(subparsers)  # a no-op when ``report`` is registered already
-
 
 def main(argv=None):
-    """``plot`` and ``report`` alone (for testing without mcrun.cli)."""
+    """``plot`` alone (for testing without mcrun.cli)."""
     parser = argparse.ArgumentParser(prog="mcrun", allow_abbrev=False)
     register(parser.add_subparsers(dest="command", required=True))
     args = parser.parse_args(argv)

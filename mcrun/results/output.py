@@ -58,6 +58,11 @@ SHOTS_FILE = "shots.parquet"
 SUMMARY_FILE = "summary.parquet"
 TRAJECTORIES_FILE = "trajectories.parquet"
 RUN_FILES = (SHOTS_FILE, SUMMARY_FILE, TRAJECTORIES_FILE)
+# A Dask run's dataset layout: the folders of its parts and its marker of completion.
+SHOTS_DIR = "shots"
+TRAJECTORIES_DIR = "trajectories"
+SUCCESS_FILE = "_SUCCESS"
+_PART = re.compile(r"part-(\d+)\.parquet")
 COMPRESSION = "zstd"
 # The columns of shots.parquet whose row groups carry min/max statistics, for readers that
 # skip row groups by point or status. An outcome's row group spans its whole spread, so its
@@ -74,6 +79,17 @@ _PHASE_DICTIONARY = pa.array(list(PHASE_NAMES))
 
 class OutputError(InputError):
     """An output the user asked for cannot be written; the message is one line."""
+
+
+def part_name(chunk):
+    """The file name of chunk ``chunk``'s part in a dataset: ``part-NNNNN.parquet``."""
+    return f"part-{chunk:05d}.parquet"
+
+
+def part_chunk(name):
+    """The chunk of a part from its file name (``part_name``'s inverse); None for another file."""
+    match = _PART.fullmatch(name)
+    return None if match is None else int(match[1])
 
 
 def versions():
@@ -354,7 +370,7 @@ _TEMPORARY = re.compile(
 )
 _HOST = re.sub(r"[^A-Za-z0-9-]", "_", socket.gethostname().split(".")[0])[:32] or "host"
 # What a reader takes for a complete run, moved last when a run is moved file by file.
-_WRITTEN_LAST = (SUMMARY_FILE, "_SUCCESS")
+_WRITTEN_LAST = (SUMMARY_FILE, SUCCESS_FILE)
 # Linux's FS_IOC_GETFLAGS, _IOR('f', 1, long), and the attributes that forbid a rename.
 _FS_IOC_GETFLAGS = 0x80006601 | (struct.calcsize("l") << 16)
 _FS_IMMUTABLE_FL = 0x10

@@ -32,7 +32,7 @@ y = b0 + sum_j b_j x_j over the sampled inputs x_j that vary within the point, f
 squares from the co-moments; SRC_j = b_j sd(x_j) / sd(y), and for independent inputs SRC_j^2
 is the share of var(y) that x_j explains (the shares add up to R^2; with correlated inputs,
 e.g. ball speed and spin, they are only indicative). The candidates are the inputs a
-distribution varies (``mcrun.run.local.driver_inputs``), not the columns derived from them (the air
+distribution varies (``mcrun.run.plan.driver_inputs``), not the columns derived from them (the air
 density from the temperature, the ball launch from the club delivery); as a safeguard, an
 input that the candidates before it explain to more than ``DERIVED_R2`` of its variance is left
 out, since a regression cannot tell its effect from theirs.

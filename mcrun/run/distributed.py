@@ -6,20 +6,20 @@ of sample indices as Dask tasks. Dask is an optional extra (``pip install 'mcrun
 this module imports it only when a run asks for it.
 
 Tasks. Every point's N shots are cut into chunks of ``chunk_size`` sample indices, one task
-each, numbered point by point (chunk c). The default size is fixed, not measured: it is the
-local engine's ``run.DEFAULT_CHUNK_SIZE`` (65,536 shots), so that a default Dask run and a
-default local run cut the same chunks (see Statistics). On the pga-driver scenario that is
-about 0.7 s of work per task for one thread on the development machine (0.55 s of simulation at
-~120,000 shots/s, then the sampling, the statistics and the part's write), against a few
-milliseconds of Dask overhead per task; slower scenarios give longer tasks. A task
-(``run_chunk``) rebuilds the scenario from its text (parsed once per worker process), draws its
-chunk with ``sampling.sample`` (the draws of sample i depend only on the scenario, the seed and
-i, so whichever worker runs it, and however often, gives the same numbers), runs
-``batch.simulate_batch`` with one Numba thread, writes its part of the dataset and returns its
-``stats.PointStats`` (counts by status, means and co-moments) to the client. The scenario
-text travels once, as the result of a small task the chunks depend on (so a lost copy is
-recomputed, not lost); a scenario that resamples a measured-shots file needs the scenario file
-and that file at the same path on every worker.
+each, numbered point by point (chunk c), as the local engine cuts them (``plan.Plan.chunks``).
+The default size is fixed, not measured: it is the local engine's ``plan.DEFAULT_CHUNK_SIZE``
+(65,536 shots), so that a default Dask run and a default local run cut the same chunks (see
+Statistics). On the pga-driver scenario that is about 0.7 s of work per task for one thread on
+the development machine (0.55 s of simulation at ~120,000 shots/s, then the sampling, the
+statistics and the part's write), against a few milliseconds of Dask overhead per task; slower
+scenarios give longer tasks. A task (``run_chunk``) rebuilds the scenario from its text (parsed
+once per worker process), draws its chunk with ``sampling.sample`` (the draws of sample i
+depend only on the scenario, the seed and i, so whichever worker runs it, and however often,
+gives the same numbers), runs ``batch.simulate_batch`` with one Numba thread, writes its part
+of the dataset and returns its ``stats.PointStats`` (counts by status, means and co-moments) to
+the client. The scenario text travels once, as the result of a small task the chunks depend on
+(so a lost copy is recomputed, not lost); a scenario that resamples a measured-shots file needs
+the scenario file and that file at the same path on every worker.
 
 Layout. A Dask run folder holds:
 
@@ -37,7 +37,9 @@ here every task writes its own part, in parallel, on any machine. Both read the 
 ``pd.read_parquet(run / "shots")``, ``pl.scan_parquet(run / "shots" / "**/*.parquet",
 hive_partitioning=True)``, DuckDB's ``read_parquet('run/shots/**/*.parquet',
 hive_partitioning = true)``; rows come in file order, so sort by (point, shot) to compare with
-the local file. ``read_shots`` returns exactly the DataFrame the local engine's file reads as.
+the local file. ``mcrun.results.reader`` reads either layout: ``read_shots`` returns exactly the
+DataFrame the local engine's file reads as, and ``mcrun plot`` and ``mcrun report`` read a Dask
+run as they read a local one.
 
 Statistics. Moments: from the tasks' partial ``PointStats``, merged on the client in chunk
 order (not in order of completion), each chunk's sums folded into the running total with
@@ -85,13 +87,11 @@ import sys
 import time
 import urllib.parse
 from dataclasses import dataclass
-from datetime import UTC, datetime
 from pathlib import Path
 from typing import NamedTuple
 
 import numba
 import numpy as np
-import pandas as pd
 import pyarrow as pa
 import pyarrow.fs as pafs
 import pyarrow.parquet as pq
@@ -100,16 +100,14 @@ from mcrun import exits
 from mcrun import status as status_codes
 from mcrun.api import InputError
 from mcrun.engine.backend import simulate_batch
-from mcrun.results import output, stats
-from mcrun.run import local as run
-from mcrun.run import sampling
+from mcrun.results import location, output, stats
+from mcrun.results.output import SHOTS_DIR, SUCCESS_FILE, TRAJECTORIES_DIR
+from mcrun.results.reader import read_shots  # a Dask run's shots, as the local file reads
+from mcrun.run import plan, sampling
 from mcrun.run import scenario as scenario_module
 
-DEFAULT_CHUNK_SIZE = run.DEFAULT_CHUNK_SIZE
+DEFAULT_CHUNK_SIZE = plan.DEFAULT_CHUNK_SIZE
 RETRIES = 2
-SHOTS_DIR = "shots"
-TRAJECTORIES_DIR = "trajectories"
-SUCCESS_FILE = "_SUCCESS"
 NUMBA_THREADS_PER_TASK = 1
 CONNECT_TIMEOUT_S = 30
 _SHOWN_FAILURES = 10
@@ -121,7 +119,6 @@ __all__ = [
     "RunFailed",
     "local_cluster",
     "read_shots",
-    "read_trajectories",
     "run_chunk",
     "run_from_args",
     "run_scenario",
@@ -150,35 +147,6 @@ def _dask():
 # --- where the run is written ------------------------------------------------------------------
 
 
-def _is_url(out):
-    return isinstance(out, str) and "://" in out
-
-
-@functools.lru_cache(maxsize=8)
-def filesystem(url=None):
-    """The pyarrow filesystem of a run folder: local for None, else the fsspec one of ``url``."""
-    if url is None:
-        return pafs.LocalFileSystem()
-    import fsspec
-
-    fs, _ = fsspec.core.url_to_fs(url)
-    return pafs.PyFileSystem(pafs.FSSpecHandler(fs))
-
-
-def _url_path(url):
-    import fsspec
-
-    return fsspec.core.url_to_fs(url)[1].rstrip("/")
-
-
-def _locate(folder):
-    """(url or None, filesystem, path in it) of a run folder given as a path or a URL."""
-    if _is_url(str(folder)):
-        url = str(folder).rstrip("/")
-        return url, filesystem(url), _url_path(url)
-    return None, filesystem(None), str(Path(folder).absolute())
-
-
 class _FolderDestination:
     """A local or shared folder: written under a temporary name beside it, renamed when done."""
 
@@ -186,7 +154,7 @@ class _FolderDestination:
 
     def __init__(self, path, force):
         self._folder = output.AtomicFolder(Path(path).absolute(), force=force)
-        self.fs = filesystem(None)
+        self.fs = location.filesystem(None)
         self.root = None
 
     def __enter__(self):
@@ -208,8 +176,8 @@ class _UrlDestination:
         self.url = url.rstrip("/")
         self.force = force
         try:
-            self.fs = filesystem(self.url)
-            self.root = _url_path(self.url)
+            self.fs = location.filesystem(self.url)
+            self.root = location.url_path(self.url)
         except (ImportError, ValueError) as err:
             raise output.OutputError(f"cannot use the output {url}: {err}") from None
         self._committed = False
@@ -271,10 +239,6 @@ def _group_dir(group):
     return f"group={urllib.parse.quote(group, safe='')}"
 
 
-def _part_name(chunk):
-    return f"part-{chunk:05d}.parquet"
-
-
 # --- the task ----------------------------------------------------------------------------------
 
 
@@ -294,8 +258,7 @@ class ChunkResult(NamedTuple):
 def _scenario(text, path, seed):
     """The scenario of a job, parsed from its text once per worker process (a resampled shots
     file is found relative to ``path``, so it must be at the same place on every worker)."""
-    scenario = scenario_module.loads(text, path)
-    return run._with_seed(scenario, seed) if scenario.seed != seed else scenario
+    return plan.with_seed(scenario_module.loads(text, path), seed)
 
 
 _BUILDERS = {}
@@ -318,7 +281,7 @@ def _shots_builder(job):
 
 
 class _Paths(list):
-    """Collects the trajectories ``run._trajectories`` adds."""
+    """Collects the trajectories ``plan.add_trajectories`` adds."""
 
     def add(self, point, shot, traj):
         self.append((point, shot, np.array(traj, dtype=float)))
@@ -338,21 +301,21 @@ def run_chunk(chunk, point, start, stop, job):
     out = simulate_batch(inputs)
     point_stats = stats.PointStats(job["drivers"][point])
     point_stats.update(out, sampled)
-    fs = filesystem(job["url"])
+    fs = location.filesystem(job["url"])
     local = job["url"] is None
     table = _shots_builder(job).table(point, start, sampled, out)
     if job["partitioned"]:
         table = table.drop_columns("group")
-    shots_path = f"{job['root']}/{job['shot_dirs'][point]}/{_part_name(chunk)}"
+    shots_path = f"{job['root']}/{job['shot_dirs'][point]}/{output.part_name(chunk)}"
     # Encoded as the local engine's shots.parquet: dictionaries for the text columns only.
     _write_parquet(fs, shots_path, table, local, output.dictionary_columns(table.schema))
     traj_path = None
     every = job["trajectories_every"]
-    if every and -(-start // every) * every < stop:
+    if every and plan.trajectory_shots(start, stop, every):
         paths = _Paths()
-        run._trajectories(paths, inputs, point, start, stop, every, np.empty((4096, 5)))
+        plan.add_trajectories(paths, inputs, point, start, stop, every)
         schema = output.TRAJECTORY_SCHEMA.with_metadata(job["trajectories_metadata"])
-        traj_path = f"{job['root']}/{TRAJECTORIES_DIR}/{_part_name(chunk)}"
+        traj_path = f"{job['root']}/{TRAJECTORIES_DIR}/{output.part_name(chunk)}"
         _write_parquet(fs, traj_path, output.trajectory_table(paths, schema), local)
     return ChunkResult(chunk, point, start, stop, shots_path, traj_path, point_stats)
 
@@ -447,8 +410,8 @@ def _cluster_size(client):
 
 
 @dataclass
-class DaskRunResult(run.RunResult):
-    """A ``run.RunResult`` of a Dask run: ``shots_path`` is the shots/ dataset folder."""
+class DaskRunResult(plan.RunResult):
+    """A ``plan.RunResult`` of a Dask run: ``shots_path`` is the shots/ dataset folder."""
 
     scheduler: str = ""
     workers: int = 0
@@ -457,22 +420,6 @@ class DaskRunResult(run.RunResult):
     def where(self):
         """How it ran, for the line ``mcrun run`` prints: "2 Dask workers, 2 threads"."""
         return f"{self.workers} Dask workers, {self.threads} threads"
-
-    def shots(self, columns=None):
-        """The shots as one DataFrame, as the local engine's shots.parquet reads."""
-        return read_shots(self.out_dir, columns)
-
-    def trajectories(self):
-        if self.trajectories_path is None:
-            return None
-        return read_trajectories(self.out_dir)
-
-
-class _Chunk(NamedTuple):
-    index: int
-    point: int
-    start: int
-    stop: int
 
 
 def run_scenario(
@@ -531,69 +478,45 @@ def run_scenario(
         retries, after removing what was written. KeyboardInterrupt is re-raised after the
         tasks are cancelled and the output removed.
     """
-    scenario = run._load(path_or_scenario)
-    n = run._positive_int(scenario.shots if n is None else n, "n")
-    seed = run._positive_int(scenario.seed if seed is None else seed, "seed", minimum=0)
-    chunk_size = run._positive_int(chunk_size, "chunk_size")
-    if trajectories_every is not None:
-        trajectories_every = run._positive_int(trajectories_every, "trajectories_every")
+    the_plan = plan.plan(path_or_scenario, n, seed, chunk_size, trajectories_every)
     if workers is not None:
-        workers = run._positive_int(workers, "workers")
-    retries = run._positive_int(retries, "retries", minimum=0)
-    if seed != scenario.seed:
-        scenario = run._with_seed(scenario, seed)
-    points = list(scenario.points)
+        workers = plan.positive_int(workers, "workers")
+    retries = plan.positive_int(retries, "retries", minimum=0)
+    scenario, points, n, seed = the_plan.scenario, the_plan.points, the_plan.n, the_plan.seed
     if out_dir is None:
-        out_dir = run.default_out_dir(scenario, seed)
-    url = str(out_dir).rstrip("/") if _is_url(str(out_dir)) else None
-
-    # The columns and the models, as the local engine finds them.
-    input_names, integer_columns = run.run_columns(scenario)
-    plan = run.plan(scenario, n, chunk_size, trajectories_every, input_names)
+        out_dir = plan.default_out_dir(scenario, seed)
+    url = str(out_dir).rstrip("/") if location.is_url(str(out_dir)) else None
     if not (ignore_disk_space or url):
-        run.check_disk_space(plan, out_dir)
-    input_types = dict.fromkeys(integer_columns, "int64")
-    drivers = [run.driver_inputs(point, input_names) for point in points]
+        plan.check_disk_space(the_plan, out_dir)
     partitioned = any(p.group for p in points)
-    chunks = []
-    for point in points:
-        for start in range(0, n, chunk_size):
-            chunks.append(_Chunk(len(chunks), point.index, start, min(start + chunk_size, n)))
+    chunks = list(the_plan.chunks())
 
     destination = _UrlDestination(url, force) if url else _FolderDestination(out_dir, force)
     connecting = time.perf_counter()
     with destination, _connect(client, scheduler, scheduler_file, workers) as dask_client:
         address, n_workers, threads = _cluster_size(dask_client)
         if announce is not None:
-            announce(plan.line())
+            announce(the_plan.line())
         # The run's time starts once the cluster is up (a local cluster takes seconds to
         # start: recorded apart, as cluster_start_s).
         started = time.perf_counter()
         import dask
         import distributed
 
-        base = {
-            "format_version": 1,
-            "backend": "dask",
-            "layout": "dataset",
-            **run.describe_run(scenario, seed, n, points),
-            "versions": {
-                **output.versions(),
-                "dask": dask.__version__,
-                "distributed": distributed.__version__,
-            },
-            "threads": sum(threads),
-            "scheduler": address,
-            "workers": n_workers,
-            "threads_per_worker": sorted(set(threads)),
-            "cluster_start_s": round(started - connecting, 3),
-            "numba_threads_per_task": NUMBA_THREADS_PER_TASK,
-            "chunk_size": chunk_size,
-            "chunks": len(chunks),
-            "retries": retries,
-            "trajectories_every": trajectories_every,
-            "start_time_utc": datetime.now(UTC).isoformat(timespec="seconds"),
-        }
+        provenance = plan.provenance(
+            the_plan,
+            "dask",
+            {**output.versions(), "dask": dask.__version__, "distributed": distributed.__version__},
+            sum(threads),
+            layout="dataset",
+            scheduler=address,
+            workers=n_workers,
+            threads_per_worker=sorted(set(threads)),
+            cluster_start_s=round(started - connecting, 3),
+            numba_threads_per_task=NUMBA_THREADS_PER_TASK,
+            chunks=len(chunks),
+            retries=retries,
+        )
         fs, root = destination.fs, destination.root
         shot_dirs = [
             f"{SHOTS_DIR}/{_group_dir(p.group)}" if partitioned else SHOTS_DIR for p in points
@@ -602,7 +525,7 @@ def run_scenario(
         # an interrupted run has removed its folder fails instead of leaving files behind.
         for folder in dict.fromkeys(shot_dirs):
             fs.create_dir(f"{root}/{folder}")
-        if trajectories_every is not None:
+        if the_plan.trajectories_every is not None:
             fs.create_dir(f"{root}/{TRAJECTORIES_DIR}")
         job = {
             "id": secrets.token_hex(8),
@@ -613,34 +536,34 @@ def run_scenario(
             "root": root,
             "shot_dirs": shot_dirs,
             "partitioned": partitioned,
-            "input_names": input_names,
-            "input_types": input_types,
+            "input_names": the_plan.input_names,
+            "input_types": dict.fromkeys(the_plan.integer_columns, "int64"),
             "groups": [p.group for p in points],
             "labels": [p.label for p in points],
-            "drivers": drivers,
-            "trajectories_every": trajectories_every,
-            "shots_metadata": output.encode_provenance({**base, "file": "shots"}),
-            "trajectories_metadata": output.encode_provenance({**base, "file": "trajectories"}),
+            "drivers": the_plan.drivers,
+            "trajectories_every": the_plan.trajectories_every,
+            "shots_metadata": plan.file_metadata(provenance, "shots"),
+            "trajectories_metadata": plan.file_metadata(provenance, "trajectories"),
         }
         point_stats, results = _execute(
-            dask_client, chunk_task, job, chunks, drivers, n * len(points), retries, progress
+            dask_client,
+            chunk_task,
+            job,
+            chunks,
+            the_plan.drivers,
+            the_plan.shots,
+            retries,
+            progress,
         )
-        _remove_strays(fs, root, results, trajectories_every is not None)
+        _remove_strays(fs, root, results, the_plan.trajectories_every is not None)
         parts = {p.index: [] for p in points}
         for result in results:
             parts[result.point].append(result.shots_path)
-        rows = _summary_rows(points, point_stats, fs, parts, budget_bytes)
-
-        def metadata(file):
-            elapsed = round(time.perf_counter() - started, 3)
-            return output.encode_provenance({**base, "file": file, "elapsed_s": elapsed})
-
+        rows = plan.summary_rows(
+            points, point_stats, lambda point: _PartsColumns(fs, parts[point]), budget_bytes
+        )
         with fs.open_output_stream(f"{root}/{output.SUMMARY_FILE}") as f:
-            output.write_table(
-                f,
-                rows,
-                {**metadata("summary"), **output.encode_provenance(run.SUMMARY_CONVENTIONS)},
-            )
+            output.write_table(f, rows, plan.summary_metadata(provenance, started))
         elapsed = time.perf_counter() - started
         note = {
             "backend": "dask",
@@ -665,7 +588,9 @@ def run_scenario(
         out_dir=folder,
         shots_path=join(folder, SHOTS_DIR),
         summary_path=join(folder, output.SUMMARY_FILE),
-        trajectories_path=None if trajectories_every is None else join(folder, TRAJECTORIES_DIR),
+        trajectories_path=None
+        if the_plan.trajectories_every is None
+        else join(folder, TRAJECTORIES_DIR),
         n=n,
         seed=seed,
         points=len(points),
@@ -783,85 +708,12 @@ class _PartsColumns(stats.ShotsColumns):
             yield {c: table.column(c).to_numpy()[ok] for c in columns}
 
 
-def _summary_rows(points, point_stats, fs, parts, budget_bytes):
-    """``run._summary_rows`` over the dataset's parts."""
-    rows = []
-    sweep = run._sweep_columns(points)
-    for point, one in zip(points, point_stats, strict=True):
-        row = {"point": point.index, "group": point.group, "label": point.label}
-        for key, values in sweep.items():
-            row[key] = values[point.index]
-        columns = _PartsColumns(fs, parts[point.index])
-        row.update(
-            stats.summarise(one, columns, target_m=point.target_m, budget_bytes=budget_bytes)
-        )
-        rows.append(row)
-    return pd.DataFrame(rows)
-
-
-# --- reading a run back ------------------------------------------------------------------------
-
-
-def _complete(folder):
-    url, fs, root = _locate(folder)
-    if fs.get_file_info(f"{root}/{SUCCESS_FILE}").type != pafs.FileType.File:
-        raise output.OutputError(f"{folder}: not a complete Dask run (no {SUCCESS_FILE})")
-    with fs.open_input_file(f"{root}/{output.SUMMARY_FILE}") as f:
-        provenance = output.decode_provenance(pq.read_metadata(f).metadata)
-    return fs, root, provenance
-
-
-def read_shots(folder, columns=None):
-    """The shots of a Dask run folder as one DataFrame, the local engine's shots.parquet as
-    pandas reads it: rows by point and shot, the same columns in the same order and types
-    (``group`` a categorical of the groups in point order)."""
-    import pyarrow.dataset as ds
-
-    fs, root, provenance = _complete(folder)
-    dataset = ds.dataset(
-        f"{root}/{SHOTS_DIR}", filesystem=fs, format="parquet", partitioning="hive"
-    )
-    names = list(dataset.schema.names)
-    if names.index("group") != 1:  # hive-partitioned: the group comes last, from the folders
-        names.remove("group")
-        names.insert(1, "group")
-    wanted = names if columns is None else list(columns)
-    unknown = [c for c in wanted if c not in names]
-    if unknown:
-        raise output.OutputError(f"{folder}: no column {', '.join(unknown)} in the shots")
-    read = list(dict.fromkeys(["point", "shot", *wanted]))
-    frame = dataset.to_table(columns=read).to_pandas()
-    frame = frame.sort_values(["point", "shot"], kind="stable").reset_index(drop=True)
-    if "group" in frame:
-        categories = list(dict.fromkeys(provenance["groups"]))
-        frame["group"] = pd.Categorical(frame["group"].astype(str), categories=categories)
-    return frame[wanted]
-
-
-def read_trajectories(folder):
-    """trajectories/ of a Dask run folder as one DataFrame, rows by point, shot and time."""
-    fs, root, _ = _complete(folder)
-    path = f"{root}/{TRAJECTORIES_DIR}"
-    files = sorted(
-        info.path
-        for info in fs.get_file_info(pafs.FileSelector(path, allow_not_found=True))
-        if info.base_name.endswith(".parquet")
-    )
-    tables = []
-    for name in files:
-        with fs.open_input_file(name) as f:
-            tables.append(pq.read_table(f))
-    if not tables:
-        return output.TRAJECTORY_SCHEMA.empty_table().to_pandas()
-    frame = pa.concat_tables(tables).to_pandas()
-    return frame.sort_values(["point", "shot"], kind="stable").reset_index(drop=True)
-
-
 # --- command line ------------------------------------------------------------------------------
 
 
-def run_from_args(args):
-    """``mcrun run`` with ``--dask local``, ``--scheduler`` or ``--scheduler-file``."""
+def run_from_args(args, announce=None):
+    """``mcrun run`` with ``--dask local``, ``--scheduler`` or ``--scheduler-file``;
+    ``announce`` as ``run_scenario``'s."""
     if args.threads is not None:
         raise InputError(
             "--threads is for the local engine; the Dask backend runs one Numba thread per "
@@ -882,5 +734,5 @@ def run_from_args(args):
         progress=not args.quiet,
         force=args.force,
         ignore_disk_space=args.ignore_disk_space,
-        announce=None if args.quiet else run._say,
+        announce=announce,
     )

@@ -1,0 +1,262 @@
+"""Reading a run folder back, whichever executor wrote it.
+
+A finished run folder holds ``summary.parquet`` (one row per point; its metadata holds the run's
+provenance) and its shots in one of two layouts:
+
+- ``"file"``: ``shots.parquet`` (the local executor, ``mcrun.run.local``), row groups in point
+  and shot order, with min/max statistics of ``point``; ``trajectories.parquet`` likewise.
+- ``"dataset"``: ``shots/part-NNNNN.parquet``, or ``shots/group=<name>/part-NNNNN.parquet`` when
+  the scenario has groups (the Dask executor, ``mcrun.run.distributed``): one part and one row
+  group per chunk, NNNNN the chunk, the chunks numbered point by point, ``ceil(n /
+  chunk_size)`` a point; ``trajectories/part-NNNNN.parquet`` likewise (a part per chunk that
+  holds a path). Complete only once ``_SUCCESS`` is there.
+
+``open_run`` tells them apart and returns a ``RunFolder``: the summary and the provenance (the
+data and its metadata), and the shots and trajectories, either whole (``shots``,
+``trajectories``: the DataFrame the local file reads as in pandas, whatever the layout) or one
+point at a time (``shot_batches``, ``trajectory_batches``: only the files and row groups that
+may hold the point, only the columns asked for, in batches), so that memory does not grow with
+the run. A folder is a path or an fsspec URL (``location``).
+"""
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.dataset as ds
+import pyarrow.fs as pafs
+import pyarrow.parquet as pq
+
+from mcrun.results import location, output
+
+FILE_LAYOUT = "file"
+DATASET_LAYOUT = "dataset"
+
+
+class RunFolderError(output.OutputError):
+    """A folder that is not a complete run, or whose files cannot be read; one line."""
+
+
+def reason_of(err):
+    """The one-line reason of an OSError or an Arrow error."""
+    if isinstance(err, OSError):
+        return err.strerror or str(err)
+    return " ".join(str(err).split())
+
+
+@dataclass
+class RunFolder:
+    """A finished run folder, opened: where it is (``path``, the Path given or the URL;
+    ``url``, the URL or None; its filesystem ``fs`` and the ``root`` path in it), its
+    ``layout`` (``"file"`` or ``"dataset"``), its summary and provenance, the columns of its
+    shots in the order of the local executor's shots.parquet, and whether it holds
+    trajectories."""
+
+    path: Path | str
+    url: str | None
+    fs: pafs.FileSystem
+    root: str
+    layout: str
+    summary: pd.DataFrame
+    provenance: dict
+    shot_columns: list
+    has_trajectories: bool
+    _point_parts: dict = field(default_factory=dict, repr=False)  # ``_parts``, once a folder
+
+    def shots(self, columns=None):
+        """The shots as one DataFrame, as pandas reads the local executor's shots.parquet: rows
+        by point and shot, the same columns in the same order and types (``group`` a
+        categorical of the groups in point order). ``columns``: a subset to read."""
+        if self.layout == FILE_LAYOUT:
+            return pd.read_parquet(_source(self.url, self.root, output.SHOTS_FILE), columns=columns)
+        names = self.shot_columns
+        wanted = names if columns is None else list(columns)
+        unknown = [c for c in wanted if c not in names]
+        if unknown:
+            raise RunFolderError(f"{self.path}: no column {', '.join(unknown)} in the shots")
+        read = list(dict.fromkeys(["point", "shot", *wanted]))
+        frame = _dataset(self.fs, self.root).to_table(columns=read).to_pandas()
+        frame = frame.sort_values(["point", "shot"], kind="stable").reset_index(drop=True)
+        if "group" in frame:
+            categories = list(dict.fromkeys(self.provenance["groups"]))
+            frame["group"] = pd.Categorical(frame["group"].astype(str), categories=categories)
+        return frame[wanted]
+
+    def trajectories(self):
+        """The trajectories as one DataFrame, rows by point, shot and time (None when the run
+        wrote none)."""
+        if not self.has_trajectories:
+            return None
+        if self.layout == FILE_LAYOUT:
+            return pd.read_parquet(_source(self.url, self.root, output.TRAJECTORIES_FILE))
+        tables = []
+        for parts in self._parts(output.TRAJECTORIES_DIR).values():
+            for name in parts:
+                with self.fs.open_input_file(name) as f:
+                    tables.append(pq.read_table(f))
+        if not tables:
+            return output.TRAJECTORY_SCHEMA.empty_table().to_pandas()
+        frame = pa.concat_tables(tables).to_pandas()
+        return frame.sort_values(["point", "shot"], kind="stable").reset_index(drop=True)
+
+    def shot_batches(self, point, columns, batch_rows):
+        """Batches (dict column -> numpy array) of the shots of ``point``, ``batch_rows`` at
+        most, in shot order; text columns as object arrays. One row group at a time."""
+        return self._batches(output.SHOTS_FILE, output.SHOTS_DIR, point, columns, batch_rows)
+
+    def trajectory_batches(self, point, columns, batch_rows):
+        """``shot_batches`` of the trajectories: rows of ``point`` by shot and time."""
+        return self._batches(
+            output.TRAJECTORIES_FILE, output.TRAJECTORIES_DIR, point, columns, batch_rows
+        )
+
+    def _parts(self, folder):
+        """{point: [paths of its parts, in chunk order]} of a dataset folder."""
+        if folder in self._point_parts:
+            return self._point_parts[folder]
+        chunks_per_point = -(-self.provenance["n"] // self.provenance["chunk_size"])
+        selector = pafs.FileSelector(f"{self.root}/{folder}", recursive=True)
+        parts = {}
+        for info in self.fs.get_file_info(selector):
+            chunk = output.part_chunk(info.base_name)
+            if info.type == pafs.FileType.File and chunk is not None:
+                parts.setdefault(chunk // chunks_per_point, []).append((chunk, info.path))
+        parts = {p: [path for _, path in sorted(found)] for p, found in sorted(parts.items())}
+        self._point_parts[folder] = parts
+        return parts
+
+    def _files(self, file, folder, point):
+        if self.layout == FILE_LAYOUT:
+            return [f"{self.root}/{file}"]
+        return self._parts(folder).get(point, [])
+
+    def _batches(self, file, folder, point, columns, batch_rows):
+        for path in self._files(file, folder, point):
+            try:
+                with self.fs.open_input_file(path) as source, pq.ParquetFile(source) as f:
+                    yield from _point_batches(f, point, columns, batch_rows)
+            except (OSError, pa.ArrowException) as err:
+                raise RunFolderError(f"cannot read {path}: {reason_of(err)}") from None
+
+
+def _dataset(fs, root):
+    """The shots of a dataset run as a pyarrow dataset (the group from the folder names)."""
+    return ds.dataset(
+        f"{root}/{output.SHOTS_DIR}", filesystem=fs, format="parquet", partitioning="hive"
+    )
+
+
+def _shot_columns(fs, root, layout):
+    """The columns of a run's shots, in the order of the local executor's shots.parquet."""
+    if layout == FILE_LAYOUT:
+        with fs.open_input_file(f"{root}/{output.SHOTS_FILE}") as f:
+            return list(pq.read_schema(f).names)
+    names = list(_dataset(fs, root).schema.names)
+    if names.index("group") != 1:  # hive-partitioned: the group comes last, from the folders
+        names.remove("group")
+        names.insert(1, "group")
+    return names
+
+
+def _source(url, root, name):
+    """A file of a run folder as pandas takes it: a URL, or a path."""
+    return f"{url}/{name}" if url else Path(root) / name
+
+
+def _point_row_groups(parquet_file, point):
+    """Row groups of a file by mcrun whose ``point`` statistics may hold ``point``."""
+    metadata = parquet_file.metadata
+    names = [metadata.schema.column(j).name for j in range(metadata.num_columns)]
+    j = names.index("point")
+    groups = []
+    for i in range(metadata.num_row_groups):
+        st = metadata.row_group(i).column(j).statistics
+        if st is None or not st.has_min_max or st.min <= point <= st.max:
+            groups.append(i)
+    return groups
+
+
+def _point_batches(parquet_file, point, columns, batch_rows):
+    # One row group at a time: given several, iter_batches buffers them all.
+    batches = (
+        batch
+        for group in _point_row_groups(parquet_file, point)
+        for batch in parquet_file.iter_batches(
+            batch_size=batch_rows, row_groups=[group], columns=list(columns)
+        )
+    )
+    for batch in batches:
+        mine = batch.column("point").to_numpy() == point
+        if not mine.any():
+            continue
+        out = {}
+        for name, column in zip(batch.schema.names, batch.columns, strict=True):
+            if pa.types.is_dictionary(column.type):
+                words = np.array(column.dictionary.to_pylist(), dtype=object)
+                out[name] = words[column.indices.to_numpy()][mine]
+            else:
+                out[name] = column.to_numpy(zero_copy_only=False)[mine]
+        yield out
+
+
+def open_run(folder):
+    """Open a finished run folder of either layout, a path or an fsspec URL: a ``RunFolder``.
+
+    Raises RunFolderError, one line, when ``folder`` is not a complete run folder or its
+    summary or the schema of its shots cannot be read.
+    """
+    url, fs, root = location.locate(folder)
+    folder = url or Path(folder)
+
+    def kind(name=None):
+        path = root if name is None else f"{root}/{name}"
+        try:
+            return fs.get_file_info(path).type
+        except OSError as err:
+            if err.errno is None:
+                raise
+            # pyarrow's error names no file (a name too long must say which).
+            raise OSError(err.errno, os.strerror(err.errno), path) from None
+
+    is_file, is_dir = pafs.FileType.File, pafs.FileType.Directory
+    if kind() == pafs.FileType.NotFound:
+        raise RunFolderError(f"{folder}: no such run folder")
+    if kind() != is_dir:
+        raise RunFolderError(f"{folder} is not a folder: give the folder that 'mcrun run' wrote")
+    if kind(output.SHOTS_FILE) == is_file:
+        layout, trajectories = FILE_LAYOUT, kind(output.TRAJECTORIES_FILE) == is_file
+    elif kind(output.SHOTS_DIR) == is_dir or kind(output.SUCCESS_FILE) == is_file:
+        if kind(output.SUCCESS_FILE) != is_file:
+            raise RunFolderError(f"{folder}: not a complete Dask run (no {output.SUCCESS_FILE})")
+        layout, trajectories = DATASET_LAYOUT, kind(output.TRAJECTORIES_DIR) == is_dir
+    else:
+        raise RunFolderError(
+            f"{folder} is not an mcrun run folder: it has no {output.SHOTS_FILE} (nor a "
+            f"{output.SHOTS_DIR}/ dataset; write one with 'mcrun run')"
+        )
+    if kind(output.SUMMARY_FILE) != is_file:
+        raise RunFolderError(
+            f"{folder} is not an mcrun run folder: it has no {output.SUMMARY_FILE} (write one "
+            "with 'mcrun run')"
+        )
+    try:
+        summary = pd.read_parquet(_source(url, root, output.SUMMARY_FILE))
+        with fs.open_input_file(f"{root}/{output.SUMMARY_FILE}") as f:
+            provenance = output.decode_provenance(pq.read_metadata(f).metadata)
+        shot_columns = _shot_columns(fs, root, layout)
+    except (OSError, pa.ArrowException, ValueError) as err:
+        raise RunFolderError(f"cannot read the run in {folder}: {reason_of(err)}") from None
+    return RunFolder(folder, url, fs, root, layout, summary, provenance, shot_columns, trajectories)
+
+
+def read_shots(folder, columns=None):
+    """The shots of a run folder (``RunFolder.shots``)."""
+    return open_run(folder).shots(columns)
+
+
+def read_trajectories(folder):
+    """The trajectories of a run folder (``RunFolder.trajectories``), None when it has none."""
+    return open_run(folder).trajectories()

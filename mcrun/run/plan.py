@@ -1,0 +1,463 @@
+"""The plan of a run: what it will be, decided once, whichever executor runs it.
+
+A run of a scenario is the same whether its chunks run on local threads (``mcrun.run.local``)
+or as Dask tasks (``mcrun.run.distributed``); the executors differ only in how they execute the
+chunks and write them. What they share is here, written once:
+
+- the arguments checked and the scenario loaded with its seed (``plan``, which returns a
+  ``Plan``: the sampled columns, the variance drivers of each point, and an estimate of the
+  run's time and size, said in one line before it starts; ``check_disk_space`` refuses a run
+  that would not fit);
+- the chunks: every point's N sample indices cut into ranges of ``chunk_size`` (``Plan.chunks``),
+  numbered point by point, and the shots of a chunk whose paths are recorded
+  (``add_trajectories``);
+- the provenance every file of the run records (``provenance``, ``file_metadata``);
+- the summary rows, from each point's streamed statistics and its shots wherever they were
+  written (``summary_rows``, ``summary_metadata``);
+- what a run wrote (``RunResult``).
+"""
+
+import copy
+import dataclasses
+import math
+import shutil
+import time
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+import pandas as pd
+
+from mcrun.api import InputError
+from mcrun.engine.backend import simulate_traced
+from mcrun.engine.schema import OUTCOME_FIELDS
+from mcrun.results import output, reader, stats
+from mcrun.run import sampling
+from mcrun.run import scenario as scenario_module
+from mcrun.units import shown
+
+DEFAULT_CHUNK_SIZE = 65536
+RUNS_FOLDER = Path("runs")
+FORMAT_VERSION = 1
+
+# The sampled column of each parameter a user can give a distribution (scenario.PARAMETERS key
+# paths): the candidate drivers of the variance. Derived columns (the ball launch of a club
+# delivery, the air density, the wind components) are not candidates: their parameters are.
+DRIVER_COLUMNS = {
+    "launch.ball_speed": "ball_speed_mps",
+    "launch.launch_angle": "launch_angle_deg",
+    "launch.spin": "spin_radps",
+    "launch.azimuth": "azimuth_deg",
+    "launch.spin_axis": "spin_axis_deg",
+    "club.speed": "club_speed_mps",
+    "club.mass": "club_mass_kg",
+    "club.loft": "loft_deg",
+    "club.azimuth": "azimuth_deg",
+    "club.spin_axis": "spin_axis_deg",
+    "turf.mu": "mu",
+    "turf.softness": "softness",
+    "turf.restitution": "restitution",
+    "turf.rho_g": "rho_g",
+    "turf.stimp": "stimp_m",
+    "turf.critical_height": "critical_height_m",
+    "turf.slope": "slope_deg",
+    "turf.fall_line": "fall_line_deg",
+    "weather.wind_speed": "wind_speed_mps",
+    "weather.wind_direction": "wind_direction_deg",
+    "weather.temperature": "temperature_c",
+    "weather.altitude": "altitude_m",
+    "weather.pressure": "pressure_pa",
+    "weather.humidity": "relative_humidity",
+    "models.cd_scale": "cd_scale",
+    "models.cl_scale": "cl_scale",
+}
+# A resampled launch-monitor file varies the launch quantities it holds or jitters.
+_FILE_DRIVERS = {
+    "ball_speed": "ball_speed_mps",
+    "launch_angle": "launch_angle_deg",
+    "spin": "spin_radps",
+    "spin_axis": "spin_axis_deg",
+    "azimuth": "azimuth_deg",
+}
+
+# How the summary is computed, recorded in summary.parquet's metadata.
+SUMMARY_CONVENTIONS = {
+    "statistics_over": "shots with status ok; the others are counted in n_<status>",
+    "ddof": stats.DDOF,
+    "percentile_method": "linear interpolation between order statistics (pandas' default)",
+    "ellipse": "semi-axes sqrt(eigenvalue * -2 ln(1 - p)) of the final position's covariance; "
+    "angle of the major axis from the target line towards the right, in [0, 180) deg",
+    "target": "the scenario's target, else the point's mean final position",
+    "drivers": "standardised regression coefficients (src) on the sampled inputs that vary, "
+    "share = src^2; run_m: correlation with each landing quantity, share = corr^2",
+}
+
+
+# --- the arguments and the scenario ------------------------------------------------------------
+
+
+def positive_int(value, name, minimum=1):
+    """An integer >= minimum from an int, a float with an integral value or a text ("1e6")."""
+    wrong = InputError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
+    if isinstance(value, bool):
+        raise wrong
+    try:
+        number = float(value.strip().replace("_", "") if isinstance(value, str) else value)
+    except (TypeError, ValueError):
+        raise wrong from None
+    if not (math.isfinite(number) and number == int(number) and number >= minimum):
+        raise wrong
+    return int(number)
+
+
+def with_seed(scenario, seed):
+    """The scenario with another seed (the sampler reads ``scenario.seed``)."""
+    if scenario.seed == seed:
+        return scenario
+    if dataclasses.is_dataclass(scenario):
+        return dataclasses.replace(scenario, seed=seed)
+    other = copy.copy(scenario)
+    other.seed = seed
+    return other
+
+
+def default_out_dir(scenario, seed):
+    """``runs/<scenario name>-<seed>``, relative to the current folder."""
+    return RUNS_FOLDER / f"{scenario.name}-{seed}"
+
+
+def run_columns(scenario):
+    """The sampled columns of a run (the same for every point), and those that hold integers.
+
+    Found once from the scenario's points, without sampling: ``sampling.sampled_columns``
+    looks at every point, so it is not asked again per point or per chunk.
+    """
+    names = list(sampling.sampled_columns(scenario))
+    integers = [n for n in names if np.issubdtype(sampling.column_dtype(n), np.integer)]
+    return names, integers
+
+
+def driver_inputs(point, columns):
+    """The sampled columns of ``point`` that a distribution varies (the variance drivers)."""
+    names = []
+    for key, spec in point.params.items():
+        if key == "launch.file":
+            names += [_FILE_DRIVERS[q] for q in (*spec.columns, *spec.jitter)]
+        elif key in DRIVER_COLUMNS and not getattr(spec, "is_constant", True):
+            names.append(DRIVER_COLUMNS[key])
+    names = set(names)
+    return [name for name in columns if name in names]
+
+
+# --- the plan: what a run will be, said before it starts ---------------------------------------
+
+# Bytes of Parquet per shot, an upper bound: shots.parquet of pga-driver (every launch input
+# drawn) measured 150 B a shot at 1e6 shots in chunks of 65,536; a scenario that draws more
+# inputs (wind, temperature, turf) writes up to about 250 B. The bound takes every column as a
+# drawn float64 that zstd cannot compress: 8 B per column and shot.
+BYTES_PER_COLUMN_SHOT = 8
+# Each row group adds its column chunks' page headers and footer entries: about 365 B per
+# column (measured: a 100 x 100 sweep of 10 shots a point, one row group a point, wrote
+# 179 MB, 17.9 kB a row group of 49 columns), bounded at 500. Every row group but the last
+# holds output.ROW_GROUP_ROWS shots or more (``output.ShotsWriter``).
+BYTES_PER_ROW_GROUP_COLUMN = 500
+# A trajectory is recorded every 10 ms to rest (a drive: about 1,500 rows of 7 columns, 35 kB
+# in Parquet); the bound is that of a 30 s shot, 3,000 rows at 40 B.
+BYTES_PER_TRAJECTORY = 120_000
+# summary.parquet: about 60 kB for one point (its metadata holds the scenario and the schema
+# of about 120 columns) and 1.5 kB per further point (measured on 4 and 100 points).
+BYTES_SUMMARY = 100_000
+BYTES_SUMMARY_POINT = 2_000
+# Time: end to end about 4e5 shots/s on two cores (README, Performance: 451,000 for 1e7
+# pga-driver shots), and per point about 1.7 ms of Python (sampling its block, building its
+# table and its summary row: a 100 x 100 sweep of 10 shots a point ran in 17 s).
+SHOTS_PER_S = 4e5
+SECONDS_PER_POINT = 2e-3
+# The columns of shots.parquet besides the sampled inputs: point, group, label, shot, the
+# outcome fields and status_name.
+_FIXED_COLUMNS = 5 + len(OUTCOME_FIELDS)
+
+
+class Chunk(NamedTuple):
+    """Shots ``start .. stop - 1`` of point ``point``: chunk ``index`` of the run."""
+
+    index: int
+    point: int
+    start: int
+    stop: int
+
+
+@dataclass(frozen=True)
+class Plan:
+    """What a run will be: the scenario (with the run's seed), its shots per point ``n``, the
+    chunk size, every how many shots a path is recorded (None: none), the sampled columns
+    (``input_names``; ``integer_columns`` those that hold integers) and the variance drivers
+    of each point; and an estimate of its time (s) and of the Parquet it writes (bytes, an
+    upper bound)."""
+
+    scenario: scenario_module.Scenario
+    n: int
+    chunk_size: int
+    trajectories_every: int | None
+    input_names: list
+    integer_columns: list
+    drivers: list
+    seconds: float
+    bytes: int
+
+    @property
+    def seed(self):
+        return self.scenario.seed
+
+    @property
+    def points(self):
+        return self.scenario.points
+
+    @property
+    def shots(self):
+        return len(self.points) * self.n
+
+    def chunks(self):
+        """The chunks one after the other, point by point, never as a list: n may be huge."""
+        index = 0
+        for point in self.points:
+            for start in range(0, self.n, self.chunk_size):
+                yield Chunk(index, point.index, start, min(start + self.chunk_size, self.n))
+                index += 1
+
+    def line(self):
+        """One line for the terminal, e.g. ``mcrun: 4 points x 10 shots = 40 shots; ...``."""
+        points = f"{len(self.points):,} point" + ("s" if len(self.points) != 1 else "")
+        return (
+            f"mcrun: {points} x {self.n:,} shots = {self.shots:,} shots; "
+            f"{'under' if self.seconds < 0.05 else 'about'} {duration_text(self.seconds)} of "
+            f"simulation, about {size_text(self.bytes)} of Parquet"
+        )
+
+
+def size_text(n_bytes):
+    """A size in B, kB, MB, GB, TB or PB (powers of 1000), two or three digits."""
+    value = float(n_bytes)
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if value < 999.5:
+            return f"{value:.0f} {unit}" if unit == "B" or value >= 9.95 else f"{value:.1f} {unit}"
+        value /= 1000.0
+    return f"{value:,.0f} PB"
+
+
+def duration_text(seconds):
+    """A duration in s, min, h or days."""
+    for unit, size in (("days", 86400.0), ("h", 3600.0), ("min", 60.0)):
+        if seconds >= 2 * size:
+            return f"{seconds / size:,.0f} {unit}"
+    if seconds < 0.05:
+        return "0.1 s"
+    return f"{seconds:.1f} s" if seconds < 10 else f"{seconds:.0f} s"
+
+
+def plan(
+    path_or_scenario, n=None, seed=None, chunk_size=DEFAULT_CHUNK_SIZE, trajectories_every=None
+):
+    """The ``Plan`` of a run of ``n`` shots per point (default: the scenario's) with ``seed``
+    (default: the scenario's) of a scenario file, a library scenario's name or a loaded
+    scenario; InputError on a bad scenario or argument.
+
+    The size is an upper bound (constants above); the time assumes the 2-core machine of the
+    benchmarks.
+    """
+    scenario = path_or_scenario
+    if isinstance(path_or_scenario, str | Path):
+        scenario = scenario_module.load(path_or_scenario)
+    n = positive_int(scenario.shots if n is None else n, "n")
+    seed = positive_int(scenario.seed if seed is None else seed, "seed", minimum=0)
+    chunk_size = positive_int(chunk_size, "chunk_size")
+    if trajectories_every is not None:
+        trajectories_every = positive_int(trajectories_every, "trajectories_every")
+    scenario = with_seed(scenario, seed)
+    points = len(scenario.points)
+    shots = points * n
+    input_names, integer_columns = run_columns(scenario)
+    drivers = [driver_inputs(point, input_names) for point in scenario.points]
+    width = len(input_names) + _FIXED_COLUMNS
+    row_groups = shots // output.ROW_GROUP_ROWS + 1
+    size = shots * width * BYTES_PER_COLUMN_SHOT + row_groups * width * BYTES_PER_ROW_GROUP_COLUMN
+    size += BYTES_SUMMARY + points * BYTES_SUMMARY_POINT
+    if trajectories_every is not None:
+        size += points * -(-n // trajectories_every) * BYTES_PER_TRAJECTORY
+    seconds = shots / SHOTS_PER_S + points * SECONDS_PER_POINT
+    return Plan(
+        scenario,
+        n,
+        chunk_size,
+        trajectories_every,
+        input_names,
+        integer_columns,
+        drivers,
+        seconds,
+        size,
+    )
+
+
+def free_space(out_dir):
+    """(folder, free bytes) of the nearest existing folder of ``out_dir`` (itself or a parent),
+    where the run will be written."""
+    folder = Path(out_dir).absolute()
+    while not folder.exists() and folder.parent != folder:
+        folder = folder.parent
+    return folder, shutil.disk_usage(folder).free
+
+
+def check_disk_space(the_plan, out_dir):
+    """Refuse (OutputError) a run whose estimated size is not under the free space."""
+    folder, free = free_space(out_dir)
+    if the_plan.bytes >= free:
+        raise output.OutputError(
+            f"the run would write about {size_text(the_plan.bytes)} of Parquet "
+            f"({the_plan.shots:,} shots) but {folder} has {size_text(free)} free: lower -n, "
+            "choose another folder with -o, or pass --ignore-disk-space to run anyway"
+        )
+
+
+# --- a chunk's paths ---------------------------------------------------------------------------
+
+
+def trajectory_shots(start, stop, every):
+    """The shots start <= i < stop whose path is recorded: i % every == 0."""
+    return range(-(-start // every) * every, stop, every)
+
+
+def add_trajectories(writer, inputs, point, start, stop, every):
+    """Compute the paths of a chunk's ``trajectory_shots`` (rows of ``inputs``: each shot
+    alone again, its path recorded) and give each to ``writer.add(point, shot, path)``."""
+    for i in trajectory_shots(start, stop, every):
+        _, path = simulate_traced(inputs[i - start : i - start + 1])
+        writer.add(point, i, path)
+
+
+# --- provenance --------------------------------------------------------------------------------
+
+
+def _model_names(points):
+    """Names of the aerodynamic models and wind profiles used: choices, so the same for every
+    sample of a point, read from its parameters (no sampling)."""
+    models = sorted({p.params["models.aero"] for p in points})
+    profiles = sorted({p.params["weather.wind_profile"] for p in points})
+    return {"aero": models, "bounce": ["penner2002"], "wind_profile": profiles}
+
+
+def provenance(the_plan, backend, versions, threads, **facts):
+    """The provenance every file of a run records: the scenario, its seed, size, points and
+    models, the software ``versions``, the ``backend`` that ran it on how many ``threads``
+    and that backend's own ``facts``, the chunk size and the start time."""
+    scenario, points = the_plan.scenario, the_plan.points
+    return {
+        "format_version": FORMAT_VERSION,
+        "backend": backend,
+        "scenario_name": scenario.name,
+        "scenario_path": str(scenario.path),
+        "scenario_text": scenario.text,
+        "seed": the_plan.seed,
+        "n": the_plan.n,
+        "block_size": scenario.block_size,
+        "points": [p.label for p in points],
+        "groups": [p.group for p in points],
+        "models": _model_names(points),
+        "versions": versions,
+        "threads": threads,
+        **facts,
+        "chunk_size": the_plan.chunk_size,
+        "trajectories_every": the_plan.trajectories_every,
+        "start_time_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+    }
+
+
+def file_metadata(run_provenance, file, started=None):
+    """The Parquet key-value metadata of the run's ``file`` (shots, summary, trajectories):
+    the run's provenance and, once the file is complete, the seconds since ``started``
+    (``time.perf_counter``) as ``elapsed_s``."""
+    fields = {**run_provenance, "file": file}
+    if started is not None:
+        fields["elapsed_s"] = round(time.perf_counter() - started, 3)
+    return output.encode_provenance(fields)
+
+
+# --- the summary -------------------------------------------------------------------------------
+
+
+def _sweep_columns(points):
+    """{key path: [value per point]}: numbers as floats, anything else as text."""
+    keys = list(dict.fromkeys(k for p in points for k in (p.sweep or {})))
+    columns = {}
+    for key in keys:
+        values = [(p.sweep or {}).get(key) for p in points]
+        numeric = all(isinstance(v, int | float) and not isinstance(v, bool) for v in values)
+        columns[key] = [float(v) for v in values] if numeric else [str(v) for v in values]
+    return columns
+
+
+def summary_rows(points, point_stats, shots_of, budget_bytes):
+    """summary.parquet's rows, one per point: its index, group, label and sweep values, then
+    ``stats.summarise`` of its streamed ``PointStats`` and of its ok shots, which
+    ``shots_of(point index)`` reads (a ``stats.ShotsColumns``) from wherever they were
+    written."""
+    rows = []
+    sweep = _sweep_columns(points)
+    for point, one in zip(points, point_stats, strict=True):
+        row = {"point": point.index, "group": point.group, "label": point.label}
+        for key, values in sweep.items():
+            row[key] = values[point.index]
+        columns = shots_of(point.index)
+        row.update(
+            stats.summarise(one, columns, target_m=point.target_m, budget_bytes=budget_bytes)
+        )
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def summary_metadata(run_provenance, started):
+    """summary.parquet's metadata: the run's provenance, its elapsed time and how the summary
+    is computed (``SUMMARY_CONVENTIONS``)."""
+    return {
+        **file_metadata(run_provenance, "summary", started),
+        **output.encode_provenance(SUMMARY_CONVENTIONS),
+    }
+
+
+# --- what a run wrote --------------------------------------------------------------------------
+
+
+@dataclass
+class RunResult:
+    """What a run wrote: the folder (a path, or for a Dask run possibly a URL), its files (or,
+    for a Dask run, the dataset folders), and how it was run."""
+
+    out_dir: Path | str
+    shots_path: Path | str
+    summary_path: Path | str
+    trajectories_path: Path | str | None
+    n: int
+    seed: int
+    points: int
+    elapsed_s: float
+    threads: int
+
+    @property
+    def paths(self):
+        """The files (or, for a Dask run, the folders) the run wrote."""
+        optional = [] if self.trajectories_path is None else [self.trajectories_path]
+        return [self.shots_path, self.summary_path, *optional]
+
+    def shots(self, columns=None):
+        """The shots as a pandas DataFrame, as the local shots.parquet reads (``columns``: a
+        subset to read)."""
+        return reader.read_shots(self.out_dir, columns)
+
+    def summary(self):
+        """summary.parquet as a pandas DataFrame, one row per point."""
+        return pd.read_parquet(self.summary_path)
+
+    def trajectories(self):
+        """The trajectories as a pandas DataFrame (None when not asked for)."""
+        return None if self.trajectories_path is None else reader.read_trajectories(self.out_dir)
