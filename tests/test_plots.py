@@ -23,7 +23,7 @@ import pytest
 
 from mcrun.report import html as report
 from mcrun.report import plots
-from mcrun.results import output, stats
+from mcrun.results import output, reader, stats
 from mcrun.run import scenario as sc
 from mcrun.run.local import run_scenario
 
@@ -404,5 +404,9 @@ def test_the_report_reads_the_question_as_the_scenario_does(tmp_path):
     path.write_text(text, encoding="utf-8")
     assert sc.list_library(tmp_path)[0][2] == "from the comment?"
     assert sc.load(path).question == "from the comment?"
-    run = plots.Run(tmp_path, pd.DataFrame(), {"scenario_text": text}, [], False)
+    folder = reader.RunFolder(
+        tmp_path, None, None, str(tmp_path), "file", pd.DataFrame(), {"scenario_text": text},
+        [], False,
+    )  # fmt: skip
+    run = plots.Run(folder, pd.DataFrame(), [])
     assert run.question == "from the comment?"
