@@ -26,7 +26,7 @@ import pandas as pd
 
 from mcrun import api, status
 from mcrun.api import InputError
-from mcrun.cli import add_conditions_options, conditions_kwargs
+from mcrun.cli.options import add_conditions_options, conditions_kwargs
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import COLUMN, N_INPUT, OUTCOME_FIELDS
 from mcrun.engine.shot import default_dt_s
