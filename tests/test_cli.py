@@ -364,12 +364,12 @@ def test_compile_of_the_single_shot_kernel(capsys, monkeypatch):
 def test_ctrl_c_in_validate_is_one_line_and_exit_130(capsys, monkeypatch):
     """Ctrl-C during a long ``mcrun validate`` (here while it describes the points) ends like
     Ctrl-C in ``mcrun run``: one line on stderr, exit code 130, no traceback."""
-    from mcrun.run import local as run_module
+    from mcrun.cli import run as run_command
 
     def interrupted(scenario):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(run_module, "describe", interrupted)
+    monkeypatch.setattr(run_command, "describe", interrupted)
     try:
         code, out, err = run(capsys, "validate", "pga-driver")
     except KeyboardInterrupt:
