@@ -83,7 +83,7 @@ COMMAND_MODULES = {
     "run": "mcrun.cli.run",
     "validate": "mcrun.cli.run",
     "scenarios": "mcrun.cli.run",
-    "replay": "mcrun.run.replay",
+    "replay": "mcrun.cli.replay",
     "calibrate": "mcrun.calibrate",
     "paper": "mcrun.paper",
     "plot": "mcrun.report.plots",
