@@ -86,8 +86,8 @@ COMMAND_MODULES = {
     "replay": "mcrun.cli.replay",
     "calibrate": "mcrun.calibrate",
     "paper": "mcrun.paper",
-    "plot": "mcrun.report.plots",
-    "report": "mcrun.report.plots",
+    "plot": "mcrun.cli.report",
+    "report": "mcrun.cli.report",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 
