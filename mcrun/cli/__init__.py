@@ -85,7 +85,7 @@ COMMAND_MODULES = {
     "scenarios": "mcrun.cli.run",
     "replay": "mcrun.cli.replay",
     "calibrate": "mcrun.calibrate",
-    "paper": "mcrun.paper",
+    "paper": "mcrun.cli.paper",
     "plot": "mcrun.cli.report",
     "report": "mcrun.cli.report",
 }
