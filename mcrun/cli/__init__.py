@@ -84,7 +84,7 @@ COMMAND_MODULES = {
     "validate": "mcrun.cli.run",
     "scenarios": "mcrun.cli.run",
     "replay": "mcrun.cli.replay",
-    "calibrate": "mcrun.calibrate",
+    "calibrate": "mcrun.cli.calibrate",
     "paper": "mcrun.cli.paper",
     "plot": "mcrun.cli.report",
     "report": "mcrun.cli.report",
