@@ -3,7 +3,7 @@ and the lists of the aerodynamic models and the turf presets.
 
 A thin edge over ``mcrun.api``: options are read into SI (``mcrun.cli.options``), handed to the
 API, which checks every range, and the result is printed as an aligned table or as one JSON
-object. These are the core commands: their module imports neither pandas' Parquet nor
+object. These are the core commands: their module imports neither pandas, pyarrow nor
 matplotlib, so that ``mcrun shot`` starts quickly.
 """
 
@@ -120,7 +120,7 @@ def _shot_kwargs(args):
     ) | conditions_kwargs(args)
 
 
-def _run_shot(args):
+def _cmd_shot(args):
     kwargs = _shot_kwargs(args)
     result = api.simulate(trajectory=args.trajectory is not None, **kwargs)
     if args.trajectory is not None:
@@ -142,7 +142,7 @@ def _run_shot(args):
     return 0
 
 
-def _run_bounce(args):
+def _cmd_bounce(args):
     speed = quantity(args.speed, "speed", "--speed")
     angle = degrees(args.angle, "--angle")
     spin = quantity(args.spin, "spin", "--spin")
@@ -155,7 +155,7 @@ def _run_bounce(args):
     return 0
 
 
-def _run_models(args):
+def _cmd_models(args):
     if args.json:
         print(
             json.dumps(
@@ -176,7 +176,7 @@ def _run_models(args):
     return 0
 
 
-def _run_turfs(args):
+def _cmd_turfs(args):
     presets = []
     for name, preset in turf.PRESETS.items():
         fields = preset._asdict()
@@ -267,7 +267,7 @@ def _add_shot(subparsers):
         help="write the path to a CSV: t_s, x_m, y_m (positive right), z_m, phase",
     )
     out.add_argument("--json", action="store_true", help="print one JSON object instead")
-    p.set_defaults(func=_run_shot)
+    p.set_defaults(func=_cmd_shot)
 
 
 def _add_bounce(subparsers):
@@ -307,7 +307,7 @@ def _add_bounce(subparsers):
         "--softness", metavar="S", help="override: scale on the equivalent-surface tilt theta_c"
     )
     p.add_argument("--json", action="store_true", help="print one JSON object instead")
-    p.set_defaults(func=_run_bounce)
+    p.set_defaults(func=_cmd_bounce)
 
 
 def _add_lists(subparsers):
@@ -315,12 +315,12 @@ def _add_lists(subparsers):
         "models", help="list the aerodynamic models and their sources", allow_abbrev=False
     )
     p.add_argument("--json", action="store_true", help="print JSON instead")
-    p.set_defaults(func=_run_models)
+    p.set_defaults(func=_cmd_models)
     p = subparsers.add_parser(
         "turfs", help="list the turf presets and their fields", allow_abbrev=False
     )
     p.add_argument("--json", action="store_true", help="print JSON instead")
-    p.set_defaults(func=_run_turfs)
+    p.set_defaults(func=_cmd_turfs)
 
 
 def register(subparsers):
