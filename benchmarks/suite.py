@@ -432,18 +432,8 @@ def mcrun_command():
 
 
 def mcrun_run_command():
-    """argv prefix of ``mcrun run``: the CLI's, or ``mcrun.run.local``'s own parser if the CLI does
-    not have ``run`` (yet)."""
-    prefix = mcrun_command()
-    probe = subprocess.run([*prefix, "run", "--help"], capture_output=True, text=True)
-    if probe.returncode == 0:
-        return [*prefix, "run"]
-    return [
-        sys.executable,
-        "-c",
-        "import sys; from mcrun.run.local import main; sys.exit(main())",
-        "run",
-    ]
+    """argv prefix of ``mcrun run``."""
+    return [*mcrun_command(), "run"]
 
 
 @dataclass
@@ -573,7 +563,6 @@ def figure_end_to_end(config, inputs, huge=False):
     return {
         "command": "mcrun run scenarios/pga-driver.toml -n N --seed S -o DIR --quiet --json",
         "argv_prefix": command,
-        "via_cli": command[0] != sys.executable,
         "repeats": config.e2e_repeats,
         "rows": rows,
         "peak_rss_growth": max(peaks) / min(peaks) if peaks else None,
@@ -988,11 +977,6 @@ def _md_end_to_end(r):
         "### End to end: `mcrun run` to Parquet, as a child process",
         "",
         f"`{r['command']}`"
-        + (
-            ""
-            if r.get("via_cli", True)
-            else " (through `mcrun.run.local.main`: not in the CLI yet)"
-        )
         + "; wall time includes start-up; run time is what the run itself reports. Peak memory "
         "is the child's maximum resident set (wait4).",
         "",

@@ -18,9 +18,7 @@ matplotlib is optional (``mcrun[plot]``): it is imported only when a figure is d
 are rendered with the Agg canvas, so no display is needed.
 """
 
-import argparse
 import math
-import sys
 import textwrap
 from pathlib import Path
 
@@ -83,7 +81,6 @@ FIGURE_SIZES_IN = {
     "fig8": (8.0, 7.5),
 }
 DEFAULT_DPI = 150
-DPI_RANGE = (30, 600)
 
 
 def iron_loft_deg(number):
@@ -910,67 +907,3 @@ def write_paper(out_dir, dpi=DEFAULT_DPI):
     targets = out_dir / "targets.md"
     targets.write_text(targets_markdown(), encoding="utf-8")
     return [*paths, targets]
-
-
-# --- command line ------------------------------------------------------------------------------
-
-
-def dpi_value(text):
-    """argparse type of --dpi: a whole number within DPI_RANGE (also ``mcrun plot``'s)."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"cannot read {text!r} as a whole number") from None
-    lo, hi = DPI_RANGE
-    if not lo <= value <= hi:
-        raise argparse.ArgumentTypeError(f"{value} is outside [{lo}, {hi}]")
-    return value
-
-
-def register(subparsers):
-    """Add the ``paper`` subcommand to an argparse subparsers object."""
-    parser = subparsers.add_parser(
-        "paper",
-        help="redraw Penner (2002) Figs. 3-8 and compare every number of the paper",
-        description=(
-            "Redraw Penner (2002), 'The run of a golf ball', Figs. 3-8 from our model "
-            "(fig3.png ... fig8.png) and write targets.md: every number the paper states, the "
-            "paper's value beside ours and the difference. Needs matplotlib (mcrun[plot])."
-        ),
-        epilog="example: mcrun paper -o paper-figures --dpi 200",
-        allow_abbrev=False,
-    )
-    parser.add_argument(
-        "-o", "--out", metavar="DIR", required=True, help="output folder (created if missing)"
-    )
-    parser.add_argument(
-        "--dpi",
-        type=dpi_value,
-        default=DEFAULT_DPI,
-        help=f"resolution of the PNGs, {DPI_RANGE[0]}-{DPI_RANGE[1]} (default %(default)s)",
-    )
-    parser.set_defaults(func=run)
-    return parser
-
-
-def run(args):
-    """``mcrun paper``: write the figures and targets.md; exit code 0, or 2 with one line."""
-    try:
-        import matplotlib
-    except ImportError:
-        print(f"mcrun: error: {MISSING_MATPLOTLIB}", file=sys.stderr)
-        return 2
-    matplotlib.use("Agg")  # headless, whatever the user's default backend
-    out_dir = Path(args.out)
-    try:
-        out_dir.mkdir(parents=True, exist_ok=True)
-        probe = out_dir / ".mcrun-write-test"
-        probe.write_bytes(b"")
-        probe.unlink()
-    except OSError as err:
-        reason = err.strerror or str(err)
-        print(f"mcrun: error: --out: cannot write to {out_dir}: {reason}", file=sys.stderr)
-        return 2
-    for path in write_paper(out_dir, args.dpi):
-        print(f"wrote {path}")
-    return 0

@@ -13,7 +13,6 @@ coefficients that makes the fit worse fails here. The fit itself is not run (see
 benchmarks/calibration.md for it).
 """
 
-import argparse
 import json
 
 import numpy as np
@@ -144,10 +143,7 @@ def test_round_significant():
 
 
 def _run_cli(argv, capsys):
-    parser = argparse.ArgumentParser(prog="mcrun")
-    calibrate.register(parser.add_subparsers(dest="command", required=True))
-    args = parser.parse_args(["calibrate", *argv])
-    code = args.func(args)
+    code = main(["calibrate", *argv])
     captured = capsys.readouterr()
     return code, captured.out, captured.err
 

@@ -376,12 +376,12 @@ def test_compile_of_the_single_shot_kernel(capsys, monkeypatch):
 def test_ctrl_c_in_validate_is_one_line_and_exit_130(capsys, monkeypatch):
     """Ctrl-C during a long ``mcrun validate`` (here while it describes the points) ends like
     Ctrl-C in ``mcrun run``: one line on stderr, exit code 130, no traceback."""
-    from mcrun.run import local as run_module
+    from mcrun.cli import run as run_command
 
     def interrupted(scenario):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(run_module, "describe", interrupted)
+    monkeypatch.setattr(run_command, "describe", interrupted)
     try:
         code, out, err = run(capsys, "validate", "pga-driver")
     except KeyboardInterrupt:
@@ -425,3 +425,36 @@ def test_not_stopped_warning_names_the_ground(capsys):
     assert code == 0 and table(out)["status"] == "not_stopped"
     assert err.startswith("mcrun: warning: the shot ended with status not_stopped: ")
     assert "(on a slope of 10 deg, steeper than atan(rho_g) = 7.5 deg, the ball never stops)" in err
+
+
+# --- layout --------------------------------------------------------------------------------------
+
+
+def test_only_the_command_line_reads_arguments_and_prints_errors():
+    """The command line sits on top: no module outside mcrun/cli imports it or argparse, and
+    the line ``mcrun: error:`` is written in cli/__init__.py alone (its error handler and its
+    parser's usage errors)."""
+    import ast
+
+    package = Path(cli.__file__).parents[1]
+    writers = set()
+    for path in sorted(package.rglob("*.py")):
+        name = path.relative_to(package).as_posix()
+        text = path.read_text(encoding="utf-8")
+        if 'f"mcrun: error: ' in text or '"mcrun: error: "' in text:
+            writers.add(name)
+        if name.startswith("cli/"):
+            continue
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.Import):
+                imported = [alias.name for alias in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                imported = [node.module or ""]
+                if node.module == "mcrun":
+                    imported += [f"mcrun.{alias.name}" for alias in node.names]
+            else:
+                continue
+            for module in imported:
+                assert module != "argparse", name
+                assert module != "mcrun.cli" and not module.startswith("mcrun.cli."), name
+    assert writers == {"cli/__init__.py"}

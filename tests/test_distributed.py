@@ -26,6 +26,7 @@ pytest.importorskip("dask.distributed")
 import cloudpickle  # noqa: E402 (a dependency of dask.distributed)
 from dask.distributed import Client  # noqa: E402
 
+from mcrun.cli import main  # noqa: E402
 from mcrun.results import output  # noqa: E402
 from mcrun.run import distributed  # noqa: E402
 from mcrun.run import local as run  # noqa: E402
@@ -342,7 +343,7 @@ def test_cli_runs_on_a_scheduler(small, client, tmp_path, capsys):
     the paths; the shots equal the local engine's."""
     out = tmp_path / "run"
     argv = ["run", DRIVER, "-n", "6000", "--chunk-size", "1500", "-o", str(out), "--quiet"]
-    assert run.main([*argv, "--scheduler", client.scheduler.address]) == 0
+    assert main([*argv, "--scheduler", client.scheduler.address]) == 0
     printed = capsys.readouterr().out
     assert "shots/s on 2 Dask workers, 2 threads); wrote:" in printed
     assert str(out / "shots") in printed and str(out / "summary.parquet") in printed
@@ -358,7 +359,7 @@ def test_cli_ctrl_c_leaves_nothing(client, tmp_path, capsys, monkeypatch):
 
     monkeypatch.setattr(distributed, "_remove_strays", interrupt)
     argv = ["run", DRIVER, "-n", "3000", "--chunk-size", "1500", "-o", str(tmp_path / "run")]
-    assert run.main([*argv, "--scheduler", client.scheduler.address]) == 130
+    assert main([*argv, "--scheduler", client.scheduler.address]) == 130
     assert "interrupted" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
 
@@ -366,7 +367,7 @@ def test_cli_ctrl_c_leaves_nothing(client, tmp_path, capsys, monkeypatch):
 def test_without_dask_the_backend_says_how_to_install_it(tmp_path, capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "dask.distributed", None)  # import fails as if missing
     out = tmp_path / "run"
-    assert run.main(["run", DRIVER, "-n", "100", "-o", str(out), "--dask", "local"]) == 2
+    assert main(["run", DRIVER, "-n", "100", "-o", str(out), "--dask", "local"]) == 2
     assert "pip install 'mcrun[dask]'" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
 
@@ -386,7 +387,7 @@ def test_cli_errors_exit_2_with_one_line_and_write_nothing(
     monkeypatch.setattr(distributed, "CONNECT_TIMEOUT_S", 1)
     monkeypatch.chdir(tmp_path)
     out = tmp_path / "run"
-    assert run.main(["run", DRIVER, "-n", "100", "-o", str(out), *options]) == 2
+    assert main(["run", DRIVER, "-n", "100", "-o", str(out), *options]) == 2
     err = capsys.readouterr().err
     assert err.startswith("mcrun: error: ") and err.count("\n") == 1 and message in err
     assert list(tmp_path.iterdir()) == []

@@ -22,6 +22,7 @@ import pyarrow.parquet as pq
 import pytest
 
 from mcrun.api import simulate
+from mcrun.cli import main
 from mcrun.engine import batch
 from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.results import output, stats
@@ -432,7 +433,7 @@ def test_penner_fig4_scenario_equals_single_shots(tmp_path, source, air):
 
 
 def cli(capsys, *argv):
-    code = run.main(list(argv))
+    code = main(list(argv))
     out, err = capsys.readouterr()
     return code, out, err
 

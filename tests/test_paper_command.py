@@ -7,7 +7,6 @@ the paper's sign and order (1.11 m at 1000 rad/s, 4.74 m at 1200 rad/s, both bac
 player).
 """
 
-import argparse
 import math
 import re
 
@@ -16,6 +15,7 @@ import pytest
 
 from mcrun import paper
 from mcrun.api import bounce_once, simulate
+from mcrun.cli import main
 from mcrun.physics.bounce import critical_backspin_radps
 from mcrun.physics.launch import launch_from_club
 from mcrun.physics.turf import PRESETS
@@ -25,18 +25,11 @@ FIGURES = ("fig3", "fig4", "fig5", "fig6", "fig7", "fig8")
 PENNER_AIR = {"aero_model": "penner2002", "air_density_kgpm3": 1.204}
 
 
-def parse(argv):
-    parser = argparse.ArgumentParser(prog="mcrun")
-    paper.register(parser.add_subparsers(dest="command", required=True))
-    return parser.parse_args(argv)
-
-
 @pytest.fixture(scope="module")
 def out_dir(tmp_path_factory):
     pytest.importorskip("matplotlib")  # the optional extra mcrun[plot]
     out = tmp_path_factory.mktemp("paper") / "figures"
-    args = parse(["paper", "-o", str(out), "--dpi", str(DPI)])
-    assert args.func(args) == 0
+    assert main(["paper", "-o", str(out), "--dpi", str(DPI)]) == 0
     return out
 
 
@@ -214,8 +207,7 @@ def test_fig8_backward_runs_have_the_papers_sign_and_order(rows):
 def test_missing_matplotlib_is_one_line(monkeypatch, tmp_path, capsys):
     """Without matplotlib the command says what to install, on one line, exit code 2."""
     monkeypatch.setitem(__import__("sys").modules, "matplotlib", None)
-    args = parse(["paper", "-o", str(tmp_path / "x")])
-    assert args.func(args) == 2
+    assert main(["paper", "-o", str(tmp_path / "x")]) == 2
     err = capsys.readouterr().err
     assert err == "mcrun: error: mcrun paper needs matplotlib: pip install 'mcrun[plot]'\n"
     assert not (tmp_path / "x").exists()
@@ -226,14 +218,13 @@ def test_unwritable_output_is_one_line(tmp_path, capsys):
     pytest.importorskip("matplotlib")
     blocker = tmp_path / "file"
     blocker.write_text("")
-    args = parse(["paper", "-o", str(blocker / "figures")])
-    assert args.func(args) == 2
+    assert main(["paper", "-o", str(blocker / "figures")]) == 2
     err = capsys.readouterr().err
     assert err.startswith("mcrun: error: --out: cannot write to ") and err.count("\n") == 1
 
 
 @pytest.mark.parametrize("dpi", ["0", "5000", "high"])
-def test_bad_dpi_is_a_usage_error(dpi):
-    with pytest.raises(SystemExit) as exc:
-        parse(["paper", "-o", "x", "--dpi", dpi])
-    assert exc.value.code == 2
+def test_bad_dpi_is_a_usage_error(dpi, capsys):
+    assert main(["paper", "-o", "x", "--dpi", dpi]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mcrun: error: argument --dpi: ") and err.count("\n") == 1

@@ -21,6 +21,7 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
+from mcrun.cli import main
 from mcrun.report import html as report
 from mcrun.report import plots
 from mcrun.results import output, reader, stats
@@ -94,7 +95,7 @@ def plotted(runs):
     out = {}
     for name, run_dir in runs.items():
         folder = run_dir.parent / f"{name}-plots"
-        code = plots.main(["plot", str(run_dir), "-o", str(folder), "--dpi", str(DPI)])
+        code = main(["plot", str(run_dir), "-o", str(folder), "--dpi", str(DPI)])
         out[name] = folder, code
     return out
 
@@ -103,7 +104,7 @@ def plotted(runs):
 def page(runs):
     """The HTML report of the sweep."""
     path = runs["sweep"].parent / "sweep-report.html"
-    assert report.main(["report", str(runs["sweep"]), "-o", str(path), "--dpi", str(DPI)]) == 0
+    assert main(["report", str(runs["sweep"]), "-o", str(path), "--dpi", str(DPI)]) == 0
     return path.read_text(encoding="utf-8")
 
 
@@ -162,7 +163,7 @@ def test_plot_defaults_to_a_plots_folder_in_the_run(runs, tmp_path, capsys):
     run_dir.mkdir()
     for name in (output.SHOTS_FILE, output.SUMMARY_FILE):
         (run_dir / name).write_bytes((runs["groups"] / name).read_bytes())
-    assert plots.main(["plot", str(run_dir), "--dpi", "30"]) == 0
+    assert main(["plot", str(run_dir), "--dpi", "30"]) == 0
     printed = capsys.readouterr().out.split()
     written = {p.name for p in (run_dir / plots.PLOTS_FOLDER).iterdir()}
     assert written == expected_files(2, False)
@@ -335,7 +336,7 @@ def test_report_defaults_to_the_run_folder(runs, tmp_path, capsys):
     run_dir.mkdir()
     for name in (output.SHOTS_FILE, output.SUMMARY_FILE):
         (run_dir / name).write_bytes((runs["groups"] / name).read_bytes())
-    assert report.main(["report", str(run_dir), "--dpi", "30"]) == 0
+    assert main(["report", str(run_dir), "--dpi", "30"]) == 0
     path = run_dir / report.REPORT_FILE
     assert capsys.readouterr().out.strip() == f"wrote {path}"
     assert "two-wedges" in path.read_text(encoding="utf-8")
@@ -355,7 +356,6 @@ def one_line_error(capsys, code, *needles):
 
 @pytest.mark.parametrize("command", ["plot", "report"])
 def test_a_folder_that_is_not_a_run_is_one_line(runs, tmp_path, capsys, command):
-    main = plots.main if command == "plot" else report.main
     one_line_error(capsys, main([command, str(tmp_path / "nowhere")]), "no such run folder")
     one_line_error(capsys, main([command, str(tmp_path)]), "not an mcrun run folder")
     a_file = tmp_path / "file.txt"
@@ -375,11 +375,11 @@ def test_a_folder_that_is_not_a_run_is_one_line(runs, tmp_path, capsys, command)
 def test_an_unwritable_output_is_one_line(runs, tmp_path, capsys):
     blocker = tmp_path / "a-file"
     blocker.write_text("x")
-    code = plots.main(["plot", str(runs["groups"]), "-o", str(blocker / "plots")])
+    code = main(["plot", str(runs["groups"]), "-o", str(blocker / "plots")])
     one_line_error(capsys, code, "cannot write to")
-    code = report.main(["report", str(runs["groups"]), "-o", str(tmp_path)])
+    code = main(["report", str(runs["groups"]), "-o", str(tmp_path)])
     one_line_error(capsys, code, "is a folder")
-    code = report.main(["report", str(runs["groups"]), "-o", str(blocker / "r.html")])
+    code = main(["report", str(runs["groups"]), "-o", str(blocker / "r.html")])
     one_line_error(capsys, code, "-o:")
 
 
@@ -389,7 +389,6 @@ def test_missing_matplotlib_is_one_line(runs, tmp_path, monkeypatch, capsys, com
 
     for name in ("matplotlib", "matplotlib.figure", "matplotlib.backends.backend_agg"):
         monkeypatch.setitem(sys.modules, name, None)
-    main = plots.main if command == "plot" else report.main
     code = main([command, str(runs["groups"]), "-o", str(tmp_path / "out")])
     one_line_error(capsys, code, f"mcrun {command} needs matplotlib", "mcrun[plot]")
     assert not (tmp_path / "out").exists()

@@ -13,9 +13,9 @@ import pandas as pd
 import pytest
 
 from mcrun.api import simulate
+from mcrun.cli import main
 from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.results import output
-from mcrun.run import local as run
 from mcrun.run import replay
 from mcrun.status import INVALID_INPUT, OK
 
@@ -95,7 +95,7 @@ def test_cli_replay_writes_parquet_with_provenance(tmp_path, capsys):
     """The command line reads the options' units (30 C through kelvin and back, so to 1e-12)."""
     source = session_file(tmp_path)
     out = tmp_path / "replayed.parquet"
-    code = run.main(["replay", str(source), *CLI_CONDITIONS, "-o", str(out)])
+    code = main(["replay", str(source), *CLI_CONDITIONS, "-o", str(out)])
     stdout, stderr = capsys.readouterr()
     assert code == 0, stderr
     assert f"wrote {out}" in stdout
@@ -132,7 +132,7 @@ def test_replay_bad_inputs_exit_2_and_write_nothing(tmp_path, capsys):
     ]
     before = {p: p.stat().st_mtime_ns for p in tmp_path.iterdir()}
     for argv, needle in cases:
-        code = run.main(["replay", *argv])
+        code = main(["replay", *argv])
         stdout, stderr = capsys.readouterr()
         assert code == 2, argv
         assert stdout == "" and stderr.count("\n") == 1, (argv, stderr)
@@ -155,7 +155,7 @@ def test_replay_parquet_source_and_force(tmp_path, capsys):
     si.to_parquet(source)
     out = tmp_path / "out.parquet"
     out.write_bytes(b"old")
-    code = run.main(["replay", str(source), "-o", str(out), "--force"])
+    code = main(["replay", str(source), "-o", str(out), "--force"])
     assert code == 0, capsys.readouterr().err
     frame = pd.read_parquet(out)
     for k, row in si.reset_index(drop=True).iterrows():
@@ -192,7 +192,7 @@ def test_replay_of_a_malformed_file_is_one_line_exit_2_and_writes_nothing(tmp_pa
     ]
     before = sorted(os.listdir(tmp_path))
     for source, what in cases:
-        code = run.main(["replay", str(source), "-o", str(out)])
+        code = main(["replay", str(source), "-o", str(out)])
         stdout, stderr = capsys.readouterr()
         assert code == 2 and stdout == "", (source, stderr)
         assert stderr == f"mcrun: error: {source}: {what}\n"

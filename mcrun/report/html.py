@@ -9,7 +9,6 @@ and encoded at once; the run, local or Dask, is read as ``mcrun plot`` reads it
 (``mcrun.report.plots``, through ``mcrun.results.reader``).
 """
 
-import argparse
 import base64
 import html
 import json
@@ -18,14 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.api import InputError
 from mcrun.report.plots import (
-    DPI_RANGE,
     SCATTER_MAX_SHOTS,
     TRAJECTORIES_PER_POINT,
     PlotError,
-    command_error,
-    dpi_value,
     figures,
     open_run,
     png_bytes,
@@ -33,7 +28,6 @@ from mcrun.report.plots import (
 )
 from mcrun.results import output, stats
 from mcrun.results.reader import reason_of
-from mcrun.units import UnitError
 
 DEFAULT_REPORT_DPI = 100
 REPORT_FILE = "report.html"
@@ -387,50 +381,3 @@ def write_report(run_dir, path=None, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER
 
 
 # --- command line ------------------------------------------------------------------------------
-
-
-def _cmd_report(args):
-    try:
-        path = write_report(args.run_dir, args.out, args.dpi)
-    except (InputError, UnitError) as err:
-        return command_error(err)
-    print(f"wrote {path}")
-    return 0
-
-
-def register(subparsers):
-    """Add ``report`` to an argparse subparsers object."""
-    p = subparsers.add_parser(
-        "report",
-        help="one self-contained HTML page of a finished run",
-        description="Write one HTML page of a run folder written by 'mcrun run': the scenario, "
-        "the summary tables, the plots of 'mcrun plot' embedded as images, and the "
-        "provenance (seed, N, versions, times, threads, backend). Self-contained: inline CSS, "
-        "no script, no external resource, for sharing a study with someone who will not run "
-        "Python. Needs matplotlib (mcrun[plot]).",
-        epilog="example: mcrun report runs/pga-driver-2019 -o pga-driver.html",
-        allow_abbrev=False,
-    )
-    p.add_argument("run_dir", metavar="RUN_DIR", help="a folder written by 'mcrun run'")
-    p.add_argument(
-        "-o",
-        "--out",
-        metavar="FILE",
-        help=f"the HTML file (replaced if it exists; default RUN_DIR/{REPORT_FILE})",
-    )
-    p.add_argument(
-        "--dpi",
-        type=dpi_value,
-        default=DEFAULT_REPORT_DPI,
-        help=f"resolution of the embedded plots, {DPI_RANGE[0]}-{DPI_RANGE[1]} "
-        "(default %(default)s)",
-    )
-    p.set_defaults(func=_cmd_report)
-
-
-def main(argv=None):
-    """``report`` alone (for testing without mcrun.cli)."""
-    parser = argparse.ArgumentParser(prog="mcrun", allow_abbrev=False)
-    register(parser.add_subparsers(dest="command", required=True))
-    args = parser.parse_args(argv)
-    return args.func(args)

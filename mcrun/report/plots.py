@@ -35,11 +35,9 @@ matplotlib is optional (``mcrun[plot]``): imported only when drawing, used throu
 objects and the Agg canvas (no pyplot, no display, no global state).
 """
 
-import argparse
 import io
 import math
 import re
-import sys
 import textwrap
 import tomllib
 from dataclasses import dataclass
@@ -51,10 +49,8 @@ import pandas as pd
 from mcrun import exits
 from mcrun import status as status_codes
 from mcrun.api import InputError
-from mcrun.paper import DPI_RANGE, dpi_value
 from mcrun.results import output, reader, stats
 from mcrun.run.scenario import question_of
-from mcrun.units import UnitError
 
 MISSING_MATPLOTLIB = "mcrun {} needs matplotlib: pip install 'mcrun[plot]'"
 
@@ -1030,60 +1026,3 @@ def write_plots(run_dir, out_dir=None, dpi=DEFAULT_PLOT_DPI, scatter_max=SCATTER
 
 
 # --- command line ------------------------------------------------------------------------------
-
-
-def command_error(err):
-    """Print ``mcrun: error: <one line>`` on stderr; return the exit code 2."""
-    print("mcrun: error: " + " ".join(str(err).split()), file=sys.stderr)
-    return 2
-
-
-def _cmd_plot(args):
-    try:
-        written = write_plots(args.run_dir, args.out, args.dpi)
-    except (InputError, UnitError) as err:
-        return command_error(err)
-    for path, _ in written:
-        print(f"wrote {path}")
-    return 0
-
-
-def register(subparsers):
-    """Add ``plot`` to an argparse subparsers object."""
-    p = subparsers.add_parser(
-        "plot",
-        help="plot a finished run: positions, distances, trajectories, the sweep",
-        description="Write one PNG per plot of a run folder written by 'mcrun run': per point, "
-        "the landing and final positions with the 68 % and 95 % ellipses and the target "
-        "(pointNN-positions.png), histograms of carry, run and total (pointNN-distances.png), "
-        "side and top views of sampled trajectories when the run wrote them "
-        "(pointNN-trajectories.png); for several points, the summary against the swept "
-        "parameter or per group (summary.png) and every point's finish (finish.png). Reads "
-        "only the columns it draws, one point at a time: histograms and densities are "
-        "binned over every shot, trajectories are the first of each point. Needs matplotlib "
-        "(mcrun[plot]).",
-        epilog="example: mcrun plot runs/pga-driver-2019 -o plots",
-        allow_abbrev=False,
-    )
-    p.add_argument("run_dir", metavar="RUN_DIR", help="a folder written by 'mcrun run'")
-    p.add_argument(
-        "-o",
-        "--out",
-        metavar="DIR",
-        help=f"output folder (created if missing; default RUN_DIR/{PLOTS_FOLDER})",
-    )
-    p.add_argument(
-        "--dpi",
-        type=dpi_value,
-        default=DEFAULT_PLOT_DPI,
-        help=f"resolution, {DPI_RANGE[0]}-{DPI_RANGE[1]} (default %(default)s)",
-    )
-    p.set_defaults(func=_cmd_plot)
-
-
-def main(argv=None):
-    """``plot`` alone (for testing without mcrun.cli)."""
-    parser = argparse.ArgumentParser(prog="mcrun", allow_abbrev=False)
-    register(parser.add_subparsers(dest="command", required=True))
-    args = parser.parse_args(argv)
-    return args.func(args)

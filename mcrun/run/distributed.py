@@ -120,7 +120,6 @@ __all__ = [
     "local_cluster",
     "read_shots",
     "run_chunk",
-    "run_from_args",
     "run_scenario",
 ]
 
@@ -709,30 +708,3 @@ class _PartsColumns(stats.ShotsColumns):
 
 
 # --- command line ------------------------------------------------------------------------------
-
-
-def run_from_args(args, announce=None):
-    """``mcrun run`` with ``--dask local``, ``--scheduler`` or ``--scheduler-file``;
-    ``announce`` as ``run_scenario``'s."""
-    if args.threads is not None:
-        raise InputError(
-            "--threads is for the local engine; the Dask backend runs one Numba thread per "
-            "Dask thread (use --workers N with --dask local)"
-        )
-    if args.workers is not None and args.dask != "local":
-        raise InputError("--workers is for --dask local (an existing cluster has its workers)")
-    return run_scenario(
-        args.scenario,
-        n=args.n,
-        seed=args.seed,
-        out_dir=args.output,
-        scheduler=args.scheduler if args.scheduler else args.dask,
-        scheduler_file=args.scheduler_file,
-        workers=args.workers,
-        chunk_size=args.chunk_size,
-        trajectories_every=args.trajectories,
-        progress=not args.quiet,
-        force=args.force,
-        ignore_disk_space=args.ignore_disk_space,
-        announce=announce,
-    )

@@ -14,8 +14,6 @@ where a name is also an output column), then the launch in SI-named columns, the
 ``schema.OUTCOME_FIELDS`` and status_name, with the provenance in the Parquet metadata.
 """
 
-import argparse
-import sys
 import time
 from datetime import UTC, datetime
 from pathlib import Path
@@ -25,13 +23,12 @@ import pandas as pd
 
 from mcrun import status
 from mcrun.api import InputError, conditions_inputs
-from mcrun.cli import add_conditions_options, conditions_kwargs
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import OUTCOME_FIELDS, encode_outcomes, pack
 from mcrun.physics.constants import DEG
 from mcrun.results import output
 from mcrun.run.scenario import PARAMETERS, launch_columns, read_launch_table
-from mcrun.units import KINDS, UnitError
+from mcrun.units import KINDS
 
 # The launch columns of the output, by quantity (scenario.FILE_COLUMNS): (name, SI -> factor).
 LAUNCH_COLUMNS = {
@@ -150,58 +147,3 @@ def _plain(value):
     if isinstance(value, int | float | str | bool) or value is None:
         return value
     return str(value)
-
-
-# --- command line ------------------------------------------------------------------------------
-
-
-def _cmd_replay(args):
-    try:
-        conditions = conditions_kwargs(args)
-        conditions_inputs(**conditions)  # every option checked before reading the file
-        destination = Path(args.output)
-        if destination.suffix.lower() not in (".parquet", ".pq"):
-            raise InputError(f"-o {args.output}: the output must be a .parquet file")
-        frame = replay_file(args.shots, destination, force=args.force, **conditions)
-    except (InputError, UnitError) as err:
-        print("mcrun: error: " + " ".join(str(err).split()), file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("mcrun: interrupted: nothing was written", file=sys.stderr)
-        return 130
-    bad = int((frame["status"] != status.OK).sum())
-    print(f"replayed {len(frame)} shots from {args.shots}; wrote {args.output}")
-    if bad:
-        print(
-            f"mcrun: warning: {bad} shot(s) did not end ok (status_name says why; a missing or "
-            "out-of-range launch value gives invalid_input)",
-            file=sys.stderr,
-        )
-    return 0
-
-
-def register(subparsers):
-    """Add ``replay`` to an argparse subparsers object."""
-    p = subparsers.add_parser(
-        "replay",
-        help="simulate each measured shot of a launch-monitor file as given",
-        description="Fly every shot of a launch-monitor session (CSV or Parquet; columns named "
-        "with their unit: ball_speed_mph, launch_deg, spin_rpm, optional spin_axis_deg, "
-        "azimuth_deg) as measured, without sampling, on the turf and in the weather given "
-        "here, and write a Parquet of the inputs and outcomes. Values take units as in "
-        "'mcrun shot'.",
-        allow_abbrev=False,
-    )
-    p.add_argument("shots", metavar="SHOTS", help="measured shots, .csv or .parquet")
-    p.add_argument("-o", "--output", metavar="OUT.parquet", required=True, help="output file")
-    p.add_argument("--force", action="store_true", help="replace an existing output file")
-    add_conditions_options(p)
-    p.set_defaults(func=_cmd_replay)
-
-
-def main(argv=None):
-    """``mcrun replay`` alone."""
-    parser = argparse.ArgumentParser(prog="mcrun", allow_abbrev=False)
-    register(parser.add_subparsers(dest="command", required=True))
-    args = parser.parse_args(argv)
-    return args.func(args)

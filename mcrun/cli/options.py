@@ -1,0 +1,238 @@
+"""What the command modules share: option values read into SI, and the options of several
+commands.
+
+Values take an optional unit (``mcrun.units``: ``167mph``, ``2686rpm``, ``10.9`` degrees); a value
+that cannot be read is an ``InputError`` or a ``UnitError`` naming the option. The conditions
+options (turf, wind, air, step) are those of ``mcrun shot`` and ``mcrun replay``; ``--dpi`` is
+that of ``mcrun plot``, ``mcrun report`` and ``mcrun paper``.
+"""
+
+import argparse
+import inspect
+import math
+
+from mcrun import api, units
+from mcrun.api import InputError
+from mcrun.physics import aero, atmosphere, turf
+
+DPI_RANGE = (30, 600)
+
+
+def api_default(func, name):
+    """The default of ``func``'s keyword argument ``name``: the API is its one source."""
+    return inspect.signature(func).parameters[name].default
+
+
+# --- reading option values ---------------------------------------------------------------------
+
+
+def quantity(text, kind, option):
+    """SI value of an option with an optional unit, or None when the option was not given."""
+    return None if text is None else units.parse_quantity(text, kind, option)
+
+
+def from_si(value, kind, unit):
+    """``value`` (SI) in ``unit``, or None when the option was not given."""
+    return None if value is None else units.to_unit(value, kind, unit)
+
+
+def degrees(text, option):
+    """An angle option (bare number in degrees, or with ``deg``/``rad``) in degrees."""
+    return from_si(quantity(text, "angle", option), "angle", "deg")
+
+
+def number(text, option):
+    """A plain dimensionless number (friction, scale factors, ...), or None when not given."""
+    if text is None:
+        return None
+    foreign = units.foreign_digits(text)
+    if foreign is not None:
+        raise InputError(f"{option}: cannot read {text!r} as a number: {foreign}")
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{option}: cannot read {text!r} as a number") from None
+    if not math.isfinite(value):
+        raise InputError(f"{option}: cannot read {text!r}: not a finite number")
+    return value
+
+
+def given(**kwargs):
+    """The keyword arguments that were given, so that the API's defaults apply to the rest."""
+    return {k: v for k, v in kwargs.items() if v is not None}
+
+
+# --- options several commands share ------------------------------------------------------------
+
+
+def turf_from_args(args):
+    """The turf preset named by ``--turf`` with the overrides given on the command line."""
+    return api.resolve_turf(
+        args.turf,
+        **given(
+            mu=number(args.mu, "--mu"),
+            softness=number(args.softness, "--softness"),
+            rho_g=number(args.rho_g, "--rho-g"),
+            stimp_m=quantity(args.stimp, "length", "--stimp"),
+            critical_height_m=quantity(args.critical_height, "length", "--critical-height"),
+        ),
+    )
+
+
+def conditions_kwargs(args):
+    """Keyword arguments of ``mcrun.api.simulate`` from ``add_conditions_options``' options."""
+    wind = None if args.wind is None else units.parse_vector(args.wind, "speed", "--wind")
+    profile = args.wind_profile
+    if profile == "log":  # the log law's parameter is a roughness length, e.g. 3cm
+        wind_param = quantity(args.wind_param, "length", "--wind-param")
+    else:  # the power law's is an exponent
+        wind_param = number(args.wind_param, "--wind-param")
+    return given(
+        turf=turf_from_args(args),
+        slope_deg=degrees(args.slope, "--slope"),
+        fall_line_deg=degrees(args.fall_line, "--fall-line"),
+        dt_s=number(args.dt, "--dt"),
+        aero_model=args.aero,
+        cd_scale=number(args.cd_scale, "--cd-scale"),
+        cl_scale=number(args.cl_scale, "--cl-scale"),
+        wind_mps=wind,
+        wind_profile=profile,
+        wind_reference_height_m=quantity(args.wind_height, "length", "--wind-height"),
+        wind_profile_parameter=wind_param,
+        temperature_c=from_si(
+            quantity(args.temperature, "temperature", "--temperature"), "temperature", "C"
+        ),
+        pressure_pa=quantity(args.pressure, "pressure", "--pressure"),
+        altitude_m=quantity(args.altitude, "length", "--altitude"),
+        relative_humidity=quantity(args.humidity, "fraction", "--humidity"),
+        air_density_kgpm3=number(args.air_density, "--air-density"),
+    )
+
+
+def add_conditions_options(p):
+    """The options of everything but the launch (turf and ground, aerodynamics and wind, air,
+    step), shared by ``mcrun shot`` and ``mcrun replay``; ``conditions_kwargs`` reads them."""
+    sim = api.conditions_inputs
+    fp = api.flight_params
+    air = api.air_properties
+    ground = p.add_argument_group("turf and ground")
+    ground.add_argument(
+        "--turf",
+        metavar="NAME",
+        default=api_default(sim, "turf"),
+        help=f"turf preset: {', '.join(turf.PRESETS)} (default %(default)s; "
+        f"{' and '.join(turf.ESTIMATED_PRESETS)} are estimates; see 'mcrun turfs')",
+    )
+    ground.add_argument("--mu", metavar="MU", help="override: ball-turf kinetic friction")
+    ground.add_argument(
+        "--softness", metavar="S", help="override: scale on the equivalent-surface tilt theta_c"
+    )
+    ground.add_argument("--rho-g", metavar="RHO", help="override: rolling resistance rho_g")
+    ground.add_argument(
+        "--stimp",
+        metavar="LENGTH",
+        help="override rho_g by a Stimpmeter reading, e.g. 10ft (bare: m)",
+    )
+    ground.add_argument(
+        "--critical-height",
+        metavar="LENGTH",
+        help="override: hop height below which the ball rolls, e.g. 5mm (bare: m)",
+    )
+    ground.add_argument(
+        "--slope",
+        metavar="ANGLE",
+        help=f"ground slope (bare: deg; default {api_default(sim, 'slope_deg'):g})",
+    )
+    ground.add_argument(
+        "--fall-line",
+        metavar="ANGLE",
+        help="downhill direction from the target line, positive to the right: 0 = downhill "
+        f"towards the target, 180 = uphill (bare: deg; default "
+        f"{api_default(sim, 'fall_line_deg'):g})",
+    )
+    flight = p.add_argument_group("aerodynamics and wind")
+    flight.add_argument(
+        "--aero",
+        metavar="NAME",
+        default=api_default(fp, "aero_model"),
+        help=f"aerodynamic model: {', '.join(aero.MODELS)} (default %(default)s; "
+        "see 'mcrun models')",
+    )
+    flight.add_argument(
+        "--cd-scale",
+        metavar="X",
+        help=f"scale on the drag coefficient (default {api_default(fp, 'cd_scale'):g})",
+    )
+    flight.add_argument(
+        "--cl-scale",
+        metavar="X",
+        help=f"scale on the lift coefficient (default {api_default(fp, 'cl_scale'):g})",
+    )
+    flight.add_argument(
+        "--wind",
+        metavar="X,Y",
+        help="wind vector: X along the target line (positive = tailwind), Y positive = "
+        "blowing to the right; e.g. 10mph,-3mph (bare: m/s; default 0,0)",
+    )
+    flight.add_argument(
+        "--wind-profile",
+        metavar="PROFILE",
+        default=api_default(fp, "wind_profile"),
+        help=f"wind height profile: {' | '.join(api.WIND_PROFILE_DEFAULTS)} (default %(default)s)",
+    )
+    flight.add_argument(
+        "--wind-height",
+        metavar="LENGTH",
+        help="height at which --wind is given (bare: m; default "
+        f"{api_default(fp, 'wind_reference_height_m'):g})",
+    )
+    flight.add_argument(
+        "--wind-param",
+        metavar="VALUE",
+        help="profile parameter: log law roughness length z0 (bare: m; default "
+        f"{api.WIND_PROFILE_DEFAULTS['log']:g}), power law exponent (default "
+        f"{api.WIND_PROFILE_DEFAULTS['power']:.4g})",
+    )
+    weather = p.add_argument_group("air")
+    weather.add_argument(
+        "--temperature",
+        metavar="T",
+        help=f"air temperature (bare: Celsius; default {api_default(air, 'temperature_c'):g})",
+    )
+    weather.add_argument(
+        "--pressure",
+        metavar="P",
+        help=f"air pressure (bare: Pa; default {atmosphere.STANDARD_PRESSURE_PA:g})",
+    )
+    weather.add_argument(
+        "--altitude",
+        metavar="LENGTH",
+        help="altitude, sets the standard pressure there (bare: m; not with --pressure)",
+    )
+    weather.add_argument(
+        "--humidity",
+        metavar="RH",
+        help=f"relative humidity, 0.5 or 50%% (default {api_default(air, 'relative_humidity'):g})",
+    )
+    weather.add_argument(
+        "--air-density",
+        metavar="RHO",
+        help="air density in kg/m^3, overrides the one from temperature, pressure, humidity",
+    )
+    p.add_argument_group("numerics").add_argument(
+        "--dt",
+        metavar="SECONDS",
+        help="flight step in s (default 0.2 in uniform wind, 0.02 with a wind profile)",
+    )
+
+
+def dpi_value(text):
+    """argparse type of --dpi: a whole number within DPI_RANGE."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"cannot read {text!r} as a whole number") from None
+    lo, hi = DPI_RANGE
+    if not lo <= value <= hi:
+        raise argparse.ArgumentTypeError(f"{value} is outside [{lo}, {hi}]")
+    return value

@@ -1,0 +1,54 @@
+"""``mcrun paper -o DIR``: Penner (2002) Figs. 3-8 redrawn from our model, and targets.md
+beside the paper (``mcrun.paper``)."""
+
+from pathlib import Path
+
+from mcrun import paper
+from mcrun.cli import CommandError
+from mcrun.cli.options import DPI_RANGE, dpi_value
+
+
+def _cmd_paper(args):
+    """``mcrun paper``: write the figures and targets.md."""
+    try:
+        import matplotlib
+    except ImportError:
+        raise CommandError(paper.MISSING_MATPLOTLIB) from None
+    matplotlib.use("Agg")  # headless, whatever the user's default backend
+    out_dir = Path(args.out)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        probe = out_dir / ".mcrun-write-test"
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as err:
+        reason = err.strerror or str(err)
+        raise CommandError(f"--out: cannot write to {out_dir}: {reason}") from None
+    for path in paper.write_paper(out_dir, args.dpi):
+        print(f"wrote {path}")
+    return 0
+
+
+def register(subparsers):
+    """Add the ``paper`` subcommand to an argparse subparsers object."""
+    parser = subparsers.add_parser(
+        "paper",
+        help="redraw Penner (2002) Figs. 3-8 and compare every number of the paper",
+        description=(
+            "Redraw Penner (2002), 'The run of a golf ball', Figs. 3-8 from our model "
+            "(fig3.png ... fig8.png) and write targets.md: every number the paper states, the "
+            "paper's value beside ours and the difference. Needs matplotlib (mcrun[plot])."
+        ),
+        epilog="example: mcrun paper -o paper-figures --dpi 200",
+        allow_abbrev=False,
+    )
+    parser.add_argument(
+        "-o", "--out", metavar="DIR", required=True, help="output folder (created if missing)"
+    )
+    parser.add_argument(
+        "--dpi",
+        type=dpi_value,
+        default=paper.DEFAULT_DPI,
+        help=f"resolution of the PNGs, {DPI_RANGE[0]}-{DPI_RANGE[1]} (default %(default)s)",
+    )
+    parser.set_defaults(func=_cmd_paper)

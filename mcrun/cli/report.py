@@ -1,0 +1,85 @@
+"""``mcrun plot`` and ``mcrun report``: the pictures of a finished run (``mcrun.report.plots``)
+and its self-contained HTML page (``mcrun.report.html``)."""
+
+from mcrun.cli.options import DPI_RANGE, dpi_value
+from mcrun.report import html, plots
+
+
+def _cmd_plot(args):
+    written = plots.write_plots(args.run_dir, args.out, args.dpi)
+    for path, _ in written:
+        print(f"wrote {path}")
+    return 0
+
+
+def _add_plot(subparsers):
+    p = subparsers.add_parser(
+        "plot",
+        help="plot a finished run: positions, distances, trajectories, the sweep",
+        description="Write one PNG per plot of a run folder written by 'mcrun run': per point, "
+        "the landing and final positions with the 68 % and 95 % ellipses and the target "
+        "(pointNN-positions.png), histograms of carry, run and total (pointNN-distances.png), "
+        "side and top views of sampled trajectories when the run wrote them "
+        "(pointNN-trajectories.png); for several points, the summary against the swept "
+        "parameter or per group (summary.png) and every point's finish (finish.png). Reads "
+        "only the columns it draws, one point at a time: histograms and densities are "
+        "binned over every shot, trajectories are the first of each point. Needs matplotlib "
+        "(mcrun[plot]).",
+        epilog="example: mcrun plot runs/pga-driver-2019 -o plots",
+        allow_abbrev=False,
+    )
+    p.add_argument("run_dir", metavar="RUN_DIR", help="a folder written by 'mcrun run'")
+    p.add_argument(
+        "-o",
+        "--out",
+        metavar="DIR",
+        help=f"output folder (created if missing; default RUN_DIR/{plots.PLOTS_FOLDER})",
+    )
+    p.add_argument(
+        "--dpi",
+        type=dpi_value,
+        default=plots.DEFAULT_PLOT_DPI,
+        help=f"resolution, {DPI_RANGE[0]}-{DPI_RANGE[1]} (default %(default)s)",
+    )
+    p.set_defaults(func=_cmd_plot)
+
+
+def _cmd_report(args):
+    path = html.write_report(args.run_dir, args.out, args.dpi)
+    print(f"wrote {path}")
+    return 0
+
+
+def _add_report(subparsers):
+    p = subparsers.add_parser(
+        "report",
+        help="one self-contained HTML page of a finished run",
+        description="Write one HTML page of a run folder written by 'mcrun run': the scenario, "
+        "the summary tables, the plots of 'mcrun plot' embedded as images, and the "
+        "provenance (seed, N, versions, times, threads, backend). Self-contained: inline CSS, "
+        "no script, no external resource, for sharing a study with someone who will not run "
+        "Python. Needs matplotlib (mcrun[plot]).",
+        epilog="example: mcrun report runs/pga-driver-2019 -o pga-driver.html",
+        allow_abbrev=False,
+    )
+    p.add_argument("run_dir", metavar="RUN_DIR", help="a folder written by 'mcrun run'")
+    p.add_argument(
+        "-o",
+        "--out",
+        metavar="FILE",
+        help=f"the HTML file (replaced if it exists; default RUN_DIR/{html.REPORT_FILE})",
+    )
+    p.add_argument(
+        "--dpi",
+        type=dpi_value,
+        default=html.DEFAULT_REPORT_DPI,
+        help=f"resolution of the embedded plots, {DPI_RANGE[0]}-{DPI_RANGE[1]} "
+        "(default %(default)s)",
+    )
+    p.set_defaults(func=_cmd_report)
+
+
+def register(subparsers):
+    """Add ``plot`` and ``report`` to an argparse subparsers object."""
+    _add_plot(subparsers)
+    _add_report(subparsers)
