@@ -829,13 +829,19 @@ def simulate_traced(inputs, shot, table=QUADRATIC_COEFFICIENTS, trajectory_rows=
     n = inputs.shape[0]
     rows = _as_kernel_layout(inputs)
     out = np.empty((rows.shape[0], N_OUTCOME), order="F")
-    size = trajectory_rows
+    path = _recorded(lambda traj: _simulate_traced(rows, shot, table, out, traj), trajectory_rows)
+    return out[:n], path
+
+
+def _recorded(simulate, rows):
+    """The path ``simulate(traj)`` records (it returns how many rows the path has), in a buffer
+    of ``rows`` rows grown until the whole path fits."""
     while True:
-        traj = np.empty((size, 5))
-        m = _simulate_traced(rows, shot, table, out, traj)
-        if m <= size:
-            return out[:n], traj[:m]
-        size = m
+        traj = np.empty((rows, 5))
+        m = simulate(traj)
+        if m <= rows:
+            return traj[:m]
+        rows = m
 
 
 @njit(cache=True, error_model="numpy")
@@ -859,12 +865,10 @@ def simulate_landed(inputs, landings, traced=-1, dt_record_s=TRAJECTORY_DT_S, tr
     rows = _as_kernel_layout(inputs)
     landings = np.ascontiguousarray(landings, dtype=np.float64)
     out = np.full((rows.shape[0], N_OUTCOME), np.nan, order="F")
-    size = trajectory_rows if traced >= 0 else 0
-    while True:
-        traj = np.empty((size, 5))
-        t_next = landings[traced, 8] + dt_record_s if traced >= 0 else 0.0
+    t_next = landings[traced, 8] + dt_record_s if traced >= 0 else 0.0
+
+    def simulate(traj):
         tracer = np.array([float(traced), 0.0, t_next, dt_record_s])
-        m = _simulate_landed(rows, landings, out, traj, tracer)
-        if m <= size:
-            return out[:n], traj[:m]
-        size = m
+        return _simulate_landed(rows, landings, out, traj, tracer)
+
+    return out[:n], _recorded(simulate, trajectory_rows if traced >= 0 else 0)
