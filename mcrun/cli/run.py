@@ -133,12 +133,19 @@ def _run_on_dask(args):
         raise InputError("--workers is for --dask local (an existing cluster has its workers)")
     return distributed.run_scenario(
         args.scenario,
-        n=args.n,
-        seed=args.seed,
-        out_dir=args.output,
         scheduler=args.scheduler if args.scheduler else args.dask,
         scheduler_file=args.scheduler_file,
         workers=args.workers,
+        **_run_options(args),
+    )
+
+
+def _run_options(args):
+    """The options of ``mcrun run`` that both executors take."""
+    return dict(
+        n=args.n,
+        seed=args.seed,
+        out_dir=args.output,
         chunk_size=args.chunk_size,
         trajectories_every=args.trajectories,
         progress=not args.quiet,
@@ -153,19 +160,7 @@ def _cmd_run(args):
         if _dask_backend(args):
             result = _run_on_dask(args)
         else:
-            result = local.run_scenario(
-                args.scenario,
-                n=args.n,
-                seed=args.seed,
-                out_dir=args.output,
-                threads=args.threads,
-                chunk_size=args.chunk_size,
-                trajectories_every=args.trajectories,
-                progress=not args.quiet,
-                force=args.force,
-                ignore_disk_space=args.ignore_disk_space,
-                announce=None if args.quiet else _say,
-            )
+            result = local.run_scenario(args.scenario, threads=args.threads, **_run_options(args))
     except KeyboardInterrupt:
         raise Interrupted("the run was stopped and nothing was written") from None
     summary = result.summary()

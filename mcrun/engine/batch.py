@@ -215,6 +215,14 @@ def _set_lane_derivative(lanes, row, k, d):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _below_ground(lanes, k):
+    """Whether the step of lane k ends below the ground (``ground.height_at``): it lands."""
+    return lanes[Z1 * LANES + k] < ground.height_at(
+        None, lanes[X1 * LANES + k], lanes[Y1 * LANES + k]
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _any_lane_busy(shot):
     """Whether some lane still holds a shot (shot[k] is -1 for an empty lane)."""
     for k in range(LANES):
@@ -333,7 +341,7 @@ def _make_flight(derivative, stage, step, constants, context):
             z1 = lanes[Z1 * LANES + k]
             vz1 = lanes[VZ1 * LANES + k]
             dt = lanes[DT * LANES + k]
-            landed = z1 < ground.height_at(None, lanes[X1 * LANES + k], lanes[Y1 * LANES + k])
+            landed = _below_ground(lanes, k)
             apex = lanes[APEX * LANES + k]
             lanes[APEX * LANES + k] = apex if landed else apex_after_step(apex, z, vz, z1, vz1, dt)
             lanes[T * LANES + k] = lanes[T * LANES + k] if landed else lanes[T * LANES + k] + dt
@@ -457,7 +465,7 @@ def _make_flight(derivative, stage, step, constants, context):
                 i = shot[k]
                 if i < 0:
                     continue
-                if lanes[Z1 * LANES + k] < 0.0:
+                if _below_ground(lanes, k):
                     for row in range(N_SHOT_ROWS):
                         g[row * LANES + waiting] = lanes[row * LANES + k]
                     nx, ny, nz = ground.normal_at(_ground(inputs, i), lanes[X * LANES + k],
@@ -700,12 +708,11 @@ def _bounce_all(inputs, start, landings, pending, out, traj, tracer):
                 if shot[k] == tracer[TRACED]:
                     traced = k
                     before[:] = b[k::LANES]
-        if _impact_lanes(b, e) == 0:
-            if traced >= 0:
-                _record_hop(b, traced, before, traj, tracer)
-            continue
+        ended = _impact_lanes(b, e)
         if traced >= 0 and b[THEN * LANES + traced] == HOPS:
             _record_hop(b, traced, before, traj, tracer)
+        if ended == 0:
+            continue
         for k in range(LANES):
             i = shot[k]
             if i < 0:
@@ -789,8 +796,8 @@ def _as_kernel_layout(inputs):
 
 def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS):
     """Simulate every row of ``inputs`` (n, N_INPUT); return ``out`` (n, N_OUTCOME), F-order."""
-    n = inputs.shape[0] if inputs.ndim == 2 else 0
     rows = _as_kernel_layout(inputs)
+    n = inputs.shape[0]
     if out is None:
         out = np.empty((n, N_OUTCOME), order="F")
     result = out if rows.shape[0] == n else np.empty((rows.shape[0], N_OUTCOME), order="F")
