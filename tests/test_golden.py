@@ -1,13 +1,20 @@
 """Nothing moved: the golden file (``golden_cases.py``), written before the package was
-restructured, against the current tree, bit for bit: every library scenario's shots and summary
-at a fixed seed, and one-shot outcomes and trajectories over every model, wind profile, turf,
-slope and club delivery."""
+restructured, against the current tree, bit for bit (but for the summary's linear algebra,
+below): every library scenario's shots and summary at a fixed seed, and one-shot outcomes and
+trajectories over every model, wind profile, turf, slope and club delivery."""
 
 import json
+import re
 
 import golden_cases as golden
 import pandas as pd
 import pytest
+
+# Summary columns computed by linear algebra (the covariance and its ellipses, the regression
+# of the drivers, the correlations), whose last bits depend on the BLAS kernel of the CPU
+# (OPENBLAS_CORETYPE=Haswell moves them by up to 3.4e-12 relative): compared to 1e-9 relative.
+# Every shot, and every other summary column, is compared bit for bit.
+BLAS_COLUMNS = re.compile(r"_corr_|_r2$|_share_|_src_|^cov_|^ellipse")
 
 
 @pytest.mark.parametrize("name", golden.library_scenarios())
@@ -16,9 +23,11 @@ def test_library_scenario_unchanged(name, tmp_path):
     pd.testing.assert_frame_equal(
         shots, pd.read_parquet(golden.GOLDEN / f"{name}.shots.parquet"), check_exact=True
     )
-    pd.testing.assert_frame_equal(
-        summary, pd.read_parquet(golden.GOLDEN / f"{name}.summary.parquet"), check_exact=True
-    )
+    expected = pd.read_parquet(golden.GOLDEN / f"{name}.summary.parquet")
+    blas = [c for c in expected.columns if BLAS_COLUMNS.search(c)]
+    pd.testing.assert_frame_equal(summary.drop(columns=blas), expected.drop(columns=blas),
+                                  check_exact=True)  # fmt: skip
+    pd.testing.assert_frame_equal(summary[blas], expected[blas], check_exact=False, rtol=1e-9)
 
 
 def test_every_library_scenario_has_a_golden_file():
