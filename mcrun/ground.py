@@ -16,9 +16,33 @@ functions, which is all the loop needs to change to play them.
 import math
 from typing import NamedTuple
 
+import numpy as np
 from numba import njit
 
 from mcrun.physics.turf import Turf
+
+
+# What a zone of a Terrain is for the Rules (``Terrain.penalty``).
+IN_PLAY = 0
+PENALTY_AREA = 1  # water: the ball is not played from there
+OUT_OF_BOUNDS = 2
+
+
+class Terrain(NamedTuple):
+    """A hole's ground on a regular grid, in the hole's frame: x (m) from the tee towards the
+    pin, y (m) to the RIGHT of that line, heights (m) relative to the ground at the tee.
+
+    Node [iy, ix] lies at (x0_m + ix cell_m, y0_m + iy cell_m); the height between nodes is
+    bilinear, the zone is that of the nearest node. Its arrays are shared by every thread.
+    """
+
+    x0_m: float
+    y0_m: float
+    cell_m: float
+    height_m: np.ndarray  # (ny, nx) float64
+    zone: np.ndarray  # (ny, nx) int8: a row of ``turf`` and ``penalty``
+    turf: np.ndarray  # (n_zones, len(Turf._fields)) float64: each zone's Turf, in its order
+    penalty: np.ndarray  # (n_zones,) int8: IN_PLAY, PENALTY_AREA or OUT_OF_BOUNDS
 
 
 class Plane(NamedTuple):
