@@ -13,6 +13,7 @@ LAYERS = (
     ("mcrun.status", "mcrun.units", "mcrun.trajectory", "mcrun.exits"),
     ("mcrun.physics",),
     ("mcrun.ground",),
+    ("mcrun.hole",),
     ("mcrun.engine",),
     ("mcrun.api",),
     ("mcrun.results",),
