@@ -17,10 +17,13 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
+from numba import njit, types
+from numba.extending import overload
 
+from mcrun.physics.bounce import hop
+from mcrun.physics.constants import G_MPS2
 from mcrun.physics.turf import Turf
-
+from mcrun.status import IN_PENALTY_AREA, OFF_MAP, OK, OUT_OF_BOUNDS_STATUS
 
 # What a zone of a Terrain is for the Rules (``Terrain.penalty``).
 IN_PLAY = 0
@@ -65,20 +68,330 @@ def plane(slope, fall_line, turf):
     return Plane(sb * math.cos(fall_line), -sb * math.sin(fall_line), math.cos(slope), turf)
 
 
-@njit(cache=True, error_model="numpy", inline="always")
-def height_at(ground, x, y):
-    """Height (m) of the ground's surface at (x, y): where the flight ends. The plane through
-    the landing point is the landing area; the flight comes down to z = 0."""
-    return 0.0
+# The ground as the shot loop asks it. Each question is one function of (terrain, ...): with
+# ``terrain`` None the shot's own Plane (``plane``) answers and the flight comes down to z = 0,
+# exactly as the slope model always has; with a Terrain its grid answers. Numba compiles the
+# loop once for each (``overload`` picks the answer by the type of ``terrain``), so the plane's
+# loop is the same code, and the same numbers, as before there were terrains.
+
+
+def _flat(terrain):
+    return isinstance(terrain, types.NoneType)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def normal_at(ground, x, y):
-    """Unit normal (nx, ny, nz) of the ground at (x, y), core frame."""
-    return ground.nx, ground.ny, ground.nz
+def _locate(terrain, x, y):
+    """The cell of the grid under core-frame (x, y) (y to the LEFT, the grid's y to the right):
+    its lower node (ix, iy), the fractions (tx, ty) across it, and whether (x, y) is on the
+    grid at all (off it, the edge cells are extended)."""
+    ny, nx = terrain.height_m.shape
+    fx = (x - terrain.x0_m) / terrain.cell_m
+    fy = (-y - terrain.y0_m) / terrain.cell_m
+    inside = (fx >= 0.0) & (fx <= nx - 1.0) & (fy >= 0.0) & (fy <= ny - 1.0)
+    ix = min(max(int(math.floor(fx)), 0), nx - 2)
+    iy = min(max(int(math.floor(fy)), 0), ny - 2)
+    return ix, iy, min(max(fx - ix, 0.0), 1.0), min(max(fy - iy, 0.0), 1.0), inside
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def turf_at(ground, x, y):
-    """The turf of the ground at (x, y)."""
-    return ground.turf
+def _grid_height(terrain, x, y):
+    """Bilinear height (m) of the grid at core-frame (x, y)."""
+    ix, iy, tx, ty, _ = _locate(terrain, x, y)
+    h = terrain.height_m
+    return (h[iy, ix] * (1.0 - tx) + h[iy, ix + 1] * tx) * (1.0 - ty) + (
+        h[iy + 1, ix] * (1.0 - tx) + h[iy + 1, ix + 1] * tx
+    ) * ty
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_gradient(terrain, x, y):
+    """(dh/dx, dh/dy) of the bilinear grid at core-frame (x, y), y to the LEFT."""
+    ix, iy, tx, ty, _ = _locate(terrain, x, y)
+    h = terrain.height_m
+    dx = (h[iy, ix + 1] - h[iy, ix]) * (1.0 - ty) + (h[iy + 1, ix + 1] - h[iy + 1, ix]) * ty
+    dy = (h[iy + 1, ix] - h[iy, ix]) * (1.0 - tx) + (h[iy + 1, ix + 1] - h[iy, ix + 1]) * tx
+    return dx / terrain.cell_m, -dy / terrain.cell_m
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_zone(terrain, x, y):
+    """The zone of the node nearest core-frame (x, y)."""
+    ix, iy, tx, ty, _ = _locate(terrain, x, y)
+    return terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
+
+
+def height_at(terrain, x, y):
+    """Height (m) of the ground's surface at (x, y): where the flight ends. On a Plane the flight
+    comes down to z = 0 and the plane through the landing point is the landing area."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(height_at, inline="always")
+def _height_at(terrain, x, y):
+    if _flat(terrain):
+        return lambda terrain, x, y: 0.0
+    return lambda terrain, x, y: _grid_height(terrain, x, y)
+
+
+def clearance(terrain, x, y, z):
+    """Height (m) of a ball at (x, y, z) above the ground, and its rate of change at velocity
+    (vx, vy, vz): z - h and vz - grad(h).v. On a Plane, z and vz themselves."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(clearance, inline="always")
+def _clearance(terrain, x, y, z):
+    if _flat(terrain):
+        return lambda terrain, x, y, z: z
+    return lambda terrain, x, y, z: z - _grid_height(terrain, x, y)
+
+
+def clearance_rate(terrain, x, y, vx, vy, vz):
+    """d/dt of ``clearance`` for a ball at (x, y) moving at (vx, vy, vz)."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(clearance_rate, inline="always")
+def _clearance_rate(terrain, x, y, vx, vy, vz):
+    if _flat(terrain):
+        return lambda terrain, x, y, vx, vy, vz: vz
+
+    def rate(terrain, x, y, vx, vy, vz):
+        hx, hy = _grid_gradient(terrain, x, y)
+        return vz - (hx * vx + hy * vy)
+
+    return rate
+
+
+def normal_at(terrain, plane, x, y):
+    """Unit normal (nx, ny, nz) of the ground at (x, y), core frame: the Plane's, or the grid's
+    (-dh/dx, -dh/dy, 1) normalised."""
+    raise NotImplementedError("compiled code only")
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_normal(terrain, x, y):
+    hx, hy = _grid_gradient(terrain, x, y)
+    k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+    return -hx * k, -hy * k, k
+
+
+@overload(normal_at, inline="always")
+def _normal_at(terrain, plane, x, y):
+    if _flat(terrain):
+        return lambda terrain, plane, x, y: (plane.nx, plane.ny, plane.nz)
+    return lambda terrain, plane, x, y: _grid_normal(terrain, x, y)
+
+
+def normal_or(terrain, nx, ny, nz, x, y):
+    """``normal_at`` where the Plane's normal is (nx, ny, nz)."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(normal_or, inline="always")
+def _normal_or(terrain, nx, ny, nz, x, y):
+    if _flat(terrain):
+        return lambda terrain, nx, ny, nz, x, y: (nx, ny, nz)
+    return lambda terrain, nx, ny, nz, x, y: _grid_normal(terrain, x, y)
+
+
+def turf_at(terrain, plane, x, y):
+    """The turf of the ground at (x, y): the Plane's, or that of the zone there."""
+    raise NotImplementedError("compiled code only")
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_turf(terrain, x, y):
+    t = terrain.turf[_grid_zone(terrain, x, y)]
+    return Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8])
+
+
+@overload(turf_at, inline="always")
+def _turf_at(terrain, plane, x, y):
+    if _flat(terrain):
+        return lambda terrain, plane, x, y: plane.turf
+    return lambda terrain, plane, x, y: _grid_turf(terrain, x, y)
+
+
+# Where the ball touches the ground, for the Rules (``state_at``): in play, or a place where the
+# shot ends there (its status, ``mcrun.status``).
+def state_at(terrain, x, y):
+    """OK where the ball is in play at (x, y); IN_PENALTY_AREA, OUT_OF_BOUNDS_STATUS or OFF_MAP
+    (``mcrun.status``) where its shot ends there. Always OK on a Plane."""
+    raise NotImplementedError("compiled code only")
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_state(terrain, x, y):
+    _, _, _, _, inside = _locate(terrain, x, y)
+    if not inside:
+        return OFF_MAP
+    kind = terrain.penalty[_grid_zone(terrain, x, y)]
+    if kind == PENALTY_AREA:
+        return IN_PENALTY_AREA
+    return OUT_OF_BOUNDS_STATUS if kind == OUT_OF_BOUNDS else OK
+
+
+@overload(state_at, inline="always")
+def _state_at(terrain, x, y):
+    if _flat(terrain):
+        return lambda terrain, x, y: OK
+    return lambda terrain, x, y: _grid_state(terrain, x, y)
+
+
+@njit(cache=True, error_model="numpy")
+def surface(terrain, plane, x, y, z):
+    """What the roll asks at each step (``roll.roll``): the height of the ground at (x, y) (on a
+    Plane, z itself: the ball stays on the plane), its normal and turf, the state there
+    (``state_at``) and the longest distance (m) a step may go on it (on a Plane, one that is
+    the same everywhere, no limit)."""
+    nx, ny, nz = normal_at(terrain, plane, x, y)
+    return (
+        height_on(terrain, x, y, z), nx, ny, nz,
+        turf_at(terrain, plane, x, y), state_at(terrain, x, y), step_length(terrain),
+    )  # fmt: skip
+
+
+def height_on(terrain, x, y, z):
+    """The height of the ground under a ball at (x, y, z) on it: z on a Plane (the ball stays
+    on the plane it rolls on), the grid's height on a terrain."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(height_on, inline="always")
+def _height_on(terrain, x, y, z):
+    if _flat(terrain):
+        return lambda terrain, x, y, z: z
+    return lambda terrain, x, y, z: _grid_height(terrain, x, y)
+
+
+def step_length(terrain):
+    """The longest step (m) of a ball along the ground: a quarter of a cell of the grid, within
+    which its slope changes little; no limit on a Plane."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(step_length, inline="always")
+def _step_length(terrain):
+    if _flat(terrain):
+        return lambda terrain: math.inf
+    return lambda terrain: 0.25 * terrain.cell_m
+
+
+def hop_landing(terrain, x, y, z, vx, vy, vz, hop_time):
+    """Where a hop from (x, y, z) at velocity (vx, vy, vz) meets the ground again: (x, y, z,
+    vz, t) at its end. On a Plane, after ``hop_time`` (the exact return to the plane, from
+    ``bounce.impact``); on a grid, the first time its parabola goes below the surface."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(hop_landing, inline="always")
+def _hop_landing(terrain, x, y, z, vx, vy, vz, hop_time):
+    if _flat(terrain):
+
+        def on_plane(terrain, x, y, z, vx, vy, vz, hop_time):
+            x1, y1, z1, vz1 = hop(x, y, z, vx, vy, vz, hop_time)
+            return x1, y1, z1, vz1, hop_time
+
+        return on_plane
+    return lambda terrain, x, y, z, vx, vy, vz, hop_time: _grid_hop(
+        terrain, x, y, z, vx, vy, vz, hop_time
+    )
+
+
+# Bounds of the search for the end of a hop on a grid: the ball leaves the ground at t = 0, so
+# the search starts a little after it; at most MAX_HOP_STEPS steps of the march.
+HOP_T_MIN_S = 1e-9
+MAX_HOP_STEPS = 100_000
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
+    """``hop_landing`` on the grid: march along the parabola in steps of at most half the plane
+    estimate ``hop_time`` and a quarter of a cell, to the first step that ends below the
+    surface, then locate the crossing inside it (Illinois' false position, to 1e-12 s)."""
+    vh = math.sqrt(vx * vx + vy * vy)
+    dt = 0.5 * hop_time if hop_time > 0.0 else 1e-3
+    if vh > 0.0:
+        dt = min(dt, 0.25 * terrain.cell_m / vh)
+    dt = max(dt, 1e-6)
+
+    def gap(t):
+        return z + vz * t - 0.5 * G_MPS2 * t * t - _grid_height(terrain, x + vx * t, y + vy * t)
+
+    a = 0.0
+    fa = 0.0
+    b = dt
+    fb = gap(b)
+    steps = 0
+    while fb > 0.0 and steps < MAX_HOP_STEPS:
+        a = b
+        fa = fb
+        b += dt
+        fb = gap(b)
+        steps += 1
+    if a == 0.0:
+        # Leaving the ground, the ball is above it at once; take the bracket from there.
+        a = HOP_T_MIN_S
+        fa = gap(a)
+        if fa <= 0.0:
+            return x, y, z, vz, 0.0
+    side = 0
+    for _ in range(100):
+        t = (a * fb - b * fa) / (fb - fa)
+        ft = gap(t)
+        if ft > 0.0:
+            a, fa = t, ft
+            if side == 1:
+                fb *= 0.5
+            side = 1
+        else:
+            b, fb = t, ft
+            if side == -1:
+                fa *= 0.5
+            side = -1
+        if b - a < 1e-12:
+            break
+    t = b
+    return x + vx * t, y + vy * t, _grid_height(terrain, x + vx * t, y + vy * t), vz - G_MPS2 * t, t
+
+
+def crossing(terrain, xa, ya, xb, yb):
+    """Where the ground track from (xa, ya), in play, to (xb, yb), not, crosses into what ends
+    the shot there (``state_at``): the Rules' reference point, to a millimetre. On a Plane
+    (always in play), (xb, yb)."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(crossing, inline="always")
+def _crossing(terrain, xa, ya, xb, yb):
+    if _flat(terrain):
+        return lambda terrain, xa, ya, xb, yb: (xb, yb)
+    return lambda terrain, xa, ya, xb, yb: _grid_crossing(terrain, xa, ya, xb, yb)
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_crossing(terrain, xa, ya, xb, yb):
+    """``crossing`` on the grid; (xa, ya) may lie in the area too: the search first goes back
+    from b beyond a, a cell at a time, to a point in play (or to the grid's edge)."""
+    dx = xa - xb
+    dy = ya - yb
+    d = math.sqrt(dx * dx + dy * dy)
+    if d == 0.0:
+        return xb, yb
+    ux = dx / d
+    uy = dy / d
+    s = min(d, terrain.cell_m)
+    while _grid_state(terrain, xb + ux * s, yb + uy * s) != OK:
+        if _grid_state(terrain, xb + ux * s, yb + uy * s) == OFF_MAP:
+            return xb + ux * s, yb + uy * s
+        s += terrain.cell_m
+    lo = 0.0  # not in play
+    hi = s  # in play
+    while hi - lo > 1e-3:
+        mid = 0.5 * (lo + hi)
+        if _grid_state(terrain, xb + ux * mid, yb + uy * mid) == OK:
+            hi = mid
+        else:
+            lo = mid
+    return xb + ux * lo, yb + uy * lo

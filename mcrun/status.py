@@ -8,12 +8,22 @@ NOT_STOPPED = (
     4  # still rolling after the roll time or distance bound (e.g. a slope steeper than atan(rho_g))
 )
 
+# On a hole (``mcrun.ground.Terrain``): where the ball touched the ground, the shot ends.
+IN_PENALTY_AREA = 5  # it landed or rolled into a penalty area (water)
+OUT_OF_BOUNDS_STATUS = 6  # it touched the ground out of bounds
+OFF_MAP = 7  # it left the hole's grid, where the ground is not known
+
+HOLE_STATUSES = (IN_PENALTY_AREA, OUT_OF_BOUNDS_STATUS, OFF_MAP)
+
 NAMES = {
     OK: "ok",
     INVALID_INPUT: "invalid_input",
     NOT_LANDED: "not_landed",
     TOO_MANY_BOUNCES: "too_many_bounces",
     NOT_STOPPED: "not_stopped",
+    IN_PENALTY_AREA: "penalty_area",
+    OUT_OF_BOUNDS_STATUS: "out_of_bounds",
+    OFF_MAP: "off_map",
 }
 
 # Bounds that make every shot end.

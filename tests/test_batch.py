@@ -11,7 +11,7 @@ import numba
 import numpy as np
 import pytest
 
-from mcrun import api
+from mcrun import api, ground
 from mcrun.engine import batch
 from mcrun.engine.backend import simulate_batch, simulate_traced
 from mcrun.engine.schema import COLUMN, N_INPUT, N_OUTCOME
@@ -98,7 +98,7 @@ def test_general_lanes_fly_a_quadratic_shot_as_the_quadratic_lanes(inputs):
         pending = np.empty(n, dtype=np.int64)
         no_path, untraced = np.empty((0, 5)), np.full(4, -1.0)
         fly(rows, kinds, batch.QUADRATIC, 0, n, aero.QUADRATIC_COEFFICIENTS, out, landings,
-            pending, 0, no_path, untraced)  # fmt: skip
+            pending, 0, no_path, untraced, None)  # fmt: skip
         outs.append(out[kinds == batch.QUADRATIC])
     assert len(outs[0]) > 100
     assert same(outs[0], outs[1])
@@ -136,8 +136,9 @@ def test_short_roll_is_roll_out_on_level_ground():
         x, y, t, short = roll_out_short(
             1.0, 2.0, 0.0, *v, *w, 0.0, 0.0, 1.0, turf.mu, turf.rho_g, 3.0
         )
-        level = (0.0, 0.0, 1.0)
-        want = roll_out(1.0, 2.0, 0.0, *v, *w, *level, turf, 3.0, no_trajectory, 0, 3.0, 0.01)
+        level = ground.Plane(0.0, 0.0, 1.0, turf)
+        want = roll_out(1.0, 2.0, 0.0, *v, *w, ground.surface, None, level, 3.0, no_trajectory, 0,
+                        3.0, 0.01)  # fmt: skip
         assert short
         assert (x, y, t) == (want[0], want[1], want[3])
         slope = np.radians(4.0)

@@ -17,20 +17,20 @@ def _check(backend):
         raise ValueError(f"unknown backend '{backend}': choose one of {', '.join(BACKENDS)}")
 
 
-def simulate_batch(inputs, out=None, backend="cpu", table=QUADRATIC_COEFFICIENTS):
+def simulate_batch(inputs, out=None, backend="cpu", table=QUADRATIC_COEFFICIENTS, terrain=None):
     """Simulate every row of ``inputs`` ((n, N_INPUT), columns ``schema.INPUT_FIELDS``); return
     the outcomes, (n, N_OUTCOME) in Fortran order, columns ``schema.OUTCOME_FIELDS``.
     ``table`` holds the quadratic aerodynamic models' coefficients (a calibration tries
     others)."""
     _check(backend)
-    return batch.simulate_batch(inputs, out, table)
+    return batch.simulate_batch(inputs, out, table, terrain)
 
 
-def simulate_traced(inputs, shot=0, backend="cpu", table=QUADRATIC_COEFFICIENTS):
+def simulate_traced(inputs, shot=0, backend="cpu", table=QUADRATIC_COEFFICIENTS, terrain=None):
     """``simulate_batch`` on this thread, with the path of row ``shot``: returns (outcomes,
     trajectory), the trajectory's rows (t_s, x_m, y_m, z_m, phase code), y to the right."""
     _check(backend)
-    return batch.simulate_traced(inputs, shot, table)
+    return batch.simulate_traced(inputs, shot, table, terrain=terrain)
 
 
 def simulate_landed(inputs, landings, traced=-1, dt_record_s=batch.TRAJECTORY_DT_S, backend="cpu"):

@@ -16,6 +16,8 @@ so the results are the same bit for bit whatever the thread count or the order o
 Frames as in ``engine.shot``: user frame in and out, the core's (y to the LEFT) inside.
 """
 
+import math
+
 import numba
 import numpy as np
 from numba import njit, prange
@@ -33,7 +35,7 @@ from mcrun.engine.shot import (
     write_run,
 )
 from mcrun.physics.aero import QUADRATIC_COEFFICIENTS, is_quadratic
-from mcrun.physics.bounce import HOPS, TOO_MANY, hop, impact, impact_rebound, incidence
+from mcrun.physics.bounce import HOPS, TOO_MANY, impact, impact_rebound, incidence
 from mcrun.physics.constants import BALL_AREA_M2, BALL_MASS_KG, G_MPS2
 from mcrun.physics.flight import (
     WIND_UNIFORM,
@@ -51,7 +53,7 @@ from mcrun.physics.flight import (
 from mcrun.physics.launch import initial_state
 from mcrun.physics.roll import roll_out, roll_out_short
 from mcrun.physics.turf import Turf
-from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, OK, TOO_MANY_BOUNCES
+from mcrun.status import MAX_FLIGHT_TIME_S, NOT_LANDED, NOT_STOPPED, OK, TOO_MANY_BOUNCES
 from mcrun.trajectory import BOUNCE, FLIGHT, record
 
 # Input columns, by name.
@@ -215,11 +217,26 @@ def _set_lane_derivative(lanes, row, k, d):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _below_ground(lanes, k):
-    """Whether the step of lane k ends below the ground (``ground.height_at``): it lands."""
-    return lanes[Z1 * LANES + k] < ground.height_at(
-        None, lanes[X1 * LANES + k], lanes[Y1 * LANES + k]
+def _below_ground(lanes, k, terrain):
+    """Whether the step of lane k ends below the ground (``ground.clearance``): it lands."""
+    return _clearance_end(lanes, k, terrain) < 0.0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _clearance_end(lanes, k, terrain):
+    """The height of lane k's ball above the ground at the end of its step."""
+    return ground.clearance(
+        terrain, lanes[X1 * LANES + k], lanes[Y1 * LANES + k], lanes[Z1 * LANES + k]
     )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _clearance_rate_end(lanes, k, terrain):
+    """The rate of change of ``_clearance_end``."""
+    return ground.clearance_rate(
+        terrain, lanes[X1 * LANES + k], lanes[Y1 * LANES + k], lanes[VX1 * LANES + k],
+        lanes[VY1 * LANES + k], lanes[VZ1 * LANES + k],
+    )  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -320,7 +337,7 @@ def _make_flight(derivative, stage, step, constants, context):
         return n
 
     @njit(cache=True, error_model="numpy")
-    def step_lanes(lanes, shot, table, traj, tracer):
+    def step_lanes(lanes, shot, table, traj, tracer, terrain):
         """One flight step of every lane. A lane whose ball stays in the air takes the new
         state, its apex and time; one that went below the ground keeps the state before the
         step, for ``land_lanes``, and the step's z1 and vz1. Returns the number of lanes (empty
@@ -329,7 +346,7 @@ def _make_flight(derivative, stage, step, constants, context):
         traced = -1
         if tracer[TRACED] >= 0:
             for k in range(LANES):
-                if shot[k] == tracer[TRACED] and lanes[Z1 * LANES + k] >= 0.0:
+                if shot[k] == tracer[TRACED] and _clearance_end(lanes, k, terrain) >= 0.0:
                     traced = k
                     tracer[ROW] = record_step(
                         lanes, k, lanes[DT * LANES + k], table, traj, int(tracer[ROW])
@@ -341,7 +358,7 @@ def _make_flight(derivative, stage, step, constants, context):
             z1 = lanes[Z1 * LANES + k]
             vz1 = lanes[VZ1 * LANES + k]
             dt = lanes[DT * LANES + k]
-            landed = _below_ground(lanes, k)
+            landed = _below_ground(lanes, k, terrain)
             apex = lanes[APEX * LANES + k]
             lanes[APEX * LANES + k] = apex if landed else apex_after_step(apex, z, vz, z1, vz1, dt)
             lanes[T * LANES + k] = lanes[T * LANES + k] if landed else lanes[T * LANES + k] + dt
@@ -362,23 +379,30 @@ def _make_flight(derivative, stage, step, constants, context):
         return events
 
     @njit(cache=True, error_model="numpy")
-    def land_lanes(g, table):
+    def land_lanes(g, table, terrain):
         """Locate the landing of the shots in the landing table ``g`` (lane table rows, the step
-        that went below the ground in Z1 and VZ1): the root of the cubic Hermite interpolant of
-        z, then an RK4 step of that length from the start of the step, refined by Newton steps
-        on z. Leaves the landing state in rows X1..W1, the step in DT, its time in T_LANDING,
+        that went below the ground in X1..VZ1): the root of the cubic Hermite interpolant of the
+        ball's height above the ground (``ground.clearance``: z on a Plane), then an RK4 step
+        of that length from the start of the step, refined by Newton steps on that height.
+        Leaves the landing state in rows X1..W1, the step in DT, its time in T_LANDING,
         the apex in APEX and the speed and angle at landing in SPEED_LANDING and ANGLE."""
         for k in range(LANES):
+            x = g[X * LANES + k]
+            y = g[Y * LANES + k]
             g[DT * LANES + k] = hermite_root(
-                g[Z * LANES + k], g[VZ * LANES + k], g[Z1 * LANES + k], g[VZ1 * LANES + k],
+                ground.clearance(terrain, x, y, g[Z * LANES + k]),
+                ground.clearance_rate(
+                    terrain, x, y, g[VX * LANES + k], g[VY * LANES + k], g[VZ * LANES + k]
+                ),
+                _clearance_end(g, k, terrain), _clearance_rate_end(g, k, terrain),
                 g[H_MAX * LANES + k],
             )  # fmt: skip
         for _ in range(2):
             rk4_lanes(g, table)
             for k in range(LANES):
                 g[DT * LANES + k] = landing_newton(
-                    g[DT * LANES + k], g[Z1 * LANES + k], g[VZ1 * LANES + k],
-                    g[H_MAX * LANES + k],
+                    g[DT * LANES + k], _clearance_end(g, k, terrain),
+                    _clearance_rate_end(g, k, terrain), g[H_MAX * LANES + k],
                 )  # fmt: skip
         rk4_lanes(g, table)
         for k in range(LANES):
@@ -386,33 +410,43 @@ def _make_flight(derivative, stage, step, constants, context):
             vz1 = g[VZ1 * LANES + k]
             # The apex may lie in the landing step (a flight of one or two steps).
             g[APEX * LANES + k] = apex_after_step(
-                g[APEX * LANES + k], g[Z * LANES + k], g[VZ * LANES + k], 0.0, vz1, h
-            )
+                g[APEX * LANES + k], g[Z * LANES + k], g[VZ * LANES + k],
+                ground.height_at(terrain, g[X1 * LANES + k], g[Y1 * LANES + k]), vz1, h,
+            )  # fmt: skip
             g[T_LANDING * LANES + k] = g[T * LANES + k] + h
             speed, angle_deg = landing_speed_angle(g[VX1 * LANES + k], g[VY1 * LANES + k], vz1)
             g[SPEED_LANDING * LANES + k] = speed
             g[ANGLE * LANES + k] = angle_deg
 
     @njit(cache=True, error_model="numpy")
-    def file_landings(g, count, out, start, landings, pending, n_landed, table, traj, tracer):
+    def file_landings(g, count, out, start, landings, pending, n_landed, table, traj, tracer,
+                      terrain):  # fmt: skip
         """Land the first ``count`` shots of the landing table ``g``: write their flight fields
-        and their landings, and queue them in ``pending`` after the n_landed there. Returns
-        n_landed."""
-        land_lanes(g, table)
+        and their landings, and queue them in ``pending`` after the n_landed there (a shot that
+        lands where it ends, in a penalty area say, ends there). Returns n_landed."""
+        land_lanes(g, table, terrain)
         for j in range(count):
             s = g[j::LANES]  # s[row] is row ``row`` of column j
             i = int(s[SHOT])
             w1 = s[W1]
+            z1 = ground.height_at(terrain, s[X1], s[Y1])
             if i == tracer[TRACED]:
                 n = record_step(g, j, s[DT], table, traj, int(tracer[ROW]))
-                tracer[ROW] = record(traj, n, s[T_LANDING], s[X1], s[Y1], 0.0, FLIGHT)
+                tracer[ROW] = record(traj, n, s[T_LANDING], s[X1], s[Y1], z1, FLIGHT)
                 tracer[T_NEXT] = s[T_LANDING] + tracer[DT_RECORD]
             write_landing(
                 out, i, s[X1], s[Y1], s[T_LANDING], s[APEX], s[SPEED_LANDING], s[ANGLE], w1
             )
+            state = ground.state_at(terrain, s[X1], s[Y1])
+            if state != OK:
+                ref_x, ref_y = ground.crossing(terrain, s[X], s[Y], s[X1], s[Y1])
+                write_run(out, i, s[X1], s[X1], s[Y1], z1, s[T_LANDING], state, 0.0, np.nan,
+                          np.nan, ref_x, ref_y)  # fmt: skip
+                continue
+            nx, ny, nz = ground.normal_or(terrain, s[NX], s[NY], s[NZ], s[X1], s[Y1])
             landings[i - start] = (
                 s[X1], s[Y1], s[VX1], s[VY1], s[VZ1], w1 * s[AXIS_X], w1 * s[AXIS_Y],
-                w1 * s[AXIS_Z], s[T_LANDING], s[NX], s[NY], s[NZ],
+                w1 * s[AXIS_Z], s[T_LANDING], nx, ny, nz,
             )  # fmt: skip
             pending[n_landed] = i
             n_landed += 1
@@ -446,7 +480,7 @@ def _make_flight(derivative, stage, step, constants, context):
 
     @njit(cache=True, error_model="numpy")
     def fly(inputs, kinds, kind, start, stop, table, out, landings, pending, n_landed, traj,
-            tracer):  # fmt: skip
+            tracer, terrain):  # fmt: skip
         """Fly shots start..stop-1 of ``inputs`` of this ``kind`` LANES at a time, land them
         LANES at a time and queue them in ``pending``; returns the number queued there."""
         lanes = np.zeros(N_LANE_ROWS * LANES)
@@ -459,17 +493,18 @@ def _make_flight(derivative, stage, step, constants, context):
                 inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj, tracer
             )
         while _any_lane_busy(shot):
-            if step_lanes(lanes, shot, table, traj, tracer) == 0:
+            if step_lanes(lanes, shot, table, traj, tracer, terrain) == 0:
                 continue
             for k in range(LANES):
                 i = shot[k]
                 if i < 0:
                     continue
-                if _below_ground(lanes, k):
+                if _below_ground(lanes, k, terrain):
                     for row in range(N_SHOT_ROWS):
                         g[row * LANES + waiting] = lanes[row * LANES + k]
-                    nx, ny, nz = ground.normal_at(_ground(inputs, i), lanes[X * LANES + k],
-                                                  lanes[Y * LANES + k])  # fmt: skip
+                    for row in (X1, Y1, VX1, VY1):  # (where the step went below the ground)
+                        g[row * LANES + waiting] = lanes[row * LANES + k]
+                    nx, ny, nz = _plane_normal(inputs, i)
                     for row, value in ((H_MAX, lanes[DT * LANES + k]), (NX, nx), (NY, ny),
                                        (NZ, nz), (SHOT, float(i))):  # fmt: skip
                         g[row * LANES + waiting] = value
@@ -477,7 +512,7 @@ def _make_flight(derivative, stage, step, constants, context):
                     if waiting == LANES:
                         n_landed = file_landings(
                             g, waiting, out, start, landings, pending, n_landed, table, traj,
-                            tracer,
+                            tracer, terrain,
                         )  # fmt: skip
                         waiting = 0
                     next_i = load_lane(
@@ -492,7 +527,7 @@ def _make_flight(derivative, stage, step, constants, context):
                     )  # fmt: skip
         if waiting > 0:
             n_landed = file_landings(
-                g, waiting, out, start, landings, pending, n_landed, table, traj, tracer
+                g, waiting, out, start, landings, pending, n_landed, table, traj, tracer, terrain
             )
         return n_landed
 
@@ -507,9 +542,10 @@ _fly_general = _make_flight(derivatives, rk4_stage, rk4_step, _general_constants
 
 
 @njit(cache=True, error_model="numpy")
-def _ground(inputs, i):
-    """The ground under shot i (``ground.plane``: its slope and turf)."""
-    return ground.plane(inputs[i, SLOPE], inputs[i, FALL_LINE], _turf(inputs, i))
+def _plane_normal(inputs, i):
+    """The normal of shot i's Plane (``ground.plane``: its slope), where there is no terrain."""
+    p = ground.plane(inputs[i, SLOPE], inputs[i, FALL_LINE], _turf(inputs, i))
+    return p.nx, p.ny, p.nz
 
 
 # Bounce lanes: once a task's shots have landed, their bounces run LANES at a time too, one
@@ -521,10 +557,16 @@ def _ground(inputs, i):
 # normal, BNX.., and its turf, MU.., in Turf's order) ...
 (BX, BY, BZ, BVX, BVY, BVZ, BWX, BWY, BWZ, BNX, BNY, BNZ, BT, BOUNCES, PREVIOUS, FIRST_HEIGHT,
  FIRST_LENGTH, THEN, MU) = range(19)  # fmt: skip
-# ... and, in the roll table only, the shot and where and when ``roll.roll_out_short`` brings
-# it to rest, if it does (SHORT).
-(BSHOT, REST_X, REST_Y, REST_T, SHORT) = range(MU + len(Turf._fields), MU + len(Turf._fields) + 5)
+# ... where the ball last touched the ground in play (QX, QY) and the state where it touched it
+# last (``ground.state_at``), and, in the roll table only, the shot and where and when
+# ``roll.roll_out_short`` brings it to rest, if it does (SHORT).
+(QX, QY, STATE, BSHOT, REST_X, REST_Y, REST_T, SHORT) = range(
+    MU + len(Turf._fields), MU + len(Turf._fields) + 8
+)
 N_BOUNCE_ROWS = SHORT + 1
+# What comes after an impact (``bounce.impact``'s HOPS, ROLLS, TOO_MANY), or: its hop came down
+# where the shot ends (STATE).
+ENDS = -1.0
 # The equivalent surface of the impact under way (``bounce.incidence``), a table of its own:
 # its normal and v.e. (Written into the bounce table, which the same loop reads, it kept the
 # compiler from vectorising the loop: 12 % of the kernel's time.)
@@ -547,17 +589,19 @@ def _lane_ground(b, k):
 
 
 @njit(cache=True, error_model="numpy")
-def _impact_lanes(b, e):
+def _impact_lanes(b, e, terrain):
     """One impact, and the hop it starts, for every bounce lane: ``bounce.impact`` in two
     vectorised loops (as ``step_lanes``, so that the lanes' long chains overlap), on the ground
     under the ball. Returns the number of lanes (empty ones included) whose ball no longer
     hops."""
     for k in range(LANES):
         under = _lane_ground(b, k)
-        nx, ny, nz = ground.normal_at(under, b[BX * LANES + k], b[BY * LANES + k])
+        x = b[BX * LANES + k]
+        y = b[BY * LANES + k]
+        nx, ny, nz = ground.normal_at(terrain, under, x, y)
         ex, ey, ez, vne, _ = incidence(
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], nx, ny, nz,
-            ground.turf_at(under, b[BX * LANES + k], b[BY * LANES + k]),
+            ground.turf_at(terrain, under, x, y),
         )  # fmt: skip
         e[EX * LANES + k] = ex
         e[EY * LANES + k] = ey
@@ -568,16 +612,23 @@ def _impact_lanes(b, e):
         under = _lane_ground(b, k)
         x = b[BX * LANES + k]
         y = b[BY * LANES + k]
-        nx, ny, nz = ground.normal_at(under, x, y)
+        nx, ny, nz = ground.normal_at(terrain, under, x, y)
         bounces = b[BOUNCES * LANES + k]
         vx, vy, vz, wx, wy, wz, height, hop_time, then = impact_rebound(
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BWX * LANES + k],
             b[BWY * LANES + k], b[BWZ * LANES + k], nx, ny, nz, e[EX * LANES + k],
             e[EY * LANES + k], e[EZ * LANES + k], e[VNE * LANES + k],
-            ground.turf_at(under, x, y), bounces, b[PREVIOUS * LANES + k],
+            ground.turf_at(terrain, under, x, y), bounces, b[PREVIOUS * LANES + k],
         )  # fmt: skip
-        x1, y1, z1, vz1 = hop(x, y, b[BZ * LANES + k], vx, vy, vz, hop_time)
+        x1, y1, z1, vz1, hop_time = ground.hop_landing(
+            terrain, x, y, b[BZ * LANES + k], vx, vy, vz, hop_time
+        )
         hops = then == HOPS
+        state = ground.state_at(terrain, x1, y1)
+        b[QX * LANES + k] = x if hops else b[QX * LANES + k]
+        b[QY * LANES + k] = y if hops else b[QY * LANES + k]
+        b[STATE * LANES + k] = state if hops else b[STATE * LANES + k]
+        then = ENDS if hops & (state != OK) else then
         first = hops & (bounces == 0)
         b[FIRST_HEIGHT * LANES + k] = height if first else b[FIRST_HEIGHT * LANES + k]
         b[FIRST_LENGTH * LANES + k] = x1 - x if first else b[FIRST_LENGTH * LANES + k]
@@ -594,25 +645,25 @@ def _impact_lanes(b, e):
         b[PREVIOUS * LANES + k] = height if hops else b[PREVIOUS * LANES + k]
         b[BOUNCES * LANES + k] = bounces + 1.0 if hops else bounces
         b[THEN * LANES + k] = then
-        ended += 0 if hops else 1
+        ended += 0 if then == HOPS else 1
     return ended
 
 
 @njit(cache=True, error_model="numpy")
-def _record_hop(b, k, before, traj, tracer):
-    """The trajectory points of the hop bounce lane k has just started from the state
-    ``before`` (its rows before the impact): the impact taken again (``bounce.impact``, the
-    same numbers), then the ballistic arc every DT_RECORD."""
+def _record_hop(b, k, before, traj, tracer, terrain):
+    """The trajectory points of the hop bounce lane k has just made from the state ``before``
+    (its rows before the impact): the impact taken again (``bounce.impact``, the same
+    numbers), then the ballistic arc every DT_RECORD up to the hop's end."""
     s = before
     under = _lane_ground(b, k)
-    nx, ny, nz = ground.normal_at(under, s[BX], s[BY])
-    vx, vy, vz, _, _, _, _, hop_time, _ = impact(
+    nx, ny, nz = ground.normal_at(terrain, under, s[BX], s[BY])
+    vx, vy, vz, _, _, _, _, _, _ = impact(
         s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ], nx, ny, nz,
-        ground.turf_at(under, s[BX], s[BY]), s[BOUNCES], s[PREVIOUS],
+        ground.turf_at(terrain, under, s[BX], s[BY]), s[BOUNCES], s[PREVIOUS],
     )  # fmt: skip
     n = int(tracer[ROW])
     t = s[BT]
-    while tracer[T_NEXT] < t + hop_time:
+    while tracer[T_NEXT] < b[BT * LANES + k]:
         h = tracer[T_NEXT] - t
         n = record(
             traj, n, tracer[T_NEXT], s[BX] + vx * h, s[BY] + vy * h,
@@ -623,7 +674,7 @@ def _record_hop(b, k, before, traj, tracer):
 
 
 @njit(cache=True, error_model="numpy")
-def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k):
+def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terrain):
     """Put the next landed shot of ``pending`` into bounce lane k (shot[k] = -1 if none)."""
     if next_j == pending.shape[0]:
         shot[k] = -1
@@ -631,10 +682,11 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k):
     i = pending[next_j]
     g = landings[i - start]
     turf = _turf(inputs, i)
-    for row, value in ((BX, g[0]), (BY, g[1]), (BZ, 0.0), (BVX, g[2]), (BVY, g[3]), (BVZ, g[4]),
-                       (BWX, g[5]), (BWY, g[6]), (BWZ, g[7]), (BT, g[8]), (BNX, g[9]),
-                       (BNY, g[10]), (BNZ, g[11]), (BOUNCES, 0.0), (PREVIOUS, 0.0),
-                       (FIRST_HEIGHT, 0.0), (FIRST_LENGTH, 0.0)):  # fmt: skip
+    for row, value in ((BX, g[0]), (BY, g[1]), (BZ, ground.height_at(terrain, g[0], g[1])),
+                       (BVX, g[2]), (BVY, g[3]), (BVZ, g[4]), (BWX, g[5]), (BWY, g[6]),
+                       (BWZ, g[7]), (BT, g[8]), (BNX, g[9]), (BNY, g[10]), (BNZ, g[11]),
+                       (BOUNCES, 0.0), (PREVIOUS, 0.0), (FIRST_HEIGHT, 0.0),
+                       (FIRST_LENGTH, 0.0), (QX, g[0]), (QY, g[1]), (STATE, float(OK))):  # fmt: skip
         b[row * LANES + k] = value
     for j, value in enumerate(turf):
         b[(MU + j) * LANES + k] = value
@@ -643,14 +695,15 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k):
 
 
 @njit(cache=True, error_model="numpy")
-def _roll_lanes(r):
-    """``roll.roll_out_short`` of every lane of the roll table ``r`` (the vectorised loop)."""
+def _roll_lanes(r, terrain):
+    """``roll.roll_out_short`` of every lane of the roll table ``r`` (the vectorised loop), on
+    a Plane; on a terrain every ball rolls out on its own (``roll.roll_out``)."""
     for k in range(LANES):
         under = _lane_ground(r, k)
         x = r[BX * LANES + k]
         y = r[BY * LANES + k]
-        nx, ny, nz = ground.normal_at(under, x, y)
-        turf = ground.turf_at(under, x, y)
+        nx, ny, nz = ground.normal_at(terrain, under, x, y)
+        turf = ground.turf_at(terrain, under, x, y)
         x, y, t, short = roll_out_short(
             x, y, r[BZ * LANES + k], r[BVX * LANES + k], r[BVY * LANES + k],
             r[BVZ * LANES + k], r[BWX * LANES + k], r[BWY * LANES + k], r[BWZ * LANES + k], nx,
@@ -659,37 +712,42 @@ def _roll_lanes(r):
         r[REST_X * LANES + k] = x
         r[REST_Y * LANES + k] = y
         r[REST_T * LANES + k] = t
-        r[SHORT * LANES + k] = 1.0 if short else 0.0
+        r[SHORT * LANES + k] = 1.0 if short & (ground.step_length(terrain) == math.inf) else 0.0
 
 
 @njit(cache=True, error_model="numpy")
-def _file_rolls(start, landings, r, count, out, traj, tracer):
+def _file_rolls(start, landings, r, count, out, traj, tracer, terrain):
     """Roll out the first ``count`` shots of the roll table ``r`` and write their run: LANES
     at a time by ``_roll_lanes``, and on their own (``roll.roll_out``) where that is not
-    enough or the shot is traced."""
-    _roll_lanes(r)
+    enough, the ground is a terrain or the shot is traced."""
+    _roll_lanes(r, terrain)
     for j in range(count):
         s = r[j::LANES]  # s[row] is row ``row`` of column j
         i = int(s[BSHOT])
         x, y, t, status = s[REST_X], s[REST_Y], s[REST_T], OK
+        # (On the Plane, the rest's height on it.)
+        z = s[BZ] - (s[BNX] * (x - s[BX]) + s[BNY] * (y - s[BY])) / s[BNZ]
+        ref_x = np.nan
+        ref_y = np.nan
         traced = i == tracer[TRACED]
         if s[SHORT] == 0.0 or traced:
-            under = _lane_ground(r, j)
-            nx, ny, nz = ground.normal_at(under, s[BX], s[BY])
-            x, y, _, t, status, n = roll_out(
-                s[BX], s[BY], s[BZ], s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ], nx, ny, nz,
-                ground.turf_at(under, s[BX], s[BY]), s[BT], traj if traced else traj[:0],
-                int(tracer[ROW]) if traced else 0, tracer[T_NEXT] if traced else s[BT],
-                tracer[DT_RECORD],
+            x, y, z, t, status, n, qx, qy = roll_out(
+                s[BX], s[BY], s[BZ], s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ],
+                ground.surface, terrain, _lane_ground(r, j), s[BT],
+                traj if traced else traj[:0], int(tracer[ROW]) if traced else 0,
+                tracer[T_NEXT] if traced else s[BT], tracer[DT_RECORD],
             )  # fmt: skip
             if traced:
                 tracer[ROW] = n
+            if status > NOT_STOPPED:
+                ref_x, ref_y = ground.crossing(terrain, qx, qy, x, y)
         landing_x = landings[i - start, 0]
-        write_run(out, i, landing_x, x, y, t, status, s[BOUNCES], s[FIRST_HEIGHT], s[FIRST_LENGTH])
+        write_run(out, i, landing_x, x, y, z, t, status, s[BOUNCES], s[FIRST_HEIGHT],
+                  s[FIRST_LENGTH], ref_x, ref_y)  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy")
-def _bounce_all(inputs, start, landings, pending, out, traj, tracer):
+def _bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain):
     """The bounces and the roll of the landed shots ``pending``, LANES at a time; a shot that
     stops hopping waits in the roll table until LANES shots roll out together."""
     b = np.zeros(N_BOUNCE_ROWS * LANES)
@@ -700,7 +758,7 @@ def _bounce_all(inputs, start, landings, pending, out, traj, tracer):
     shot = np.full(LANES, -1)
     next_j = 0
     for k in range(LANES):
-        next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
+        next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terrain)
     while _any_lane_busy(shot):
         traced = -1
         if tracer[TRACED] >= 0:
@@ -708,9 +766,9 @@ def _bounce_all(inputs, start, landings, pending, out, traj, tracer):
                 if shot[k] == tracer[TRACED]:
                     traced = k
                     before[:] = b[k::LANES]
-        ended = _impact_lanes(b, e)
-        if traced >= 0 and b[THEN * LANES + traced] == HOPS:
-            _record_hop(b, traced, before, traj, tracer)
+        ended = _impact_lanes(b, e, terrain)
+        if traced >= 0 and (b[THEN * LANES + traced] == HOPS) | (b[THEN * LANES + traced] == ENDS):
+            _record_hop(b, traced, before, traj, tracer, terrain)
         if ended == 0:
             continue
         for k in range(LANES):
@@ -723,8 +781,15 @@ def _bounce_all(inputs, start, landings, pending, out, traj, tracer):
                 s = b[k::LANES]  # s[row] is row ``row`` of lane k
                 landing_x = landings[i - start, 0]
                 write_run(
-                    out, i, landing_x, s[BX], s[BY], s[BT], TOO_MANY_BOUNCES, s[BOUNCES],
-                    s[FIRST_HEIGHT], s[FIRST_LENGTH],
+                    out, i, landing_x, s[BX], s[BY], s[BZ], s[BT], TOO_MANY_BOUNCES, s[BOUNCES],
+                    s[FIRST_HEIGHT], s[FIRST_LENGTH], np.nan, np.nan,
+                )  # fmt: skip
+            elif b[THEN * LANES + k] == ENDS:
+                s = b[k::LANES]
+                ref_x, ref_y = ground.crossing(terrain, s[QX], s[QY], s[BX], s[BY])
+                write_run(
+                    out, i, landings[i - start, 0], s[BX], s[BY], s[BZ], s[BT], int(s[STATE]),
+                    s[BOUNCES], s[FIRST_HEIGHT], s[FIRST_LENGTH], ref_x, ref_y,
                 )  # fmt: skip
             else:
                 for row in range(N_BOUNCE_ROWS):
@@ -732,15 +797,17 @@ def _bounce_all(inputs, start, landings, pending, out, traj, tracer):
                 r[BSHOT * LANES + waiting] = i
                 waiting += 1
                 if waiting == LANES:
-                    _file_rolls(start, landings, r, waiting, out, traj, tracer)
+                    _file_rolls(start, landings, r, waiting, out, traj, tracer, terrain)
                     waiting = 0
-            next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k)
+            next_j = _load_bounce_lane(
+                inputs, landings, start, pending, next_j, b, shot, k, terrain
+            )
     if waiting > 0:
-        _file_rolls(start, landings, r, waiting, out, traj, tracer)
+        _file_rolls(start, landings, r, waiting, out, traj, tracer, terrain)
 
 
 @njit(cache=True, error_model="numpy")
-def _lockstep(inputs, start, stop, table, out, traj, tracer):
+def _lockstep(inputs, start, stop, table, out, traj, tracer, terrain):
     """Simulate shots start..stop-1 of ``inputs`` into ``out``: check them, fly each kind
     LANES at a time and land them LANES at a time, then bounce and roll them out LANES at a
     time."""
@@ -752,14 +819,15 @@ def _lockstep(inputs, start, stop, table, out, traj, tracer):
     landings = np.empty((stop - start, N_LANDING))
     pending = np.empty(stop - start, dtype=np.int64)
     n_landed = _fly_quadratic(
-        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, 0, traj, tracer
-    )
+        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, 0, traj, tracer,
+        terrain,
+    )  # fmt: skip
     if general:
         n_landed = _fly_general(
             inputs, kinds, GENERAL, start, stop, table, out, landings, pending, n_landed, traj,
-            tracer,
+            tracer, terrain,
         )  # fmt: skip
-    _bounce_all(inputs, start, landings, pending[:n_landed], out, traj, tracer)
+    _bounce_all(inputs, start, landings, pending[:n_landed], out, traj, tracer, terrain)
 
 
 # Shots per parallel task: enough to keep the lanes full, few enough to balance two threads.
@@ -767,7 +835,7 @@ TASK_SHOTS = 2048
 
 
 @njit(parallel=True, cache=True, error_model="numpy", nogil=True)
-def _simulate_batch(inputs, table, out):
+def _simulate_batch(inputs, table, out, terrain):
     n = inputs.shape[0]
     tasks = (n + TASK_SHOTS - 1) // TASK_SHOTS
     no_trajectory = np.empty((0, 5))
@@ -775,7 +843,7 @@ def _simulate_batch(inputs, table, out):
         untraced = np.full(4, -1.0)
         _lockstep(
             inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out,
-            no_trajectory, untraced,
+            no_trajectory, untraced, terrain,
         )  # fmt: skip
 
 
@@ -794,20 +862,21 @@ def _as_kernel_layout(inputs):
     return np.asfortranarray(inputs, dtype=np.float64)
 
 
-def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS):
-    """Simulate every row of ``inputs`` (n, N_INPUT); return ``out`` (n, N_OUTCOME), F-order."""
+def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS, terrain=None):
+    """Simulate every row of ``inputs`` (n, N_INPUT) on ``terrain`` (a ``ground.Terrain``; None:
+    each shot's own Plane); return ``out`` (n, N_OUTCOME), F-order."""
     rows = _as_kernel_layout(inputs)
     n = inputs.shape[0]
     if out is None:
         out = np.empty((n, N_OUTCOME), order="F")
     result = out if rows.shape[0] == n else np.empty((rows.shape[0], N_OUTCOME), order="F")
-    _run(rows, table, result)
+    _run(rows, table, result, terrain)
     if result is not out:
         out[:] = result[:n]
     return out
 
 
-def _run(inputs, table, out):
+def _run(inputs, table, out, terrain):
     """``_simulate_batch``, on this thread alone when the batch is one task: waking the other
     threads gains nothing, and their barrier can wait a whole time slice when the cores are
     busy (a sweep's small chunks took 4 ms each, for 20 us of work)."""
@@ -815,28 +884,31 @@ def _run(inputs, table, out):
     if inputs.shape[0] <= TASK_SHOTS and threads > 1:
         numba.set_num_threads(1)
         try:
-            _simulate_batch(inputs, table, out)
+            _simulate_batch(inputs, table, out, terrain)
         finally:
             numba.set_num_threads(threads)
     else:
-        _simulate_batch(inputs, table, out)
+        _simulate_batch(inputs, table, out, terrain)
 
 
 @njit(cache=True, error_model="numpy")
-def _simulate_traced(inputs, shot, table, out, traj):
+def _simulate_traced(inputs, shot, table, out, traj, terrain):
     tracer = np.array([float(shot), 0.0, 0.0, TRAJECTORY_DT_S])
-    _lockstep(inputs, 0, inputs.shape[0], table, out, traj, tracer)
+    _lockstep(inputs, 0, inputs.shape[0], table, out, traj, tracer, terrain)
     return int(tracer[ROW])
 
 
-def simulate_traced(inputs, shot, table=QUADRATIC_COEFFICIENTS, trajectory_rows=4096):
+def simulate_traced(inputs, shot, table=QUADRATIC_COEFFICIENTS, trajectory_rows=4096,
+                    terrain=None):  # fmt: skip
     """Simulate the rows of ``inputs`` on this thread, recording the path of row ``shot``:
     returns (outcomes (n, N_OUTCOME), trajectory (m, 5): t, x, y, z, phase, user frame). The
     buffer grows until the whole path fits."""
     n = inputs.shape[0]
     rows = _as_kernel_layout(inputs)
     out = np.empty((rows.shape[0], N_OUTCOME), order="F")
-    path = _recorded(lambda traj: _simulate_traced(rows, shot, table, out, traj), trajectory_rows)
+    path = _recorded(
+        lambda traj: _simulate_traced(rows, shot, table, out, traj, terrain), trajectory_rows
+    )
     return out[:n], path
 
 
@@ -853,7 +925,7 @@ def _recorded(simulate, rows):
 
 @njit(cache=True, error_model="numpy")
 def _simulate_landed(inputs, landings, out, traj, tracer):
-    _bounce_all(inputs, 0, landings, np.arange(landings.shape[0]), out, traj, tracer)
+    _bounce_all(inputs, 0, landings, np.arange(landings.shape[0]), out, traj, tracer, None)
     return int(tracer[ROW])
 
 

@@ -116,6 +116,9 @@ OUTCOME_FIELDS = (
     "final_x_m",
     "final_y_m",
     "total_time_s",
+    "final_z_m",
+    "penalty_x_m",
+    "penalty_y_m",
     "status",
 )
 (
@@ -137,16 +140,24 @@ OUTCOME_FIELDS = (
     FINAL_X,
     FINAL_Y,
     TOTAL_TIME,
+    FINAL_Z,
+    PENALTY_X,
+    PENALTY_Y,
     STATUS,
 ) = range(len(OUTCOME_FIELDS))
 N_OUTCOME = len(OUTCOME_FIELDS)
+# The outcomes that only a hole gives (``ground.Terrain``): the height where the ball ends,
+# relative to the tee, and where it crossed into a penalty area or out of bounds. A run on a
+# Plane leaves them out of what it writes (``plane_fields``).
+HOLE_FIELDS = ("final_z_m", "penalty_x_m", "penalty_y_m")
+PLANE_FIELDS = tuple(name for name in OUTCOME_FIELDS if name not in HOLE_FIELDS)
 
 # The outcomes that are counts or codes, and their types; the others are float64. A count is
 # missing (NaN in the kernel's outcomes) where a shot did not get that far; the status never is.
 OUTCOME_DTYPES = {"bounces": np.int32, "status": np.int8}
 
 
-def encode_outcomes(outcomes, names=OUTCOME_FIELDS):
+def encode_outcomes(outcomes, names=PLANE_FIELDS):
     """The columns ``names`` of ``outcomes`` (n, N_OUTCOME), typed: {name: (values, missing)}.
 
     ``values`` is contiguous, of ``OUTCOME_DTYPES[name]`` or float64 (NaN kept where a shot did
@@ -168,10 +179,10 @@ def encode_outcomes(outcomes, names=OUTCOME_FIELDS):
     return encoded
 
 
-def outcome_record(outcomes, i=0):
+def outcome_record(outcomes, i=0, names=PLANE_FIELDS):
     """Row ``i`` of ``outcomes`` as ``encode_outcomes`` types it, in Python values: a float
     (NaN where the shot did not get that far), an int, or None for a missing count."""
     return {
         name: None if missing is not None and missing[0] else values[0].item()
-        for name, (values, missing) in encode_outcomes(outcomes[i : i + 1]).items()
+        for name, (values, missing) in encode_outcomes(outcomes[i : i + 1], names).items()
     }

@@ -22,6 +22,7 @@ from mcrun.engine.schema import (
     CARRY_LATERAL,
     FINAL_X,
     FINAL_Y,
+    FINAL_Z,
     FIRST_BOUNCE_HEIGHT,
     FIRST_BOUNCE_LENGTH,
     FLIGHT_TIME,
@@ -32,6 +33,8 @@ from mcrun.engine.schema import (
     LAUNCH_SPEED,
     LAUNCH_SPIN,
     N_OUTCOME,
+    PENALTY_X,
+    PENALTY_Y,
     RUN,
     STATUS,
     TOTAL,
@@ -136,8 +139,10 @@ def write_landing(out, i, x, y, t, apex, speed, angle_deg, w):
 
 
 @njit(cache=True)
-def write_run(out, i, landing_x, x, y, t, status, bounces, first_height, first_length):
-    """Write the run fields of shot i, which landed at x = landing_x and rests at (x, y)."""
+def write_run(out, i, landing_x, x, y, z, t, status, bounces, first_height, first_length, ref_x,
+              ref_y):  # fmt: skip
+    """Write the run fields of shot i, which landed at x = landing_x and rests (or ended) at
+    (x, y, z); (ref_x, ref_y) is where it crossed into a penalty area or out of bounds."""
     if status == TOO_MANY_BOUNCES:
         fail(out, i, TOO_MANY_BOUNCES, BOUNCES)  # the flight's fields stand
         return
@@ -149,4 +154,7 @@ def write_run(out, i, landing_x, x, y, t, status, bounces, first_height, first_l
     out[i, FINAL_X] = x
     out[i, FINAL_Y] = -y
     out[i, TOTAL_TIME] = t
+    out[i, FINAL_Z] = z
+    out[i, PENALTY_X] = ref_x
+    out[i, PENALTY_Y] = -ref_y
     out[i, STATUS] = status

@@ -1,4 +1,4 @@
-"""Roll: from the last hop to rest, on a ground plane that may slope.
+"""Roll: from the last hop to rest, on the ground: a plane that may slope, or a hole's terrain.
 
 Two phases (Penner 2002 section 2 and physics.md):
 - slide: while the contact point slips (u = v + w x (-r n) != 0, e.g. backspin kept by a sliding
@@ -9,7 +9,9 @@ Two phases (Penner 2002 section 2 and physics.md):
 
 Each step holds the direction of u (or v) fixed, which is exact on level ground: there a single
 step runs each phase to its end. On a slope the steps are ROLL_DT_S long. A ball on a slope
-steeper than atan(rho_g) never stops: the bounds in ``status`` end it with NOT_STOPPED.
+steeper than atan(rho_g) never stops: the bounds in ``status`` end it with NOT_STOPPED. On a
+terrain the ground is asked after every step (``roll``), and a step goes at most a quarter of
+a cell of its grid.
 """
 
 import math
@@ -159,14 +161,41 @@ def rolled_too_far(px, py, x0, y0):
     return (px - x0) * (px - x0) + (py - y0) * (py - y0) > MAX_ROLL_DISTANCE_M**2
 
 
-@njit(cache=True, error_model="numpy")
-def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_next, dt_record):
-    """Slide, then roll, from a point on the ground plane until the ball stops.
+@njit(cache=True, error_model="numpy", inline="always")
+def _onto_plane(x, y, z, nx, ny, nz):
+    """The vector (x, y, z) turned into the plane of normal n, its length kept."""
+    m2 = x * x + y * y + z * z
+    d = x * nx + y * ny + z * nz
+    x -= d * nx
+    y -= d * ny
+    z -= d * nz
+    p2 = x * x + y * y + z * z
+    k = math.sqrt(m2 / p2) if p2 > 0.0 else 0.0
+    return x * k, y * k, z * k
 
-    The velocity must lie in the plane. Trajectory points are recorded at the times t_next,
-    t_next + dt_record, ... Returns (px, py, pz, t_end, status, n) with n the next row of the
-    trajectory buffer.
+
+@njit(cache=True, error_model="numpy")
+def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, n, t_next,
+         dt_record):  # fmt: skip
+    """Slide, then roll, from a point on the ground until the ball stops.
+
+    The ground is asked at every step: ``surface(terrain, plane, x, y, z)`` gives its height,
+    normal, turf, state (``mcrun.status``: OK in play, or where the shot ends) and the longest
+    step along it (``ground.surface``). Where the normal changes, the velocity (and the slip)
+    turn into the new plane, their length kept, and gravity along it is taken anew; where the
+    turf changes, its friction and rolling resistance. On a plane neither changes, and the
+    steps are those of the plane's exact phases.
+
+    The velocity must lie in the ground's plane. Trajectory points are recorded at the times
+    t_next, t_next + dt_record, ... Returns (px, py, pz, t_end, status, n, qx, qy): n the next
+    row of the trajectory buffer, (qx, qy) the last point in play (where the status is not OK,
+    the ball stopped at the first point of the step that left play).
     """
+    _, nx, ny, nz, turf, state, ds = surface(terrain, plane, px, py, pz)
+    qx = px
+    qy = py
+    if state != OK:
+        return px, py, pz, t0, state, n, qx, qy
     g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
     x0 = px
     y0 = py
@@ -178,15 +207,35 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
         if u <= 1e-12:
             break
         if t - t0 > MAX_ROLL_TIME_S:
-            return px, py, pz, t, NOT_STOPPED, n
+            return px, py, pz, t, NOT_STOPPED, n, qx, qy
+        speed = math.sqrt(vx * vx + vy * vy + vz * vz)
         (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1, ux, uy, uz = slide_step(
-            px, py, pz, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, k_slide, h_max, snap
-        )
+            px, py, pz, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, k_slide,
+            min(h_max, ds / speed), snap,
+        )  # fmt: skip
         n, t_next = _record_segment(
             traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
         )
+        qx = px
+        qy = py
         px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
         t += h
+        pz, mx, my, mz, under, state, ds = surface(terrain, plane, px, py, pz)
+        if state != OK:
+            return px, py, pz, t, state, n, qx, qy
+        if (
+            (mx != nx)
+            | (my != ny)
+            | (mz != nz)
+            | (under.mu != turf.mu)
+            | (under.rho_g != turf.rho_g)
+        ):
+            nx, ny, nz = mx, my, mz
+            vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
+            ux, uy, uz = _onto_plane(ux, uy, uz, nx, ny, nz)
+            g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
+            turf = under
+            k_slide = turf.mu * g_n
         if done:
             break
     k_roll = turf.rho_g * g_n
@@ -194,7 +243,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
     static = g_t <= k_roll  # tan(beta) <= rho_g: a ball at rest stays at rest
     while True:
         if t - t0 > MAX_ROLL_TIME_S or rolled_too_far(px, py, x0, y0):
-            return px, py, pz, t, NOT_STOPPED, n
+            return px, py, pz, t, NOT_STOPPED, n, qx, qy
         v = math.sqrt(vx * vx + vy * vy + vz * vz)
         if v <= 1e-12:
             if static:
@@ -208,45 +257,43 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t0, traj, n, t_ne
             dy = vy * (1.0 / v)
             dz = vz * (1.0 / v)
         (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1 = roll_step(
-            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, h_max, snap
+            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, min(h_max, ds / v), snap
         )
         n, t_next = _record_segment(
             traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
         )
+        qx = px
+        qy = py
         px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
         t += h
+        pz, mx, my, mz, under, state, ds = surface(terrain, plane, px, py, pz)
+        if state != OK:
+            return px, py, pz, t, state, n, qx, qy
+        if (mx != nx) | (my != ny) | (mz != nz) | (under.rho_g != turf.rho_g):
+            nx, ny, nz = mx, my, mz
+            vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
+            g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
+            snap = (5.0 / 7.0) * snap
+            turf = under
+            k_roll = turf.rho_g * g_n
+            static = g_t <= k_roll
         if done and static:
             break
-    return px, py, pz, t, OK, n
+    return px, py, pz, t, OK, n, qx, qy
 
 
 @njit(cache=True)
-def roll_out(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, t, traj, n, t_next, dt):
-    """After the last impact: the ball stays on the ground with its velocity along the plane,
-    slides and rolls to rest (``roll.roll``). Returns (x, y, z, t, status, n)."""
+def roll_out(x, y, z, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t, traj, n, t_next, dt):
+    """After the last impact: the ball stays on the ground with its velocity along it, slides
+    and rolls to rest (``roll.roll``). Returns (x, y, z, t, status, n, qx, qy)."""
+    _, nx, ny, nz, _, _, _ = surface(terrain, plane, x, y, z)
     vn = vx * nx + vy * ny + vz * nz
-    x, y, z, t, status, n = roll(
-        x,
-        y,
-        z,
-        vx - vn * nx,
-        vy - vn * ny,
-        vz - vn * nz,
-        wx,
-        wy,
-        wz,
-        nx,
-        ny,
-        nz,
-        turf,
-        t,
-        traj,
-        n,
-        t_next,
-        dt,
-    )
+    x, y, z, t, status, n, qx, qy = roll(
+        x, y, z, vx - vn * nx, vy - vn * ny, vz - vn * nz, wx, wy, wz, surface, terrain, plane,
+        t, traj, n, t_next, dt,
+    )  # fmt: skip
     n = record(traj, n, t, x, y, z, ROLL)
-    return x, y, z, t, status, n
+    return x, y, z, t, status, n, qx, qy
 
 
 @njit(cache=True, error_model="numpy", inline="always")

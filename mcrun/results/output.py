@@ -50,7 +50,7 @@ import pyarrow.parquet as pq
 
 import mcrun
 from mcrun.api import InputError
-from mcrun.engine.schema import OUTCOME_DTYPES, OUTCOME_FIELDS, encode_outcomes
+from mcrun.engine.schema import OUTCOME_DTYPES, OUTCOME_FIELDS, PLANE_FIELDS, encode_outcomes
 from mcrun.status import NAMES as STATUS_NAMES
 from mcrun.trajectory import PHASE_NAMES
 
@@ -131,10 +131,12 @@ def read_provenance(path):
 # --- shots -------------------------------------------------------------------------------------
 
 
-def outcome_columns(input_names):
-    """The outcome fields shots.parquet holds: all of ``OUTCOME_FIELDS`` but those a sampled
-    input column already holds under the same name (launch_angle_deg)."""
-    return tuple(name for name in OUTCOME_FIELDS if name not in set(input_names))
+def outcome_columns(input_names, on_hole=False):
+    """The outcome fields shots.parquet holds: all of ``OUTCOME_FIELDS`` (on a Plane, but
+    ``HOLE_FIELDS``) but those a sampled input column already holds under the same name
+    (launch_angle_deg)."""
+    fields = OUTCOME_FIELDS if on_hole else PLANE_FIELDS
+    return tuple(name for name in fields if name not in set(input_names))
 
 
 def shots_schema(input_names, input_types=None, metadata=None):

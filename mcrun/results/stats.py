@@ -543,18 +543,19 @@ def summarise(
     budget_bytes=DEFAULT_BUDGET_BYTES,
     drivers=None,
     derived_r2=DERIVED_R2,
+    on_hole=False,
 ):
     """The summary row (dict) of one point.
 
     ``stats``: its PointStats; ``columns``: a ShotsColumns over its rows of shots.parquet;
     ``target_m``: (x, y) of the target, default the mean final position; ``drivers``: input
     names in order of preference for the regression (default ``stats.inputs``), see
-    ``PointStats.drivers``.
+    ``PointStats.drivers``; ``on_hole``: count the statuses only a hole gives too.
     """
     n_ok = stats.n_ok
     row = {"n_shots": stats.n_shots, "n_ok": n_ok, "n_failed": stats.n_shots - n_ok}
     for code, name in enumerate(_STATUS_NAMES):
-        if code != status_codes.OK:
+        if code != status_codes.OK and (on_hole or code not in status_codes.HOLE_STATUSES):
             row[f"n_{name}"] = int(stats.status_counts[code])
     if target_m is None:
         target_m = (stats.mean("final_x_m"), stats.mean("final_y_m"))
