@@ -406,3 +406,23 @@ def test_missing_optional_packages_say_how_to_install(tmp_path, monkeypatch):
     assert "needs pyproj to be placed: pip install 'mcrun[hole]'" in one_line_error(
         asc, crs="EPSG:32633"
     )
+
+
+def test_a_compression_tifffile_cannot_decode_alone_names_imagecodecs(tmp_path):
+    try:
+        import imagecodecs  # noqa: F401
+    except ImportError:
+        pass
+    else:
+        pytest.skip("imagecodecs decodes LZW: the message is not needed")
+    path = lonlat_tiff(tmp_path, 1, "lzw.tif")
+    raw = path.read_bytes()
+    # The Compression tag (259, SHORT, 1 value) says 1, none; make it say 5, LZW, as GDAL writes.
+    entry = (259).to_bytes(2, "little") + (3).to_bytes(2, "little") + (1).to_bytes(4, "little")
+    assert raw.count(entry + (1).to_bytes(4, "little")) == 1
+    path.write_bytes(
+        raw.replace(entry + (1).to_bytes(4, "little"), entry + (5).to_bytes(4, "little"))
+    )
+    assert "its compression needs the imagecodecs package: pip install imagecodecs" in (
+        one_line_error(path)
+    )

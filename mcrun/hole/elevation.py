@@ -236,6 +236,7 @@ def _grid(name, kind, place, x0, y0, dx, dy, heights, extra=""):
     if not valid.any():
         raise ElevationError(f"{name}: every height is nodata: allowed is a grid with heights")
     heights = np.where(valid, heights, np.nan)
+    heights.setflags(write=False)  # shared by whatever samples it
     if place.geographic:
         lat_c = math.radians(y0 + 0.5 * (ny - 1) * dy)
         dy_m = math.radians(dy) * EARTH_RADIUS_M
@@ -267,6 +268,10 @@ def _load_geotiff(path, crs):
             tags = {tag.code: tag.value for tag in page.tags.values()}
             data = page.asarray()
     except Exception as err:  # a corrupt file raises whatever its first bad byte leads to
+        if "imagecodecs" in str(err):  # LZW, or a floating-point predictor, as GDAL writes them
+            raise ElevationError(
+                f"{name}: its compression needs the imagecodecs package: pip install imagecodecs"
+            ) from None
         raise ElevationError(
             f"{name}: not a readable TIFF ({type(err).__name__}): allowed is a GeoTIFF DEM"
         ) from None
