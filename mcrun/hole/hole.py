@@ -260,13 +260,18 @@ def _in_frame(frame, polygon):
 def _map_hole(table, folder, where):
     """Frame, tee/pin, zones and boundary of a hole of a map."""
     map_path = folder / str(table["map"])
-    course = read_course(map_path)
-    if "hole" not in table:
-        raise HoleError(
-            f"{where}: 'hole' is missing: give the hole's ref or its position 1-"
-            f"{len(course.holes)} in {map_path}"
-        )
-    line = course.hole(table["hole"])
+    try:
+        course = read_course(map_path)
+        if "hole" not in table:
+            raise HoleError(
+                f"{where}: 'hole' is missing: give the hole's ref or its position 1-"
+                f"{len(course.holes)} in {map_path}"
+            )
+        line = course.hole(table["hole"])
+    except HoleError as err:  # the map's own message, said of the TOML that names it
+        if str(err).startswith(where):
+            raise
+        raise HoleError(f"{where}: 'map': {err}") from None
     tee = _lonlat(table, "tee", where) or tuple(line.lonlat[0])
     # Find the green and the pin in a provisional frame at the tee (east-north, metres).
     local = Frame(*tee, 0.0)
@@ -314,7 +319,7 @@ def _map_hole(table, folder, where):
     )
 
 
-def _plain_hole(table, where, margin_m):
+def _plain_hole(table, where, margin_m, cell_m):
     """A rectangle of one zone kind: frame (from tee and pin when given), pin and zones."""
     surface = table.get("surface", "fairway")
     if surface not in ZONE_INDEX or ZONE_PENALTY[surface]:
@@ -344,7 +349,10 @@ def _plain_hole(table, where, margin_m):
     if width is None:
         raise HoleError(f"{where}: a hole without a 'map' needs 'width_m'")
     x0, x1, y0, y1 = -margin_m, length + margin_m, -width / 2, width / 2
-    rectangle = [np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])]
+    # Half a cell wider than the grid, so that its edge nodes are inside (the crossing rule is
+    # half-open).
+    e = cell_m / 2
+    rectangle = [np.array([[x0 - e, y0 - e], [x1 + e, y0 - e], [x1 + e, y1 + e], [x0 - e, y1 + e]])]
     return dict(
         frame=frame,
         pin_xy=(length, 0.0),
@@ -454,7 +462,7 @@ def hole_from_table(table, folder, source):
     else:
         if "hole" in table:
             raise HoleError(f"{where}: 'hole' chooses a hole of a 'map', and there is none")
-        parts = _plain_hole(table, where, margin)
+        parts = _plain_hole(table, where, margin, cell)
     heights, ground = None, "flat"
     if "elevation" in table:
         if parts["frame"] is None:
