@@ -10,12 +10,13 @@ Each family of commands lives in its own module, which adds its subcommands to t
 - ``mcrun.cli.report``: ``plot``, ``report``
 - ``mcrun.cli.paper``: ``paper``
 - ``mcrun.cli.calibrate``: ``calibrate``
+- ``mcrun.cli.hole``: ``hole``
 
 A mistake the user can make (``InputError`` and its kinds, ``OutputError`` among them,
-``UnitError``, ``CommandError``) ends with one line, ``mcrun: error: <message>``, on stderr and
-exit code 2; Ctrl-C with ``mcrun: interrupted`` and exit code 130, SIGTERM with 143
-(``mcrun.exits``); anything else is a bug and raises. A command function returns its exit code
-and raises these; it prints no error itself.
+``UnitError``, ``CommandError``, ``hole.errors.HoleError``) ends with one line,
+``mcrun: error: <message>``, on stderr and exit code 2; Ctrl-C with ``mcrun: interrupted`` and
+exit code 130, SIGTERM with 143 (``mcrun.exits``); anything else is a bug and raises. A command
+function returns its exit code and raises these; it prints no error itself.
 """
 
 import argparse
@@ -27,6 +28,7 @@ import time
 
 from mcrun import api, exits
 from mcrun.api import InputError
+from mcrun.hole.errors import HoleError
 from mcrun.units import UnitError
 
 
@@ -88,6 +90,7 @@ COMMAND_MODULES = {
     "paper": "mcrun.cli.paper",
     "plot": "mcrun.cli.report",
     "report": "mcrun.cli.report",
+    "hole": "mcrun.cli.hole",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 
@@ -185,7 +188,7 @@ def _run_command(args):
         if args.command in SIMULATING_COMMANDS:
             _compile_if_needed(SIMULATING_COMMANDS[args.command])
         return args.func(args)
-    except (InputError, UnitError, CommandError) as err:
+    except (InputError, UnitError, CommandError, HoleError) as err:
         return _error(" ".join(str(err).split()))
     except BrokenPipeError:  # e.g. `mcrun shot ... | head -3`: the reader has gone, not a bug
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit

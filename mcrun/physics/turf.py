@@ -59,9 +59,33 @@ PRESETS = {
     # ESTIMATE: rough. rho_g 0.50 (a Stimp of about 0.48 m, 1.6 ft), more friction, and a
     # softer surface (theta_c x 1.5: the ball sinks deeper into long grass).
     "rough": Turf(mu=0.60, softness=1.5, rho_g=0.50, critical_height_m=0.005, **_PAPER_E),
+    # ESTIMATE: fringe (collar): mown between green and fairway height, so its rolling
+    # resistance lies between theirs: rho_g 0.16 (a Stimp of about 1.49 m, 4.9 ft); bounce as
+    # the paper's green.
+    "fringe": Turf(mu=0.40, softness=1.0, rho_g=0.16, critical_height_m=0.005, **_PAPER_E),
+    # ESTIMATE: tee: mown and kept as a fairway, so the fairway's values.
+    "tee": Turf(mu=0.40, softness=1.0, rho_g=0.20, critical_height_m=0.005, **_PAPER_E),
+    # ESTIMATE: bunker sand. No bounce fit of a golf ball on sand is published. A sphere
+    # dropped onto loose sand penetrates and does not rebound (Uehara et al. 2003, "Low-speed
+    # impact craters in loose granular media", Phys. Rev. Lett. 90, 194301); bunker sands are
+    # judged by how the ball plugs and lies (Science and Golf IV, 2002, "playing quality of
+    # bunker sands"). So: the paper's e(v) scaled by 0.4 (e = 0.20 at low speed, 0.05 at
+    # 20 m/s and above), theta_c x 3 (the ball sinks into the sand), mu 0.70 and rho_g 1.0: a
+    # ball landing at 2 m/s stops within about 0.3 m (v^2 / (2 (5/7) rho_g g)).
+    "bunker": Turf(
+        mu=0.70,
+        softness=3.0,
+        e0=0.204,
+        e1=-0.015,
+        e2=0.000361,
+        e_break_speed_mps=20.0,
+        e_high=0.048,
+        rho_g=1.0,
+        critical_height_m=0.005,
+    ),
 }
 
-ESTIMATED_PRESETS = ("fairway", "rough")
+ESTIMATED_PRESETS = ("fairway", "rough", "fringe", "tee", "bunker")
 
 
 def turf_preset(name):

@@ -1,0 +1,113 @@
+"""``mcrun hole``: describe a hole (its zones and their areas, its length, its ground, its par)
+and draw its map; or list the holes of a course map."""
+
+from pathlib import Path
+
+from mcrun.cli import CommandError
+from mcrun.hole.hole import M_PER_YD, hole_from_table, load_hole
+from mcrun.hole.osm import read_course
+
+GEOJSON_SUFFIXES = (".geojson", ".json")
+
+
+def _list_holes(path):
+    course = read_course(path)
+    print(f"{course.name or path}: {len(course.holes)} holes (choose one with --hole N)")
+    print(f"{'hole':>4}  {'ref':>4}  {'par':>3}  {'length_m':>8}  {'length_yd':>9}")
+    for line in course.holes:
+        hole = hole_from_table({"map": path.name, "hole": line.index}, path.parent, str(path))
+        print(
+            f"{line.index:>4}  {line.ref or '-':>4}  {line.par or '-':>3}  "
+            f"{hole.length_m:>8.1f}  {hole.length_m / M_PER_YD:>9.1f}"
+        )
+    print(f"map: {course.source}, (c) OpenStreetMap contributors, ODbL")
+
+
+def _describe(hole):
+    t = hole.terrain()
+    print(hole.name or hole.source)
+    if hole.map_source:
+        ref = f", ref {hole.ref}" if hole.ref else ""
+        print(f"map: {hole.map_source}, hole {hole.index}{ref}; {hole.attribution}")
+    print(f"par: {hole.par if hole.par is not None else '-'}")
+    if hole.frame is not None:
+        for what, (lon, lat) in (("tee", hole.tee_lonlat), ("pin", hole.pin_lonlat)):
+            print(f"{what}: lon {lon:.6f}, lat {lat:.6f}")
+    print(f"length tee-pin: {hole.length_m:.1f} m ({hole.length_m / M_PER_YD:.1f} yd)")
+    if hole.ground == "flat":
+        print("ground: flat")
+    else:
+        lo, hi = float(t.height_m.min()), float(t.height_m.max())
+        print(f"ground: {hole.ground}: {lo:+.2f} to {hi:+.2f} m relative to the tee")
+    ny, nx = t.zone.shape
+    x1, y1 = t.x0_m + (nx - 1) * t.cell_m, t.y0_m + (ny - 1) * t.cell_m
+    print(
+        f"grid: {nx} x {ny} nodes at {t.cell_m:g} m, x {t.x0_m:.1f} to {x1:.1f} m, "
+        f"y {t.y0_m:.1f} to {y1:.1f} m ({(t.height_m.nbytes + t.zone.nbytes) / 1e6:.1f} MB)"
+    )
+    print("zone areas on the grid (m^2):")
+    for kind, area in hole.zone_areas_m2().items():
+        if area > 0:
+            print(f"  {kind:<14}{area:>10.0f}")
+
+
+def _cmd_hole(args):
+    path = Path(args.file)
+    if path.suffix.lower() in GEOJSON_SUFFIXES:
+        if args.hole is None:
+            if args.plot:
+                raise CommandError("--plot draws one hole: choose it with --hole N")
+            _list_holes(path)
+            return 0
+        hole = hole_from_table({"map": path.name, "hole": args.hole}, path.parent, str(path))
+    else:
+        hole = load_hole(path) if args.hole is None else _with_hole(path, args.hole)
+    _describe(hole)
+    if args.plot:
+        from mcrun.report.hole_map import write_hole_map
+
+        try:
+            write_hole_map(hole, args.plot)
+        except OSError as err:
+            raise CommandError(f"cannot write {args.plot}: {err.strerror or err}") from None
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _with_hole(path, key):
+    """The hole file at ``path`` with its 'hole' replaced by ``key``."""
+    import tomllib
+
+    from mcrun.hole.errors import HoleError
+
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as err:
+        raise HoleError(f"{path}: cannot read the hole file: {err}") from None
+    table, source = (
+        (data["hole"], f"{path} [hole]")
+        if isinstance(data.get("hole"), dict)
+        else (data, str(path))
+    )
+    return hole_from_table({**table, "hole": key}, path.parent, source)
+
+
+def register(subparsers):
+    """Add ``hole`` to an argparse subparsers object."""
+    p = subparsers.add_parser(
+        "hole",
+        help="describe and draw a hole, or list the holes of a course map",
+        description="Describe a hole: its par, tee and pin, length tee to pin, ground "
+        "(elevation range), its grid and the areas of its zones (rough, fairway, tee, fringe, "
+        "green, bunker, water, out of bounds). FILE is a hole TOML file, or a GeoJSON course "
+        "map (OpenStreetMap golf tags): without --hole, its holes are listed. --plot draws "
+        "the hole's map (needs matplotlib, mcrun[plot]).",
+        epilog="example: mcrun hole scenarios/holes/riverside-2.toml --plot hole2.png",
+        allow_abbrev=False,
+    )
+    p.add_argument("file", metavar="FILE", help="a hole TOML file or a GeoJSON course map")
+    p.add_argument(
+        "--hole", metavar="N", help="the hole: its ref, or its 1-based position in the map"
+    )
+    p.add_argument("--plot", metavar="PNG", help="draw the hole's map into this file")
+    p.set_defaults(func=_cmd_hole)

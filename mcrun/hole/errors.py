@@ -1,0 +1,6 @@
+"""The one error of the hole layer."""
+
+
+class HoleError(ValueError):
+    """A hole, its map or its ground cannot be used; the message is one line naming the file,
+    the key or feature, and what is allowed."""

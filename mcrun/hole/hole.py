@@ -1,0 +1,498 @@
+"""A hole to play: its spec from a TOML table, its frame, zones, tee and pin, and its ground on
+a grid (``Hole.terrain()``, a ``ground.Terrain``).
+
+The ``[hole]`` table of a scenario and a standalone hole TOML file have the same keys:
+
+- ``map``: a GeoJSON course (``osm``), relative to the TOML's folder; ``hole``: its ``ref``, or
+  its 1-based position among the file's ``golf=hole`` lines;
+- ``tee``, ``pin``: [lon, lat] overrides (default: the hole line's first point; the
+  ``golf=pin`` in the hole's green, else the line's last point); the pin must be on a green;
+- ``elevation`` (a file, relative to the TOML's folder; ``elevation_crs`` when the file does
+  not say), or ``shape`` (an analytic ground: its kind, or a table with ``kind`` and its
+  parameters); neither: flat;
+- without a map, the hole is a rectangle of one zone kind ``surface`` (default fairway),
+  ``length_m`` from tee to pin (or ``tee`` and ``pin`` as [lon, lat]) and ``width_m`` wide;
+- ``cell_m`` (grid spacing, default 0.5), ``margin_m`` (default 50: how far the grid reaches
+  beyond the hole line, the tee and the pin; beyond the rectangle's ends without a map);
+- ``par``, ``name`` (when the map has none);
+- ``[hole.turf.KIND]``: turf values of a zone kind (``preset`` = a turf preset, and any
+  ``physics.turf.Turf`` field), checked against ``turf.LIMITS``.
+"""
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from mcrun.ground import Terrain
+from mcrun.hole.errors import HoleError
+from mcrun.hole.geo import Frame
+from mcrun.hole.osm import ATTRIBUTION, read_course
+from mcrun.hole.zones import (
+    ZONE_INDEX,
+    ZONE_KINDS,
+    ZONE_PENALTY,
+    ZONE_TURF,
+    contains,
+    rasterize,
+)
+from mcrun.physics.turf import LIMITS, PRESETS, Turf, check_turf
+
+M_PER_YD = 0.9144
+DEFAULT_CELL_M = 0.5
+DEFAULT_MARGIN_M = 50.0
+CELL_RANGE_M = (0.05, 10.0)
+MARGIN_RANGE_M = (0.0, 1000.0)
+SIZE_RANGE_M = (1.0, 2000.0)
+# A golf=pin further than this from the hole's green is another green's.
+PIN_SEARCH_M = 10.0
+
+KEYS = (
+    "map",
+    "hole",
+    "tee",
+    "pin",
+    "elevation",
+    "elevation_crs",
+    "shape",
+    "surface",
+    "length_m",
+    "width_m",
+    "cell_m",
+    "margin_m",
+    "par",
+    "name",
+    "turf",
+)
+
+
+@dataclass
+class Hole:
+    """A hole in its frame (x from the tee towards the pin, y to the right, metres)."""
+
+    source: str  # where it was read, for messages: "FILE" or "FILE [hole]"
+    frame: Frame | None  # None: a hole without a map or lon/lat (to_lonlat gives NaN)
+    pin_xy: tuple  # (x_m, y_m); the tee is (0, 0)
+    zones: list  # (kind, polygon: a list of (n, 2) rings in the frame), in map order
+    boundary: list  # the course boundary's polygons in the frame; empty: no boundary
+    extent_m: tuple  # (x_min, x_max, y_min, y_max) the grid covers
+    cell_m: float = DEFAULT_CELL_M
+    turf: dict = field(default_factory=dict)  # zone kind -> Turf, overrides applied
+    index: int | None = None  # the position of the hole in its map
+    ref: str | None = None
+    par: int | None = None
+    name: str | None = None
+    map_source: str | None = None
+    attribution: str | None = None  # to show wherever the map's data or a figure of it appears
+    ground: str = "flat"  # "flat", "elevation FILE" or "shape KIND"
+    line_xy: np.ndarray | None = None  # the hole line in the frame
+    _heights: object = None  # callable(x_m, y_m) -> heights relative to the tee, or None
+    _terrain: Terrain | None = None
+
+    @property
+    def length_m(self):
+        """Tee to pin, in the plane of the frame (m)."""
+        return float(math.hypot(*self.pin_xy))
+
+    @property
+    def tee_lonlat(self):
+        return None if self.frame is None else (self.frame.tee_lon_deg, self.frame.tee_lat_deg)
+
+    @property
+    def pin_lonlat(self):
+        if self.frame is None:
+            return None
+        lon, lat = self.frame.to_lonlat(*self.pin_xy)
+        return float(lon), float(lat)
+
+    def to_lonlat(self, x_m, y_m):
+        """(lon_deg, lat_deg) of points of the hole's frame; NaN when the hole has no lon/lat."""
+        if self.frame is None:
+            shape = np.broadcast(np.asarray(x_m), np.asarray(y_m)).shape
+            return np.full(shape, np.nan), np.full(shape, np.nan)
+        return self.frame.to_lonlat(x_m, y_m)
+
+    def terrain(self):
+        """The hole's ground.Terrain over ``extent_m`` (built once, then shared)."""
+        if self._terrain is None:
+            self._terrain = self.terrain_over(self.extent_m)
+        return self._terrain
+
+    def course_extent_m(self):
+        """(x_min, x_max, y_min, y_max) of every zone and the boundary: the whole course."""
+        points = [ring for _, polygon in self.zones for ring in polygon]
+        points += [ring for polygon in self.boundary for ring in polygon]
+        if not points:
+            return self.extent_m
+        xy = np.concatenate(points)
+        return (xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max())
+
+    def terrain_over(self, extent_m):
+        """A ground.Terrain of this hole over ``extent_m`` = (x_min, x_max, y_min, y_max)."""
+        cell = self.cell_m
+        x_min, x_max, y_min, y_max = extent_m
+        x0 = math.floor(x_min / cell) * cell
+        y0 = math.floor(y_min / cell) * cell
+        nx = int(math.ceil((x_max - x0) / cell)) + 1
+        ny = int(math.ceil((y_max - y0) / cell)) + 1
+        zone = rasterize(self.zones, x0, y0, cell, nx, ny, self.boundary)
+        if self._heights is None:
+            height = np.zeros((ny, nx))
+        else:
+            height = self._heights(x0, y0, cell, nx, ny)
+        turf = np.array([[getattr(self.turf[k], f) for f in Turf._fields] for k in ZONE_KINDS])
+        penalty = np.array([ZONE_PENALTY[k] for k in ZONE_KINDS], dtype=np.int8)
+        return Terrain(x0, y0, cell, height, zone, turf, penalty)
+
+    def zone_at(self, x_m, y_m):
+        """Zone index (``zones.ZONE_KINDS``) at (x_m, y_m): that of the nearest node of the
+        terrain, as the ground's; -1 off the grid. Vectorised."""
+        t = self.terrain()
+        ny, nx = t.zone.shape
+        ix = np.rint((np.asarray(x_m, float) - t.x0_m) / t.cell_m)
+        iy = np.rint((np.asarray(y_m, float) - t.y0_m) / t.cell_m)
+        on = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
+        out = np.full(on.shape, -1, dtype=np.int8)
+        out[on] = t.zone[iy[on].astype(np.int64), ix[on].astype(np.int64)]
+        return out
+
+    def zone_areas_m2(self):
+        """{zone kind: area (m^2) on the hole's grid} (node count x cell^2)."""
+        counts = np.bincount(self.terrain().zone.ravel(), minlength=len(ZONE_KINDS))
+        return {kind: float(counts[k]) * self.cell_m**2 for k, kind in enumerate(ZONE_KINDS)}
+
+
+# --- reading a spec ----------------------------------------------------------------------------
+
+
+def load_hole(path):
+    """The Hole of a standalone hole TOML file (its top-level keys, or a ``[hole]`` table)."""
+    path = Path(path)
+    try:
+        with path.open("rb") as f:
+            data = tomllib.load(f)
+    except OSError as err:
+        raise HoleError(f"{path}: cannot read the hole file: {err.strerror or err}") from None
+    except tomllib.TOMLDecodeError as err:
+        raise HoleError(f"{path}: is not valid TOML: {err}") from None
+    if isinstance(data.get("hole"), dict):
+        return hole_from_table(data["hole"], path.parent, f"{path} [hole]")
+    return hole_from_table(data, path.parent, str(path))
+
+
+def _number(table, key, where, lo, hi, default=None):
+    value = table.get(key, default)
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | float) or not lo <= value <= hi:
+        raise HoleError(f"{where}: '{key}' = {value!r} must be a number in [{lo:g}, {hi:g}]")
+    return float(value)
+
+
+def _lonlat(table, key, where):
+    value = table.get(key)
+    if value is None:
+        return None
+    ok = (
+        isinstance(value, list)
+        and len(value) == 2
+        and all(isinstance(v, int | float) and not isinstance(v, bool) for v in value)
+    )
+    if not ok or not (-180 <= value[0] <= 180 and -90 <= value[1] <= 90):
+        raise HoleError(f"{where}: '{key}' = {value!r} must be [lon, lat] in degrees (WGS84)")
+    return float(value[0]), float(value[1])
+
+
+def _turfs(table, where):
+    """Each zone kind's Turf: its preset, then the table's overrides, checked."""
+    turfs = {kind: PRESETS[ZONE_TURF[kind]] for kind in ZONE_KINDS}
+    overrides = table.get("turf", {})
+    if not isinstance(overrides, dict):
+        raise HoleError(f"{where}: 'turf' must be a table of zone kinds ([hole.turf.green] ...)")
+    for kind, values in overrides.items():
+        key = f"turf.{kind}"
+        if kind not in ZONE_INDEX:
+            raise HoleError(f"{where}: '{key}': unknown zone kind; choose {', '.join(ZONE_KINDS)}")
+        if not isinstance(values, dict):
+            raise HoleError(f"{where}: '{key}' must be a table of turf values")
+        turf = turfs[kind]
+        if "preset" in values:
+            if values["preset"] not in PRESETS:
+                raise HoleError(
+                    f"{where}: '{key}.preset' = {values['preset']!r}: choose {', '.join(PRESETS)}"
+                )
+            turf = PRESETS[values["preset"]]
+        changes = {k: v for k, v in values.items() if k != "preset"}
+        for name, value in changes.items():
+            if name not in Turf._fields:
+                raise HoleError(
+                    f"{where}: '{key}.{name}': unknown turf value; choose preset, "
+                    f"{', '.join(Turf._fields)}"
+                )
+            if isinstance(value, bool) or not isinstance(value, int | float):
+                raise HoleError(f"{where}: '{key}.{name}' = {value!r} must be a number")
+        try:
+            turfs[kind] = check_turf(turf._replace(**{k: float(v) for k, v in changes.items()}))
+        except ValueError as err:
+            raise HoleError(f"{where}: '{key}': {err} (limits: {LIMITS})") from None
+    return turfs
+
+
+def _ring_distance_m(polygon, x, y):
+    """Distance (m) from (x, y) to the nearest edge of ``polygon``."""
+    best = math.inf
+    for ring in polygon:
+        a, b = ring, np.roll(ring, -1, axis=0)
+        d = b - a
+        length2 = np.maximum((d * d).sum(1), 1e-12)  # a repeated point is an edge of length 0
+        t = np.clip(((x - a[:, 0]) * d[:, 0] + (y - a[:, 1]) * d[:, 1]) / length2, 0, 1)
+        px, py = a[:, 0] + t * d[:, 0], a[:, 1] + t * d[:, 1]
+        best = min(best, float(np.hypot(px - x, py - y).min()))
+    return best
+
+
+def _in_frame(frame, polygon):
+    return [np.column_stack(frame.to_xy(ring[:, 0], ring[:, 1])) for ring in polygon]
+
+
+def _map_hole(table, folder, where):
+    """Frame, tee/pin, zones and boundary of a hole of a map."""
+    map_path = folder / str(table["map"])
+    try:
+        course = read_course(map_path)
+        if "hole" not in table:
+            raise HoleError(
+                f"{where}: 'hole' is missing: give the hole's ref or its position 1-"
+                f"{len(course.holes)} in {map_path}"
+            )
+        line = course.hole(table["hole"])
+    except HoleError as err:  # the map's own message, said of the TOML that names it
+        if str(err).startswith(where):
+            raise
+        raise HoleError(f"{where}: 'map': {err}") from None
+    tee = _lonlat(table, "tee", where) or tuple(line.lonlat[0])
+    # Find the green and the pin in a provisional frame at the tee (east-north, metres).
+    local = Frame(*tee, 0.0)
+    greens = [_in_frame(local, p) for kind, p in course.zones if kind == "green"]
+    end_xy = local.to_xy(*line.lonlat[-1])
+    pin = _lonlat(table, "pin", where)
+    if pin is None:
+        pin = tuple(line.lonlat[-1])
+        if greens:
+            green = min(
+                greens, key=lambda g: 0 if contains(g, *end_xy) else _ring_distance_m(g, *end_xy)
+            )
+            pins_xy = np.column_stack(local.to_xy(course.pins[:, 0], course.pins[:, 1]))
+            inside = [k for k, p in enumerate(pins_xy) if contains(green, *p)]
+            near = sorted((_ring_distance_m(green, *p), k) for k, p in enumerate(pins_xy))
+            if inside:
+                pin = tuple(course.pins[inside[0]])
+            elif near and near[0][0] <= PIN_SEARCH_M:
+                pin = tuple(course.pins[near[0][1]])
+    pin_xy = local.to_xy(*pin)
+    if greens and not any(contains(g, *pin_xy) for g in greens):
+        nearest = min(_ring_distance_m(g, *pin_xy) for g in greens)
+        raise HoleError(
+            f"{where}: the pin [{pin[0]:.6f}, {pin[1]:.6f}] of hole {line.index} is outside "
+            f"every green of {map_path} ({nearest:.1f} m from the nearest): give a 'pin' on a green"
+        )
+    if math.dist(local.to_xy(*pin), (0.0, 0.0)) < 1.0:
+        raise HoleError(f"{where}: the tee and the pin of hole {line.index} are the same point")
+    frame = Frame.from_tee_pin(tee, pin)
+    line_xy = np.column_stack(frame.to_xy(line.lonlat[:, 0], line.lonlat[:, 1]))
+    zones = [(kind, _in_frame(frame, p)) for kind, p in course.zones]
+    boundary = [_in_frame(frame, p) for p in course.boundary]
+    return dict(
+        frame=frame,
+        pin_xy=(float(frame.to_xy(*pin)[0]), 0.0),
+        zones=zones,
+        boundary=boundary,
+        line_xy=line_xy,
+        index=line.index,
+        ref=line.ref,
+        par=line.par,
+        name=line.name or (course.name and f"{course.name}, hole {line.index}"),
+        map_source=str(map_path),
+        attribution=ATTRIBUTION,
+    )
+
+
+def _plain_hole(table, where, margin_m, cell_m):
+    """A rectangle of one zone kind: frame (from tee and pin when given), pin and zones."""
+    surface = table.get("surface", "fairway")
+    if surface not in ZONE_INDEX or ZONE_PENALTY[surface]:
+        playable = [k for k in ZONE_KINDS if not ZONE_PENALTY[k]]
+        raise HoleError(f"{where}: 'surface' = {surface!r}: choose {', '.join(playable)}")
+    tee, pin = _lonlat(table, "tee", where), _lonlat(table, "pin", where)
+    if (tee is None) != (pin is None):
+        raise HoleError(f"{where}: give both 'tee' and 'pin' as [lon, lat], or neither")
+    frame = None
+    if tee is not None:
+        if "length_m" in table:
+            raise HoleError(
+                f"{where}: 'length_m' comes from 'tee' and 'pin': give one or the other"
+            )
+        frame = Frame.from_tee_pin(tee, pin)
+        length = float(frame.to_xy(*pin)[0])
+        if length < 1.0:
+            raise HoleError(f"{where}: 'tee' and 'pin' are the same point")
+    else:
+        length = _number(table, "length_m", where, *SIZE_RANGE_M)
+        if length is None:
+            raise HoleError(
+                f"{where}: a hole without a 'map' needs 'length_m' (or 'tee' and 'pin') "
+                "and 'width_m'"
+            )
+    width = _number(table, "width_m", where, *SIZE_RANGE_M)
+    if width is None:
+        raise HoleError(f"{where}: a hole without a 'map' needs 'width_m'")
+    x0, x1, y0, y1 = -margin_m, length + margin_m, -width / 2, width / 2
+    # Half a cell wider than the grid, so that its edge nodes are inside (the crossing rule is
+    # half-open).
+    e = cell_m / 2
+    rectangle = [np.array([[x0 - e, y0 - e], [x1 + e, y0 - e], [x1 + e, y1 + e], [x0 - e, y1 + e]])]
+    return dict(
+        frame=frame,
+        pin_xy=(length, 0.0),
+        zones=[(surface, rectangle)],
+        boundary=[],
+        extent_m=(x0, x1, y0, y1),
+    )
+
+
+def _elevation_heights(table, folder, where, frame):
+    """The heights of an elevation file, relative to the tee, on a grid of the frame."""
+    from mcrun.hole.elevation import load_elevation
+
+    path = folder / str(table["elevation"])
+    crs = table.get("elevation_crs")
+    try:
+        elevation = load_elevation(path, crs=crs)
+    except (OSError, ValueError) as err:
+        message = " ".join(str(err).split())
+        raise HoleError(f"{where}: 'elevation': {message}") from None
+    tee_h = float(np.asarray(elevation.height_m(frame.tee_lon_deg, frame.tee_lat_deg)))
+    if not math.isfinite(tee_h):
+        raise HoleError(f"{where}: the elevation {path} does not cover the tee")
+
+    def heights(x0, y0, cell, nx, ny, rows=256):
+        out = np.empty((ny, nx))
+        x = x0 + np.arange(nx) * cell
+        for start in range(0, ny, rows):
+            y = y0 + np.arange(start, min(start + rows, ny)) * cell
+            lon, lat = frame.to_lonlat(x[None, :], y[:, None])
+            out[start : start + y.size] = np.asarray(elevation.height_m(lon, lat)) - tee_h
+        bad = ~np.isfinite(out)
+        if bad.any():
+            edge = bad[0].any() or bad[-1].any() or bad[:, 0].any() or bad[:, -1].any()
+            iy, ix = np.argwhere(bad)[0]
+            at = f"x = {x0 + ix * cell:.1f} m, y = {y0 + iy * cell:.1f} m"
+            if edge:
+                raise HoleError(
+                    f"{where}: the elevation {path} does not cover the hole's grid "
+                    f"({bad.sum()} of {bad.size} nodes have no height, first at {at}): "
+                    "give an elevation covering it, or a smaller 'margin_m'"
+                )
+            raise HoleError(
+                f"{where}: the elevation {path} has holes (NaN) inside the hole's area: "
+                f"{bad.sum()} nodes, first at {at}; fill them"
+            )
+        return out
+
+    return heights, f"elevation {path}"
+
+
+def _shape_heights(table, where):
+    """The heights of an analytic shape, relative to its height at the tee."""
+    from mcrun.hole.shapes import shape_height
+
+    shape = table["shape"]
+    if isinstance(shape, str):
+        kind, params = shape, {}
+    elif isinstance(shape, dict) and isinstance(shape.get("kind"), str):
+        kind, params = shape["kind"], {k: v for k, v in shape.items() if k != "kind"}
+    else:
+        raise HoleError(f"{where}: 'shape' must be a kind or a table with 'kind' and parameters")
+    try:
+        tee_h = float(np.asarray(shape_height(kind, params, np.zeros(1), np.zeros(1)))[0])
+    except ValueError as err:
+        raise HoleError(f"{where}: 'shape': {' '.join(str(err).split())}") from None
+
+    def heights(x0, y0, cell, nx, ny):
+        x = x0 + np.arange(nx) * cell
+        y = y0 + np.arange(ny) * cell
+        xx, yy = np.meshgrid(x, y)
+        return np.asarray(shape_height(kind, params, xx, yy), dtype=float) - tee_h
+
+    return heights, f"shape {kind}"
+
+
+def hole_from_table(table, folder, source):
+    """The Hole of a ``[hole]`` table (or a hole file's keys): ``folder`` is the TOML's folder
+    (relative paths start there), ``source`` names it in messages ("FILE [hole]")."""
+    where = str(source)
+    if not isinstance(table, dict):
+        raise HoleError(f"{where}: the hole must be a table of keys ({', '.join(KEYS)})")
+    unknown = sorted(set(table) - set(KEYS))
+    if unknown:
+        raise HoleError(f"{where}: unknown key '{unknown[0]}'; allowed: {', '.join(KEYS)}")
+    if "elevation" in table and "shape" in table:
+        raise HoleError(f"{where}: give 'elevation' or 'shape', not both")
+    if "elevation_crs" in table and "elevation" not in table:
+        raise HoleError(f"{where}: 'elevation_crs' without an 'elevation' file")
+    folder = Path(folder)
+    cell = _number(table, "cell_m", where, *CELL_RANGE_M, default=DEFAULT_CELL_M)
+    margin = _number(table, "margin_m", where, *MARGIN_RANGE_M, default=DEFAULT_MARGIN_M)
+    if "map" in table:
+        for key in ("surface", "length_m", "width_m"):
+            if key in table:
+                raise HoleError(f"{where}: '{key}' is for a hole without a 'map'")
+        parts = _map_hole(table, folder, where)
+        # The hole line from the tee on (a tee moved up the hole leaves the line behind it).
+        line = parts["line_xy"]
+        xy = np.vstack([line[line[:, 0] > 0.0], [(0.0, 0.0), parts["pin_xy"]]])
+        parts["extent_m"] = (
+            xy[:, 0].min() - margin,
+            xy[:, 0].max() + margin,
+            xy[:, 1].min() - margin,
+            xy[:, 1].max() + margin,
+        )
+    else:
+        if "hole" in table:
+            raise HoleError(f"{where}: 'hole' chooses a hole of a 'map', and there is none")
+        parts = _plain_hole(table, where, margin, cell)
+    heights, ground = None, "flat"
+    if "elevation" in table:
+        if parts["frame"] is None:
+            raise HoleError(
+                f"{where}: an 'elevation' needs the hole on the Earth: a 'map', or 'tee' and 'pin'"
+            )
+        heights, ground = _elevation_heights(table, folder, where, parts["frame"])
+    elif "shape" in table:
+        heights, ground = _shape_heights(table, where)
+    par = table.get("par", parts.get("par"))
+    if par is not None and (isinstance(par, bool) or par not in range(2, 8)):
+        raise HoleError(f"{where}: 'par' = {par!r} must be a whole number 2-7")
+    name = table.get("name", parts.get("name"))
+    hole = Hole(
+        source=where,
+        frame=parts["frame"],
+        pin_xy=parts["pin_xy"],
+        zones=parts["zones"],
+        boundary=parts["boundary"],
+        extent_m=parts["extent_m"],
+        cell_m=cell,
+        turf=_turfs(table, where),
+        index=parts.get("index"),
+        ref=parts.get("ref"),
+        par=par,
+        name=None if name is None else str(name),
+        map_source=parts.get("map_source"),
+        attribution=parts.get("attribution"),
+        ground=ground,
+        line_xy=parts.get("line_xy"),
+        _heights=heights,
+    )
+    return hole

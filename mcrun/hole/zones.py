@@ -1,0 +1,152 @@
+"""A hole's turf zones: their kinds, the turf and the Rules' status of each, the order that
+resolves overlaps, and their polygons put onto the ground's grid.
+
+Zone kinds, in the order that resolves overlaps (a later kind wins where polygons overlap):
+rough < fairway < tee < fringe < green < bunker < water; outside the course boundary,
+out_of_bounds wins over all. Rough is everything inside the course that no polygon covers, so
+a bunker drawn inside the rough (or a fairway) is a bunker, and a pond in a fairway is water.
+A kind's position in ``ZONE_KINDS`` is its index in ``ground.Terrain.zone``.
+"""
+
+import numpy as np
+
+from mcrun.ground import IN_PLAY, OUT_OF_BOUNDS, PENALTY_AREA
+
+ZONE_KINDS = ("rough", "fairway", "tee", "fringe", "green", "bunker", "water", "out_of_bounds")
+ZONE_INDEX = {kind: k for k, kind in enumerate(ZONE_KINDS)}
+ROUGH, FAIRWAY, TEE, FRINGE, GREEN, BUNKER, WATER, OUT = range(len(ZONE_KINDS))
+
+# The turf preset (physics.turf.PRESETS) of each kind. The ball is not played from water or
+# out of bounds; their rows hold the rough's turf so that every row is a valid Turf.
+ZONE_TURF = {
+    "rough": "rough",
+    "fairway": "fairway",
+    "tee": "tee",
+    "fringe": "fringe",
+    "green": "green",
+    "bunker": "bunker",
+    "water": "rough",
+    "out_of_bounds": "rough",
+}
+
+ZONE_PENALTY = {kind: IN_PLAY for kind in ZONE_KINDS} | {
+    "water": PENALTY_AREA,
+    "out_of_bounds": OUT_OF_BOUNDS,
+}
+
+# OpenStreetMap tags of each kind (golf=*, and natural=water).
+_GOLF_TAGS = {
+    "rough": "rough",
+    "fairway": "fairway",
+    "tee": "tee",
+    "fringe": "fringe",
+    "green": "green",
+    "bunker": "bunker",
+    "water_hazard": "water",
+    "lateral_water_hazard": "water",
+}
+
+
+def zone_of_tags(tags):
+    """The zone kind of an OpenStreetMap feature's tags, or None when it is not a zone."""
+    kind = _GOLF_TAGS.get(tags.get("golf"))
+    if kind is None and tags.get("natural") == "water":
+        kind = "water"
+    return kind
+
+
+def _edges(polygon):
+    """(x1, y1, x2, y2) of every edge of every ring of ``polygon`` (a list of (n, 2) rings;
+    a ring need not repeat its first point)."""
+    parts = []
+    for ring in polygon:
+        ring = np.asarray(ring, dtype=float)
+        parts.append(np.concatenate([ring, np.roll(ring, -1, axis=0)], axis=1))
+    e = np.concatenate(parts)
+    return e[:, 0], e[:, 1], e[:, 2], e[:, 3]
+
+
+def contains(polygon, x, y):
+    """Whether the points (x, y) lie inside ``polygon`` (a list of rings, holes included), by
+    the even-odd rule; vectorised over the points."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    inside = np.zeros(np.broadcast(x, y).shape, dtype=bool)
+    for x1, y1, x2, y2 in zip(*_edges(polygon), strict=True):
+        if y1 == y2:
+            continue
+        straddles = (y1 > y) != (y2 > y)
+        x_cross = x1 + (y - y1) * (x2 - x1) / (y2 - y1)
+        inside ^= straddles & (x < x_cross)
+    return inside
+
+
+def shoelace_area_m2(polygon):
+    """Area of ``polygon`` (outer ring minus its holes), by the shoelace formula."""
+    total = 0.0
+    for k, ring in enumerate(polygon):
+        ring = np.asarray(ring, dtype=float)
+        x, y = ring[:, 0], ring[:, 1]
+        area = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+        total += area if k == 0 else -area
+    return total
+
+
+def polygon_mask(polygon, x0_m, y0_m, cell_m, nx, ny, rows_per_block=512):
+    """(ny, nx) bool: the grid's nodes (x0 + ix cell, y0 + iy cell) inside ``polygon``, by the
+    even-odd rule over all its rings (so its holes are out).
+
+    A scanline fill: on each row of nodes every edge that crosses the row toggles the nodes to
+    the right of where it crosses; a running XOR along the row leaves the inside. Work and
+    memory go with the polygon's bounding box, a block of rows at a time."""
+    mask = np.zeros((ny, nx), dtype=bool)
+    x1, y1, x2, y2 = _edges(polygon)
+    keep = y1 != y2
+    x1, y1, x2, y2 = x1[keep], y1[keep], x2[keep], y2[keep]
+    if x1.size == 0:
+        return mask
+    lo_x, hi_x = min(x1.min(), x2.min()), max(x1.max(), x2.max())
+    lo_y, hi_y = min(y1.min(), y2.min()), max(y1.max(), y2.max())
+    ix0 = max(int(np.floor((lo_x - x0_m) / cell_m)), 0)
+    ix1 = min(int(np.ceil((hi_x - x0_m) / cell_m)) + 1, nx)
+    iy0 = max(int(np.floor((lo_y - y0_m) / cell_m)), 0)
+    iy1 = min(int(np.ceil((hi_y - y0_m) / cell_m)) + 1, ny)
+    width = ix1 - ix0
+    if width <= 0 or iy1 <= iy0:
+        return mask
+    for start in range(iy0, iy1, rows_per_block):
+        stop = min(start + rows_per_block, iy1)
+        y = (y0_m + np.arange(start, stop) * cell_m)[:, None]
+        straddles = (y1 > y) != (y2 > y)
+        rows, edges = np.nonzero(straddles)
+        x_cross = x1[edges] + (y[rows, 0] - y1[edges]) * (x2[edges] - x1[edges]) / (
+            y2[edges] - y1[edges]
+        )
+        # The first node of the row at or right of the crossing: nodes with x < x_cross have
+        # it on their right, which is the crossing test of ``contains``.
+        first = np.clip(np.ceil((x_cross - x0_m) / cell_m).astype(np.int64) - ix0, 0, width)
+        toggles = np.bincount(
+            rows * (width + 1) + first, minlength=(stop - start) * (width + 1)
+        ).reshape(stop - start, width + 1)
+        # The running XOR counts the crossings at or left of each node; those right of it are
+        # the row's total minus these (the total is even on closed rings: kept for safety).
+        left = np.bitwise_xor.accumulate((toggles[:, :width] & 1).astype(np.uint8), axis=1)
+        total = (toggles.sum(axis=1) & 1).astype(np.uint8)
+        mask[start:stop, ix0:ix1] = (left ^ total[:, None]).astype(bool)
+    return mask
+
+
+def rasterize(zones, x0_m, y0_m, cell_m, nx, ny, boundary=()):
+    """(ny, nx) int8 zone index of every node: rough, then each kind's polygons in the order of
+    ``ZONE_KINDS`` (later wins), then out_of_bounds outside the ``boundary`` polygons (when
+    any are given). ``zones``: (kind, polygon) pairs in the grid's frame."""
+    grid = np.full((ny, nx), ROUGH, dtype=np.int8)
+    for index, kind in enumerate(ZONE_KINDS):
+        for zone_kind, polygon in zones:
+            if zone_kind == kind:
+                grid[polygon_mask(polygon, x0_m, y0_m, cell_m, nx, ny)] = index
+    if len(boundary):
+        inside = np.zeros((ny, nx), dtype=bool)
+        for polygon in boundary:
+            inside |= polygon_mask(polygon, x0_m, y0_m, cell_m, nx, ny)
+        grid[~inside] = OUT
+    return grid
