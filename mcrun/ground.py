@@ -79,7 +79,7 @@ def _flat(terrain):
     return isinstance(terrain, types.NoneType)
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _locate(terrain, x, y):
     """The cell of the grid under core-frame (x, y) (y to the LEFT, the grid's y to the right):
     its lower node (ix, iy), the fractions (tx, ty) across it, and whether (x, y) is on the
@@ -93,7 +93,7 @@ def _locate(terrain, x, y):
     return ix, iy, min(max(fx - ix, 0.0), 1.0), min(max(fy - iy, 0.0), 1.0), inside
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _grid_height(terrain, x, y):
     """Bilinear height (m) of the grid at core-frame (x, y)."""
     ix, iy, tx, ty, _ = _locate(terrain, x, y)
@@ -103,7 +103,7 @@ def _grid_height(terrain, x, y):
     ) * ty
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _grid_gradient(terrain, x, y):
     """(dh/dx, dh/dy) of the bilinear grid at core-frame (x, y), y to the LEFT."""
     ix, iy, tx, ty, _ = _locate(terrain, x, y)
@@ -113,7 +113,7 @@ def _grid_gradient(terrain, x, y):
     return dx / terrain.cell_m, -dy / terrain.cell_m
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _grid_zone(terrain, x, y):
     """The zone of the node nearest core-frame (x, y)."""
     ix, iy, tx, ty, _ = _locate(terrain, x, y)
@@ -169,7 +169,7 @@ def normal_at(terrain, plane, x, y):
     raise NotImplementedError("compiled code only")
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _grid_normal(terrain, x, y):
     hx, hy = _grid_gradient(terrain, x, y)
     k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
@@ -200,7 +200,7 @@ def turf_at(terrain, plane, x, y):
     raise NotImplementedError("compiled code only")
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _grid_turf(terrain, x, y):
     t = terrain.turf[_grid_zone(terrain, x, y)]
     return Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8])
@@ -221,7 +221,7 @@ def state_at(terrain, x, y):
     raise NotImplementedError("compiled code only")
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def _grid_state(terrain, x, y):
     _, _, _, _, inside = _locate(terrain, x, y)
     if not inside:
