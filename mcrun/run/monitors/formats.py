@@ -22,6 +22,8 @@ def split_name(column):
     if match is None:
         return text.lower(), ""
     words = match["unit"].split()
+    if words and words[0].lower() == "sim":  # TrackMan's simulated columns: a name, not a unit
+        return text.lower(), ""
     return match["name"].lower(), words[0] if words else ""
 
 

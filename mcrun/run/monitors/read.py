@@ -259,8 +259,8 @@ def numbers(series):
     """The numbers of a column, NaN where empty or unreadable; ``13.8 L``, ``L0.8`` negative,
     ``4.9 R``, ``R2.1`` positive (the non-breaking space read as a space)."""
     if pd.api.types.is_numeric_dtype(series.dtype) and not pd.api.types.is_bool_dtype(series):
-        return series.to_numpy(dtype=float, na_value=np.nan)
-    values = pd.to_numeric(series, errors="coerce").to_numpy(dtype=float)
+        return np.array(series.to_numpy(dtype=float, na_value=np.nan))
+    values = np.array(pd.to_numeric(series, errors="coerce"), dtype=float)
     text = series.astype("string").str.replace("\u00a0", " ", regex=False)
     left = np.isnan(values) & text.notna().to_numpy()
     if left.any():
