@@ -1,17 +1,19 @@
 """Replaying measured shots: each shot of a launch-monitor session, simulated as given.
 
-``replay`` takes a table of measured launches (a CSV or Parquet file, or a DataFrame), with
-columns recognised by name and unit suffix exactly as a scenario's ``launch.file``
-(``scenario.launch_columns``: ``ball_speed_mph``, ``launch_deg``, ``spin_rpm``, optional
-``spin_axis_deg`` and ``azimuth_deg``, ...), and flies every row, without sampling, on the turf
-and in the weather given once for the whole session: what the session would have given on
+``replay`` takes a session (a file, read by ``mcrun.run.monitors``: a device's export detected
+from its header or forced with ``format``, or mcrun's own columns ``ball_speed_mph``,
+``launch_deg``, ``spin_rpm``...; or a DataFrame), and flies every row, without sampling, on the
+turf and in the weather given once for the whole session: what the session would have given on
 another course or another day. The rows run through the same batch kernel as a Monte Carlo run.
 
 A row with a missing value or a value outside ``mcrun.api.RANGES`` is not simulated: it keeps
 its place with status ``invalid_input`` (a session often holds a misread shot; one bad row
 should not stop the others). The output keeps the file's own columns (renamed ``input_<name>``
-where a name is also an output column), then the launch in SI-named columns, the outcome of
-``schema.OUTCOME_FIELDS`` and status_name, with the provenance in the Parquet metadata.
+where a name is also an output column), then ``club`` (where the file names the club), the
+launch in SI-named columns, the device's own results where the file has them
+(``device_carry_m``...), the outcome of ``schema.OUTCOME_FIELDS``, ``descent_angle_deg`` (from
+the horizontal, as devices give it), the model minus the device (``model_minus_device_carry_m``
+...) and status_name, with the provenance (and the format read) in the Parquet metadata.
 """
 
 import time
@@ -27,8 +29,8 @@ from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import OUTCOME_FIELDS, encode_outcomes, pack
 from mcrun.physics.constants import DEG
 from mcrun.results import output
-from mcrun.run.scenario import PARAMETERS, launch_columns, read_launch_table
-from mcrun.units import KINDS
+from mcrun.run.monitors import read_session, session_of_frame
+from mcrun.run.scenario import PARAMETERS
 
 # The launch columns of the output, by quantity (scenario.FILE_COLUMNS): (name, SI -> factor).
 LAUNCH_COLUMNS = {
@@ -40,29 +42,35 @@ LAUNCH_COLUMNS = {
 }
 
 
-def launches(frame, source="the shots"):
-    """(SI arrays by quantity, valid row mask) of the measured launches in ``frame``."""
-    found = launch_columns(frame, source)
-    n = len(frame)
+# The device's results and the model's, by quantity: (device column, SI -> factor, model column).
+DEVICE_COLUMNS = {
+    "carry": ("device_carry_m", 1.0, "carry_m"),
+    "total": ("device_total_m", 1.0, "total_m"),
+    "apex": ("device_apex_m", 1.0, "apex_m"),
+    "descent_angle": ("device_descent_angle_deg", 1.0 / DEG, "descent_angle_deg"),
+    "carry_side": ("device_carry_side_m", 1.0, "carry_lateral_m"),
+    "total_side": ("device_total_side_m", 1.0, "final_y_m"),
+}
+
+
+def launches(session):
+    """(SI arrays by quantity, valid row mask) of the measured launches of a ``Session``: a
+    quantity the file does not give is 0 (spin axis, azimuth); a value missing or outside
+    ``PARAMETERS`` makes its row invalid."""
+    n = len(session.frame)
     valid = np.ones(n, dtype=bool)
     values = {}
     for quantity in LAUNCH_COLUMNS:
-        if quantity in found:
-            column, unit = found[quantity]
-            kind = PARAMETERS["launch"][quantity].kind
-            raw = pd.to_numeric(frame[column], errors="coerce").to_numpy(dtype=float)
-            factor, offset = KINDS[kind][1][unit]
-            si = raw * factor + offset
-        else:
-            si = np.zeros(n)
+        si = session.launch.get(quantity, np.zeros(n))
         lo, hi = PARAMETERS["launch"][quantity].limits
         valid &= np.isfinite(si) & (si >= lo) & (si <= hi)
         values[quantity] = si
     return values, valid
 
 
-def replay(shots, source=None, **conditions):
-    """Simulate every measured shot of ``shots`` (a DataFrame, or a CSV/Parquet path).
+def replay(shots, source=None, format=None, **conditions):
+    """Simulate every measured shot of ``shots`` (a ``monitors.Session``, a DataFrame, or a
+    path to a session file; ``format`` forces the export's format, ``monitors.NAMES``).
 
     ``conditions``: the keyword arguments of ``api.conditions_inputs`` (turf, slope_deg,
     aero_model, wind_mps, temperature_c, altitude_m, ...), the same for every shot, as for
@@ -70,13 +78,15 @@ def replay(shots, source=None, **conditions):
     docstring); rows with an unusable launch get status invalid_input.
     """
     if isinstance(shots, str | Path):
-        source = source or str(shots)
-        shots = read_launch_table(shots)
-    source = source or "the shots"
-    if len(shots) == 0:
-        raise InputError(f"{source}: no shots: the table has no rows")
-    values, valid = launches(shots, source)
-    n = len(shots)
+        shots = read_session(shots, format)
+    elif isinstance(shots, pd.DataFrame):
+        source = source or "the shots"
+        if len(shots) == 0:
+            raise InputError(f"{source}: no shots: the table has no rows")
+        shots = session_of_frame(shots, source, format)
+    session = shots
+    values, valid = launches(session)
+    n = len(session.frame)
     launch = {
         "ball_speed_mps": values["ball_speed"],
         "launch_angle_rad": values["launch_angle"],
@@ -89,37 +99,56 @@ def replay(shots, source=None, **conditions):
 
     frame = {"row": np.arange(n, dtype=np.int64)}
     launch_names = [name for name, _ in LAUNCH_COLUMNS.values()]
-    taken = {"row", "status_name", *launch_names, *OUTCOME_FIELDS}
-    for column in shots.columns:
+    device_names = [DEVICE_COLUMNS[q][0] for q in session.device]
+    compared = [f"model_minus_{DEVICE_COLUMNS[q][0]}" for q in session.device]
+    add_club = session.club is not None and session.club_column != "club"
+    taken = {"row", "status_name", "descent_angle_deg", *launch_names, *OUTCOME_FIELDS}
+    taken |= {*device_names, *compared} | ({"club"} if add_club else set())
+    for column in session.frame.columns:
         name = str(column)
-        frame[f"input_{name}" if name in taken else name] = shots[column].to_numpy()
+        frame[f"input_{name}" if name in taken else name] = session.frame[column].to_numpy()
+    if add_club:
+        frame["club"] = session.club
     for quantity, (name, factor) in LAUNCH_COLUMNS.items():
         frame[name] = values[quantity] * factor
+    for quantity, si in session.device.items():
+        name, factor, _ = DEVICE_COLUMNS[quantity]
+        frame[name] = si * factor
     encoded = encode_outcomes(out)
-    for name, (values, missing) in encoded.items():
+    for name, (column, missing) in encoded.items():
         if name in frame:  # launch_angle_deg: the measured launch above
             continue
-        frame[name] = values if missing is None else pd.arrays.IntegerArray(values, missing)
+        frame[name] = column if missing is None else pd.arrays.IntegerArray(column, missing)
+    frame["descent_angle_deg"] = 90.0 - encoded["landing_angle_deg"][0]
+    for quantity in session.device:
+        name, _, model = DEVICE_COLUMNS[quantity]
+        frame[f"model_minus_{name}"] = np.asarray(frame[model], dtype=float) - frame[name]
     frame["status_name"] = pd.Categorical.from_codes(
         encoded["status"][0].astype(int), [status.NAMES[k] for k in sorted(status.NAMES)]
     )
-    return pd.DataFrame(frame)
+    result = pd.DataFrame(frame)
+    result.attrs["format"] = session.format
+    result.attrs["format_title"] = session.title
+    result.attrs["format_detected"] = session.detected
+    return result
 
 
-def replay_file(source, destination, force=False, **conditions):
-    """Replay the shots of the file ``source`` and write ``destination`` (Parquet) atomically,
-    with the provenance in its metadata. Returns the DataFrame written."""
+def replay_file(source, destination, force=False, format=None, **conditions):
+    """Replay the shots of the file ``source`` (``format`` forces the export's format) and write
+    ``destination`` (Parquet) atomically, with the provenance in its metadata. Returns the
+    DataFrame written."""
     started = time.perf_counter()
     start_time = datetime.now(UTC).isoformat(timespec="seconds")
     source = Path(source)
-    shots = read_launch_table(source)
+    session = read_session(source, format)
     with output.AtomicFile(destination, force=force) as target:
-        frame = replay(shots, source=str(source), **conditions)
+        frame = replay(session, **conditions)
         metadata = {
             "format_version": 1,
             "backend": "local",
             "file": "replay",
             "source_path": str(source),
+            "source_format": session.format,
             "n": len(frame),
             "conditions": {k: _plain(v) for k, v in conditions.items()},
             "versions": output.versions(),

@@ -34,7 +34,6 @@ then makes that shot's kernel input invalid, so the kernel returns status ``inva
 it (bound a quantity with a truncnormal to avoid that).
 """
 
-import csv
 import itertools
 import math
 import numbers
@@ -45,7 +44,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 from mcrun.api import RANGES, WIND_PROFILE_DEFAULTS, InputError
 from mcrun.engine.shot import default_dt_s
@@ -61,6 +59,8 @@ from mcrun.physics.flight import WIND_PROFILES
 from mcrun.physics.launch import DEFAULT_CLUB_MASS_KG
 from mcrun.physics.turf import LIMITS as TURF_LIMITS
 from mcrun.physics.turf import PRESETS
+from mcrun.run.monitors import FILE_COLUMNS, check_file, read_session
+from mcrun.run.monitors import NAMES as MONITOR_FORMATS
 from mcrun.units import (
     KINDS,
     UnitError,
@@ -182,7 +182,7 @@ PARAMETERS: dict[str, dict[str, Param]] = {
 """Section -> parameter name -> Param. Every sampled quantity of a scenario is one of these."""
 
 # Keys of a section that are not quantities.
-_SPECIAL = {"launch": ("correlation", "file", "jitter"), "club": ("correlation",)}
+_SPECIAL = {"launch": ("correlation", "file", "jitter", "club", "format"), "club": ("correlation",)}
 _SECTIONS = tuple(PARAMETERS)
 _TOP_KEYS = ("scenario", *_SECTIONS, "group", "sweep")
 _SCENARIO_KEYS = ("name", "question", "description", "shots", "seed", "target", "block_size")
@@ -202,16 +202,6 @@ DISTRIBUTIONS = {
 }
 _SPREADS = ("sd",)
 _DIMENSIONLESS = ("sigma",)
-
-# Columns of a launch-monitor file: quantity -> accepted base names (the unit is the suffix).
-FILE_COLUMNS = {
-    "ball_speed": ("ball_speed",),
-    "launch_angle": ("launch", "launch_angle", "vertical_launch", "launch_vertical"),
-    "spin": ("spin", "total_spin", "spin_rate"),
-    "spin_axis": ("spin_axis",),
-    "azimuth": ("azimuth", "direction", "launch_direction", "horizontal_launch"),
-}
-
 
 # --- the objects ---------------------------------------------------------------------------
 
@@ -847,130 +837,46 @@ def semidefinite_cholesky(matrix):
 _FILE_CACHE: dict = {}
 
 
-def launch_columns(frame, source="the shots"):
-    """{quantity: (column, unit)} of the launch columns of a launch-monitor table, recognised
-    by name and unit (``units.from_column_name``); InputError naming ``source`` when a required
-    one is missing or two give the same quantity."""
-    found = {}
-    for column in frame.columns:
-        parsed = from_column_name(str(column).strip().lower())
-        if parsed is None:
-            continue
-        base, kind, unit = parsed
-        for quantity, bases in FILE_COLUMNS.items():
-            if base in bases and PARAMETERS["launch"][quantity].kind == kind:
-                if quantity in found:
-                    raise InputError(
-                        f"{source}: columns {found[quantity][0]!r} and {column!r} both give "
-                        f"{quantity}; keep one"
-                    )
-                found[quantity] = (column, unit)
-    missing = [q for q in _BALL if q not in found]
-    if missing:
-        names = ", ".join(map(str, frame.columns)) or "none"
-        raise InputError(
-            f"{source}: no recognisable column for {', '.join(missing)}; expected columns named "
-            "with their unit (ball_speed_mph or _mps, launch_deg, spin_rpm or _radps; optional "
-            f"spin_axis_deg, azimuth_deg), found {names}"
-        )
-    return found
-
-
-def _check_file(path):
-    """InputError naming ``path`` unless it is a file."""
-    if path.is_dir():
-        raise InputError(f"{path}: is a directory, not a CSV or Parquet file")
-    if not path.is_file():
-        raise InputError(f"{path}: no such file")
-
-
-def _data_lines(path):
-    """The lines of a CSV as pandas reads them with ``comment="#"``: the text after a ``#``
-    outside quotes dropped, blank lines skipped."""
-    with open(path, encoding="utf-8", errors="replace", newline="") as file:
-        for line in file:
-            quoted = False
-            for k, char in enumerate(line):
-                if char == '"':
-                    quoted = not quoted
-                elif char == "#" and not quoted:
-                    line = line[:k]
-                    break
-            if line.strip():
-                yield line
-
-
-def _check_field_counts(path):
-    """InputError when a data row has more fields than the header: pandas would take the
-    first columns as the index (or drop the extra fields), shifting every value silently. A
-    short row reads as missing values."""
-    rows = csv.reader(_data_lines(path), skipinitialspace=True)
-    header = next(rows, None)
-    if header is None:
-        return
-    for k, fields in enumerate(rows, start=1):
-        if len(fields) > len(header):
-            raise InputError(
-                f"{path}: row {k} has {len(fields)} fields, the header has {len(header)}"
-            )
-
-
-def read_launch_table(path):
-    """A launch-monitor file (CSV or Parquet) as a DataFrame of at least one row; InputError
-    naming the file if it is not a readable file, has no rows, or (CSV) a row with more fields
-    than the header. ``mcrun replay`` and a scenario's ``launch.file`` both read through it."""
-    path = Path(path)
-    _check_file(path)
-    parquet = path.suffix.lower() in (".parquet", ".pq")
-    try:
-        if parquet:
-            frame = pd.read_parquet(path)
-        else:
-            _check_field_counts(path)
-            frame = pd.read_csv(path, comment="#", skipinitialspace=True, index_col=False)
-    except InputError:
-        raise
-    except pd.errors.EmptyDataError:
-        raise InputError(f"{path}: no shots: the file is empty") from None
-    except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
-        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
-        raise InputError(f"{path}: cannot read it as CSV or Parquet: {first}") from None
-    if len(frame) == 0:
-        what = "the file has no rows" if parquet else "the file has a header only"
-        raise InputError(f"{path}: no shots: {what}")
-    return frame
-
-
-def _read_shots(ctx, where, path):
-    """{quantity: SI array} of the recognised columns of a CSV or Parquet launch-monitor file."""
-    key = (str(path.resolve()), path.stat().st_mtime_ns)
+def _read_shots(ctx, where, path, club=None, format=None):
+    """{quantity: SI array} of the launches of a launch-monitor file (mcrun's columns or a
+    device's export, ``mcrun.run.monitors``); only the shots of ``club`` when given."""
+    key = (str(path.resolve()), path.stat().st_mtime_ns, club, format)
     if key in _FILE_CACHE:
         return _FILE_CACHE[key]
     try:
-        frame = read_launch_table(path)
-        found = launch_columns(frame, str(path))
+        session = read_session(path, format)
     except InputError as err:
         raise ctx.error(where, str(err)) from None
+    rows = np.arange(len(session.frame))
+    if club is not None:
+        if session.club is None:
+            raise ctx.error(where, f"{path}: a club is asked for but the file has no club column")
+        rows = np.flatnonzero([c.casefold() == club.casefold() for c in session.club])
+        if rows.size == 0:
+            clubs = ", ".join(sorted(set(session.club) - {""})) or "none"
+            raise ctx.error(where, f"{path}: no shot of club {club!r}; its clubs: {clubs}")
     columns = {}
-    for quantity, (column, unit) in found.items():
+    for quantity, values in session.launch.items():
+        column, unit = session.sources[quantity], session.units[quantity]
         param = PARAMETERS["launch"][quantity]
-        values = pd.to_numeric(frame[column], errors="coerce").to_numpy(dtype=float)
-        bad = np.flatnonzero(~np.isfinite(values))
+        si = values[rows]
+        bad = np.flatnonzero(~np.isfinite(si))
         if bad.size:
+            r = rows[bad[0]]
+            raw = session.frame[column].iloc[r] if column in session.frame else float("nan")
             raise ctx.error(
                 where,
-                f"{path}: column {column!r} row {bad[0] + 1}: not a number "
-                f"({_shown(frame[column].iloc[bad[0]])}); every row must be complete",
+                f"{path}: column {column!r} row {r + 1}: not a number "
+                f"({_shown(raw)}); every row must be complete",
             )
-        factor, offset = KINDS[param.kind][1][unit]
-        si = values * factor + offset
         lo, hi = param.limits
         outside = np.flatnonzero((si < lo) | (si > hi))
         if outside.size:
             r = outside[0]
             raise ctx.error(
                 where,
-                f"{path}: column {column!r} row {r + 1}: {values[r]:g} {unit} is outside the "
+                f"{path}: column {column!r} row {rows[r] + 1}: "
+                f"{to_unit(si[r], param.kind, unit):g} {unit} is outside the "
                 f"allowed range [{_fmt(lo, param.kind)}, {_fmt(hi, param.kind)}]",
             )
         si.setflags(write=False)
@@ -979,18 +885,29 @@ def _read_shots(ctx, where, path):
     return columns
 
 
-def _resample(ctx, leaf, jitter_leaf, scenario_dir):
+def _resample(ctx, leaf, jitter_leaf, scenario_dir, club_leaf=None, format_leaf=None):
     where = leaf.where
+    choices = {}
+    for name, option, allowed in (
+        ("club", club_leaf, "a club name as the file writes it"),
+        ("format", format_leaf, f"one of {', '.join(MONITOR_FORMATS)}"),
+    ):
+        if option is not None:
+            if not isinstance(option.value, str) or not option.value.strip():
+                raise ctx.error(option.where, f"must be {allowed}, got {_shown(option.value)}")
+            if name == "format" and option.value not in MONITOR_FORMATS:
+                raise ctx.error(option.where, f"must be {allowed}, got {_shown(option.value)}")
+            choices[name] = option.value.strip()
     if not isinstance(leaf.value, str) or not leaf.value:
         raise ctx.error(where, f"must be a path to a CSV or Parquet file, got {_shown(leaf.value)}")
     path = Path(leaf.value)
     if not path.is_absolute():
         path = scenario_dir / path
     try:
-        _check_file(path)  # before _read_shots looks at its time stamp
+        check_file(path)  # before _read_shots looks at its time stamp
     except InputError as err:
         raise ctx.error(where, str(err)) from None
-    columns = _read_shots(ctx, where, path)
+    columns = _read_shots(ctx, where, path, choices.get("club"), choices.get("format"))
     jitter = {}
     if jitter_leaf is not None:
         table = _table(ctx, jitter_leaf.where, jitter_leaf.value)
@@ -1070,7 +987,14 @@ def _resolve(ctx, sections, scenario_dir, context):
                 f"not allowed with launch.file: the measured shots keep their own correlation"
                 f"{context}",
             )
-        resample = _resample(ctx, launch["file"], launch.get("jitter"), scenario_dir)
+        resample = _resample(
+            ctx,
+            launch["file"],
+            launch.get("jitter"),
+            scenario_dir,
+            launch.get("club"),
+            launch.get("format"),
+        )
         params["launch.file"] = resample
         for name in _OPTIONAL_LAUNCH:
             if name in resample.columns:
@@ -1088,8 +1012,9 @@ def _resolve(ctx, sections, scenario_dir, context):
                 if name not in resample.jitter:
                     quantity("launch", name, 0.0)
     else:
-        if "jitter" in launch:
-            raise ctx.error(launch["jitter"].where, f"only allowed with launch.file{context}")
+        for key in ("jitter", "club", "format"):
+            if key in launch:
+                raise ctx.error(launch[key].where, f"only allowed with launch.file{context}")
         if not launch:
             raise ctx.error(
                 "launch",

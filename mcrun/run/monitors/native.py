@@ -1,0 +1,156 @@
+"""mcrun's own launch files: CSV or Parquet with columns named by quantity and unit
+(``ball_speed_mph``, ``launch_deg``, ``spin_rpm``, optional ``spin_axis_deg``, ``azimuth_deg``),
+read as pandas reads a plain table. The exports of the devices are in ``formats`` and ``read``.
+"""
+
+import csv
+from pathlib import Path
+
+import pandas as pd
+
+from mcrun.api import InputError
+from mcrun.units import from_column_name
+
+# Columns of a launch-monitor file: quantity -> accepted base names (the unit is the suffix).
+FILE_COLUMNS = {
+    "ball_speed": ("ball_speed",),
+    "launch_angle": ("launch", "launch_angle", "vertical_launch", "launch_vertical"),
+    "spin": ("spin", "total_spin", "spin_rate"),
+    "spin_axis": ("spin_axis",),
+    "azimuth": ("azimuth", "direction", "launch_direction", "horizontal_launch"),
+}
+
+# The device's own results a native file may hold: quantity -> accepted base names.
+DEVICE_COLUMNS = {
+    "carry": ("carry",),
+    "total": ("total",),
+    "apex": ("apex", "peak_height", "max_height"),
+    "descent_angle": ("descent_angle", "land_angle"),
+    "carry_side": ("carry_side", "offline", "side"),
+    "total_side": ("total_side",),
+}
+
+# Kind of every quantity a launch file can give (units.KINDS).
+KIND = {
+    "ball_speed": "speed",
+    "launch_angle": "angle",
+    "spin": "spin",
+    "spin_axis": "angle",
+    "azimuth": "angle",
+    "back_spin": "spin",
+    "side_spin": "spin",
+    "carry": "length",
+    "total": "length",
+    "apex": "length",
+    "descent_angle": "angle",
+    "carry_side": "length",
+    "total_side": "length",
+}
+
+REQUIRED = ("ball_speed", "launch_angle", "spin")
+
+
+def launch_columns(frame, source="the shots", known=""):
+    """{quantity: (column, unit)} of the launch columns of a launch-monitor table, recognised
+    by name and unit (``units.from_column_name``); InputError naming ``source`` when a required
+    one is missing or two give the same quantity. ``known``: the other formats, for the
+    message."""
+    found = _columns(frame, FILE_COLUMNS, source)
+    missing = [q for q in REQUIRED if q not in found]
+    if missing:
+        names = ", ".join(map(str, frame.columns)) or "none"
+        raise InputError(
+            f"{source}: no recognisable column for {', '.join(missing)}; expected columns named "
+            "with their unit (ball_speed_mph or _mps, launch_deg, spin_rpm or _radps; optional "
+            f"spin_axis_deg, azimuth_deg), found {names}{known}"
+        )
+    return found
+
+
+def device_columns(frame, source="the shots"):
+    """{quantity: (column, unit)} of the device's results in a native table (``carry_yd``...)."""
+    return _columns(frame, DEVICE_COLUMNS, source)
+
+
+def _columns(frame, table, source):
+    found = {}
+    for column in frame.columns:
+        parsed = from_column_name(str(column).strip().lower())
+        if parsed is None:
+            continue
+        base, kind, unit = parsed
+        for quantity, bases in table.items():
+            if base in bases and KIND[quantity] == kind:
+                if quantity in found:
+                    raise InputError(
+                        f"{source}: columns {found[quantity][0]!r} and {column!r} both give "
+                        f"{quantity}; keep one"
+                    )
+                found[quantity] = (column, unit)
+    return found
+
+
+def check_file(path):
+    """InputError naming ``path`` unless it is a file."""
+    if path.is_dir():
+        raise InputError(f"{path}: is a directory, not a CSV or Parquet file")
+    if not path.is_file():
+        raise InputError(f"{path}: no such file")
+
+
+def _data_lines(path):
+    """The lines of a CSV as pandas reads them with ``comment="#"``: the text after a ``#``
+    outside quotes dropped, blank lines skipped."""
+    with open(path, encoding="utf-8", errors="replace", newline="") as file:
+        for line in file:
+            quoted = False
+            for k, char in enumerate(line):
+                if char == '"':
+                    quoted = not quoted
+                elif char == "#" and not quoted:
+                    line = line[:k]
+                    break
+            if line.strip():
+                yield line
+
+
+def check_field_counts(path, lines=None):
+    """InputError when a data row has more fields than the header: pandas would take the
+    first columns as the index (or drop the extra fields), shifting every value silently. A
+    short row reads as missing values. ``lines``: the lines to check (default: the file's,
+    comments dropped); the header first."""
+    rows = csv.reader(_data_lines(path) if lines is None else lines, skipinitialspace=True)
+    header = next(rows, None)
+    if header is None:
+        return
+    for k, fields in enumerate(rows, start=1):
+        if len(fields) > len(header):
+            raise InputError(
+                f"{path}: row {k} has {len(fields)} fields, the header has {len(header)}"
+            )
+
+
+def read_launch_table(path):
+    """A launch file (CSV or Parquet) as a DataFrame of at least one row; InputError naming the
+    file if it is not a readable file, has no rows, or (CSV) a row with more fields than the
+    header."""
+    path = Path(path)
+    check_file(path)
+    parquet = path.suffix.lower() in (".parquet", ".pq")
+    try:
+        if parquet:
+            frame = pd.read_parquet(path)
+        else:
+            check_field_counts(path)
+            frame = pd.read_csv(path, comment="#", skipinitialspace=True, index_col=False)
+    except InputError:
+        raise
+    except pd.errors.EmptyDataError:
+        raise InputError(f"{path}: no shots: the file is empty") from None
+    except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
+        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
+        raise InputError(f"{path}: cannot read it as CSV or Parquet: {first}") from None
+    if len(frame) == 0:
+        what = "the file has no rows" if parquet else "the file has a header only"
+        raise InputError(f"{path}: no shots: {what}")
+    return frame

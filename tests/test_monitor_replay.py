@@ -1,0 +1,170 @@
+"""A device's export replayed (``mcrun replay``, mcrun.run.replay) and summarised per club
+(mcrun.run.clubs), and resampled by a scenario's ``launch.file`` with a club filter: every shot
+of an export flies exactly as the single-shot API flies its hand-converted launch; the device's
+results sit beside the model's with their difference; the per-club statistics and the model
+minus the device are the numbers computed here by hand; mistakes are one line, exit 2, nothing
+written."""
+
+import math
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from mcrun.api import simulate
+from mcrun.cli import main
+from mcrun.results import output
+from mcrun.run import clubs, replay
+from mcrun.run import scenario as sc
+from mcrun.status import INVALID_INPUT, OK
+
+DATA = Path(__file__).parent / "data" / "monitors"
+MPH, YD, FT, RPM = 0.44704, 0.9144, 0.3048, 2.0 * math.pi / 60.0
+
+# The TrackMan fixture's two shots: mph, deg, rpm, deg, deg; its carry (yd) and apex (ft).
+TRACKMAN = [
+    ("7 Iron", 120.0, 16.3, 7097, 2.5, -1.2, 172.0, 98.0),
+    ("Driver", 167.0, 10.9, 2686, -3.0, 0.5, 275.0, 95.4),
+]
+
+
+def test_an_export_replays_as_the_single_shot_api_flies_it():
+    frame = replay.replay(DATA / "trackman.csv", turf="fairway", temperature_c=25.0)
+    assert frame.attrs["format"] == "trackman" and frame.attrs["format_detected"]
+    assert list(frame["row"]) == [0, 1] and list(frame["club"]) == ["7 Iron", "Driver"]
+    assert list(frame["Club"]) == ["7 Iron", "Driver"]  # the file's own columns are kept
+    assert list(frame["Ball Speed"]) == [120.0, 167.0]
+    for k, (_, speed, launch, spin, axis, azimuth, carry_yd, apex_ft) in enumerate(TRACKMAN):
+        want = simulate(
+            ball_speed_mps=speed * MPH,
+            launch_angle_deg=launch,
+            spin_radps=spin * RPM,
+            spin_axis_deg=axis,
+            azimuth_deg=azimuth,
+            turf="fairway",
+            temperature_c=25.0,
+        ).outcome
+        got = frame.iloc[k]
+        assert got["status"] == OK
+        for name in ("carry_m", "carry_lateral_m", "apex_m", "total_m", "final_y_m"):
+            assert got[name] == pytest.approx(want[name], rel=1e-12, abs=1e-12), (k, name)
+        assert got["device_carry_m"] == carry_yd * YD
+        assert got["device_apex_m"] == pytest.approx(apex_ft * FT, rel=1e-12)
+        assert got["model_minus_device_carry_m"] == got["carry_m"] - carry_yd * YD
+        # The device's descent angle is from the horizontal, mcrun's landing angle from the
+        # vertical.
+        assert got["descent_angle_deg"] == 90.0 - want["landing_angle_deg"]
+
+
+def test_a_shot_without_spin_is_invalid_and_the_others_fly():
+    frame = replay.replay(DATA / "rapsodo-mlm2pro.csv")
+    assert list(frame["status"]) == [OK, OK, INVALID_INPUT]
+    assert math.isnan(frame["carry_m"].iloc[2]) and math.isnan(frame["device_carry_m"].iloc[2])
+
+
+def test_club_summary_and_device_comparison_by_hand():
+    """Club A: carries 100, 110, 120 (one more shot failed), sides -1, 0, 4; club B: 80, 90.
+    A: mean 110, sd 10, p10 102 (linear between 100 and 110), gap to B 110 - 85 = 25.
+    Model minus device: A +1, -3, +2 (bias 0, rmse sqrt(14/3)); B -2 (one shot measured)."""
+    frame = pd.DataFrame(
+        {
+            "club": ["A", "A", "A", "A", "B", "B"],
+            "status": [OK, OK, OK, INVALID_INPUT, OK, OK],
+            "carry_m": [100.0, 110.0, 120.0, np.nan, 80.0, 90.0],
+            "total_m": [105.0, 115.0, 125.0, np.nan, 90.0, 100.0],
+            "final_y_m": [-1.0, 0.0, 4.0, np.nan, 2.0, 2.0],
+            "model_minus_device_carry_m": [1.0, -3.0, 2.0, np.nan, -2.0, np.nan],
+        }
+    )
+    summary = clubs.club_summary(frame).set_index("club")
+    a, b = summary.loc["A"], summary.loc["B"]
+    assert (a["shots"], a["shots_ok"], b["shots_ok"]) == (4, 3, 2)
+    assert a["carry_m_mean"] == 110.0 and a["carry_m_sd"] == pytest.approx(10.0, rel=1e-15)
+    assert a["carry_m_p10"] == pytest.approx(102.0, rel=1e-15) and a["carry_m_p50"] == 110.0
+    assert a["side_m_mean"] == 1.0 and a["total_m_p90"] == pytest.approx(123.0, rel=1e-15)
+    assert list(summary.index) == ["A", "B"]
+    assert a["gap_m"] == 25.0 and math.isnan(b["gap_m"])
+    table = clubs.device_comparison(frame).set_index(["club", "quantity"])
+    a = table.loc[("A", "carry_m")]
+    assert (a["shots"], a["bias"]) == (3, 0.0)
+    assert a["rmse"] == pytest.approx(math.sqrt(14.0 / 3.0), rel=1e-15)
+    every = table.loc[("all", "carry_m")]
+    assert every["shots"] == 4 and every["bias"] == pytest.approx(-0.5, rel=1e-15)
+    assert every["rmse"] == pytest.approx(math.sqrt(18.0 / 4.0), rel=1e-15)
+    assert table.loc[("B", "carry_m")]["shots"] == 1
+
+
+def test_cli_says_the_format_prints_the_clubs_and_keeps_the_device(tmp_path, capsys):
+    out = tmp_path / "replayed.parquet"
+    code = main(["replay", str(DATA / "skytrak.csv"), "-o", str(out)])
+    stdout, stderr = capsys.readouterr()
+    assert code == 0, stderr
+    assert stdout.startswith(f"read {DATA / 'skytrak.csv'}: SkyTrak (detected)\n")
+    assert "per club" in stdout and "model minus device" in stdout
+    frame = pd.read_parquet(out)
+    assert "Push/Pull (deg L-/R+)" in frame.columns and "device_carry_side_m" in frame.columns
+    assert output.read_provenance(out)["source_format"] == "skytrak"
+    line = next(s for s in stdout.splitlines() if s.startswith("all ") and " carry_m " in s)
+    diff = frame["carry_m"] - frame["device_carry_m"]
+    assert line.split()[-2:] == [
+        f"{diff.mean():+.2f}",
+        f"{math.sqrt((diff**2).mean()):.2f}",
+    ]
+
+
+def test_cli_bad_exports_are_one_line_exit_2_nothing_written(tmp_path, capsys):
+    unknown = tmp_path / "unknown.csv"
+    unknown.write_text("Shot,Speed (kph),Angle\n1,190,12\n", encoding="utf-8")
+    export = tmp_path / "skytrak.csv"
+    shutil.copy(DATA / "skytrak.csv", export)
+    empty = tmp_path / "empty.csv"
+    empty.write_text("", encoding="utf-8")
+    out = str(tmp_path / "out.parquet")
+    cases = [
+        ([str(unknown)], "found Shot, Speed (kph), Angle; or an export of a format mcrun knows"),
+        ([str(export), "--format", "garmin-r10"], "a Garmin Approach R10 export needs a column"),
+        ([str(export), "--format", "nope"], "argument --format: invalid choice"),
+        ([str(empty)], "no shots: the file is empty"),
+    ]
+    before = sorted(os.listdir(tmp_path))
+    for argv, needle in cases:
+        code = main(["replay", *argv, "-o", out])
+        stdout, stderr = capsys.readouterr()
+        assert code == 2 and stdout == "", (argv, stderr)
+        assert stderr.startswith("mcrun: error: ") and stderr.count("\n") == 1, stderr
+        assert needle in stderr, stderr
+        assert sorted(os.listdir(tmp_path)) == before
+
+
+def write(tmp_path, text):
+    path = tmp_path / "s.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_scenario_resamples_one_club_of_an_export(tmp_path):
+    shutil.copy(DATA / "garmin-r10-metric.csv", tmp_path / "session.csv")
+    text = '[launch]\nfile = "session.csv"\nclub = "driver"\n'
+    spec = sc.load(write(tmp_path, text)).points[0].params["launch.file"]
+    assert spec.n_rows == 1
+    np.testing.assert_allclose(spec.columns["ball_speed"], [268.8 / 3.6], rtol=1e-12)
+    np.testing.assert_allclose(spec.columns["spin"], [2684 * RPM], rtol=1e-12)
+    path = write(tmp_path, '[launch]\nfile = "session.csv"\nclub = "5 Wood"\n')
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value) == (
+        f"{path}: launch.club: {tmp_path / 'session.csv'}: no shot of club '5 Wood'; "
+        "its clubs: 7 Iron, Driver"
+    ).replace("launch.club", "launch.file")
+    path = write(tmp_path, '[launch]\nfile = "session.csv"\nformat = "mevo"\n')
+    with pytest.raises(sc.ScenarioError, match=r"launch.format: must be one of trackman"):
+        sc.load(path)
+    path = write(
+        tmp_path,
+        '[launch]\nball_speed = "70 m/s"\nlaunch_angle = 12\nspin = 300\nclub = "Driver"\n',
+    )
+    with pytest.raises(sc.ScenarioError, match=r"launch.club: only allowed with launch.file"):
+        sc.load(path)
