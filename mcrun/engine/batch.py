@@ -685,8 +685,8 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terr
     for row, value in ((BX, g[0]), (BY, g[1]), (BZ, ground.height_at(terrain, g[0], g[1])),
                        (BVX, g[2]), (BVY, g[3]), (BVZ, g[4]), (BWX, g[5]), (BWY, g[6]),
                        (BWZ, g[7]), (BT, g[8]), (BNX, g[9]), (BNY, g[10]), (BNZ, g[11]),
-                       (BOUNCES, 0.0), (PREVIOUS, 0.0), (FIRST_HEIGHT, 0.0),
-                       (FIRST_LENGTH, 0.0), (QX, g[0]), (QY, g[1]), (STATE, float(OK))):  # fmt: skip
+                       (BOUNCES, 0.0), (PREVIOUS, 0.0), (FIRST_HEIGHT, 0.0), (FIRST_LENGTH, 0.0),
+                       (QX, g[0]), (QY, g[1]), (STATE, float(OK))):  # fmt: skip
         b[row * LANES + k] = value
     for j, value in enumerate(turf):
         b[(MU + j) * LANES + k] = value
