@@ -33,7 +33,9 @@ def simulate_traced(inputs, shot=0, backend="cpu", table=QUADRATIC_COEFFICIENTS,
     return batch.simulate_traced(inputs, shot, table, terrain=terrain)
 
 
-def simulate_landed(inputs, landings, traced=-1, dt_record_s=batch.TRAJECTORY_DT_S, backend="cpu"):
+def simulate_landed(
+    inputs, landings, traced=-1, dt_record_s=batch.TRAJECTORY_DT_S, backend="cpu", terrain=None
+):
     """The run alone of balls that have landed (``batch.simulate_landed``)."""
     _check(backend)
-    return batch.simulate_landed(inputs, landings, traced, dt_record_s)
+    return batch.simulate_landed(inputs, landings, traced, dt_record_s, terrain=terrain)

@@ -924,18 +924,20 @@ def _recorded(simulate, rows):
 
 
 @njit(cache=True, error_model="numpy")
-def _simulate_landed(inputs, landings, out, traj, tracer):
-    _bounce_all(inputs, 0, landings, np.arange(landings.shape[0]), out, traj, tracer, None)
+def _simulate_landed(inputs, landings, out, traj, tracer, terrain):
+    _bounce_all(inputs, 0, landings, np.arange(landings.shape[0]), out, traj, tracer, terrain)
     return int(tracer[ROW])
 
 
-def simulate_landed(inputs, landings, traced=-1, dt_record_s=TRAJECTORY_DT_S, trajectory_rows=4096):
+def simulate_landed(inputs, landings, traced=-1, dt_record_s=TRAJECTORY_DT_S, trajectory_rows=4096,
+                    terrain=None):  # fmt: skip
     """The run alone (bounces, slide and roll) of balls that have landed: the loop from its
     landing on, for studies of the bounce (Penner's figures start from a landing).
 
     ``landings`` (n, N_LANDING): x, y, vx, vy, vz, wx, wy, wz, t, nx, ny, nz of each ball as it
     touches the ground, in the core's frame (y to the LEFT), with the ground's normal;
-    ``inputs`` (n, N_INPUT) gives each its turf. Returns (outcomes, trajectory): the run's
+    ``inputs`` (n, N_INPUT) gives each its turf (on a ``terrain``, its zones do, and the
+    ball starts on its surface). Returns (outcomes, trajectory): the run's
     fields of ``schema.OUTCOME_FIELDS`` (from ``bounces`` on; total_m and final_x_m are the x
     where the ball rests, run_m its distance from the landing), and the path of row
     ``traced`` (rows t, x, y, z, phase every ``dt_record_s``, user frame; empty if none).
@@ -948,6 +950,6 @@ def simulate_landed(inputs, landings, traced=-1, dt_record_s=TRAJECTORY_DT_S, tr
 
     def simulate(traj):
         tracer = np.array([float(traced), 0.0, t_next, dt_record_s])
-        return _simulate_landed(rows, landings, out, traj, tracer)
+        return _simulate_landed(rows, landings, out, traj, tracer, terrain)
 
     return out[:n], _recorded(simulate, trajectory_rows if traced >= 0 else 0)
