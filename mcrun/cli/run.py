@@ -79,6 +79,18 @@ def format_summary(summary, top=3):
         for line in lines
     ]
     for row in summary.to_dict("records"):
+        if "n_landed" in row:  # a run on a hole: where the shots finished
+            shares = [
+                (name[len("p_finish_") :], v)
+                for name, v in row.items()
+                if name.startswith("p_finish_") and not name.endswith("95") and v > 0
+            ]
+            parts = ", ".join(
+                f"{zone} {100 * v:.1f}% [{100 * row[f'p_finish_{zone}_lo95']:.1f}, "
+                f"{100 * row[f'p_finish_{zone}_hi95']:.1f}]"
+                for zone, v in sorted(shares, key=lambda kv: -kv[1])
+            )
+            text.append(f"point {row['point']}: finished in {parts} (95% intervals)")
         for y in (*stats.DRIVEN, "run_m"):
             prefix = f"{y}_share_"
             shares = {

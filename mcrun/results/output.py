@@ -51,6 +51,7 @@ import pyarrow.parquet as pq
 import mcrun
 from mcrun.api import InputError
 from mcrun.engine.schema import OUTCOME_DTYPES, OUTCOME_FIELDS, PLANE_FIELDS, encode_outcomes
+from mcrun.results import on_hole as on_hole_columns
 from mcrun.status import NAMES as STATUS_NAMES
 from mcrun.trajectory import PHASE_NAMES
 
@@ -139,10 +140,11 @@ def outcome_columns(input_names, on_hole=False):
     return tuple(name for name in fields if name not in set(input_names))
 
 
-def shots_schema(input_names, input_types=None, metadata=None):
+def shots_schema(input_names, input_types=None, metadata=None, on_hole=False):
     """Arrow schema of shots.parquet for the given sampled input columns.
 
-    ``input_types``: Arrow type per input name (default float64).
+    ``input_types``: Arrow type per input name (default float64); ``on_hole``: a run on a
+    hole, whose shots have ``HOLE_FIELDS`` and ``on_hole.COLUMNS`` too.
     """
     input_types = input_types or {}
     fields = [
@@ -152,10 +154,12 @@ def shots_schema(input_names, input_types=None, metadata=None):
         pa.field("shot", pa.int64()),
     ]
     fields += [pa.field(name, input_types.get(name, pa.float64())) for name in input_names]
-    for name in outcome_columns(input_names):
+    for name in outcome_columns(input_names, on_hole):
         dtype = np.dtype(OUTCOME_DTYPES.get(name, np.float64))
         fields.append(pa.field(name, pa.from_numpy_dtype(dtype)))
     fields.append(pa.field("status_name", pa.dictionary(pa.int32(), pa.string())))
+    if on_hole:
+        fields += [pa.field(name, kind) for name, kind in on_hole_columns.COLUMNS.items()]
     return pa.schema(fields, metadata=metadata)
 
 
@@ -194,18 +198,20 @@ class ShotsWriter(_ParquetWriter):
     ``input_names``: the sampled columns (a point that lacks one gets NaN); ``input_types``:
     their Arrow types (default float64). With ``path`` None nothing is opened: ``table`` then
     builds the chunks' tables for a writer elsewhere (the parts of ``mcrun.run.distributed``).
+    ``hole``: the ``Hole`` the shots were played on (None: a plane), for its columns.
     """
 
-    def __init__(self, path, input_names, groups, labels, metadata, input_types=None):
+    def __init__(self, path, input_names, groups, labels, metadata, input_types=None, hole=None):
         self.path = None if path is None else Path(path)
         self.input_names = tuple(input_names)
         self.input_types = {n: (input_types or {}).get(n, pa.float64()) for n in input_names}
-        self._outcomes = outcome_columns(self.input_types)
+        self.hole = hole
+        self._outcomes = outcome_columns(self.input_types, hole is not None)
         group_index = {g: k for k, g in enumerate(dict.fromkeys(groups))}
         self._group_dictionary = pa.array(list(group_index), pa.string())
         self._group_index = [group_index[g] for g in groups]
         self._label_dictionary = pa.array(list(labels), pa.string())
-        self.schema = shots_schema(self.input_names, self.input_types, metadata)
+        self.schema = shots_schema(self.input_names, self.input_types, metadata, hole is not None)
         self.row_groups = {}  # point -> list of the row groups that hold its shots
         self._n_row_groups = 0
         self._pending = []  # (point, table) of the chunks not written yet
@@ -281,6 +287,8 @@ class ShotsWriter(_ParquetWriter):
         columns.append(
             pa.DictionaryArray.from_arrays(pa.array(codes.astype(np.int32)), _STATUS_DICTIONARY)
         )
+        if self.hole is not None:
+            columns += on_hole_columns.shot_columns(self.hole, outcomes).values()
         return pa.Table.from_arrays(columns, schema=self.schema)
 
 

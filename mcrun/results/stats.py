@@ -48,6 +48,7 @@ import math
 import operator
 
 import numpy as np
+import pyarrow.compute as pc
 import pyarrow.parquet as pq
 
 from mcrun import status as status_codes
@@ -510,6 +511,20 @@ class ShotsColumns:
             return
         with pq.ParquetFile(self.source) as f:
             yield from self._chunks(f, columns)
+
+    def tables(self, columns):
+        """Iterator of Arrow tables of ``columns`` over all the point's shots, whatever their
+        status, a row group at a time."""
+        f = self.source if isinstance(self.source, pq.ParquetFile) else pq.ParquetFile(self.source)
+        try:
+            for g in self.row_groups:
+                table = f.read_row_group(g, columns=[*columns, "point"])
+                if self.point is not None:
+                    table = table.filter(pc.equal(table["point"], self.point))
+                yield table.select(list(columns))
+        finally:
+            if f is not self.source:
+                f.close()
 
     def _read(self, f, g, columns):
         key = (g, tuple(columns))

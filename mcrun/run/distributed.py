@@ -275,6 +275,7 @@ def _shots_builder(job):
             job["labels"],
             job["shots_metadata"],
             {name: pa.type_for_alias(kind) for name, kind in job["input_types"].items()},
+            hole=_scenario(job["scenario_text"], job["scenario_path"], job["seed"]).hole,
         )
     return builder
 
@@ -297,7 +298,8 @@ def run_chunk(chunk, point, start, stop, job):
     inputs, sampled = sampling.sample(
         scenario, scenario.points[point], start, stop, job["input_names"]
     )
-    out = simulate_batch(inputs)
+    terrain = plan.terrain_of(scenario)
+    out = simulate_batch(inputs, terrain=terrain)
     point_stats = stats.PointStats(job["drivers"][point])
     point_stats.update(out, sampled)
     fs = location.filesystem(job["url"])
@@ -312,7 +314,7 @@ def run_chunk(chunk, point, start, stop, job):
     every = job["trajectories_every"]
     if every and plan.trajectory_shots(start, stop, every):
         paths = _Paths()
-        plan.add_trajectories(paths, inputs, point, start, stop, every)
+        plan.add_trajectories(paths, inputs, point, start, stop, every, terrain)
         schema = output.TRAJECTORY_SCHEMA.with_metadata(job["trajectories_metadata"])
         traj_path = f"{job['root']}/{TRAJECTORIES_DIR}/{output.part_name(chunk)}"
         _write_parquet(fs, traj_path, output.trajectory_table(paths, schema), local)
@@ -559,7 +561,11 @@ def run_scenario(
         for result in results:
             parts[result.point].append(result.shots_path)
         rows = plan.summary_rows(
-            points, point_stats, lambda point: _PartsColumns(fs, parts[point]), budget_bytes
+            points,
+            point_stats,
+            lambda point: _PartsColumns(fs, parts[point]),
+            budget_bytes,
+            on_hole=the_plan.scenario.hole is not None,
         )
         with fs.open_output_stream(f"{root}/{output.SUMMARY_FILE}") as f:
             output.write_table(f, rows, plan.summary_metadata(provenance, started))
@@ -705,6 +711,11 @@ class _PartsColumns(stats.ShotsColumns):
                 table = pq.ParquetFile(f).read(columns=[*columns, "status"])
             ok = table.column("status").to_numpy() == status_codes.OK
             yield {c: table.column(c).to_numpy()[ok] for c in columns}
+
+    def tables(self, columns):
+        for path in self.paths:
+            with self.fs.open_input_file(path) as f:
+                yield pq.ParquetFile(f).read(columns=list(columns))
 
 
 # --- command line ------------------------------------------------------------------------------

@@ -107,7 +107,7 @@ def run_scenario(
     if threads is not None:
         numba.set_num_threads(threads)
     # Compile (or load from the cache) before the clock starts: the rate is the run's.
-    simulate_batch(np.empty((0, N_INPUT), order="F"))
+    simulate_batch(np.empty((0, N_INPUT), order="F"), terrain=plan.terrain_of(the_plan.scenario))
     started = time.perf_counter()
     provenance = plan.provenance(the_plan, "local", output.versions(), numba.get_num_threads())
     try:
@@ -121,6 +121,7 @@ def run_scenario(
                 [p.label for p in points],
                 plan.file_metadata(provenance, "shots"),
                 dict.fromkeys(the_plan.integer_columns, pa.int64()),
+                hole=the_plan.scenario.hole,
             )
             traj_writer = None
             if the_plan.trajectories_every is not None:
@@ -151,6 +152,7 @@ def run_scenario(
                         the_plan.chunk_size,
                     ),
                     budget_bytes,
+                    on_hole=the_plan.scenario.hole is not None,
                 )
             output.write_table(
                 folder.file(output.SUMMARY_FILE),
@@ -194,6 +196,7 @@ def _stream(the_plan, shots_writer, traj_writer, progress):
     buffers = [np.empty((chunk_size, N_OUTCOME), order="F") if full else None for _ in range(2)]
     all_stats = [stats.PointStats(drivers) for drivers in the_plan.drivers]
     chunks = the_plan.chunks()
+    terrain = plan.terrain_of(scenario)
 
     def finish(point_stats, point, start, sampled, out):
         point_stats.update(out, sampled)
@@ -225,12 +228,12 @@ def _stream(the_plan, shots_writer, traj_writer, progress):
             inputs, sampled = sampling_next.result()
             following, sampling_next = sample_next()
             out = buffers[k % 2] if stop - start == chunk_size else None
-            out = simulate_batch(inputs, out)
+            out = simulate_batch(inputs, out, terrain=terrain)
             if writing is not None:
                 writing.result()  # frees the other buffer; raises what the write raised
             writing = writer.submit(finish, all_stats[point], point, start, sampled, out)
             if traj_writer is not None:
-                plan.add_trajectories(traj_writer, inputs, point, start, stop, every)
+                plan.add_trajectories(traj_writer, inputs, point, start, stop, every, terrain)
                 traj_writer.flush()
             bar.update(stop - start)
             k += 1

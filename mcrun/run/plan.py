@@ -33,6 +33,7 @@ import pandas as pd
 from mcrun.api import InputError
 from mcrun.engine.backend import simulate_traced
 from mcrun.engine.schema import OUTCOME_FIELDS
+from mcrun.results import on_hole as on_hole_results
 from mcrun.results import output, reader, stats
 from mcrun.run import sampling
 from mcrun.run import scenario as scenario_module
@@ -189,6 +190,12 @@ class Chunk(NamedTuple):
     stop: int
 
 
+def terrain_of(scenario):
+    """The ground the kernel plays the scenario's shots on: its hole's Terrain, or None (each
+    shot's own plane)."""
+    return None if scenario.hole is None else scenario.hole.terrain()
+
+
 @dataclass(frozen=True)
 class Plan:
     """What a run will be: the scenario (with the run's seed), its shots per point ``n``, the
@@ -328,11 +335,12 @@ def trajectory_shots(start, stop, every):
     return range(-(-start // every) * every, stop, every)
 
 
-def add_trajectories(writer, inputs, point, start, stop, every):
+def add_trajectories(writer, inputs, point, start, stop, every, terrain=None):
     """Compute the paths of a chunk's ``trajectory_shots`` (rows of ``inputs``: each shot
-    alone again, its path recorded) and give each to ``writer.add(point, shot, path)``."""
+    alone again, its path recorded, on ``terrain``) and give each to ``writer.add(point, shot,
+    path)``."""
     for i in trajectory_shots(start, stop, every):
-        _, path = simulate_traced(inputs[i - start : i - start + 1])
+        _, path = simulate_traced(inputs[i - start : i - start + 1], terrain=terrain)
         writer.add(point, i, path)
 
 
@@ -397,11 +405,11 @@ def _sweep_columns(points):
     return columns
 
 
-def summary_rows(points, point_stats, shots_of, budget_bytes):
+def summary_rows(points, point_stats, shots_of, budget_bytes, on_hole=False):
     """summary.parquet's rows, one per point: its index, group, label and sweep values, then
     ``stats.summarise`` of its streamed ``PointStats`` and of its ok shots, which
     ``shots_of(point index)`` reads (a ``stats.ShotsColumns``) from wherever they were
-    written."""
+    written; ``on_hole``: and the shares of its zones (``on_hole.zone_shares``)."""
     rows = []
     sweep = _sweep_columns(points)
     for point, one in zip(points, point_stats, strict=True):
@@ -410,8 +418,12 @@ def summary_rows(points, point_stats, shots_of, budget_bytes):
             row[key] = values[point.index]
         columns = shots_of(point.index)
         row.update(
-            stats.summarise(one, columns, target_m=point.target_m, budget_bytes=budget_bytes)
+            stats.summarise(
+                one, columns, target_m=point.target_m, budget_bytes=budget_bytes, on_hole=on_hole
+            )
         )
+        if on_hole:
+            row.update(on_hole_results.zone_shares(columns))
         rows.append(row)
     return pd.DataFrame(rows)
 

@@ -359,7 +359,10 @@ def _convert(scenario, point, raw, columns, inputs=None):
     kernel_inputs = {
         "ball_speed_mps": launch["ball_speed"],
         "launch_angle_rad": launch["launch_angle"],
-        "azimuth_rad": launch["azimuth"],
+        # (On a hole, about the line from the tee to its aim point.)
+        "azimuth_rad": launch["azimuth"]
+        if scenario.aim_rad is None
+        else launch["azimuth"] + scenario.aim_rad,
         "spin_radps": launch["spin"],
         "spin_axis_rad": launch["spin_axis"],
         "air_density_kgpm3": rho,

@@ -47,6 +47,8 @@ import numpy as np
 
 from mcrun.api import RANGES, WIND_PROFILE_DEFAULTS, InputError
 from mcrun.engine.shot import default_dt_s
+from mcrun.hole.errors import HoleError
+from mcrun.hole.hole import hole_from_table
 from mcrun.physics import aero
 from mcrun.physics.constants import (
     DEG,
@@ -184,7 +186,7 @@ PARAMETERS: dict[str, dict[str, Param]] = {
 # Keys of a section that are not quantities.
 _SPECIAL = {"launch": ("correlation", "file", "jitter", "club", "format"), "club": ("correlation",)}
 _SECTIONS = tuple(PARAMETERS)
-_TOP_KEYS = ("scenario", *_SECTIONS, "group", "sweep")
+_TOP_KEYS = ("scenario", *_SECTIONS, "group", "sweep", "hole")
 _SCENARIO_KEYS = ("name", "question", "description", "shots", "seed", "target", "block_size")
 _GROUP_KEYS = ("name", "target", *_SECTIONS)
 _BALL = ("ball_speed", "launch_angle", "spin")
@@ -333,6 +335,10 @@ class Scenario:
     seed: int
     block_size: int
     points: list
+    # The hole the shots are played on (``mcrun.hole.hole.Hole``), None on a plane, and the
+    # azimuth (rad, + right) of its aim point from the tee: the shots' azimuths are about it.
+    hole: object = None
+    aim_rad: float | None = None
 
 
 # --- the library ---------------------------------------------------------------------------
@@ -1156,6 +1162,9 @@ def loads(text, path):
         ctx, "scenario.block_size", head.get("block_size", DEFAULT_BLOCK_SIZE), 1, MAX_BLOCK_SIZE
     )
     target = _target(ctx, "scenario.target", head["target"]) if "target" in head else None
+    hole, aim_rad = _hole(ctx, data, path) if "hole" in data else (None, None)
+    if hole is not None and target is None:
+        target = tuple(float(v) for v in hole.pin_xy)
 
     base = {s: _section_leaves(ctx, s, data[s], f"{s}.") for s in _SECTIONS if s in data}
 
@@ -1212,4 +1221,63 @@ def loads(text, path):
             sections = {s: v for s, v in sections.items() if v}
             params = _resolve(ctx, sections, path.parent, context)
             points.append(Point(len(points), label, gname, values, params, gtarget))
-    return Scenario(path, text, name, question, shots, seed, block_size, points)
+    return Scenario(path, text, name, question, shots, seed, block_size, points, hole, aim_rad)
+
+
+def _hole(ctx, data, path):
+    """The scenario's ``[hole]`` (``hole.hole_from_table``) and the azimuth of its ``aim``
+    ([x, y] m in the hole's frame; default the pin). On a hole the turf is the zones': a
+    ``[turf]`` table anywhere is refused."""
+    table = dict(_table(ctx, "hole", data["hole"]))
+    aim = table.pop("aim", None)
+    folder = path.parent.resolve()
+    if "file" in table:
+        # A hole file, its keys (paths relative to its folder) under those given here.
+        hole_path = folder / str(table.pop("file"))
+        try:
+            with hole_path.open("rb") as f:
+                given = tomllib.load(f)
+        except (OSError, tomllib.TOMLDecodeError) as err:
+            raise ctx.error("hole.file", f"cannot read {hole_path}: {err}") from None
+        given = given["hole"] if isinstance(given.get("hole"), dict) else given
+        table = {**given, **table}
+        folder = hole_path.parent
+    places = ["turf"] if "turf" in data else []
+    groups = data.get("group")
+    for k, group in enumerate(groups if isinstance(groups, list) else []):
+        if isinstance(group, dict) and "turf" in group:
+            places.append(f"group[{k}].turf")
+    sweep = data.get("sweep")
+    if isinstance(sweep, dict) and "turf" in sweep:
+        places.append("sweep.turf")
+    if places:
+        raise ctx.error(places[0], "on a hole each zone has its turf: set it in [hole.turf.KIND]")
+    hole = _cached_hole(
+        tuple(sorted((k, repr(v)) for k, v in table.items())), table, folder, f"{path} [hole]"
+    )
+    if aim is None:
+        aim = hole.pin_xy
+    if (
+        not isinstance(aim, list | tuple)
+        or len(aim) != 2
+        or not all(isinstance(v, numbers.Real) and not isinstance(v, bool) for v in aim)
+        or not math.isfinite(aim[0] + aim[1])
+        or aim[0] <= 0.0
+    ):
+        raise ctx.error("hole.aim", f"must be [x_m, y_m] ahead of the tee (x > 0), got {aim!r}")
+    return hole, math.atan2(float(aim[1]), float(aim[0]))
+
+
+_HOLES = {}
+
+
+def _cached_hole(key, table, folder, source):
+    """``hole.hole_from_table``, once per table and folder in a process (a Dask worker reads
+    the scenario for every chunk)."""
+    key = (key, str(folder))
+    if key not in _HOLES:
+        try:
+            _HOLES[key] = hole_from_table(table, folder, source)
+        except HoleError as err:
+            raise ScenarioError(str(err)) from None
+    return _HOLES[key]
