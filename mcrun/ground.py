@@ -240,29 +240,64 @@ def _state_at(terrain, x, y):
 
 
 @njit(cache=True, error_model="numpy")
-def surface(terrain, plane, x, y, z):
-    """What the roll asks at each step (``roll.roll``): the height of the ground at (x, y) (on a
-    Plane, z itself: the ball stays on the plane), its normal and turf, the state there
-    (``state_at``) and the longest distance (m) a step may go on it (on a Plane, one that is
-    the same everywhere, no limit)."""
-    nx, ny, nz = normal_at(terrain, plane, x, y)
+def _plane_surface(terrain, plane, x, y, z):
+    return z, plane.nx, plane.ny, plane.nz, plane.turf, OK, math.inf
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_surface(terrain, plane, x, y, z):
+    """``surface`` on the grid: one look-up of the cell for all of it."""
+    ny_, nx_ = terrain.height_m.shape
+    fx = (x - terrain.x0_m) / terrain.cell_m
+    fy = (-y - terrain.y0_m) / terrain.cell_m
+    inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
+    ix = min(max(int(math.floor(fx)), 0), nx_ - 2)
+    iy = min(max(int(math.floor(fy)), 0), ny_ - 2)
+    tx = min(max(fx - ix, 0.0), 1.0)
+    ty = min(max(fy - iy, 0.0), 1.0)
+    h = terrain.height_m
+    h00 = h[iy, ix]
+    h10 = h[iy, ix + 1]
+    h01 = h[iy + 1, ix]
+    h11 = h[iy + 1, ix + 1]
+    height = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
+    hx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) / terrain.cell_m
+    hy = -((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) / terrain.cell_m
+    k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+    zone = terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
+    t = terrain.turf[zone]
+    kind = terrain.penalty[zone]
+    state = OK
+    if not inside:
+        state = OFF_MAP
+    elif kind == PENALTY_AREA:
+        state = IN_PENALTY_AREA
+    elif kind == OUT_OF_BOUNDS:
+        state = OUT_OF_BOUNDS_STATUS
     return (
-        height_on(terrain, x, y, z), nx, ny, nz,
-        turf_at(terrain, plane, x, y), state_at(terrain, x, y), step_length(terrain),
+        height, -hx * k, -hy * k, k, Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]),
+        state, 0.25 * terrain.cell_m,
     )  # fmt: skip
 
 
-def height_on(terrain, x, y, z):
-    """The height of the ground under a ball at (x, y, z) on it: z on a Plane (the ball stays
-    on the plane it rolls on), the grid's height on a terrain."""
+def _surface(terrain, plane, x, y, z):
     raise NotImplementedError("compiled code only")
 
 
-@overload(height_on, inline="always")
-def _height_on(terrain, x, y, z):
+@overload(_surface, inline="always")
+def _surface_overload(terrain, plane, x, y, z):
     if _flat(terrain):
-        return lambda terrain, x, y, z: z
-    return lambda terrain, x, y, z: _grid_height(terrain, x, y)
+        return lambda terrain, plane, x, y, z: _plane_surface(terrain, plane, x, y, z)
+    return lambda terrain, plane, x, y, z: _grid_surface(terrain, plane, x, y, z)
+
+
+@njit(cache=True, error_model="numpy")
+def surface(terrain, plane, x, y, z):
+    """What the roll asks at each step (``roll.roll``, to which it is passed): the height of
+    the ground at (x, y) (on a Plane, z itself: the ball stays on the plane), its normal and
+    turf, the state there (``state_at``) and the longest distance (m) a step may go on it (a
+    quarter of a cell of a grid; on a Plane, the same everywhere, no limit)."""
+    return _surface(terrain, plane, x, y, z)
 
 
 def step_length(terrain):
@@ -303,13 +338,15 @@ def _hop_landing(terrain, x, y, z, vx, vy, vz, hop_time):
 # the search starts a little after it; at most MAX_HOP_STEPS steps of the march.
 HOP_T_MIN_S = 1e-9
 MAX_HOP_STEPS = 100_000
+# The hop ends where the ball is within this of the surface (its height then is the surface's).
+HOP_GAP_TOLERANCE_M = 1e-9
 
 
 @njit(cache=True, error_model="numpy")
 def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     """``hop_landing`` on the grid: march along the parabola in steps of at most half the plane
     estimate ``hop_time`` and a quarter of a cell, to the first step that ends below the
-    surface, then locate the crossing inside it (Illinois' false position, to 1e-12 s)."""
+    surface, then locate the crossing inside it (Illinois' false position, to a nanometre)."""
     vh = math.sqrt(vx * vx + vy * vy)
     dt = 0.5 * hop_time if hop_time > 0.0 else 1e-3
     if vh > 0.0:
@@ -350,7 +387,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
             if side == -1:
                 fa *= 0.5
             side = -1
-        if b - a < 1e-12:
+        if abs(ft) < HOP_GAP_TOLERANCE_M or b - a < 1e-12:
             break
     t = b
     return x + vx * t, y + vy * t, _grid_height(terrain, x + vx * t, y + vy * t), vz - G_MPS2 * t, t
