@@ -1,6 +1,8 @@
 """``mcrun replay``: each measured shot of a launch-monitor file, simulated as given
 (``mcrun.run.replay``), on the turf and in the weather of the conditions options; then the
-session per club (``mcrun.run.clubs``): the gapping table and the model against the device."""
+session per club (``mcrun.run.clubs``): the gapping table and the model against the device,
+printed and written beside the output as CSV, and with ``--plot`` drawn
+(``mcrun.report.replay_plots``)."""
 
 import sys
 from pathlib import Path
@@ -8,7 +10,9 @@ from pathlib import Path
 from mcrun import status
 from mcrun.api import InputError, conditions_inputs
 from mcrun.cli import Interrupted
-from mcrun.cli.options import add_conditions_options, conditions_kwargs
+from mcrun.cli.options import DPI_RANGE, add_conditions_options, conditions_kwargs, dpi_value
+from mcrun.report import plots, replay_plots
+from mcrun.results.output import OutputError
 from mcrun.run import clubs, replay
 from mcrun.run.monitors import NAMES
 
@@ -20,15 +24,25 @@ def _cmd_replay(args):
         destination = Path(args.output)
         if destination.suffix.lower() not in (".parquet", ".pq"):
             raise InputError(f"-o {args.output}: the output must be a .parquet file")
+        if args.plot:  # before anything is written
+            plots.require_matplotlib("replay --plot")
+            for path in replay_plots.plot_paths(destination).values():
+                if path.exists() and not args.force:
+                    raise OutputError(f"the plot {path} already exists: use --force to replace it")
         frame = replay.replay_file(
             args.shots, destination, force=args.force, format=args.format, **conditions
         )
+        written = frame.attrs["written"][1:]
+        if args.plot:
+            written += replay_plots.write_replay_plots(frame, destination, dpi=args.dpi)
     except KeyboardInterrupt:
         raise Interrupted("nothing was written") from None
     bad = int((frame["status"] != status.OK).sum())
     how = "detected" if frame.attrs["format_detected"] else "as asked"
     print(f"read {args.shots}: {frame.attrs['format_title']} ({how})")
     print(f"replayed {len(frame)} shots from {args.shots}; wrote {args.output}")
+    for path in written:
+        print(f"wrote {path}")
     if not args.quiet:
         print()
         print(_gapping(clubs.club_summary(frame)))
@@ -105,7 +119,9 @@ def register(subparsers):
         "MLM2PRO, SkyTrak, FlightScope, Foresight, Square Golf, Awesome Golf, GSPro JSON "
         "lines; detected from its header) or a CSV or Parquet with columns named with their "
         "unit (ball_speed_mph, launch_deg, spin_rpm, optional spin_axis_deg, azimuth_deg). "
-        "Values take units as in 'mcrun shot'.",
+        "Values take units as in 'mcrun shot'. Beside OUT.parquet: OUT-clubs.csv (the "
+        "session per club) and, where the file has the device's results, OUT-device.csv (the "
+        "model minus the device); with --plot, OUT-clubs.png and OUT-device.png.",
         allow_abbrev=False,
     )
     p.add_argument("shots", metavar="SHOTS", help="measured shots: an export, .csv or .parquet")
@@ -118,5 +134,17 @@ def register(subparsers):
         help=f"read the file as this format instead of detecting it: {', '.join(NAMES)}",
     )
     p.add_argument("--quiet", action="store_true", help="no per-club tables, only what was written")
+    p.add_argument(
+        "--plot",
+        action="store_true",
+        help="also draw the clubs (carry and total per club, the gapping chart) and the model "
+        "minus the device per club, as PNGs beside the output (needs mcrun[plot])",
+    )
+    p.add_argument(
+        "--dpi",
+        type=dpi_value,
+        default=plots.DEFAULT_PLOT_DPI,
+        help=f"resolution of --plot, {DPI_RANGE[0]}-{DPI_RANGE[1]} (default %(default)s)",
+    )
     add_conditions_options(p)
     p.set_defaults(func=_cmd_replay)

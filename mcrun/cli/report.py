@@ -2,10 +2,14 @@
 and its self-contained HTML page (``mcrun.report.html``)."""
 
 from mcrun.cli.options import DPI_RANGE, dpi_value
-from mcrun.report import html, plots
+from mcrun.report import html, plots, replay_plots
 
 
 def _cmd_plot(args):
+    if replay_plots.is_replay(args.run_dir):
+        for path in replay_plots.plot_replay_file(args.run_dir, args.out, args.dpi):
+            print(f"wrote {path}")
+        return 0
     written = plots.write_plots(args.run_dir, args.out, args.dpi)
     for path, _ in written:
         print(f"wrote {path}")
@@ -23,12 +27,17 @@ def _add_plot(subparsers):
         "(pointNN-trajectories.png); for several points, the summary against the swept "
         "parameter or per group (summary.png) and every point's finish (finish.png). Reads "
         "only the columns it draws, one point at a time: histograms and densities are "
-        "binned over every shot, trajectories are the first of each point. Needs matplotlib "
-        "(mcrun[plot]).",
+        "binned over every shot, trajectories are the first of each point. Given a file written "
+        "by 'mcrun replay' instead, its clubs and its model minus the device (as 'mcrun "
+        "replay --plot'; default: beside the file). Needs matplotlib (mcrun[plot]).",
         epilog="example: mcrun plot runs/pga-driver-2019 -o plots",
         allow_abbrev=False,
     )
-    p.add_argument("run_dir", metavar="RUN_DIR", help="a folder written by 'mcrun run'")
+    p.add_argument(
+        "run_dir",
+        metavar="RUN_DIR",
+        help="a folder written by 'mcrun run', or a .parquet written by 'mcrun replay'",
+    )
     p.add_argument(
         "-o",
         "--out",

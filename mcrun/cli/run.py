@@ -152,6 +152,35 @@ def _run_on_dask(args):
     )
 
 
+def fit_lines(scenario):
+    """Lines saying the normal fitted to each launch file that a point draws from (means, sds
+    and correlations: ``scenario.launch_fits``); none when no point fits one."""
+    lines = []
+    for fit in scenario_module.launch_fits(scenario.points):
+        which = f"club {fit['club']!r} of " if fit["club"] else ""
+        points = ", ".join(str(k) for k in fit["points"][:SHOWN_POINTS])
+        if len(fit["points"]) > SHOWN_POINTS:
+            points += ", ..."
+        lines.append(
+            f"point(s) {points}: launch.file fitted as a correlated normal to {fit['shots']} "
+            f"shots of {which}{fit['file']}:"
+        )
+        lines += scenario_module.describe_fit(fit).splitlines()
+    return lines
+
+
+def _announcer(scenario):
+    """What a run says before it starts: the plan line, then the normal fits drawn from."""
+    fits = fit_lines(scenario)
+
+    def announce(line):
+        _say(line)
+        for fit_line in fits:
+            _say(fit_line)
+
+    return announce
+
+
 def _run_options(args):
     """The options of ``mcrun run`` that both executors take."""
     return dict(
@@ -163,12 +192,13 @@ def _run_options(args):
         progress=not args.quiet,
         force=args.force,
         ignore_disk_space=args.ignore_disk_space,
-        announce=None if args.quiet else _say,
+        announce=None if args.quiet else _announcer(args.scenario),
     )
 
 
 def _cmd_run(args):
     try:
+        args.scenario = scenario_module.load(args.scenario)
         if _dask_backend(args):
             result = _run_on_dask(args)
         else:
@@ -224,6 +254,7 @@ def describe(scenario):
         )
     if len(scenario.points) > SHOWN_POINTS:
         lines.append("  " + _more_points(len(scenario.points), SHOWN_POINTS, "in the sweep"))
+    lines += fit_lines(scenario)
     return "\n".join(lines)
 
 

@@ -19,7 +19,8 @@ SPREAD = (("carry_m", "carry_m"), ("total_m", "total_m"), ("side_m", "final_y_m"
 PERCENTILES = (10, 50, 90)
 
 
-def _clubs(frame):
+def club_labels(frame):
+    """The club of each row of a replay frame, as text ("" where missing; ALL without clubs)."""
     if "club" in frame:
         return frame["club"].astype("string").fillna("").to_numpy(dtype=object)
     return np.full(len(frame), ALL, dtype=object)
@@ -29,7 +30,7 @@ def club_summary(frame):
     """One row per club, longest mean carry first: shots, shots ok, and of the shots ok the
     mean, sd (n - 1) and 10th, 50th, 90th percentiles of carry, total and side (the rest
     position, positive right), and ``gap_m``: the club's mean carry minus the next club's."""
-    clubs = _clubs(frame)
+    clubs = club_labels(frame)
     ok = frame["status"].to_numpy() == status.OK
     rows = []
     for club in dict.fromkeys(clubs):
@@ -55,7 +56,7 @@ def device_comparison(frame):
     columns = [c for c in frame.columns if str(c).startswith("model_minus_device_")]
     if not columns:
         return pd.DataFrame(columns=["club", "quantity", "shots", "bias", "rmse"])
-    clubs = _clubs(frame)
+    clubs = club_labels(frame)
     ok = frame["status"].to_numpy() == status.OK
     groups = [(ALL, np.ones(len(frame), dtype=bool))]
     if "club" in frame:

@@ -14,9 +14,14 @@ launch in SI-named columns, the device's own results where the file has them
 (``device_carry_m``...), the outcome of ``schema.OUTCOME_FIELDS``, ``descent_angle_deg`` (from
 the horizontal, as devices give it), the model minus the device (``model_minus_device_carry_m``
 ...) and status_name, with the provenance (and the format read) in the Parquet metadata.
+
+``replay_file`` also writes the session per club beside the Parquet (``table_paths``):
+``STEM-clubs.csv``, ``mcrun.run.clubs.club_summary``, and, where the file holds the device's
+results, ``STEM-device.csv``, ``mcrun.run.clubs.device_comparison``.
 """
 
 import time
+from contextlib import ExitStack
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -29,6 +34,7 @@ from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import OUTCOME_FIELDS, encode_outcomes, pack
 from mcrun.physics.constants import DEG
 from mcrun.results import output
+from mcrun.run import clubs
 from mcrun.run.monitors import read_session, session_of_frame
 from mcrun.run.scenario import PARAMETERS
 
@@ -133,15 +139,31 @@ def replay(shots, source=None, format=None, **conditions):
     return result
 
 
+def table_paths(destination, device=True):
+    """{table: path} of the per-club tables written beside the replay output ``destination``:
+    ``STEM-clubs.csv`` and, with ``device``, ``STEM-device.csv``."""
+    destination = Path(destination)
+    kinds = ("clubs", "device") if device else ("clubs",)
+    return {k: destination.with_name(f"{destination.stem}-{k}.csv") for k in kinds}
+
+
 def replay_file(source, destination, force=False, format=None, **conditions):
     """Replay the shots of the file ``source`` (``format`` forces the export's format) and write
-    ``destination`` (Parquet) atomically, with the provenance in its metadata. Returns the
-    DataFrame written."""
+    ``destination`` (Parquet) atomically, with the provenance in its metadata, and the per-club
+    tables beside it (``table_paths``; every file is checked before any is written, and all are
+    renamed into place together). Returns the DataFrame written; ``frame.attrs["written"]``
+    lists the paths."""
     started = time.perf_counter()
     start_time = datetime.now(UTC).isoformat(timespec="seconds")
     source = Path(source)
     session = read_session(source, format)
-    with output.AtomicFile(destination, force=force) as target:
+    tables = table_paths(destination, device=bool(session.device))
+    with ExitStack() as stack:
+        target = stack.enter_context(output.AtomicFile(destination, force=force))
+        targets = {
+            k: stack.enter_context(output.AtomicFile(path, force=force))
+            for k, path in tables.items()
+        }
         frame = replay(session, **conditions)
         metadata = {
             "format_version": 1,
@@ -157,7 +179,12 @@ def replay_file(source, destination, force=False, format=None, **conditions):
             "elapsed_s": round(time.perf_counter() - started, 3),
         }
         output.write_table(target.tmp, frame, output.encode_provenance(metadata))
-        target.commit()
+        clubs.club_summary(frame).to_csv(targets["clubs"].tmp, index=False)
+        if "device" in targets:
+            clubs.device_comparison(frame).to_csv(targets["device"].tmp, index=False)
+        for each in (target, *targets.values()):
+            each.commit()
+    frame.attrs["written"] = [Path(destination), *tables.values()]
     return frame
 
 

@@ -64,15 +64,16 @@ def sampled_columns(scenario):
     """Names of the ``sampled`` columns of every point of ``scenario``, in order.
 
     The same for all points of a scenario (one Parquet schema): club columns appear when a
-    point uses a club delivery (NaN for the others), ``source_row`` (the row of the measured
-    shot, 0-based, -1 when not resampled) when a point resamples a file, ``altitude_m`` and
+    point uses a club delivery (NaN for the others), ``source_row`` (the file's row of the
+    measured shot, 0-based, -1 when not resampled) when a point resamples a file (not when it
+    draws from a normal fitted to the file), ``altitude_m`` and
     ``stimp_m`` when a point gives them (NaN otherwise).
     """
     modes = {p.mode for p in scenario.points}
     columns = list(LAUNCH_COLUMNS)
     if "club" in modes:
         columns += CLUB_COLUMNS
-    if "file" in modes:
+    if any(_resamples(p) for p in scenario.points):
         columns += FILE_COLUMNS
     columns += [
         "wind_speed_mps",
@@ -99,6 +100,12 @@ def sampled_columns(scenario):
         columns.append("stimp_m")
     columns += ["critical_height_m", "slope_deg", "fall_line_deg", "cd_scale", "cl_scale", "dt_s"]
     return columns
+
+
+def _resamples(point):
+    """Whether ``point`` resamples the shots of a launch file (rather than fitting a normal)."""
+    spec = point.params.get("launch.file")
+    return spec is not None and spec.fit is None
 
 
 def block_generator(seed, point_index, block):
@@ -225,8 +232,9 @@ def _random_items(point):
 
 def draw_block(scenario, point, block):
     """The raw draws of one block: {key path: SI array of block_size, or float for a
-    constant}; a resampled file adds ``launch.file.rows`` (int64) and the jittered quantities
-    as ``launch.<quantity>``."""
+    constant}; a resampled file adds ``launch.file.rows`` (int64, the file's rows of the shots
+    drawn) and its (jittered) quantities as ``launch.<quantity>``; a normal fitted to a file
+    adds its quantities as ``launch.<quantity>``, drawn as a correlation's are."""
     n = scenario.block_size
     rng = block_generator(scenario.seed, point.index, block)
     raw = {}
@@ -245,9 +253,18 @@ def draw_block(scenario, point, block):
                     x = x + spec.factor[j, m] * z[:, m]
                 mean, sd = point.params[f"{section}.{name}"].args
                 raw[f"{section}.{name}"] = mean + sd * x
+        elif key == "launch.file" and spec.fit is not None:
+            fit = spec.fit
+            z = rng.standard_normal((n, len(fit.names)))
+            for j, name in enumerate(fit.names):
+                # x_j = sum_l F[j, l] z_l, elementwise in a fixed order (no BLAS).
+                x = fit.factor[j, 0] * z[:, 0]
+                for m in range(1, len(fit.names)):
+                    x = x + fit.factor[j, m] * z[:, m]
+                raw[f"launch.{name}"] = fit.mean[j] + fit.sd[j] * x
         elif key == "launch.file":
             rows = rng.integers(0, spec.n_rows, size=n)
-            raw["launch.file.rows"] = rows
+            raw["launch.file.rows"] = spec.source_rows[rows]
             for name in sorted(set(spec.columns) | set(spec.jitter)):
                 column = spec.columns.get(name)
                 value = column[rows] if column is not None else np.zeros(n)

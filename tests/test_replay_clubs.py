@@ -1,0 +1,161 @@
+"""``mcrun replay``'s per-club tables written beside its Parquet (``STEM-clubs.csv``,
+``STEM-device.csv``), equal to ``mcrun.run.clubs``'s; and its pictures per club (``--plot``,
+``mcrun plot REPLAY.parquet``): one PNG per plot of the figure's size, a one-line error
+naming ``pip install 'mcrun[plot]'`` without matplotlib, nothing written."""
+
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from mcrun.cli import main
+from mcrun.report import replay_plots
+from mcrun.run import clubs, replay
+
+DATA = Path(__file__).parent / "data" / "monitors"
+
+
+def session(path):
+    """A session of three clubs in mcrun's own columns, without the device's results."""
+    rows = []
+    for club, speed_mph, launch_deg, spin_rpm in (
+        ("Driver", 160.0, 11.0, 2700.0),
+        ("7 Iron", 118.0, 16.5, 7000.0),
+        ("PW", 100.0, 24.0, 9000.0),
+    ):
+        for k in range(8):
+            rows.append(
+                {
+                    "club": club,
+                    "ball_speed_mph": speed_mph + (k - 3.5) * 0.8,
+                    "launch_deg": launch_deg + 0.2 * (k % 3),
+                    "spin_rpm": spin_rpm + 60.0 * (k % 4),
+                    "azimuth_deg": 0.5 * (k - 4),
+                }
+            )
+    pd.DataFrame(rows).to_csv(path, index=False)
+    return path
+
+
+def one_line_error(capsys, code, *needles):
+    out, err = capsys.readouterr()
+    assert code == 2 and out == "", err
+    assert err.startswith("mcrun: error: ") and err.count("\n") == 1, err
+    for needle in needles:
+        assert needle in err, err
+
+
+def test_the_tables_beside_the_output_are_clubs_tables(tmp_path, capsys):
+    out = tmp_path / "replayed.parquet"
+    assert main(["replay", str(DATA / "trackman-normalized.csv"), "-o", str(out)]) == 0
+    stdout, _ = capsys.readouterr()
+    frame = pd.read_parquet(out)
+    for name, table in (
+        ("replayed-clubs.csv", clubs.club_summary(frame)),
+        ("replayed-device.csv", clubs.device_comparison(frame)),
+    ):
+        assert f"wrote {tmp_path / name}\n" in stdout
+        written = pd.read_csv(tmp_path / name, keep_default_na=False, na_values=[""])
+        assert list(written.columns) == list(table.columns)
+        text = [c for c in ("club", "quantity") if c in table]
+        for column in text:
+            assert list(written[column]) == list(table[column])
+        for column in table.columns.drop(text):
+            # Written with Python's shortest round-trip repr: equal to the last bit.
+            np.testing.assert_array_equal(
+                written[column].to_numpy(dtype=float), table[column].to_numpy(dtype=float)
+            )
+    device = pd.read_csv(tmp_path / "replayed-device.csv")
+    carry = device[(device["club"] == "all") & (device["quantity"] == "carry_m")].iloc[0]
+    diff = frame["carry_m"] - frame["device_carry_m"]
+    assert carry["bias"] == pytest.approx(diff.mean(), rel=1e-15)
+    assert carry["rmse"] == pytest.approx(np.sqrt((diff**2).mean()), rel=1e-15)
+
+
+def test_a_file_without_the_devices_results_has_no_device_table(tmp_path):
+    source = session(tmp_path / "session.csv")
+    frame = replay.replay_file(source, tmp_path / "r.parquet")
+    assert sorted(os.listdir(tmp_path)) == ["r-clubs.csv", "r.parquet", "session.csv"]
+    assert frame.attrs["written"] == [tmp_path / "r.parquet", tmp_path / "r-clubs.csv"]
+    table = pd.read_csv(tmp_path / "r-clubs.csv")
+    assert list(table["club"]) == ["Driver", "7 Iron", "PW"]
+    assert table["shots"].tolist() == [8, 8, 8]
+    mine = frame[frame["club"] == "7 Iron"]["carry_m"]
+    assert table["carry_m_mean"][1] == pytest.approx(mine.mean(), rel=1e-15)
+    assert table["carry_m_sd"][1] == pytest.approx(mine.std(ddof=1), rel=1e-14)
+    assert table["gap_m"][0] == pytest.approx(
+        table["carry_m_mean"][0] - table["carry_m_mean"][1], rel=1e-15
+    )
+
+
+def test_an_existing_table_is_kept_without_force_and_nothing_is_written(tmp_path, capsys):
+    source = session(tmp_path / "session.csv")
+    (tmp_path / "r-clubs.csv").write_text("mine\n", encoding="utf-8")
+    code = main(["replay", str(source), "-o", str(tmp_path / "r.parquet")])
+    one_line_error(capsys, code, "r-clubs.csv already exists: use --force")
+    assert sorted(os.listdir(tmp_path)) == ["r-clubs.csv", "session.csv"]
+    assert (tmp_path / "r-clubs.csv").read_text(encoding="utf-8") == "mine\n"
+    assert main(["replay", str(source), "-o", str(tmp_path / "r.parquet"), "--force"]) == 0
+    assert pd.read_csv(tmp_path / "r-clubs.csv")["shots"].sum() == 24
+
+
+def png_size(path):
+    from matplotlib.image import imread
+
+    image = imread(path)
+    assert image[..., :3].std() > 0.05  # not blank
+    return image.shape[1], image.shape[0]
+
+
+def test_replay_plot_draws_the_clubs_and_the_device(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    out = tmp_path / "tm.parquet"
+    argv = ["replay", str(DATA / "trackman-normalized.csv"), "-o", str(out), "--plot"]
+    assert main([*argv, "--dpi", "50"]) == 0
+    stdout, _ = capsys.readouterr()
+    for name in ("tm-clubs.png", "tm-device.png"):
+        assert f"wrote {tmp_path / name}\n" in stdout
+    width = replay_plots.FIGURE_WIDTH_IN * 50
+    assert png_size(tmp_path / "tm-clubs.png") == (width, replay_plots.CLUBS_HEIGHT_IN * 50)
+    # Six quantities the export gives, two a row: three rows.
+    assert png_size(tmp_path / "tm-device.png") == (
+        width,
+        round(3 * replay_plots.DEVICE_ROW_HEIGHT_IN * 50),
+    )
+    # An existing plot is kept without --force, and nothing else is written.
+    out.unlink()
+    code = main([*argv, "--dpi", "50"])
+    one_line_error(capsys, code, "tm-clubs.png already exists: use --force")
+    assert not out.exists()
+    # mcrun plot of a replay's Parquet draws the same pictures, into -o.
+    assert main([*argv, "--force"]) == 0
+    capsys.readouterr()
+    assert main(["plot", str(out), "-o", str(tmp_path / "pics"), "--dpi", "50"]) == 0
+    stdout, _ = capsys.readouterr()
+    assert sorted(os.listdir(tmp_path / "pics")) == ["tm-clubs.png", "tm-device.png"]
+    assert stdout == "".join(f"wrote {tmp_path / 'pics' / n}\n" for n in sorted(os.listdir(
+        tmp_path / "pics")))  # fmt: skip
+
+
+def test_plot_of_a_session_without_device_or_clubs(tmp_path):
+    pytest.importorskip("matplotlib")
+    source = session(tmp_path / "session.csv")
+    frame = pd.read_csv(source).drop(columns="club")
+    frame.to_csv(source, index=False)
+    written = replay_plots.write_replay_plots(replay.replay(source), tmp_path / "r.parquet", dpi=40)
+    assert written == [tmp_path / "r-clubs.png"]  # one group, "all"; no device
+    png_size(written[0])
+
+
+def test_replay_plot_without_matplotlib_is_one_line_and_writes_nothing(
+    tmp_path, monkeypatch, capsys
+):
+    source = session(tmp_path / "session.csv")
+    for name in ("matplotlib", "matplotlib.figure", "matplotlib.backends.backend_agg"):
+        monkeypatch.setitem(sys.modules, name, None)
+    code = main(["replay", str(source), "-o", str(tmp_path / "r.parquet"), "--plot"])
+    one_line_error(capsys, code, "needs matplotlib", "pip install 'mcrun[plot]'")
+    assert os.listdir(tmp_path) == ["session.csv"]
