@@ -300,6 +300,19 @@ def surface(terrain, plane, x, y, z):
     return _surface(terrain, plane, x, y, z)
 
 
+def varies(terrain):
+    """Whether the ground changes from place to place (a grid), so that the shot loop must ask
+    it anew where the ball goes; a Plane does not."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(varies, inline="always")
+def _varies(terrain):
+    if _flat(terrain):
+        return lambda terrain: False
+    return lambda terrain: True
+
+
 def step_length(terrain):
     """The longest step (m) of a ball along the ground: a quarter of a cell of the grid, within
     which its slope changes little; no limit on a Plane."""

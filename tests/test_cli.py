@@ -17,7 +17,7 @@ import pandas as pd
 import pytest
 
 from mcrun import api, cli, status
-from mcrun.engine.schema import OUTCOME_FIELDS
+from mcrun.engine.schema import PLANE_FIELDS
 from mcrun.physics import aero, turf
 
 MPH = 0.44704  # m/s, exact
@@ -49,8 +49,8 @@ def table(text):
 
 def assert_outcome_equal(got, expected, rel=1e-9):
     """Every outcome field of ``got`` (from JSON: null for NaN) equals ``expected``."""
-    assert set(got) == set(OUTCOME_FIELDS) | {"status_name"}
-    for name in OUTCOME_FIELDS:
+    assert set(got) == set(PLANE_FIELDS) | {"status_name"}
+    for name in PLANE_FIELDS:
         want = expected[name]
         if isinstance(want, float) and math.isnan(want):
             assert got[name] is None, name
@@ -82,8 +82,8 @@ def test_shot_table_equals_api(capsys):
     assert code == 0 and err == ""
     rows = table(out)
     expected = api.simulate(**DRIVE_KWARGS).outcome
-    assert set(rows) == set(OUTCOME_FIELDS)
-    for name in OUTCOME_FIELDS:
+    assert set(rows) == set(PLANE_FIELDS)
+    for name in PLANE_FIELDS:
         if name == "status":
             assert rows[name] == "ok"
         else:

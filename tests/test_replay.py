@@ -14,7 +14,7 @@ import pytest
 
 from mcrun.api import simulate
 from mcrun.cli import main
-from mcrun.engine.schema import OUTCOME_FIELDS
+from mcrun.engine.schema import PLANE_FIELDS
 from mcrun.results import output
 from mcrun.run import replay
 from mcrun.status import INVALID_INPUT, OK
@@ -73,7 +73,7 @@ def assert_rows_equal_single_shots(frame, rel):
             continue
         want = single(row)
         assert got["status"] == OK == want["status"]
-        for name in OUTCOME_FIELDS:
+        for name in PLANE_FIELDS:
             if name in ("status", "launch_angle_deg"):
                 continue
             assert got[name] == pytest.approx(want[name], rel=rel, abs=0.0), (k, name)

@@ -16,8 +16,6 @@ so the results are the same bit for bit whatever the thread count or the order o
 Frames as in ``engine.shot``: user frame in and out, the core's (y to the LEFT) inside.
 """
 
-import math
-
 import numba
 import numpy as np
 from numba import njit, prange
@@ -588,20 +586,34 @@ def _lane_ground(b, k):
     )  # fmt: skip
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _ask_ground(b, k, terrain):
+    """Rows BNX.. and MU.. of bounce lane k: the normal and turf of the ground under its ball,
+    asked of a ground that varies (``ground.surface``, one look-up), before an impact."""
+    _, nx, ny, nz, turf, _, _ = ground.surface(
+        terrain, _lane_ground(b, k), b[BX * LANES + k], b[BY * LANES + k], b[BZ * LANES + k]
+    )
+    b[BNX * LANES + k] = nx
+    b[BNY * LANES + k] = ny
+    b[BNZ * LANES + k] = nz
+    for j, value in enumerate(turf):
+        b[(MU + j) * LANES + k] = value
+
+
 @njit(cache=True, error_model="numpy")
 def _impact_lanes(b, e, terrain):
     """One impact, and the hop it starts, for every bounce lane: ``bounce.impact`` in two
     vectorised loops (as ``step_lanes``, so that the lanes' long chains overlap), on the ground
     under the ball. Returns the number of lanes (empty ones included) whose ball no longer
     hops."""
+    if ground.varies(terrain):
+        for k in range(LANES):
+            _ask_ground(b, k, terrain)
     for k in range(LANES):
         under = _lane_ground(b, k)
-        x = b[BX * LANES + k]
-        y = b[BY * LANES + k]
-        nx, ny, nz = ground.normal_at(terrain, under, x, y)
         ex, ey, ez, vne, _ = incidence(
-            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], nx, ny, nz,
-            ground.turf_at(terrain, under, x, y),
+            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], under.nx, under.ny,
+            under.nz, under.turf,
         )  # fmt: skip
         e[EX * LANES + k] = ex
         e[EY * LANES + k] = ey
@@ -612,13 +624,13 @@ def _impact_lanes(b, e, terrain):
         under = _lane_ground(b, k)
         x = b[BX * LANES + k]
         y = b[BY * LANES + k]
-        nx, ny, nz = ground.normal_at(terrain, under, x, y)
+        nx, ny, nz = under.nx, under.ny, under.nz
         bounces = b[BOUNCES * LANES + k]
         vx, vy, vz, wx, wy, wz, height, hop_time, then = impact_rebound(
             b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BWX * LANES + k],
             b[BWY * LANES + k], b[BWZ * LANES + k], nx, ny, nz, e[EX * LANES + k],
             e[EY * LANES + k], e[EZ * LANES + k], e[VNE * LANES + k],
-            ground.turf_at(terrain, under, x, y), bounces, b[PREVIOUS * LANES + k],
+            under.turf, bounces, b[PREVIOUS * LANES + k],
         )  # fmt: skip
         x1, y1, z1, vz1, hop_time = ground.hop_landing(
             terrain, x, y, b[BZ * LANES + k], vx, vy, vz, hop_time
@@ -655,11 +667,10 @@ def _record_hop(b, k, before, traj, tracer, terrain):
     (its rows before the impact): the impact taken again (``bounce.impact``, the same
     numbers), then the ballistic arc every DT_RECORD up to the hop's end."""
     s = before
-    under = _lane_ground(b, k)
-    nx, ny, nz = ground.normal_at(terrain, under, s[BX], s[BY])
+    under = _lane_ground(b, k)  # (the ground where it hit: the impact does not change it)
     vx, vy, vz, _, _, _, _, _, _ = impact(
-        s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ], nx, ny, nz,
-        ground.turf_at(terrain, under, s[BX], s[BY]), s[BOUNCES], s[PREVIOUS],
+        s[BVX], s[BVY], s[BVZ], s[BWX], s[BWY], s[BWZ], under.nx, under.ny, under.nz,
+        under.turf, s[BOUNCES], s[PREVIOUS],
     )  # fmt: skip
     n = int(tracer[ROW])
     t = s[BT]
@@ -698,6 +709,7 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terr
 def _roll_lanes(r, terrain):
     """``roll.roll_out_short`` of every lane of the roll table ``r`` (the vectorised loop), on
     a Plane; on a terrain every ball rolls out on its own (``roll.roll_out``)."""
+    plane = not ground.varies(terrain)
     for k in range(LANES):
         under = _lane_ground(r, k)
         x = r[BX * LANES + k]
@@ -712,7 +724,7 @@ def _roll_lanes(r, terrain):
         r[REST_X * LANES + k] = x
         r[REST_Y * LANES + k] = y
         r[REST_T * LANES + k] = t
-        r[SHORT * LANES + k] = 1.0 if short & (ground.step_length(terrain) == math.inf) else 0.0
+        r[SHORT * LANES + k] = 1.0 if short & plane else 0.0
 
 
 @njit(cache=True, error_model="numpy")

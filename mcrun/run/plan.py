@@ -372,6 +372,7 @@ def provenance(the_plan, backend, versions, threads, **facts):
         "points": [p.label for p in points],
         "groups": [p.group for p in points],
         "models": _model_names(points),
+        "launch_fits": scenario_module.launch_fits(points),
         "versions": versions,
         "threads": threads,
         **facts,
