@@ -24,8 +24,11 @@ def _add_plot(subparsers):
         "the landing and final positions with the 68 % and 95 % ellipses and the target "
         "(pointNN-positions.png), histograms of carry, run and total (pointNN-distances.png), "
         "side and top views of sampled trajectories when the run wrote them "
-        "(pointNN-trajectories.png); for several points, the summary against the swept "
-        "parameter or per group (summary.png) and every point's finish (finish.png). Reads "
+        "(pointNN-trajectories.png); for a run on a hole, the hole map with the landing and "
+        "finish positions, the 50 % and 95 % ellipses of the finish, the pin, the aim line "
+        "and each zone's share (pointNN-hole.png); for several points, the summary against "
+        "the swept parameter or per group (summary.png) and every point's finish "
+        "(finish.png). Reads "
         "only the columns it draws, one point at a time: histograms and densities are "
         "binned over every shot, trajectories are the first of each point. Given a file written "
         "by 'mcrun replay' instead, its clubs and its model minus the device (as 'mcrun "
@@ -64,7 +67,8 @@ def _add_report(subparsers):
         "report",
         help="one self-contained HTML page of a finished run",
         description="Write one HTML page of a run folder written by 'mcrun run': the scenario, "
-        "the summary tables, the plots of 'mcrun plot' embedded as images, and the "
+        "the summary tables (on a hole, each zone's share first, and the map's "
+        "attribution), the plots of 'mcrun plot' embedded as images, and the "
         "provenance (seed, N, versions, times, threads, backend). Self-contained: inline CSS, "
         "no script, no external resource, for sharing a study with someone who will not run "
         "Python. Needs matplotlib (mcrun[plot]).",

@@ -1,7 +1,8 @@
 """``mcrun report RUN_DIR``: one self-contained HTML page of a finished run.
 
 The page holds the scenario (its TOML text, from the provenance), the summary tables (one row
-per point, the unit in each header), every plot of ``mcrun plot`` embedded as a PNG data URI,
+per point, the unit in each header; on a hole, each zone's share first and the map's
+attribution), every plot of ``mcrun plot`` embedded as a PNG data URI,
 and the provenance (seed, N, versions, times, threads, backend, the summary's conventions). Inline
 CSS, no script, no link to anything outside the page (its only links are to its own sections),
 so that it can be mailed to someone who will not run Python. The plots are drawn one at a time
@@ -17,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mcrun.report import hole_plots
 from mcrun.report.plots import (
     SCATTER_MAX_SHOTS,
     TRAJECTORIES_PER_POINT,
@@ -48,6 +50,7 @@ pre { background: #f7f7f7; border: 1px solid #ddd; padding: 0.8em; overflow-x: a
 figure { margin: 1.5em 0; } figure img { max-width: 100%; height: auto; border: 1px solid #eee; }
 figcaption { font-size: 0.9em; color: #444; } .wide { overflow-x: auto; }
 nav ul { columns: 2; } .small { font-size: 0.85em; color: #555; }
+.attribution { font-size: 0.9em; }
 """
 
 
@@ -66,9 +69,10 @@ def _num(value, spec):
     return format(value + 0.0, spec)
 
 
-def _table(caption, groups, rows, note=""):
+def _table(caption, groups, rows, note="", numeric_text=False):
     """An HTML table: ``groups`` [(group header, [(column header, key, format)])], ``rows``
-    dicts. A group header spans its columns (a quantity with its unit over its statistics)."""
+    dicts. A group header spans its columns (a quantity with its unit over its statistics).
+    ``numeric_text``: text cells after the first column are numbers already formatted."""
     two_rows = any(g for g, _ in groups)
     out = ['<div class="wide"><table>', f"<caption>{_esc(caption)}</caption>", "<thead><tr>"]
     for group, columns in groups:
@@ -86,13 +90,16 @@ def _table(caption, groups, rows, note=""):
     out.append("</thead><tbody>")
     for row in rows:
         out.append("<tr>")
+        first = True
         for _, columns in groups:
             for _, key, spec in columns:
                 value = row.get(key)
                 if spec is None:
-                    out.append(f'<td class="text">{_esc(value if value else "-")}</td>')
+                    kind = "num" if numeric_text and not first else "text"
+                    out.append(f'<td class="{kind}">{_esc(value if value else "-")}</td>')
                 else:
                     out.append(f'<td class="num">{_esc(_num(value, spec))}</td>')
+                first = False
         out.append("</tr>")
     out.append("</tbody></table></div>")
     if note:
@@ -111,13 +118,78 @@ def _stat_columns(name, mean_spec=".2f", percentiles=("p05", "p50", "p95")):
     return columns
 
 
+def zone_tables(run):
+    """A run on a hole: per point, the share of the shots that finish and land in each zone
+    with its 95 % interval (summary.parquet), and the attribution of the map; "" on a plane."""
+    if not hole_plots.is_hole_run(run):
+        return ""
+    out = []
+    for row in run.summary.to_dict("records"):
+        finish = {z: (p, lo, hi) for z, p, lo, hi in hole_plots.zone_shares(row, "finish")}
+        landing = {z: (p, lo, hi) for z, p, lo, hi in hole_plots.zone_shares(row, "landing")}
+        rows = []
+        for zone in hole_plots.ZONES:
+            if zone not in finish and zone not in landing:
+                continue
+            f = finish.get(zone, (math.nan,) * 3)
+            g = landing.get(zone, (math.nan,) * 3)
+            rows.append(
+                {
+                    "zone": zone.replace("_", " "),
+                    "finish": hole_plots.percent(f[0]),
+                    "finish_ci": hole_plots.interval(f[1], f[2]),
+                    "landing": hole_plots.percent(g[0]),
+                    "landing_ci": hole_plots.interval(g[1], g[2]),
+                }
+            )
+        n_landed = int(row.get("n_landed", row["n_shots"]))
+        point = f"point {int(row['point'])} ({row['label']}): " if run.points > 1 else ""
+        out.append(
+            _table(
+                f"{point}where the shots finish and land on the hole",
+                [
+                    ("", [("zone", "zone", None)]),
+                    (
+                        f"finish, of all {int(row['n_shots']):,} shots (%)",
+                        [("share", "finish", None), ("95 % interval", "finish_ci", None)],
+                    ),
+                    (
+                        f"landing, of the {n_landed:,} that landed (%)",
+                        [("share", "landing", None), ("95 % interval", "landing_ci", None)],
+                    ),
+                ],
+                rows,
+                numeric_text=True,
+            )
+        )
+    out.append(
+        '<p class="small">Intervals: Wilson 95 %. A shot that lands or rolls into a penalty area '
+        "or out of bounds ends there, in that zone; off map: it left the hole's grid.</p>"
+    )
+    out.append(_attribution(run))
+    return "\n".join(out)
+
+
+def _attribution(run):
+    text = hole_plots.attribution_of(run)
+    if not text:
+        return ""
+    hole, _, reason = hole_plots.hole_of(run)
+    source = f" ({Path(hole.map_source).name})" if hole is not None and hole.map_source else ""
+    line = f'<p class="attribution">Map data{_esc(source)}: {_esc(text)}.</p>'
+    if reason:
+        line += f'<p class="small">The hole map could not be rebuilt: {_esc(reason)}</p>'
+    return line
+
+
 def summary_tables(run):
-    """The summary as HTML tables, one row per point, the unit in each header."""
+    """The summary as HTML tables, one row per point, the unit in each header; a run on a
+    hole first, its zone shares."""
     rows = run.summary.to_dict("records")
     for row in rows:
         row["ok_of_shots"] = f"{int(row['n_ok']):,} / {int(row['n_shots']):,}"
     head = [g for g in (_point_columns(run),) if g]
-    tables = []
+    tables = [zone_tables(run)] if hole_plots.is_hole_run(run) else []
     tables.append(
         _table(
             "Distances along the target line: mean, standard deviation and percentiles over "
@@ -322,6 +394,11 @@ def report_html(run, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER_MAX_SHOTS):
         "histograms count every ok shot; trajectories are the first "
         f"{TRAJECTORIES_PER_POINT} paths of each point in trajectories.parquet."
     )
+    if hole_plots.is_hole_run(run):
+        how += (
+            " The hole maps draw the first "
+            f"{hole_plots.HOLE_DOTS_PER_POINT:,} shots of each point that reached the ground."
+        )
     title = f"mcrun report: {run.name}"
     parts = [
         "<!DOCTYPE html>",
@@ -346,6 +423,7 @@ def report_html(run, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER_MAX_SHOTS):
         '<h2 id="plots">Plots</h2>',
         f'<p class="small">{_esc(how)}</p>',
         *figures_html,
+        _attribution(run) if hole_plots.is_hole_run(run) else "",
         '<h2 id="scenario">Scenario</h2>',
         f"<p>{_esc(p.get('scenario_path', ''))}</p>",
         f"<pre>{_esc(p.get('scenario_text', ''))}</pre>",

@@ -11,6 +11,9 @@ read through ``mcrun.results.reader``):
   95 % percentiles of summary.parquet.
 - ``pointNN-trajectories.png`` (when the run wrote trajectories.parquet): a side view (height
   against downrange) and a top view (lateral against downrange) of sampled paths.
+- ``pointNN-hole.png`` (a run on a hole): the hole map with the landing and finish positions,
+  the 50 % and 95 % ellipses of the finish, the pin, the aim line and each zone's share
+  (``mcrun.report.hole_plots``).
 - for a run of several points (a sweep or groups): ``summary.png``, the summary statistics
   against the swept parameter or per group (means with 5-95 % bars), and ``finish.png``, the
   mean finish and 95 % ellipse of every point on one top view.
@@ -75,6 +78,7 @@ FIGURE_SIZES_IN = {
     "trajectories": (11.0, 7.5),
     "summary": (12.0, 8.5),
     "finish": (9.0, 8.5),
+    "hole": (12.0, 9.0),
 }
 
 FLIGHT_COLOUR = "#1f77b4"
@@ -116,6 +120,9 @@ class Run:
     folder: reader.RunFolder
     summary: pd.DataFrame
     sweep_keys: list
+    # A run on a hole: (hole, aim azimuth rad, reason it could not be rebuilt), once
+    # ``hole_plots.hole_of`` has read it.
+    hole_state: tuple | None = None
 
     @property
     def path(self):
@@ -940,6 +947,9 @@ def figures(run, scatter_max=SCATTER_MAX_SHOTS, trajectories_per_point=TRAJECTOR
     """The plots of a run, one at a time: (file stem, caption, Figure). Reads one point at a
     time; the figures are not kept."""
     require_matplotlib()
+    from mcrun.report import hole_plots
+
+    on_hole = hole_plots.is_hole_run(run)
     if run.points > 1:
         x_label, _, _, _ = sweep_layout(run)
         per = "per group" if x_label == "group" else f"against {x_label}"
@@ -976,6 +986,16 @@ def figures(run, scatter_max=SCATTER_MAX_SHOTS, trajectories_per_point=TRAJECTOR
             "with the mean and the 5 % and 95 % percentiles.",
             distances_figure(run, row, shots),
         )
+        if on_hole:
+            sample = hole_plots.read_hole_shots(run, point)
+            yield (
+                f"{stem}-hole",
+                f"{label}the hole map with the landing and finish positions of the first "
+                f"{len(sample['status']):,} shots, the 50 % and 95 % ellipses of the finish, "
+                "the pin and the aim line, and the share of the shots that finish and land in "
+                "each zone with its 95 % interval.",
+                hole_plots.hole_figure(run, row, sample),
+            )
         if run.has_trajectories:
             paths = sample_trajectories(run, point, trajectories_per_point)
             if paths:
