@@ -387,6 +387,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
         if fa <= 0.0:
             return x, y, z, vz, 0.0
     side = 0
+    t = b
     for _ in range(100):
         t = (a * fb - b * fa) / (fb - fa)
         ft = gap(t)
@@ -401,8 +402,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
                 fa *= 0.5
             side = -1
         if abs(ft) < HOP_GAP_TOLERANCE_M or b - a < 1e-12:
-            break
-    t = b
+            break  # at t, the last estimate
     return x + vx * t, y + vy * t, _grid_height(terrain, x + vx * t, y + vy * t), vz - G_MPS2 * t, t
 
 

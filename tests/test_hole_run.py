@@ -1,0 +1,178 @@
+"""Runs on a hole: a scenario's ``[hole]``, the shots' zones, positions and distances, the
+summary's zone shares, the aim, and the mistakes a user can make in the table."""
+
+import math
+import re
+import textwrap
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from mcrun.cli import main
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.schema import OUTCOME_FIELDS
+from mcrun.results import on_hole
+from mcrun.run import local, sampling
+from mcrun.run import scenario as sc
+from mcrun.run.scenario import ScenarioError
+
+LIBRARY = sc.library_folder()
+
+LAUNCH = """
+[launch]
+ball_speed = { dist = "normal", mean = "127 mph", sd = "1.1 mph" }
+launch_angle = { dist = "normal", mean = "14.1 deg", sd = "1.2 deg" }
+spin = { dist = "normal", mean = "6231 rpm", sd = "440 rpm" }
+spin_axis = { dist = "normal", mean = "0 deg", sd = "2.5 deg" }
+azimuth = { dist = "normal", mean = "0 deg", sd = "1.2 deg" }
+"""
+
+
+def scenario_file(tmp_path, hole, extra=""):
+    path = tmp_path / "s.toml"
+    path.write_text(textwrap.dedent(hole) + LAUNCH + textwrap.dedent(extra))
+    return path
+
+
+@pytest.fixture(scope="module")
+def par3(tmp_path_factory):
+    """The library's par 3 over water, 3,000 shots."""
+    out = tmp_path_factory.mktemp("par3") / "run"
+    result = local.run_scenario("par3-over-water", n=3000, out_dir=out, progress=False)
+    return result.shots(), result.summary(), sc.load(LIBRARY / "par3-over-water.toml").hole
+
+
+def test_wilson_interval():
+    """Wilson's score interval at 95 %: 50 of 100 gives 0.5 -/+ 0.0962 (z = 1.96: centre
+    0.5, half-width z sqrt(p(1-p)/n + z^2/4n^2) / (1 + z^2/n)); 0 of 100 gives [0, z^2 / (n + z^2)] = [0, 3.699 %]."""
+    lo, hi = on_hole.wilson(50, 100)
+    assert lo == pytest.approx(0.40383, abs=1e-5) and hi == pytest.approx(0.59617, abs=1e-5)
+    lo, hi = on_hole.wilson(0, 100)
+    assert lo == pytest.approx(0.0, abs=1e-15) and hi == pytest.approx(0.036993, abs=1e-6)
+
+
+def test_zone_shares_are_the_shots_counts(par3):
+    """The summary's share of each zone is the count of shots.parquet's zone column over the
+    shots that landed, and its interval is Wilson's of that count."""
+    shots, summary, _ = par3
+    row = summary.iloc[0]
+    landed = shots["landing_zone"].notna().sum()
+    assert row["n_landed"] == landed == len(shots)
+    for which in ("landing", "finish"):
+        counts = shots[f"{which}_zone"].value_counts()
+        for zone in on_hole.ZONE_NAMES:
+            k = int(counts.get(zone, 0))
+            assert row[f"p_{which}_{zone}"] == k / landed, (which, zone)
+            lo, hi = on_hole.wilson(k, landed)
+            assert row[f"p_{which}_{zone}_lo95"] == lo and row[f"p_{which}_{zone}_hi95"] == hi
+    assert 0.5 < row["p_finish_green"] < 0.95  # a tour 6-iron at a 168 m green
+
+
+def test_shot_columns_on_a_hole(par3):
+    """Each shot's zones are the terrain's at its landing and finish; its distance to the pin
+    and its lon/lat follow from its finish in the hole's frame; the summary's target is the
+    pin, its distance percentiles are the pin distances'."""
+    shots, summary, hole = par3
+    x, y = shots["final_x_m"].to_numpy(), shots["final_y_m"].to_numpy()
+    zones = np.array(on_hole.ZONE_NAMES)[np.where((z := hole.zone_at(x, y)) < 0, 8, z)]
+    assert (shots["finish_zone"].astype(str).to_numpy() == zones).all()
+    landing = hole.zone_at(shots["carry_m"].to_numpy(), shots["carry_lateral_m"].to_numpy())
+    assert (
+        shots["landing_zone"].astype(str).to_numpy() == np.array(on_hole.ZONE_NAMES)[landing]
+    ).all()
+    px, py = hole.pin_xy
+    np.testing.assert_array_equal(shots["pin_distance_m"], np.hypot(x - px, y - py))
+    lon, lat = hole.frame.to_lonlat(x, y)
+    np.testing.assert_array_equal(shots["final_lon_deg"], lon)
+    np.testing.assert_array_equal(shots["final_lat_deg"], lat)
+    # Back to the frame within a micrometre (the projection's round trip).
+    bx, by = hole.frame.to_xy(lon, lat)
+    assert np.max(np.hypot(bx - x, by - y)) < 1e-6
+    row = summary.iloc[0]
+    assert (row["target_x_m"], row["target_y_m"]) == pytest.approx((px, py), abs=1e-9)
+    ok = shots["status_name"] == "ok"
+    assert row["distance_r50_m"] == pytest.approx(
+        np.quantile(shots.loc[ok, "pin_distance_m"], 0.5), abs=0.01
+    )
+    # Flat ground: every ball ends at the tee's height.
+    assert np.abs(shots.loc[ok, "final_z_m"]).max() == 0.0
+
+
+def test_a_flat_hole_of_one_turf_is_the_plane(tmp_path):
+    """A hole without a map, flat and all fairway, gives the plane model's shots with the
+    fairway preset: the same carry, bounces and finish within a millimetre."""
+    hole = """
+    [hole]
+    length_m = 170.0
+    width_m = 120.0
+    surface = "fairway"
+    """
+    s_hole = sc.load(scenario_file(tmp_path, hole))
+    s_plane = sc.loads(LAUNCH + '\n[turf]\npreset = "fairway"\n', tmp_path / "p.toml")
+    inputs, _ = sampling.sample(s_hole, s_hole.points[0], 0, 400)
+    plane_inputs, _ = sampling.sample(s_plane, s_plane.points[0], 0, 400)
+    # The same shots (the turf columns differ: on a hole the zones' turf is used).
+    np.testing.assert_array_equal(inputs[:, :5], plane_inputs[:, :5])
+    on_hole_out = simulate_batch(inputs, terrain=s_hole.hole.terrain())
+    on_plane = simulate_batch(plane_inputs)
+    k = {name: i for i, name in enumerate(OUTCOME_FIELDS)}
+    for name in ("carry_m", "carry_lateral_m", "final_x_m", "final_y_m", "total_m"):
+        assert np.max(np.abs(on_hole_out[:, k[name]] - on_plane[:, k[name]])) < 1e-3, name
+    assert (on_hole_out[:, k["bounces"]] == on_plane[:, k["bounces"]]).all()
+
+
+def test_the_aim_turns_every_shot(tmp_path):
+    """``aim`` = [x, y] turns the shots' start line towards it: the mean finish lies on the
+    line from the tee through the aim point (within 1 % of the lateral offset), where without
+    an aim it is on the line to the pin."""
+    hole = """
+    [hole]
+    length_m = 170.0
+    width_m = 120.0
+    surface = "fairway"
+    aim = [160.0, -12.0]
+    """
+    shots, _ = local.run_dataframes(scenario_file(tmp_path, hole), n=2000)
+    x, y = shots["final_x_m"].mean(), shots["final_y_m"].mean()
+    assert y / x == pytest.approx(-12.0 / 160.0, rel=0.05)
+
+
+@pytest.mark.parametrize(
+    "hole, extra, message",
+    [
+        ("[hole]\nlength_m = 150.0\nwidth_m = 60.0\n", '[turf]\npreset = "green"\n', "turf: on a hole each zone"),
+        ("[hole]\nlength_m = 150.0\nwidth_m = 60.0\naim = [-5.0, 0.0]\n", "", "hole.aim: must be [x_m, y_m]"),
+        ('[hole]\nlength_m = 150.0\nwidth_m = 60.0\naim = "pin"\n', "", "hole.aim: must be [x_m, y_m]"),
+        ('[hole]\nfile = "nowhere.toml"\n', "", "hole.file: cannot read"),
+        ("[hole]\nlength_m = 150.0\nwidth_m = 60.0\nbogus = 1\n", "", "unknown key 'bogus'"),
+        ('[hole]\nmap = "missing.geojson"\nhole = 1\n', "", "missing.geojson"),
+    ],
+)
+def test_bad_hole_tables_give_one_line(tmp_path, capsys, hole, extra, message):
+    """Each mistake in ``[hole]`` is one line naming the file and the key, exit 2, and the
+    run writes nothing."""
+    path = scenario_file(tmp_path, hole, extra)
+    with pytest.raises(ScenarioError, match=re.escape(message)):
+        sc.load(path)
+    out = tmp_path / "run"
+    assert main(["run", str(path), "-n", "10", "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and err.startswith("mcrun: error:") and message in err
+    assert str(path) in err
+    assert not out.exists()
+
+
+def test_every_library_hole_scenario_loads():
+    """The library's hole scenarios load, with their holes' pins on a green."""
+    for name in ("par3-over-water", "par4-tee-shot", "wedge-two-tier-firm", "wedge-two-tier-soft"):
+        s = sc.load(LIBRARY / f"{name}.toml")
+        hole = s.hole
+        x, y = hole.pin_xy
+        assert on_hole.ZONE_NAMES[hole.zone_at(x, y)] == "green", name
+        assert math.isfinite(s.aim_rad)
+
+
+def test_hole_shots_read_in_pandas_as_categories(par3):
+    shots, _, _ = par3
+    assert isinstance(shots["finish_zone"].dtype, pd.CategoricalDtype)
