@@ -174,6 +174,33 @@ def _onto_plane(x, y, z, nx, ny, nz):
     return x * k, y * k, z * k
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _climbed(vx, vy, vz, dz):
+    """The velocity of a rolling ball whose step along the tangent plane ended dz (m) below
+    the ground, where it is put: its kinetic energy (7/10) v^2 pays for the height, so that
+    the step conserves (7/10) v^2 + g z as the ground's curvature would (zero if it cannot)."""
+    v2 = vx * vx + vy * vy + vz * vz
+    left = v2 - (10.0 / 7.0) * G_MPS2 * dz
+    k = math.sqrt(left / v2) if (left > 0.0) & (v2 > 0.0) else 0.0
+    return vx * k, vy * k, vz * k
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _turned(vx, vy, vz, dgx, dgy, dgz, h):
+    """The velocity at the end of a roll step of h (s) that held the acceleration of its
+    start, where gravity along the ground changed by dg over it: turned by the mean of that
+    change, (5/7) dg h / 2 (the trapezoid rule, which makes the direction second order), its
+    length kept (``_climbed`` gives it)."""
+    m0 = math.sqrt(vx * vx + vy * vy + vz * vz)
+    c = (5.0 / 14.0) * h
+    x = vx + c * dgx
+    y = vy + c * dgy
+    z = vz + c * dgz
+    m1 = math.sqrt(x * x + y * y + z * z)
+    k = m0 / m1 if m1 > 0.0 else 0.0
+    return x * k, y * k, z * k
+
+
 @njit(cache=True, error_model="numpy")
 def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, n, t_next,
          dt_record):  # fmt: skip
@@ -269,10 +296,15 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         pz, mx, my, mz, under, state, ds = surface(terrain, plane, px, py, pz)
         if state != OK:
             return px, py, pz, t, state, n, qx, qy
+        if pz != z1:  # on a terrain: the ground is put under the ball again
+            vx, vy, vz = _climbed(vx, vy, vz, pz - z1)
         if (mx != nx) | (my != ny) | (mz != nz) | (under.rho_g != turf.rho_g):
             nx, ny, nz = mx, my, mz
+            g_n, gx1, gy1, gz1, g_t, h_max, snap = plane_gravity(nx, ny, nz)
+            if not done:
+                vx, vy, vz = _turned(vx, vy, vz, gx1 - gx, gy1 - gy, gz1 - gz, h)
+            gx, gy, gz = gx1, gy1, gz1
             vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
-            g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
             snap = (5.0 / 7.0) * snap
             turf = under
             k_roll = turf.rho_g * g_n
