@@ -24,7 +24,7 @@ import pytest
 from mcrun.api import simulate
 from mcrun.cli import main
 from mcrun.engine import batch
-from mcrun.engine.schema import OUTCOME_FIELDS
+from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
 from mcrun.results import output, stats
 from mcrun.run import local as run
 from mcrun.status import INVALID_INPUT, OK
@@ -315,7 +315,8 @@ def test_shots_parquet_layout(drive):
     assert f.metadata.row_group(0).column(0).compression == "ZSTD"
     schema = f.schema_arrow
     assert schema.names[:4] == ["point", "group", "label", "shot"]
-    assert set(OUTCOME_FIELDS) <= set(schema.names)
+    assert set(PLANE_FIELDS) <= set(schema.names)
+    assert not set(HOLE_FIELDS) & set(schema.names)  # a run on a plane leaves them out
     assert schema.field("status").type == pa.int8()
     assert schema.field("bounces").type == pa.int32()
     shots = result.shots()
@@ -410,7 +411,7 @@ def test_penner_fig4_scenario_equals_single_shots(tmp_path, source, air):
         rows = shots[shots["point"] == point]
         assert len(rows) == 3
         for _, row in rows.iterrows():
-            for name in OUTCOME_FIELDS:
+            for name in PLANE_FIELDS:
                 if name == "launch_angle_deg":
                     assert row[name] == pytest.approx(single.outcome[name], rel=1e-12)
                 else:

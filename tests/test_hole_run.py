@@ -141,9 +141,21 @@ def test_the_aim_turns_every_shot(tmp_path):
 @pytest.mark.parametrize(
     "hole, extra, message",
     [
-        ("[hole]\nlength_m = 150.0\nwidth_m = 60.0\n", '[turf]\npreset = "green"\n', "turf: on a hole each zone"),
-        ("[hole]\nlength_m = 150.0\nwidth_m = 60.0\naim = [-5.0, 0.0]\n", "", "hole.aim: must be [x_m, y_m]"),
-        ('[hole]\nlength_m = 150.0\nwidth_m = 60.0\naim = "pin"\n', "", "hole.aim: must be [x_m, y_m]"),
+        (
+            "[hole]\nlength_m = 150.0\nwidth_m = 60.0\n",
+            '[turf]\npreset = "green"\n',
+            "turf: on a hole each zone",
+        ),
+        (
+            "[hole]\nlength_m = 150.0\nwidth_m = 60.0\naim = [-5.0, 0.0]\n",
+            "",
+            "hole.aim: must be [x_m, y_m]",
+        ),
+        (
+            '[hole]\nlength_m = 150.0\nwidth_m = 60.0\naim = "pin"\n',
+            "",
+            "hole.aim: must be [x_m, y_m]",
+        ),
         ('[hole]\nfile = "nowhere.toml"\n', "", "hole.file: cannot read"),
         ("[hole]\nlength_m = 150.0\nwidth_m = 60.0\nbogus = 1\n", "", "unknown key 'bogus'"),
         ('[hole]\nmap = "missing.geojson"\nhole = 1\n', "", "missing.geojson"),

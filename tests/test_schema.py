@@ -12,7 +12,7 @@ from mcrun.engine.schema import (
     INPUT_DEFAULTS,
     INPUT_FIELDS,
     N_INPUT,
-    OUTCOME_FIELDS,
+    PLANE_FIELDS,
     encode_outcomes,
     outcome_record,
     pack,
@@ -84,7 +84,7 @@ def _ok_and_invalid():
 
 def test_encode_outcomes_types_and_masks():
     encoded = encode_outcomes(_ok_and_invalid())
-    assert list(encoded) == list(OUTCOME_FIELDS)
+    assert list(encoded) == list(PLANE_FIELDS)
     bounces, missing = encoded["bounces"]
     assert bounces.dtype == np.int32 and list(missing) == [False, True] and bounces[1] == 0
     assert bounces[0] >= 1
