@@ -521,11 +521,11 @@ def interrupt_on_second_chunk(monkeypatch):
     real = batch.simulate_batch
     calls = []
 
-    def flaky(inputs, out=None):
+    def flaky(inputs, out=None, **kwargs):
         calls.append(len(inputs))
         if len(calls) == 2:
             raise KeyboardInterrupt
-        return real(inputs, out)
+        return real(inputs, out, **kwargs)
 
     monkeypatch.setattr(run, "simulate_batch", flaky)
     return calls

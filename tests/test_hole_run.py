@@ -45,7 +45,8 @@ def par3(tmp_path_factory):
 
 def test_wilson_interval():
     """Wilson's score interval at 95 %: 50 of 100 gives 0.5 -/+ 0.0962 (z = 1.96: centre
-    0.5, half-width z sqrt(p(1-p)/n + z^2/4n^2) / (1 + z^2/n)); 0 of 100 gives [0, z^2 / (n + z^2)] = [0, 3.699 %]."""
+    0.5, half-width z sqrt(p(1-p)/n + z^2/4n^2) / (1 + z^2/n)); 0 of 100 gives
+    [0, z^2 / (n + z^2)] = [0, 3.699 %]."""
     lo, hi = on_hole.wilson(50, 100)
     assert lo == pytest.approx(0.40383, abs=1e-5) and hi == pytest.approx(0.59617, abs=1e-5)
     lo, hi = on_hole.wilson(0, 100)
@@ -138,6 +139,9 @@ def test_the_aim_turns_every_shot(tmp_path):
     assert y / x == pytest.approx(-12.0 / 160.0, rel=0.05)
 
 
+RECTANGLE = "[hole]\nlength_m = 150.0\nwidth_m = 60.0\n"
+
+
 @pytest.mark.parametrize(
     "hole, extra, message",
     [
@@ -157,7 +161,7 @@ def test_the_aim_turns_every_shot(tmp_path):
             "hole.aim: must be [x_m, y_m]",
         ),
         ('[hole]\nfile = "nowhere.toml"\n', "", "hole.file: cannot read"),
-        ("[hole]\nlength_m = 150.0\nwidth_m = 60.0\nbogus = 1\n", "", "unknown key 'bogus'"),
+        (RECTANGLE + "bogus = 1\n", "", "unknown key 'bogus'"),
         ('[hole]\nmap = "missing.geojson"\nhole = 1\n', "", "missing.geojson"),
     ],
 )

@@ -344,7 +344,10 @@ def test_a_failed_run_keeps_the_flight():
 
     out = np.zeros((1, schema.N_OUTCOME))
     shot.write_landing(out, 0, 230.0, -4.0, 6.5, 30.0, 27.8, 50.3, 221.0)
-    shot.write_run(out, 0, 230.0, 260.0, -5.0, 14.0, status.TOO_MANY_BOUNCES, 1000, 1.8, 6.0)
+    shot.write_run(
+        out, 0, 230.0, 260.0, -5.0, 0.0, 14.0, status.TOO_MANY_BOUNCES, 1000, 1.8, 6.0, np.nan,
+        np.nan,
+    )  # fmt: skip
     row = dict(zip(schema.OUTCOME_FIELDS, out[0], strict=True))
     assert row["status"] == status.TOO_MANY_BOUNCES
     assert (row["carry_m"], row["carry_lateral_m"], row["landing_speed_mps"]) == (230.0, 4.0, 27.8)

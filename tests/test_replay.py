@@ -106,7 +106,9 @@ def test_cli_replay_writes_parquet_with_provenance(tmp_path, capsys):
     assert meta["file"] == "replay" and meta["source_path"] == str(source) and meta["n"] == 5
     assert meta["conditions"]["aero_model"] == "penner2002"
     assert meta["versions"] == output.versions()
-    assert sorted(os.listdir(tmp_path)) == ["replayed.parquet", "session.csv"]
+    assert sorted(os.listdir(tmp_path)) == [
+        "replayed-clubs.csv", "replayed-device.csv", "replayed.parquet", "session.csv"
+    ]  # fmt: skip
 
 
 def test_replay_bad_inputs_exit_2_and_write_nothing(tmp_path, capsys):

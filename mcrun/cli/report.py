@@ -2,7 +2,7 @@
 and its self-contained HTML page (``mcrun.report.html``)."""
 
 from mcrun.cli.options import DPI_RANGE, dpi_value
-from mcrun.report import html, plots, replay_plots
+from mcrun.report import hole_plots, html, plots, replay_plots
 
 
 def _cmd_plot(args):
@@ -10,7 +10,9 @@ def _cmd_plot(args):
         for path in replay_plots.plot_replay_file(args.run_dir, args.out, args.dpi):
             print(f"wrote {path}")
         return 0
-    written = plots.write_plots(args.run_dir, args.out, args.dpi)
+    written = plots.write_plots(
+        args.run_dir, args.out, args.dpi, point_figures=hole_plots.point_figures
+    )
     for path, _ in written:
         print(f"wrote {path}")
     return 0

@@ -448,3 +448,18 @@ def _shares_table(ax, row):
         va="bottom",
         color="0.3",
     )
+
+
+def point_figures(run, row, label, stem):
+    """The hole's figure of a point (``plots.figures``' ``point_figures``): none on a plane."""
+    if not is_hole_run(run):
+        return
+    sample = read_hole_shots(run, int(row["point"]))
+    yield (
+        f"{stem}-hole",
+        f"{label}the hole map with the landing and finish positions of the first "
+        f"{len(sample['status']):,} shots, the 50 % and 95 % ellipses of the finish, "
+        "the pin and the aim line, and the share of the shots that finish and land in "
+        "each zone with its 95 % interval.",
+        hole_figure(run, row, sample),
+    )

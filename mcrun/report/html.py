@@ -370,7 +370,7 @@ def report_html(run, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER_MAX_SHOTS):
     """The report of an open run: one self-contained HTML page (str)."""
     p = run.provenance
     figures_html = []
-    for stem, caption, fig in figures(run, scatter_max):
+    for stem, caption, fig in figures(run, scatter_max, point_figures=hole_plots.point_figures):
         data = base64.b64encode(png_bytes(fig, dpi)).decode("ascii")
         figures_html.append(
             f'<figure id="plot-{_esc(stem)}"><img alt="{_esc(stem)}" '

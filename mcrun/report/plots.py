@@ -943,13 +943,16 @@ def _point_name(run, point):
     return f"point{point:0{width}d}"
 
 
-def figures(run, scatter_max=SCATTER_MAX_SHOTS, trajectories_per_point=TRAJECTORIES_PER_POINT):
+def figures(
+    run,
+    scatter_max=SCATTER_MAX_SHOTS,
+    trajectories_per_point=TRAJECTORIES_PER_POINT,
+    point_figures=None,
+):
     """The plots of a run, one at a time: (file stem, caption, Figure). Reads one point at a
-    time; the figures are not kept."""
+    time; the figures are not kept. ``point_figures(run, row, label, stem)``: more figures
+    of each point, after its distances (``hole_plots.point_figures``, the hole's map)."""
     require_matplotlib()
-    from mcrun.report import hole_plots
-
-    on_hole = hole_plots.is_hole_run(run)
     if run.points > 1:
         x_label, _, _, _ = sweep_layout(run)
         per = "per group" if x_label == "group" else f"against {x_label}"
@@ -986,16 +989,8 @@ def figures(run, scatter_max=SCATTER_MAX_SHOTS, trajectories_per_point=TRAJECTOR
             "with the mean and the 5 % and 95 % percentiles.",
             distances_figure(run, row, shots),
         )
-        if on_hole:
-            sample = hole_plots.read_hole_shots(run, point)
-            yield (
-                f"{stem}-hole",
-                f"{label}the hole map with the landing and finish positions of the first "
-                f"{len(sample['status']):,} shots, the 50 % and 95 % ellipses of the finish, "
-                "the pin and the aim line, and the share of the shots that finish and land in "
-                "each zone with its 95 % interval.",
-                hole_plots.hole_figure(run, row, sample),
-            )
+        if point_figures is not None:
+            yield from point_figures(run, row, label, stem)
         if run.has_trajectories:
             paths = sample_trajectories(run, point, trajectories_per_point)
             if paths:
@@ -1028,14 +1023,16 @@ def _writable_folder(out_dir):
     return out_dir
 
 
-def write_plots(run_dir, out_dir=None, dpi=DEFAULT_PLOT_DPI, scatter_max=SCATTER_MAX_SHOTS):
+def write_plots(
+    run_dir, out_dir=None, dpi=DEFAULT_PLOT_DPI, scatter_max=SCATTER_MAX_SHOTS, point_figures=None
+):
     """Write the PNGs of a run folder into ``out_dir`` (default RUN_DIR/plots); return
-    [(path, caption)]."""
+    [(path, caption)]. ``point_figures``: as ``figures``."""
     run = open_run(run_dir)
     require_matplotlib()
     out_dir = _writable_folder(run.beside(PLOTS_FOLDER) if out_dir is None else out_dir)
     written = []
-    for stem, caption, fig in figures(run, scatter_max):
+    for stem, caption, fig in figures(run, scatter_max, point_figures=point_figures):
         path = out_dir / f"{stem}.png"
         try:
             path.write_bytes(png_bytes(fig, dpi))
