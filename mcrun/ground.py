@@ -46,6 +46,74 @@ class Terrain(NamedTuple):
     zone: np.ndarray  # (ny, nx) int8: a row of ``turf`` and ``penalty``
     turf: np.ndarray  # (n_zones, len(Turf._fields)) float64: each zone's Turf, in its order
     penalty: np.ndarray  # (n_zones,) int8: IN_PLAY, PENALTY_AREA or OUT_OF_BOUNDS
+    calm: np.ndarray  # (ny - 1, nx - 1) uint8: ``calm_cells`` of each cell
+
+
+# The longest calm reach ``calm_cells`` looks for, in cells.
+MAX_CALM_CELLS = 32
+
+
+def calm_cells(height_m, zone, max_cells=MAX_CALM_CELLS):
+    """For each cell of the grid, how many cells around it (in every direction) are the same
+    plane and the same zone: (ny - 1, nx - 1) uint8, up to ``max_cells``.
+
+    A cell is "plain" when its four nodes lie in a plane (its bilinear surface is flat, of one
+    gradient) and have one zone; a plain cell has calm reach r when every cell within r cells
+    of it is plain with the same gradient and zone. A ball within a cell of reach r can go r
+    cells in any direction on one plane of one turf, where a step of the roll or a hop is
+    exact: the shot loop takes steps that long there (``surface``, ``_grid_hop``) and short
+    ones (a quarter of a cell) where the ground bends or the zone changes. The numbers are the
+    same either way, to rounding, as on the slope model's plane.
+    """
+    h = np.asarray(height_m, dtype=float)
+    z = np.asarray(zone)
+    h00, h10, h01, h11 = h[:-1, :-1], h[:-1, 1:], h[1:, :-1], h[1:, 1:]
+    gx = h10 - h00
+    gy = h01 - h00
+    scale = np.maximum(np.abs(h).max(), 1.0)
+    plain = (np.abs(h11 - h10 - h01 + h00) <= 1e-12 * scale) & (
+        (z[:-1, :-1] == z[:-1, 1:]) & (z[:-1, :-1] == z[1:, :-1]) & (z[:-1, :-1] == z[1:, 1:])
+    )
+    key_z = z[:-1, :-1]
+    reach = np.zeros(plain.shape, dtype=np.uint8)
+    alive = plain.copy()
+    for r in range(1, max_cells + 1):
+        # Reach r: reach r - 1, and every neighbour has reach r - 1 with the same plane.
+        ok = alive.copy()
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                if dx == 0 and dy == 0:
+                    continue
+                same = np.zeros(plain.shape, dtype=bool)
+                ys = slice(max(dy, 0), plain.shape[0] + min(dy, 0))
+                xs = slice(max(dx, 0), plain.shape[1] + min(dx, 0))
+                yd = slice(max(-dy, 0), plain.shape[0] + min(-dy, 0))
+                xd = slice(max(-dx, 0), plain.shape[1] + min(-dx, 0))
+                same[yd, xd] = (
+                    alive[ys, xs]
+                    & (np.abs(gx[ys, xs] - gx[yd, xd]) <= 1e-12 * scale)
+                    & (np.abs(gy[ys, xs] - gy[yd, xd]) <= 1e-12 * scale)
+                    & (key_z[ys, xs] == key_z[yd, xd])
+                )
+                ok &= same
+        if not ok.any():
+            break
+        reach[ok] = r
+        alive = ok
+    return reach
+
+
+def make_terrain(x0_m, y0_m, cell_m, height_m, zone, turf, penalty):
+    """The Terrain of these arrays (see ``Terrain``), with its ``calm_cells``."""
+    height_m = np.ascontiguousarray(height_m, dtype=np.float64)
+    zone = np.ascontiguousarray(zone, dtype=np.int8)
+    if height_m.ndim != 2 or height_m.shape != zone.shape or min(height_m.shape) < 2:
+        raise ValueError("a terrain needs heights and zones on one grid of at least 2 x 2 nodes")
+    return Terrain(
+        float(x0_m), float(y0_m), float(cell_m), height_m, zone,
+        np.ascontiguousarray(turf, dtype=np.float64), np.ascontiguousarray(penalty, np.int8),
+        calm_cells(height_m, zone),
+    )  # fmt: skip
 
 
 class Plane(NamedTuple):
@@ -276,7 +344,7 @@ def _grid_surface(terrain, plane, x, y, z):
         state = OUT_OF_BOUNDS_STATUS
     return (
         height, -hx * k, -hy * k, k, Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]),
-        state, 0.25 * terrain.cell_m,
+        state, max(0.25, float(terrain.calm[iy, ix])) * terrain.cell_m,
     )  # fmt: skip
 
 
@@ -314,8 +382,9 @@ def _varies(terrain):
 
 
 def step_length(terrain):
-    """The longest step (m) of a ball along the ground: a quarter of a cell of the grid, within
-    which its slope changes little; no limit on a Plane."""
+    """The longest step (m) of a ball along the ground anywhere: a quarter of a cell of the
+    grid, within which its slope changes little (``surface`` gives longer ones on calm
+    ground); no limit on a Plane."""
     raise NotImplementedError("compiled code only")
 
 
@@ -357,13 +426,20 @@ HOP_GAP_TOLERANCE_M = 1e-9
 
 @njit(cache=True, error_model="numpy")
 def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
-    """``hop_landing`` on the grid: march along the parabola in steps of at most half the plane
-    estimate ``hop_time`` and a quarter of a cell, to the first step that ends below the
-    surface, then locate the crossing inside it (Illinois' false position, to a nanometre)."""
+    """``hop_landing`` on the grid. A hop that stays on calm ground (``calm_cells``) ends after
+    ``hop_time``, the plane's exact return, as on a Plane. Any other marches along the
+    parabola in steps of at most half that and a quarter of a cell, to the first step that
+    ends below the surface, then locates the crossing inside it (Illinois' false position, to
+    a nanometre)."""
     vh = math.sqrt(vx * vx + vy * vy)
+    ix, iy, _, _, _ = _locate(terrain, x, y)
+    reach_m = float(terrain.calm[iy, ix]) * terrain.cell_m
+    if (hop_time > 0.0) & (vh * hop_time <= reach_m):
+        x1, y1, z1, vz1 = hop(x, y, z, vx, vy, vz, hop_time)
+        return x1, y1, z1, vz1, hop_time
     dt = 0.5 * hop_time if hop_time > 0.0 else 1e-3
     if vh > 0.0:
-        dt = min(dt, 0.25 * terrain.cell_m / vh)
+        dt = min(dt, max(0.25 * terrain.cell_m, reach_m) / vh)
     dt = max(dt, 1e-6)
 
     def gap(t):

@@ -65,7 +65,7 @@ def grid(x0, x1, y0, y1, cell, height, zone=None, turfs=("green",), penalty=(gro
     X, Y = np.meshgrid(xs, ys)
     z = np.zeros(X.shape, np.int8) if zone is None else np.asarray(zone(X, Y), np.int8)
     table = [list(PRESETS[t] if isinstance(t, str) else t) for t in turfs]
-    return ground.Terrain(
+    return ground.make_terrain(
         float(x0), float(y0), float(cell), np.asarray(height(X, Y), np.float64), z,
         np.array(table, np.float64), np.array(penalty, np.int8),
     )  # fmt: skip

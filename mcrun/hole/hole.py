@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.ground import Terrain
+from mcrun.ground import Terrain, make_terrain
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
 from mcrun.hole.osm import ATTRIBUTION, read_course
@@ -144,7 +144,7 @@ class Hole:
             height = self._heights(x0, y0, cell, nx, ny)
         turf = np.array([[getattr(self.turf[k], f) for f in Turf._fields] for k in ZONE_KINDS])
         penalty = np.array([ZONE_PENALTY[k] for k in ZONE_KINDS], dtype=np.int8)
-        return Terrain(x0, y0, cell, height, zone, turf, penalty)
+        return make_terrain(x0, y0, cell, height, zone, turf, penalty)
 
     def zone_at(self, x_m, y_m):
         """Zone index (``zones.ZONE_KINDS``) at (x_m, y_m): that of the nearest node of the
