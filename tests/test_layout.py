@@ -17,6 +17,7 @@ LAYERS = (
     ("mcrun.engine",),
     ("mcrun.api",),
     ("mcrun.results",),
+    ("mcrun.strokes",),
     ("mcrun.run",),
     ("mcrun.report", "mcrun.paper", "mcrun.calibrate"),
     ("mcrun.cli",),

@@ -1,0 +1,211 @@
+"""Expected strokes to hole out by lie and distance: the PGA Tour baseline of Broadie (2012) or a
+table of the user's, interpolated linearly in distance.
+
+The package's table, ``mcrun/data/pga_tour_baseline_broadie2012.csv``, is a selection of
+M. Broadie, "Assessing Golfer Performance on the PGA TOUR", Interfaces 42(2), 146-165 (2012),
+Appendix A, Table 9. A baseline CSV has the columns ``lie,distance_yd,distance_ft,
+expected_strokes``, one of the two distances per row, ``#`` comment lines anywhere, and at least
+two rows for every lie of ``LIES``.
+
+Where the table has no row (README, Decisions, "Expected strokes and strokes gained"):
+
+- between rows: linear in distance; above a lie's last row: the line through its last two rows;
+- off the green, below a lie's first row: the putt from the same distance plus the lie's step
+  over the putt at that first row (20 yd: fairway +0.19, rough +0.38, sand +0.32, recovery +1.30
+  in the Tour table); the tee below its first row (100 yd) is the fairway;
+- on the green: 0 within the hole's radius (the ball is in), 1.0 from there to 1 ft, linear from
+  1 ft to the first row (3 ft: 1.04).
+
+Distances are in metres inside (``expected(lie, distance_m)``); yards and feet only in the CSV.
+"""
+
+import csv
+import math
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from mcrun.units import KINDS
+
+__all__ = [
+    "DEFAULT_BASELINE_PATH",
+    "FOOT_M",
+    "HOLE_RADIUS_M",
+    "LIES",
+    "YARD_M",
+    "Baseline",
+    "BaselineError",
+    "load_baseline",
+    "tour_baseline",
+]
+
+LIES = ("tee", "fairway", "rough", "sand", "recovery", "green")
+OFF_GREEN_LIES = LIES[:5]
+COLUMNS = ("lie", "distance_yd", "distance_ft", "expected_strokes")
+
+YARD_M = KINDS["length"][1]["yd"][0]
+FOOT_M = KINDS["length"][1]["ft"][0]
+# The hole is 4.25 in (108 mm) across (Rules of Golf, Definitions, "Hole"): a ball at rest with
+# its centre within the radius is in.
+HOLE_RADIUS_M = 4.25 * 0.0254 / 2.0
+# Tour players hole putts of about a foot every time: 1 stroke from the hole's edge to 1 ft.
+TAP_IN_M = FOOT_M
+
+DEFAULT_BASELINE_PATH = resources.files("mcrun") / "data" / "pga_tour_baseline_broadie2012.csv"
+MAX_STROKES = 20.0
+
+
+class BaselineError(ValueError):
+    """A baseline table cannot be used; the message is one line meant for the user."""
+
+
+@dataclass(frozen=True)
+class Baseline:
+    """Expected strokes to hole out: per lie, the rows' distances (m, increasing) and values."""
+
+    source: str
+    distance_m: dict  # lie -> np.ndarray of the rows' distances (m)
+    strokes: dict  # lie -> np.ndarray of the rows' expected strokes
+
+    def expected(self, lie, distance_m):
+        """Expected strokes to hole out from ``distance_m`` (m, to the hole) in ``lie`` (one of
+        ``LIES``, or an array of them, as ``distance_m``). Vectorised; NaN where the distance
+        is NaN."""
+        d = np.asarray(distance_m, dtype=float)
+        lies = np.asarray(lie)
+        if lies.ndim == 0:
+            return self._one(str(lies), d)
+        lies, d = np.broadcast_arrays(lies, d)
+        out = np.full(d.shape, np.nan)
+        for name in np.unique(lies):
+            chosen = lies == name
+            out[chosen] = self._one(str(name), d[chosen])
+        return out
+
+    def _one(self, lie, d):
+        if lie not in LIES:
+            raise ValueError(f"lie {lie!r}: allowed: {', '.join(LIES)}")
+        if lie == "green":
+            return self._green(d)
+        rows_d, rows_v = self.distance_m[lie], self.strokes[lie]
+        below = d < rows_d[0]
+        out = _linear(rows_d, rows_v, np.where(below, rows_d[0], d))
+        if lie == "tee":
+            return np.where(below, self._one("fairway", d), out)
+        step = rows_v[0] - self._green(rows_d[0])
+        # A ball off the green takes a stroke at least: its putt never counts less than 1.
+        return np.where(below, np.maximum(self._green(d), 1.0) + step, out)
+
+    def _green(self, d):
+        rows_d, rows_v = self.distance_m["green"], self.strokes["green"]
+        if rows_d[0] > TAP_IN_M:
+            rows_d, rows_v = np.r_[TAP_IN_M, rows_d], np.r_[1.0, rows_v]
+        d = np.asarray(d, dtype=float)
+        out = _linear(rows_d, rows_v, np.maximum(d, rows_d[0]))
+        out = np.where(d < rows_d[0], np.minimum(rows_v[0], 1.0), out)
+        return np.where(d <= HOLE_RADIUS_M, 0.0, out)
+
+
+def _linear(x, y, at):
+    """Linear interpolation through (x, y), extended above the last point by the line through
+    the last two; ``at`` at or above x[0]."""
+    out = np.interp(at, x, y)
+    slope = (y[-1] - y[-2]) / (x[-1] - x[-2])
+    return np.where(at > x[-1], y[-1] + slope * (at - x[-1]), out)
+
+
+def _number(text, where, column, allowed):
+    try:
+        value = float(text)
+    except ValueError:
+        raise BaselineError(
+            f"{where}: {column} {text!r} is not a number; allowed: {allowed}"
+        ) from None
+    if not math.isfinite(value):
+        raise BaselineError(f"{where}: {column} {text!r} is not finite; allowed: {allowed}")
+    return value
+
+
+def load_baseline(path):
+    """The Baseline of the CSV at ``path`` (columns ``lie,distance_yd,distance_ft,
+    expected_strokes``; README, Decisions). Raises BaselineError, one line naming the file, the
+    line and column, and what is allowed."""
+    name = str(path)
+    # A str or Path, or an importlib.resources Traversable (the package's table).
+    source = Path(path) if isinstance(path, str) else path
+    try:
+        text = source.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise BaselineError(
+            f"{name}: cannot be read as a UTF-8 CSV ({error.__class__.__name__})"
+        ) from None
+    lines = [(k, line) for k, line in enumerate(text.splitlines(), 1)]
+    lines = [(k, line) for k, line in lines if line.strip() and not line.lstrip().startswith("#")]
+    if not lines:
+        raise BaselineError(f"{name}: no header; allowed columns: {', '.join(COLUMNS)}")
+    reader = csv.reader([line for _, line in lines])
+    header = [h.strip() for h in next(reader)]
+    if sorted(header) != sorted(COLUMNS):
+        unknown = [h for h in header if h not in COLUMNS]
+        missing = [c for c in COLUMNS if c not in header]
+        what = f"unknown column {unknown[0]!r}" if unknown else f"no column {missing[0]!r}"
+        raise BaselineError(
+            f"{name}: line {lines[0][0]}: {what}; the columns are {', '.join(COLUMNS)}"
+        )
+    rows = {lie: [] for lie in LIES}
+    for (k, _), fields in zip(lines[1:], reader, strict=True):
+        where = f"{name}: line {k}"
+        if len(fields) != len(header):
+            raise BaselineError(f"{where}: {len(fields)} fields; allowed: {len(header)}")
+        row = dict(zip(header, (f.strip() for f in fields), strict=True))
+        lie = row["lie"]
+        if lie not in LIES:
+            raise BaselineError(f"{where}: lie {lie!r} is not a lie; allowed: {', '.join(LIES)}")
+        if bool(row["distance_yd"]) == bool(row["distance_ft"]):
+            raise BaselineError(f"{where}: give one of distance_yd and distance_ft")
+        column = "distance_yd" if row["distance_yd"] else "distance_ft"
+        distance = _number(row[column], where, column, "a distance above 0")
+        if distance <= 0.0:
+            raise BaselineError(f"{where}: {column} {row[column]}; allowed: above 0")
+        strokes = _number(
+            row["expected_strokes"], where, "expected_strokes", f"1 to {MAX_STROKES:g}"
+        )
+        if not 1.0 <= strokes <= MAX_STROKES:
+            raise BaselineError(
+                f"{where}: expected_strokes {row['expected_strokes']}; allowed: 1 to "
+                f"{MAX_STROKES:g} (a ball not in the hole takes a stroke at least)"
+            )
+        distance_m = distance * (YARD_M if column == "distance_yd" else FOOT_M)
+        for other_k, other_m, _ in rows[lie]:
+            if math.isclose(other_m, distance_m, rel_tol=1e-9):
+                raise BaselineError(
+                    f"{where}: a second {lie} row at {row[column]} {column[-2:]} "
+                    f"(line {other_k}); allowed: one row per lie and distance"
+                )
+        rows[lie].append((k, distance_m, strokes))
+    for lie in LIES:
+        if len(rows[lie]) < 2:
+            raise BaselineError(
+                f"{name}: {len(rows[lie])} {lie} rows; allowed: 2 or more for every lie "
+                f"({', '.join(LIES)})"
+            )
+    distance_m, strokes = {}, {}
+    for lie in LIES:
+        ordered = sorted(rows[lie], key=lambda r: r[1])
+        distance_m[lie] = np.array([r[1] for r in ordered])
+        strokes[lie] = np.array([r[2] for r in ordered])
+    return Baseline(source=name, distance_m=distance_m, strokes=strokes)
+
+
+_TOUR = None
+
+
+def tour_baseline():
+    """The PGA Tour baseline of the package (Broadie 2012, Table 9), loaded once."""
+    global _TOUR
+    if _TOUR is None:
+        _TOUR = load_baseline(DEFAULT_BASELINE_PATH)
+        _TOUR = Baseline("PGA Tour, Broadie (2012) Table 9", _TOUR.distance_m, _TOUR.strokes)
+    return _TOUR

@@ -1,0 +1,266 @@
+"""Expected strokes left after each shot of a run on a hole, the strokes gained by it, and per
+point their means with standard errors and the part of each outcome in them.
+
+The rules (README, Decisions, "Expected strokes and strokes gained"):
+
+- the next shot's lie is that of the zone the ball finished in (``LIE_OF_ZONE``: fringe and a
+  tee other than the start are played as fairway, a bunker as sand), which ``lie_of_zone``
+  overrides (e.g. ``{"rough": "recovery"}`` under trees); its distance the ball's to the pin;
+- water (a penalty area, Rule 17): one penalty stroke, then the better of a lateral drop at the
+  point where the ball crossed into it (penalty_x_m, penalty_y_m; its distance to the pin, as
+  the drop is within two club lengths no nearer the hole), from the fairway when that point is
+  on fairway, tee, fringe or green and from the rough otherwise, and stroke and distance (the
+  shot again from its start);
+- out of bounds (Rule 18.2) and off the hole's map: stroke and distance, 1 + E(start);
+- other statuses (the kernel's bounds: invalid_input, not_landed, too_many_bounces,
+  not_stopped) are left out of the means and counted (``n_failed``).
+
+Strokes gained by a shot = E(start) - 1 - E(after), E(after) including the penalty stroke.
+"""
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from mcrun import status
+from mcrun.hole.zones import ZONE_KINDS
+from mcrun.strokes.baseline import LIES, tour_baseline
+
+__all__ = [
+    "LIE_OF_ZONE",
+    "OUTCOMES",
+    "SHOT_COLUMNS",
+    "check_lie_of_zone",
+    "point_strokes",
+    "score_shots",
+    "start_of",
+]
+
+# The lie of the next shot from each zone the ball can stay in.
+LIE_OF_ZONE = {
+    "rough": "rough",
+    "fairway": "fairway",
+    "tee": "fairway",  # a ball at rest on a teeing area is played as it lies, off mown grass
+    "fringe": "fairway",  # the Tour counts it off the green (around the green, not putting)
+    "green": "green",
+    "bunker": "sand",
+}
+IN_PLAY_ZONES = tuple(LIE_OF_ZONE)
+# Where a water ball's reference point lies on mown grass, it is dropped on the fairway.
+_MOWN = ("fairway", "tee", "fringe", "green")
+OUTCOMES = (*IN_PLAY_ZONES, "water", "out_of_bounds", "off_map")
+FAILED = "failed"
+
+SHOT_COLUMNS = (
+    "outcome",  # the finish zone, or water / out_of_bounds / off_map; failed: left out
+    "lie_after",  # the lie of the next shot (LIES)
+    "distance_after_m",  # its distance to the pin (m)
+    "penalty_strokes",
+    "expected_strokes_after",  # strokes still to play after the shot, penalty included
+    "strokes_gained",  # E(start) - 1 - expected_strokes_after
+    "lie_cost_strokes",  # expected_strokes_after - E(the same distance from fairway / green)
+)
+
+
+def check_lie_of_zone(overrides, where="lie_of_zone"):
+    """``LIE_OF_ZONE`` with ``overrides`` ({zone: lie}) applied; ValueError, one line, for a
+    zone that is not in play or a lie that is not one of ``LIES``."""
+    lies = dict(LIE_OF_ZONE)
+    for zone, lie in (overrides or {}).items():
+        if zone not in LIE_OF_ZONE:
+            raise ValueError(f"{where}: zone {zone!r}: allowed: {', '.join(IN_PLAY_ZONES)}")
+        if lie not in LIES:
+            raise ValueError(f"{where}.{zone}: lie {lie!r}: allowed: {', '.join(LIES)}")
+        lies[zone] = lie
+    return lies
+
+
+def start_of(hole):
+    """(lie, distance_m) of a shot from the hole's start, (0, 0) of its frame: "tee" on a tee,
+    else the lie of the zone there; the distance to the pin."""
+    zone = ZONE_KINDS[int(hole.zone_at(np.array([0.0]), np.array([0.0]))[0])]
+    lie = "tee" if zone == "tee" else LIE_OF_ZONE.get(zone, "rough")
+    return lie, float(math.hypot(*hole.pin_xy))
+
+
+def _strings(values):
+    """An array of str (None where missing) from a pandas, pyarrow or numpy column."""
+    if hasattr(values, "to_pylist"):
+        values = values.to_pylist()
+    return np.array([v if isinstance(v, str) else None for v in values], dtype=object)
+
+
+def _floats(shots, name, n):
+    """The column ``name`` as float64; NaN when the table has none."""
+    if name not in shots:
+        return np.full(n, np.nan)
+    values = shots[name]
+    if hasattr(values, "to_pylist"):
+        values = values.to_numpy(zero_copy_only=False)
+    return np.asarray(values, dtype=float)
+
+
+def _outcomes(shots):
+    """The outcome of each shot (OUTCOMES or FAILED) from its status and finish zone."""
+    zone = _strings(shots["finish_zone"])
+    n = len(zone)
+    if "status" in shots:
+        codes = np.asarray(shots["status"], dtype=int)
+        names = np.array([status.NAMES.get(int(c), "unknown") for c in codes], dtype=object)
+    else:
+        names = _strings(shots["status_name"])
+    outcome = np.full(n, FAILED, dtype=object)
+    ok = names == status.NAMES[status.OK]
+    for z in IN_PLAY_ZONES:
+        outcome[ok & (zone == z)] = z
+    outcome[ok & (zone == "water")] = "water"
+    outcome[ok & (zone == "out_of_bounds")] = "out_of_bounds"
+    outcome[names == status.NAMES[status.IN_PENALTY_AREA]] = "water"
+    outcome[names == status.NAMES[status.OUT_OF_BOUNDS_STATUS]] = "out_of_bounds"
+    outcome[(names == status.NAMES[status.OFF_MAP]) | (ok & (zone == "off_map"))] = "off_map"
+    return outcome
+
+
+def score_shots(
+    shots,
+    hole=None,
+    *,
+    pin_xy_m=None,
+    start_lie=None,
+    start_distance_m=None,
+    baseline=None,
+    lie_of_zone=None,
+):
+    """Per shot of a run on a hole: a DataFrame of ``SHOT_COLUMNS``, one row per shot in order.
+
+    ``shots``: columns (a DataFrame, or a mapping of arrays) ``finish_zone``, ``status`` (codes)
+    or ``status_name``, ``pin_distance_m``, ``final_x_m``, ``final_y_m``, ``penalty_x_m``,
+    ``penalty_y_m`` (hole frame, m). ``hole``: a ``mcrun.hole.Hole``, for the pin, the start
+    (``start_of``) and the zone of a water ball's reference point; without one, give
+    ``pin_xy_m`` and the start, and water balls drop in the rough. ``start_lie`` (``LIES``) and
+    ``start_distance_m`` override the hole's start. ``baseline``: a ``Baseline``, the Tour's by
+    default. ``lie_of_zone``: {zone: lie} overrides of ``LIE_OF_ZONE``.
+    """
+    base = baseline or tour_baseline()
+    lies = check_lie_of_zone(lie_of_zone)
+    if hole is not None:
+        pin_xy_m = hole.pin_xy if pin_xy_m is None else pin_xy_m
+        lie0, distance0 = start_of(hole)
+        start_lie = start_lie or lie0
+        start_distance_m = distance0 if start_distance_m is None else start_distance_m
+    if pin_xy_m is None or start_lie is None:
+        raise ValueError("score_shots: give a hole, or pin_xy_m and start_lie")
+    if start_lie not in LIES:
+        raise ValueError(f"start_lie {start_lie!r}: allowed: {', '.join(LIES)}")
+    if start_distance_m is None:
+        start_distance_m = math.hypot(*pin_xy_m)
+    e_start = float(base.expected(start_lie, start_distance_m))
+
+    outcome = _outcomes(shots)
+    n = len(outcome)
+    pin_x, pin_y = pin_xy_m
+    d_final = _floats(shots, "pin_distance_m", n)
+    missing = ~np.isfinite(d_final)
+    if missing.any():
+        fx, fy = _floats(shots, "final_x_m", n), _floats(shots, "final_y_m", n)
+        d_final = np.where(missing, np.hypot(fx - pin_x, fy - pin_y), d_final)
+
+    lie_after = np.full(n, None, dtype=object)
+    distance_after = np.full(n, np.nan)
+    penalty = np.zeros(n)
+    expected_after = np.full(n, np.nan)
+
+    in_play = np.isin(outcome, IN_PLAY_ZONES)
+    for zone in IN_PLAY_ZONES:
+        lie_after[outcome == zone] = lies[zone]
+    distance_after[in_play] = d_final[in_play]
+    expected_after[in_play] = base.expected(lie_after[in_play], d_final[in_play])
+
+    # Stroke and distance: one penalty stroke, the shot again from its start.
+    again = np.isin(outcome, ("out_of_bounds", "off_map"))
+    lie_after[again] = start_lie
+    distance_after[again] = start_distance_m
+    penalty[again] = 1.0
+    expected_after[again] = 1.0 + e_start
+
+    water = outcome == "water"
+    if water.any():
+        rx = _floats(shots, "penalty_x_m", n)[water]
+        ry = _floats(shots, "penalty_y_m", n)[water]
+        unknown = ~(np.isfinite(rx) & np.isfinite(ry))
+        rx = np.where(unknown, _floats(shots, "final_x_m", n)[water], rx)
+        ry = np.where(unknown, _floats(shots, "final_y_m", n)[water], ry)
+        drop_lie = np.full(len(rx), "rough", dtype=object)
+        if hole is not None:
+            codes = hole.zone_at(rx, ry)
+            mown = np.isin(codes, [ZONE_KINDS.index(z) for z in _MOWN])
+            drop_lie[mown] = "fairway"
+        drop_m = np.hypot(rx - pin_x, ry - pin_y)
+        e_drop = base.expected(drop_lie, drop_m)
+        lateral = e_drop <= e_start
+        lie_after[water] = np.where(lateral, drop_lie, start_lie)
+        distance_after[water] = np.where(lateral, drop_m, start_distance_m)
+        penalty[water] = 1.0
+        expected_after[water] = 1.0 + np.minimum(e_drop, e_start)
+
+    scored = outcome != FAILED
+    penalty[~scored] = np.nan
+    reference = base.expected(np.where(outcome == "green", "green", "fairway"), d_final)
+    return pd.DataFrame(
+        {
+            "outcome": outcome,
+            "lie_after": lie_after,
+            "distance_after_m": distance_after,
+            "penalty_strokes": penalty,
+            "expected_strokes_after": expected_after,
+            "strokes_gained": e_start - 1.0 - expected_after,
+            "lie_cost_strokes": np.where(scored, expected_after - reference, np.nan),
+        }
+    ).assign(expected_strokes_start=e_start)
+
+
+def _mean_se(values):
+    n = len(values)
+    mean = float(values.mean()) if n else math.nan
+    se = float(values.std(ddof=1) / math.sqrt(n)) if n > 1 else math.nan
+    return mean, se
+
+
+def point_strokes(scored):
+    """Per point: a dict of its shots' (``score_shots``) means with standard errors and the part
+    of each outcome in them.
+
+    ``n_shots``, ``n_scored``, ``n_failed``; ``expected_strokes_start``;
+    ``expected_strokes_after_mean``/``_se`` and ``strokes_gained_mean``/``_se`` (strokes; the
+    standard error of the mean, sample standard deviation / sqrt(n_scored)); ``lie_cost_mean``
+    (strokes above the same distances from the fairway, or the green for balls on it); per
+    outcome O of ``OUTCOMES``: ``p_O`` (share of the scored shots), ``expected_strokes_after_O``
+    (their mean), ``expected_strokes_after_part_O`` (p_O x that mean: the parts sum to the mean)
+    and ``lie_cost_part_O`` (p_O x their mean lie cost: the parts sum to ``lie_cost_mean``).
+    """
+    outcome = scored["outcome"].to_numpy()
+    ok = outcome != FAILED
+    after = scored["expected_strokes_after"].to_numpy()[ok]
+    gained = scored["strokes_gained"].to_numpy()[ok]
+    cost = scored["lie_cost_strokes"].to_numpy()[ok]
+    n = int(ok.sum())
+    start = scored["expected_strokes_start"].to_numpy()
+    row = {
+        "n_shots": len(outcome),
+        "n_scored": n,
+        "n_failed": len(outcome) - n,
+        "expected_strokes_start": float(start[0]) if len(start) else math.nan,
+    }
+    row["expected_strokes_after_mean"], row["expected_strokes_after_se"] = _mean_se(after)
+    row["strokes_gained_mean"], row["strokes_gained_se"] = _mean_se(gained)
+    row["lie_cost_mean"] = float(cost.mean()) if n else math.nan
+    for name in OUTCOMES:
+        chosen = outcome[ok] == name
+        k = int(chosen.sum())
+        p = k / n if n else math.nan
+        row[f"p_{name}"] = p
+        row[f"expected_strokes_after_{name}"] = float(after[chosen].mean()) if k else math.nan
+        row[f"expected_strokes_after_part_{name}"] = p * after[chosen].mean() if k else 0.0
+        row[f"lie_cost_part_{name}"] = p * cost[chosen].mean() if k else 0.0
+    return row

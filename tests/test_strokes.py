@@ -1,0 +1,379 @@
+"""Expected strokes and strokes gained (mcrun.strokes): the Tour baseline's rows, its
+interpolation and the assumptions where it has no row, checked by hand; the penalties by the
+Rules; the per-point means, standard errors and parts; a user's baseline and its errors."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from mcrun import status
+from mcrun.hole.hole import hole_from_table
+from mcrun.strokes import (
+    OUTCOMES,
+    BaselineError,
+    check_lie_of_zone,
+    load_baseline,
+    point_strokes,
+    score_shots,
+    start_of,
+    tour_baseline,
+)
+from mcrun.strokes.baseline import DEFAULT_BASELINE_PATH, HOLE_RADIUS_M
+
+YD = 0.9144
+FT = 0.3048
+TOUR = tour_baseline()
+
+
+def e(lie, distance_m):
+    return float(TOUR.expected(lie, distance_m))
+
+
+# --- the baseline ------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "lie, distance_yd, strokes",
+    # Rows of Broadie (2012) Table 9 as the reference quotes them.
+    [
+        ("tee", 100, 2.92),
+        ("tee", 446 - 46, 3.99),
+        ("fairway", 20, 2.40),
+        ("fairway", 240, 3.45),
+        ("rough", 180, 3.31),
+        ("sand", 60, 3.15),
+        ("sand", 600, 6.10),
+        ("recovery", 300, 4.20),
+    ],
+)
+def test_rows_are_the_table(lie, distance_yd, strokes):
+    assert e(lie, distance_yd * YD) == pytest.approx(strokes, abs=1e-12)
+
+
+def test_putts_rows_are_the_table():
+    feet = [3, 4, 5, 6, 8, 10, 15, 20, 30, 40, 50, 60]
+    putts = [1.04, 1.13, 1.23, 1.34, 1.50, 1.61, 1.78, 1.87, 1.98, 2.06, 2.14, 2.21]
+    got = TOUR.expected("green", np.array(feet) * FT)
+    np.testing.assert_allclose(got, putts, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "lie, distance, unit, strokes",
+    [
+        ("rough", 150, YD, (3.15 + 3.23) / 2),  # halfway between 140 and 160 yd
+        ("sand", 450, YD, (4.69 + 5.40) / 2),
+        ("recovery", 290, YD, (4.10 + 4.20) / 2),
+        ("tee", 110, YD, 2.92 + 10 / 40 * (2.97 - 2.92)),
+        ("fairway", 30, YD, 2.40 + 10 / 40 * (2.70 - 2.40)),
+        ("green", 7, FT, (1.34 + 1.50) / 2),
+        ("green", 12, FT, 1.61 + 2 / 5 * (1.78 - 1.61)),
+    ],
+)
+def test_interpolation_between_rows(lie, distance, unit, strokes):
+    assert e(lie, distance * unit) == pytest.approx(strokes, abs=1e-12)
+
+
+def test_published_checks():
+    """The PGA Tour's worked example: 446 yd from the tee 4.100, 116 yd in the fairway 2.825, a
+    putt of 16 ft 11 in 1.826. The example uses the Tour's own baseline; the reference's rows of
+    Table 9 bracket each value, and linear interpolation across them misses by the curvature
+    within the bracket (README, Decisions): 100 yd apart at 446 yd, 40 yd at 116 yd, 5 ft at
+    16.9 ft."""
+    tee = e("tee", 446 * YD)
+    fairway = e("fairway", 116 * YD)
+    putt = e("green", (16 + 11 / 12) * FT)
+    # By hand, from the rows around each distance.
+    assert tee == pytest.approx(3.99 + 46 / 100 * (4.41 - 3.99), abs=1e-12)  # 4.1832
+    assert fairway == pytest.approx(2.80 + 16 / 40 * (2.91 - 2.80), abs=1e-12)  # 2.8440
+    assert putt == pytest.approx(1.78 + (11 / 12 + 1) / 5 * (1.87 - 1.78), abs=1e-12)  # 1.8145
+    # The published values lie within the rows' brackets, and as near as stated.
+    assert 3.99 < 4.100 < 4.41 and abs(tee - 4.100) < 0.09
+    assert 2.80 < 2.825 < 2.91 and abs(fairway - 2.825) < 0.02
+    assert 1.78 < 1.826 < 1.87 and abs(putt - 1.826) < 0.012
+    # The example's strokes gained by its first two shots (+0.275, -0.001), to 0.1.
+    assert tee - fairway - 1 == pytest.approx(4.100 - 2.825 - 1, abs=0.1)
+    assert fairway - putt - 1 == pytest.approx(2.825 - 1.826 - 1, abs=0.05)
+
+
+def test_short_putts_and_the_hole():
+    assert e("green", 0.0) == 0.0
+    assert e("green", HOLE_RADIUS_M) == 0.0  # 2.125 in: the ball is in
+    assert e("green", HOLE_RADIUS_M + 1e-6) == 1.0
+    assert e("green", 0.5 * FT) == 1.0
+    assert e("green", 1 * FT) == 1.0
+    assert e("green", 2 * FT) == pytest.approx((1.0 + 1.04) / 2, abs=1e-12)
+
+
+def test_off_the_green_below_20_yd_is_the_putt_plus_the_lies_step():
+    # The step of each lie over a 60 ft (20 yd) putt, 2.21: fairway 0.19, rough 0.38, sand 0.32,
+    # recovery 1.30; at 10 yd (30 ft, a putt of 1.98):
+    assert e("fairway", 10 * YD) == pytest.approx(1.98 + 0.19, abs=1e-12)
+    assert e("rough", 10 * YD) == pytest.approx(1.98 + 0.38, abs=1e-12)
+    assert e("sand", 10 * YD) == pytest.approx(1.98 + 0.32, abs=1e-12)
+    assert e("recovery", 10 * YD) == pytest.approx(1.98 + 1.30, abs=1e-12)
+    # Continuous at the first row, and never below a stroke plus the step at the hole.
+    assert e("rough", 20 * YD - 1e-9) == pytest.approx(2.59, abs=1e-9)
+    assert e("fairway", 0.0) == pytest.approx(1.0 + 0.19, abs=1e-12)
+    # The tee below its first row (100 yd) is the fairway.
+    assert e("tee", 60 * YD) == pytest.approx(2.70, abs=1e-12)
+
+
+def test_above_the_last_rows_the_last_two_rows_line():
+    assert e("fairway", 650 * YD) == pytest.approx(4.89 + 50 / 100 * (4.89 - 4.50), abs=1e-12)
+    assert e("green", 90 * FT) == pytest.approx(2.21 + 30 / 10 * (2.21 - 2.14), abs=1e-12)
+
+
+def test_vectorised_over_lies_and_distances():
+    lies = np.array(["tee", "green", "sand", "fairway"])
+    got = TOUR.expected(lies, np.array([100 * YD, 10 * FT, 60 * YD, np.nan]))
+    np.testing.assert_allclose(got[:3], [2.92, 1.61, 3.15], atol=1e-12)
+    assert np.isnan(got[3])
+    with pytest.raises(ValueError, match="lie 'grass': allowed: tee, fairway"):
+        TOUR.expected("grass", 10.0)
+
+
+# --- a user's baseline -------------------------------------------------------------------------
+
+
+def test_a_users_baseline(tmp_path):
+    """The package's table with every value 0.5 stroke higher reads back as such."""
+    lines = DEFAULT_BASELINE_PATH.read_text(encoding="utf-8").splitlines()
+    out = []
+    for line in lines:
+        if line.startswith("#") or line.startswith("lie,"):
+            out.append(line)
+        else:
+            *head, strokes = line.split(",")
+            out.append(",".join([*head, f"{float(strokes) + 0.5:.2f}"]))
+    path = tmp_path / "scratch.csv"
+    path.write_text("\n".join(out) + "\n", encoding="utf-8")
+    mine = load_baseline(path)
+    assert float(mine.expected("fairway", 116 * YD)) == pytest.approx(2.844 + 0.5, abs=1e-12)
+    assert float(mine.expected("green", 10 * FT)) == pytest.approx(2.11, abs=1e-12)
+
+
+GOOD_HEADER = "lie,distance_yd,distance_ft,expected_strokes"
+
+
+def _table(tmp_path, rows, header=GOOD_HEADER):
+    """A baseline CSV: two good rows of every lie, then ``rows``."""
+    good = [f"{lie},{d},,{v}" for lie in ("tee", "fairway", "rough", "sand", "recovery")
+            for d, v in ((100, 3.0), (200, 3.2))]  # fmt: skip
+    good += ["green,,3,1.04", "green,,10,1.6"]
+    path = tmp_path / "mine.csv"
+    path.write_text("\n".join(["# my baseline", header, *good, *rows]) + "\n", encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize(
+    "rows, header, message",
+    [
+        (
+            [],
+            "lie,distance_m,distance_ft,expected_strokes",
+            r"mine\.csv: line 2: unknown column 'distance_m'; the columns are lie, distance_yd",
+        ),
+        (
+            [],
+            "lie,distance_yd,distance_ft",
+            r"mine\.csv: line 2: no column 'expected_strokes'; the columns are",
+        ),
+        (
+            ["grass,50,,2.5"],
+            GOOD_HEADER,
+            r"mine\.csv: line 15: lie 'grass' is not a lie; allowed: tee, fairway, rough, sand, "
+            r"recovery, green",
+        ),
+        (
+            ["rough,50,5,2.5"],
+            GOOD_HEADER,
+            r"mine\.csv: line 15: give one of distance_yd and distance_ft",
+        ),
+        (["rough,,,2.5"], GOOD_HEADER, r"line 15: give one of distance_yd and distance_ft"),
+        (
+            ["rough,fifty,,2.5"],
+            GOOD_HEADER,
+            r"line 15: distance_yd 'fifty' is not a number; allowed: a distance above 0",
+        ),
+        (["rough,-5,,2.5"], GOOD_HEADER, r"line 15: distance_yd -5; allowed: above 0"),
+        (
+            ["green,,2,0.9"],
+            GOOD_HEADER,
+            r"line 15: expected_strokes 0\.9; allowed: 1 to 20 \(a ball not in the hole",
+        ),
+        (["sand,50,,nan"], GOOD_HEADER, r"line 15: expected_strokes 'nan' is not finite"),
+        (
+            ["sand,200,,3.3"],
+            GOOD_HEADER,
+            r"line 15: a second sand row at 200 yd \(line 10\); allowed: one row per lie",
+        ),
+        (["sand,50,,2.5,9"], GOOD_HEADER, r"line 15: 5 fields; allowed: 4"),
+    ],
+)
+def test_a_users_baseline_errors(tmp_path, rows, header, message):
+    with pytest.raises(BaselineError, match=message) as raised:
+        load_baseline(_table(tmp_path, rows, header))
+    assert "\n" not in str(raised.value)
+    assert str(raised.value).startswith(str(tmp_path / "mine.csv"))
+
+
+def test_a_users_baseline_needs_every_lie(tmp_path):
+    path = tmp_path / "short.csv"
+    path.write_text(f"{GOOD_HEADER}\nfairway,100,,2.8\nfairway,200,,3.2\n", encoding="utf-8")
+    with pytest.raises(BaselineError, match=r"short\.csv: 0 tee rows; allowed: 2 or more"):
+        load_baseline(path)
+    with pytest.raises(BaselineError, match=r"absent\.csv: cannot be read as a UTF-8 CSV"):
+        load_baseline(tmp_path / "absent.csv")
+
+
+# --- after each shot ---------------------------------------------------------------------------
+
+
+def _shots(rows):
+    """A shots table from (status, finish_zone, pin_distance_m, penalty_x_m, penalty_y_m)."""
+    frame = pd.DataFrame(
+        rows, columns=["status", "finish_zone", "pin_distance_m", "penalty_x_m", "penalty_y_m"]
+    )
+    frame["finish_zone"] = frame["finish_zone"].astype("category")
+    frame["final_x_m"] = np.nan
+    frame["final_y_m"] = np.nan
+    return frame
+
+
+OK, WATER, OOB = status.OK, status.IN_PENALTY_AREA, status.OUT_OF_BOUNDS_STATUS
+PIN = (150.0, 0.0)  # a pin 150 m down the x axis
+
+
+def test_a_holed_shot_gains_its_start_less_one():
+    shots = _shots([(OK, "green", 0.0, np.nan, np.nan), (OK, "green", 0.01, np.nan, np.nan)])
+    got = score_shots(shots, pin_xy_m=PIN, start_lie="fairway", start_distance_m=160 * YD)
+    assert (got["expected_strokes_after"] == 0.0).all()
+    np.testing.assert_allclose(got["strokes_gained"], 2.98 - 1.0, atol=1e-12)
+    assert (got["penalty_strokes"] == 0.0).all()
+
+
+def test_a_water_ball_one_stroke_and_a_drop_where_it_crossed():
+    # From the tee at 180 yd (3.05); the ball crossed into the water 40 yd short of the pin.
+    ref_x = PIN[0] - 40 * YD
+    shots = _shots([(WATER, "water", 35.0, ref_x, 0.0)])
+    # Without a hole the drop is in the rough: 40 yd rough, 2.59 + 20/40 x (2.91 - 2.59) = 2.75.
+    got = score_shots(shots, pin_xy_m=PIN, start_lie="tee", start_distance_m=180 * YD)
+    assert got["penalty_strokes"].iloc[0] == 1.0
+    assert got["lie_after"].iloc[0] == "rough"
+    assert got["distance_after_m"].iloc[0] == pytest.approx(40 * YD, abs=1e-9)
+    assert got["expected_strokes_after"].iloc[0] == pytest.approx(1 + 2.75, abs=1e-12)
+    assert got["strokes_gained"].iloc[0] == pytest.approx(3.05 - 1 - 3.75, abs=1e-12)
+    # On a hole whose ground there is fairway the drop is on it: 2.40 + 0.5 x 0.30 = 2.55.
+    fairway = hole_from_table({"length_m": PIN[0], "width_m": 40.0}, ".", "t")
+    got = score_shots(shots, fairway, start_lie="tee", start_distance_m=180 * YD)
+    assert got["lie_after"].iloc[0] == "fairway"
+    assert got["strokes_gained"].iloc[0] == pytest.approx(3.05 - 1 - (1 + 2.55), abs=1e-12)
+    rough = hole_from_table({"length_m": PIN[0], "width_m": 40.0, "surface": "rough"}, ".", "t")
+    got = score_shots(shots, rough, start_lie="tee", start_distance_m=180 * YD)
+    assert got["lie_after"].iloc[0] == "rough"
+
+
+def test_a_water_ball_replays_when_stroke_and_distance_is_better():
+    # From 100 yd in the fairway (2.80), the ball crossed into water 140 yd from the pin (past
+    # it): the drop (rough 140 yd, 3.15) is worse than the shot again: 1 + 2.80.
+    shots = _shots([(WATER, "water", 130.0, PIN[0] + 140 * YD, 0.0)])
+    got = score_shots(shots, pin_xy_m=PIN, start_lie="fairway", start_distance_m=100 * YD)
+    assert got["lie_after"].iloc[0] == "fairway"
+    assert got["distance_after_m"].iloc[0] == pytest.approx(100 * YD)
+    assert got["strokes_gained"].iloc[0] == pytest.approx(-2.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("code, zone", [(OOB, "out_of_bounds"), (status.OFF_MAP, "off_map")])
+@pytest.mark.parametrize("lie, distance_yd", [("tee", 446), ("fairway", 116), ("rough", 30)])
+def test_out_of_bounds_is_stroke_and_distance(code, zone, lie, distance_yd):
+    """Rule 18.2: one penalty stroke and the shot again from where it was played, so
+    E(after) = 1 + E(start) and the shot gains E(start) - 1 - (1 + E(start)) = -2."""
+    shots = _shots([(code, zone, 80.0, 90.0, 30.0)])
+    got = score_shots(shots, pin_xy_m=PIN, start_lie=lie, start_distance_m=distance_yd * YD)
+    assert got["expected_strokes_after"].iloc[0] == pytest.approx(1 + e(lie, distance_yd * YD))
+    assert got["strokes_gained"].iloc[0] == pytest.approx(-2.0, abs=1e-12)
+    assert got["outcome"].iloc[0] == zone
+
+
+@pytest.mark.parametrize(
+    "zone, distance_m, overrides, strokes",
+    [
+        ("bunker", 100 * YD, None, 3.23),  # sand
+        ("tee", 100 * YD, None, 2.80),  # a ball on a tee is played as fairway
+        ("fringe", 10 * YD, None, 1.98 + 0.19),  # fringe as fairway, 10 yd
+        ("fringe", 10 * YD, {"fringe": "green"}, 1.98),  # as a putt of 30 ft
+        ("rough", 60 * YD, {"rough": "recovery"}, 3.83),
+        ("rough", 60 * YD, None, 2.91),
+    ],
+)
+def test_lies_of_the_zones(zone, distance_m, overrides, strokes):
+    shots = _shots([(OK, zone, distance_m, np.nan, np.nan)])
+    got = score_shots(
+        shots, pin_xy_m=PIN, start_lie="tee", start_distance_m=180 * YD, lie_of_zone=overrides
+    )
+    assert got["expected_strokes_after"].iloc[0] == pytest.approx(strokes, abs=1e-12)
+
+
+def test_lie_of_zone_errors():
+    with pytest.raises(ValueError, match="lie_of_zone: zone 'water': allowed: rough, fairway"):
+        check_lie_of_zone({"water": "rough"})
+    with pytest.raises(ValueError, match="lie_of_zone.rough: lie 'trees': allowed: tee,"):
+        check_lie_of_zone({"rough": "trees"})
+
+
+def test_status_names_read_as_codes():
+    codes = _shots([(OK, "green", 3.0, np.nan, np.nan), (OOB, "out_of_bounds", 9, 1.0, 2.0)])
+    names = codes.drop(columns="status").assign(status_name=[status.NAMES[OK], status.NAMES[OOB]])
+    kw = dict(pin_xy_m=PIN, start_lie="tee", start_distance_m=180 * YD)
+    pd.testing.assert_frame_equal(score_shots(codes, **kw), score_shots(names, **kw))
+
+
+def test_start_of_a_hole():
+    hole = hole_from_table({"length_m": 120.0, "width_m": 30.0}, ".", "t")
+    assert start_of(hole) == ("fairway", 120.0)
+
+
+# --- per point ---------------------------------------------------------------------------------
+
+
+def test_point_means_standard_errors_and_parts():
+    """From 160 yd in the fairway (2.98): putts of 10 ft (1.61) and 30 ft (1.98), rough at
+    20 yd (2.59), out of bounds (1 + 2.98 = 3.98, the ball 60 yd from the pin where it went
+    out), and a shot the kernel did not finish (left out, counted)."""
+    shots = _shots(
+        [
+            (OK, "green", 10 * FT, np.nan, np.nan),
+            (OK, "green", 30 * FT, np.nan, np.nan),
+            (OK, "rough", 20 * YD, np.nan, np.nan),
+            (OOB, "out_of_bounds", 60 * YD, 10.0, 30.0),
+            (status.NOT_STOPPED, "fairway", 50.0, np.nan, np.nan),
+        ]
+    )
+    scored = score_shots(shots, pin_xy_m=PIN, start_lie="fairway", start_distance_m=160 * YD)
+    assert scored["outcome"].iloc[4] == "failed" and np.isnan(scored["strokes_gained"].iloc[4])
+    row = point_strokes(scored)
+    assert (row["n_shots"], row["n_scored"], row["n_failed"]) == (5, 4, 1)
+    assert row["expected_strokes_start"] == pytest.approx(2.98)
+    # Mean 10.16 / 4 = 2.54; deviations -0.93, -0.56, 0.05, 1.44, squares sum 3.2546.
+    se = math.sqrt(3.2546 / 3) / math.sqrt(4)
+    assert row["expected_strokes_after_mean"] == pytest.approx(2.54, abs=1e-12)
+    assert row["expected_strokes_after_se"] == pytest.approx(se, abs=1e-12)
+    assert row["strokes_gained_mean"] == pytest.approx(2.98 - 1 - 2.54, abs=1e-12)
+    assert row["strokes_gained_se"] == pytest.approx(se, abs=1e-12)
+    # Parts: green 0.5 x 1.795, rough 0.25 x 2.59, out of bounds 0.25 x 3.98.
+    assert row["p_green"] == 0.5 and row["p_rough"] == 0.25 and row["p_out_of_bounds"] == 0.25
+    assert row["expected_strokes_after_green"] == pytest.approx(1.795, abs=1e-12)
+    assert row["expected_strokes_after_part_green"] == pytest.approx(0.8975, abs=1e-12)
+    assert row["expected_strokes_after_part_rough"] == pytest.approx(0.6475, abs=1e-12)
+    assert row["expected_strokes_after_part_out_of_bounds"] == pytest.approx(0.995, abs=1e-12)
+    parts = sum(row[f"expected_strokes_after_part_{o}"] for o in OUTCOMES)
+    assert parts == pytest.approx(row["expected_strokes_after_mean"], abs=1e-12)
+    assert row["p_water"] == 0.0 and math.isnan(row["expected_strokes_after_water"])
+    # Lie costs over the fairway at the same distance: rough 2.59 - 2.40; out of bounds
+    # 3.98 - 2.70 (fairway at 60 yd); the putts none.
+    assert row["lie_cost_part_rough"] == pytest.approx(0.25 * 0.19, abs=1e-12)
+    assert row["lie_cost_part_out_of_bounds"] == pytest.approx(0.25 * 1.28, abs=1e-12)
+    assert row["lie_cost_part_green"] == pytest.approx(0.0, abs=1e-12)
+    assert row["lie_cost_mean"] == pytest.approx((0.19 + 1.28) / 4, abs=1e-12)
