@@ -12,10 +12,13 @@ kernel reads it (``Hole.zone_at``); ``off_map`` beyond the hole's grid.
 import math
 
 import numpy as np
+import pandas as pd
 import pyarrow as pa
 
+from mcrun import status as status_codes
 from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.hole.zones import ZONE_KINDS
+from mcrun.strokes import OUTCOMES, point_strokes, score_shots
 
 OFF_MAP = "off_map"
 ZONE_NAMES = (*ZONE_KINDS, OFF_MAP)
@@ -31,6 +34,10 @@ COLUMNS = {
     "final_lat_deg": pa.float64(),
     "penalty_lon_deg": pa.float64(),
     "penalty_lat_deg": pa.float64(),
+    # Expected strokes (``mcrun.strokes``: the Tour baseline, penalties by the Rules).
+    "penalty_strokes": pa.float64(),
+    "expected_strokes_after": pa.float64(),
+    "strokes_gained": pa.float64(),
 }
 # A share's interval: Wilson's score interval at 95 %.
 Z95 = 1.959963984540054
@@ -44,21 +51,51 @@ def _zones(hole, x, y):
     return pa.DictionaryArray.from_arrays(pa.array(codes, mask=~known), _ZONE_DICTIONARY)
 
 
-def shot_columns(hole, outcomes):
-    """{name: Arrow array} of COLUMNS for the kernel's ``outcomes`` (n, N_OUTCOME)."""
+def scores(hole, outcomes, strokes=None, finish=None):
+    """``strokes.score_shots`` of the kernel's ``outcomes`` (n, N_OUTCOME) on ``hole``
+    (``strokes``: its keyword arguments, the baseline and lies; ``finish``: the finish zones,
+    when already known)."""
+    column = {name: outcomes[:, k] for name, k in _COLUMN.items()}
+    fx, fy = column["final_x_m"], column["final_y_m"]
+    if finish is None:
+        finish = _zones(hole, fx, fy)
+    return score_shots(
+        {
+            "finish_zone": finish,
+            "status": column["status"].astype(np.int64),
+            "pin_distance_m": np.hypot(fx - hole.pin_xy[0], fy - hole.pin_xy[1]),
+            "final_x_m": fx,
+            "final_y_m": fy,
+            "penalty_x_m": column["penalty_x_m"],
+            "penalty_y_m": column["penalty_y_m"],
+        },
+        hole,
+        **(strokes or {}),
+    )
+
+
+def shot_columns(hole, outcomes, strokes=None):
+    """{name: Arrow array} of COLUMNS for the kernel's ``outcomes`` (n, N_OUTCOME);
+    ``strokes``: keyword arguments of ``strokes.score_shots`` (the baseline, lies)."""
     column = {name: outcomes[:, k] for name, k in _COLUMN.items()}
     fx, fy = column["final_x_m"], column["final_y_m"]
     px, py = hole.pin_xy
     lon, lat = hole.to_lonlat(fx, fy)
     plon, plat = hole.to_lonlat(column["penalty_x_m"], column["penalty_y_m"])
+    finish = _zones(hole, fx, fy)
+    scored = scores(hole, outcomes, strokes, finish)
     return {
         "landing_zone": _zones(hole, column["carry_m"], column["carry_lateral_m"]),
-        "finish_zone": _zones(hole, fx, fy),
+        "finish_zone": finish,
         "pin_distance_m": pa.array(np.hypot(fx - px, fy - py)),
         "final_lon_deg": pa.array(np.asarray(lon, float)),
         "final_lat_deg": pa.array(np.asarray(lat, float)),
         "penalty_lon_deg": pa.array(np.asarray(plon, float)),
         "penalty_lat_deg": pa.array(np.asarray(plat, float)),
+        **{
+            name: pa.array(scored[name].to_numpy(dtype=float))
+            for name in ("penalty_strokes", "expected_strokes_after", "strokes_gained")
+        },
     }
 
 
@@ -90,7 +127,7 @@ def zone_shares(columns):
                 to_zone[indices[valid].astype(int)], minlength=len(ZONE_NAMES)
             )
     n = int(counts["landing"].sum())
-    row = {"n_landed": n}
+    row = {"n_landed": n, **_strokes_summary(columns)}
     for which, tally in counts.items():
         for name, k in zip(ZONE_NAMES, tally, strict=True):
             lo, hi = wilson(int(k), n)
@@ -98,3 +135,55 @@ def zone_shares(columns):
             row[f"p_{which}_{name}_lo95"] = lo
             row[f"p_{which}_{name}_hi95"] = hi
     return row
+
+
+def _strokes_summary(columns):
+    """The summary's expected strokes of one point (``strokes.point_strokes`` of its shots'
+    columns): means with their standard errors, and each outcome's share and part."""
+    names = ["status", "finish_zone", "expected_strokes_after", "strokes_gained",
+             "penalty_strokes"]  # fmt: skip
+    parts = [t.to_pandas() for t in columns.tables(names)]
+    shots = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=names)
+    # The scores as written, with the outcome and lie cost they imply.
+    outcome = _outcome_of(shots)
+    scored = pd.DataFrame(
+        {
+            "outcome": outcome,
+            "expected_strokes_after": shots["expected_strokes_after"].to_numpy(float),
+            "strokes_gained": shots["strokes_gained"].to_numpy(float),
+            "lie_cost_strokes": np.zeros(len(shots)),
+            "expected_strokes_start": (
+                shots["strokes_gained"] + 1.0 + shots["expected_strokes_after"]
+            ).to_numpy(float),
+        }
+    )
+    full = point_strokes(scored)
+    row = {
+        "expected_strokes_start": full["expected_strokes_start"],
+        "expected_strokes_after_mean": full["expected_strokes_after_mean"],
+        "expected_strokes_after_se": full["expected_strokes_after_se"],
+        "strokes_gained_mean": full["strokes_gained_mean"],
+        "strokes_gained_se": full["strokes_gained_se"],
+        "n_scored": full["n_scored"],
+    }
+    for name in OUTCOMES:
+        row[f"p_outcome_{name}"] = full[f"p_{name}"]
+        row[f"expected_strokes_after_part_{name}"] = full[f"expected_strokes_after_part_{name}"]
+    return row
+
+
+def _outcome_of(shots):
+    """Each shot's outcome as ``strokes.score_shots`` names it: its finish zone, or its
+    status where that ended it (water, out of bounds, off the map), or failed."""
+    status = shots["status"].to_numpy()
+    zone = shots["finish_zone"].astype(object).to_numpy()
+    outcome = np.where(pd.isna(zone), "failed", zone).astype(object)
+    for code, name in (
+        (status_codes.IN_PENALTY_AREA, "water"),
+        (status_codes.OUT_OF_BOUNDS_STATUS, "out_of_bounds"),
+        (status_codes.OFF_MAP, "off_map"),
+    ):
+        outcome[status == code] = name
+    scored = np.isfinite(shots["expected_strokes_after"].to_numpy(float))
+    outcome[~scored] = "failed"
+    return outcome

@@ -79,9 +79,25 @@ class Baseline:
             return self._one(str(lies), d)
         lies, d = np.broadcast_arrays(lies, d)
         out = np.full(d.shape, np.nan)
-        for name in np.unique(lies):
+        left = np.ones(d.shape, dtype=bool)
+        for name in LIES:
             chosen = lies == name
-            out[chosen] = self._one(str(name), d[chosen])
+            if chosen.any():
+                out[chosen] = self._one(name, d[chosen])
+                left &= ~chosen
+        if left.any():
+            self._one(str(lies[left][0]), d[left][:1])  # (the message of an unknown lie)
+        return out
+
+    def expected_by_code(self, codes, distance_m):
+        """``expected`` with the lies given by their index in ``LIES`` (an int array)."""
+        d = np.asarray(distance_m, dtype=float)
+        codes, d = np.broadcast_arrays(np.asarray(codes), d)
+        out = np.full(d.shape, np.nan)
+        for k, name in enumerate(LIES):
+            chosen = codes == k
+            if chosen.any():
+                out[chosen] = self._one(name, d[chosen])
         return out
 
     def _one(self, lie, d):

@@ -84,11 +84,20 @@ def start_of(hole):
     return lie, float(math.hypot(*hole.pin_xy))
 
 
-def _strings(values):
-    """An array of str (None where missing) from a pandas, pyarrow or numpy column."""
-    if hasattr(values, "to_pylist"):
-        values = values.to_pylist()
-    return np.array([v if isinstance(v, str) else None for v in values], dtype=object)
+ZONES = (*ZONE_KINDS, "off_map")  # the finish zones a shot can have (``results.on_hole``)
+
+
+def _codes(values, names):
+    """The index in ``names`` of each value of a column of strings (pandas, pyarrow, numpy;
+    categorical or not); -1 where missing or not one of them."""
+    if hasattr(values, "to_pandas"):
+        values = values.to_pandas()
+    if isinstance(values, pd.Series):
+        values = values.array
+    if isinstance(values, pd.Categorical):
+        return np.asarray(values.set_categories(list(names)).codes, dtype=np.int64)
+    return np.asarray(pd.Categorical(np.asarray(values, dtype=object), categories=list(names))
+                      .codes, dtype=np.int64)  # fmt: skip
 
 
 def _floats(shots, name, n):
@@ -101,25 +110,32 @@ def _floats(shots, name, n):
     return np.asarray(values, dtype=float)
 
 
+def _outcome_codes(shots):
+    """The outcome of each shot as its index in OUTCOMES (-1: FAILED), from its status and
+    finish zone."""
+    zone = _codes(shots["finish_zone"], ZONES)
+    if "status" in shots:
+        state = np.asarray(shots["status"], dtype=np.int64)  # the codes themselves
+    else:
+        names = _codes(shots["status_name"], tuple(status.NAMES.values()))
+        state = np.where(names >= 0, np.array(list(status.NAMES))[names], -1)
+    code_of = {name: code for code, name in status.NAMES.items()}
+    ok = state == code_of[status.NAMES[status.OK]]
+    outcome = np.full(len(zone), -1, dtype=np.int64)
+    for z in (*IN_PLAY_ZONES, "water", "out_of_bounds"):
+        outcome[ok & (zone == ZONES.index(z))] = OUTCOMES.index(z)
+    outcome[state == code_of[status.NAMES[status.IN_PENALTY_AREA]]] = OUTCOMES.index("water")
+    outcome[state == code_of[status.NAMES[status.OUT_OF_BOUNDS_STATUS]]] = OUTCOMES.index(
+        "out_of_bounds"
+    )
+    off = (state == code_of[status.NAMES[status.OFF_MAP]]) | (ok & (zone == ZONES.index("off_map")))
+    outcome[off] = OUTCOMES.index("off_map")
+    return outcome
+
+
 def _outcomes(shots):
     """The outcome of each shot (OUTCOMES or FAILED) from its status and finish zone."""
-    zone = _strings(shots["finish_zone"])
-    n = len(zone)
-    if "status" in shots:
-        codes = np.asarray(shots["status"], dtype=int)
-        names = np.array([status.NAMES.get(int(c), "unknown") for c in codes], dtype=object)
-    else:
-        names = _strings(shots["status_name"])
-    outcome = np.full(n, FAILED, dtype=object)
-    ok = names == status.NAMES[status.OK]
-    for z in IN_PLAY_ZONES:
-        outcome[ok & (zone == z)] = z
-    outcome[ok & (zone == "water")] = "water"
-    outcome[ok & (zone == "out_of_bounds")] = "out_of_bounds"
-    outcome[names == status.NAMES[status.IN_PENALTY_AREA]] = "water"
-    outcome[names == status.NAMES[status.OUT_OF_BOUNDS_STATUS]] = "out_of_bounds"
-    outcome[(names == status.NAMES[status.OFF_MAP]) | (ok & (zone == "off_map"))] = "off_map"
-    return outcome
+    return np.array([*OUTCOMES, FAILED], dtype=object)[_outcome_codes(shots)]
 
 
 def score_shots(
@@ -156,8 +172,9 @@ def score_shots(
     if start_distance_m is None:
         start_distance_m = math.hypot(*pin_xy_m)
     e_start = float(base.expected(start_lie, start_distance_m))
+    start_code = LIES.index(start_lie)
 
-    outcome = _outcomes(shots)
+    outcome = _outcome_codes(shots)
     n = len(outcome)
     pin_x, pin_y = pin_xy_m
     d_final = _floats(shots, "pin_distance_m", n)
@@ -166,51 +183,55 @@ def score_shots(
         fx, fy = _floats(shots, "final_x_m", n), _floats(shots, "final_y_m", n)
         d_final = np.where(missing, np.hypot(fx - pin_x, fy - pin_y), d_final)
 
-    lie_after = np.full(n, None, dtype=object)
+    lie_after = np.full(n, -1, dtype=np.int64)  # index in LIES
     distance_after = np.full(n, np.nan)
     penalty = np.zeros(n)
     expected_after = np.full(n, np.nan)
 
-    in_play = np.isin(outcome, IN_PLAY_ZONES)
     for zone in IN_PLAY_ZONES:
-        lie_after[outcome == zone] = lies[zone]
+        lie_after[outcome == OUTCOMES.index(zone)] = LIES.index(lies[zone])
+    in_play = (outcome >= 0) & (outcome < len(IN_PLAY_ZONES))
     distance_after[in_play] = d_final[in_play]
-    expected_after[in_play] = base.expected(lie_after[in_play], d_final[in_play])
+    expected_after[in_play] = base.expected_by_code(lie_after[in_play], d_final[in_play])
 
     # Stroke and distance: one penalty stroke, the shot again from its start.
-    again = np.isin(outcome, ("out_of_bounds", "off_map"))
-    lie_after[again] = start_lie
+    again = (outcome == OUTCOMES.index("out_of_bounds")) | (outcome == OUTCOMES.index("off_map"))
+    lie_after[again] = start_code
     distance_after[again] = start_distance_m
     penalty[again] = 1.0
     expected_after[again] = 1.0 + e_start
 
-    water = outcome == "water"
+    water = outcome == OUTCOMES.index("water")
     if water.any():
         rx = _floats(shots, "penalty_x_m", n)[water]
         ry = _floats(shots, "penalty_y_m", n)[water]
         unknown = ~(np.isfinite(rx) & np.isfinite(ry))
         rx = np.where(unknown, _floats(shots, "final_x_m", n)[water], rx)
         ry = np.where(unknown, _floats(shots, "final_y_m", n)[water], ry)
-        drop_lie = np.full(len(rx), "rough", dtype=object)
+        drop_lie = np.full(len(rx), LIES.index("rough"), dtype=np.int64)
         if hole is not None:
             codes = hole.zone_at(rx, ry)
             mown = np.isin(codes, [ZONE_KINDS.index(z) for z in _MOWN])
-            drop_lie[mown] = "fairway"
+            drop_lie[mown] = LIES.index("fairway")
         drop_m = np.hypot(rx - pin_x, ry - pin_y)
-        e_drop = base.expected(drop_lie, drop_m)
+        e_drop = base.expected_by_code(drop_lie, drop_m)
         lateral = e_drop <= e_start
-        lie_after[water] = np.where(lateral, drop_lie, start_lie)
+        lie_after[water] = np.where(lateral, drop_lie, start_code)
         distance_after[water] = np.where(lateral, drop_m, start_distance_m)
         penalty[water] = 1.0
         expected_after[water] = 1.0 + np.minimum(e_drop, e_start)
 
-    scored = outcome != FAILED
+    scored = outcome >= 0
     penalty[~scored] = np.nan
-    reference = base.expected(np.where(outcome == "green", "green", "fairway"), d_final)
+    reference_lie = np.where(outcome == OUTCOMES.index("green"), LIES.index("green"),
+                             LIES.index("fairway"))  # fmt: skip
+    reference = base.expected_by_code(reference_lie, d_final)
     return pd.DataFrame(
         {
-            "outcome": outcome,
-            "lie_after": lie_after,
+            "outcome": pd.Categorical.from_codes(
+                np.where(scored, outcome, len(OUTCOMES)), [*OUTCOMES, FAILED]
+            ),
+            "lie_after": pd.Categorical.from_codes(lie_after, list(LIES)),
             "distance_after_m": distance_after,
             "penalty_strokes": penalty,
             "expected_strokes_after": expected_after,
