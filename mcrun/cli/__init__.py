@@ -91,6 +91,7 @@ COMMAND_MODULES = {
     "plot": "mcrun.cli.report",
     "report": "mcrun.cli.report",
     "hole": "mcrun.cli.hole",
+    "aim": "mcrun.cli.aim",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 

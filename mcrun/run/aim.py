@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from mcrun.api import InputError
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import COLUMN
 from mcrun.results import on_hole
@@ -31,7 +32,7 @@ DEFAULT_COARSE_M = 5.0
 DEFAULT_RESOLUTION_M = 1.0
 
 
-class AimError(ValueError):
+class AimError(InputError):
     """An aim search that cannot run; the message is one line."""
 
 
@@ -196,3 +197,16 @@ def table(result):
             rows["difference_se"].append(club.difference_se[k])
             rows["strokes_gained"].append(result.expected_start - 1.0 - club.expected[k])
     return rows
+
+
+def finishes(result, club, offset_m):
+    """(x, y) finish positions (hole frame, m) of the shots of ``club`` (an index of
+    ``result.clubs``) aimed ``offset_m`` right of the pin: its shots flown again, as the
+    search flew them."""
+    scenario = result.scenario
+    point = scenario.points[club]
+    inputs, _ = sampling.sample(scenario, point, 0, result.n)
+    bearing = _bearing(offset_m, result.pin_distance_m)
+    inputs[:, AZIMUTH] += bearing - scenario.aim_rad
+    out = simulate_batch(inputs, terrain=scenario.hole.terrain())
+    return out[:, on_hole._COLUMN["final_x_m"]], out[:, on_hole._COLUMN["final_y_m"]]

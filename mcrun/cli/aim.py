@@ -1,0 +1,169 @@
+"""``mcrun aim``: where to aim each club of a scenario on its hole (``mcrun.run.aim``), by
+expected strokes (``mcrun.strokes``), with common random numbers; a table of every aim flown
+(Parquet) and a picture (``mcrun.report.aim_plot``) on request."""
+
+import math
+from pathlib import Path
+
+import pandas as pd
+
+from mcrun.api import InputError
+from mcrun.cli import Interrupted
+from mcrun.results import output
+from mcrun.run import aim
+from mcrun.run import scenario as scenario_module
+from mcrun.run.plan import positive_int, with_seed
+from mcrun.strokes import BaselineError, load_baseline
+
+
+def _cmd_aim(args):
+    scenario = scenario_module.load(scenario_module.find(args.scenario))
+    n = positive_int(args.n, "n")
+    if args.seed is not None:
+        scenario = with_seed(scenario, positive_int(args.seed, "seed", minimum=0))
+    if scenario.hole is None:
+        raise InputError(f"{scenario.path}: an aim search needs a hole ([hole] in the scenario)")
+    destination = None if args.output is None else Path(args.output)
+    if destination is not None:
+        if destination.suffix.lower() not in (".parquet", ".pq"):
+            raise InputError(f"-o {args.output}: the output must be a .parquet file")
+        if destination.exists() and not args.force:
+            raise InputError(f"-o {args.output}: already exists: use --force to replace it")
+    if args.plot is not None:
+        from mcrun.report import aim_plot, plots
+
+        plots.require_matplotlib("aim --plot")
+        if Path(args.plot).exists() and not args.force:
+            raise InputError(f"--plot {args.plot}: already exists: use --force to replace it")
+    baseline = None
+    if args.baseline is not None:
+        try:
+            baseline = load_baseline(args.baseline)
+        except BaselineError as err:
+            raise InputError(str(err)) from None
+    offsets = None
+    if args.offsets is not None:
+        try:
+            offsets = [float(v) for v in args.offsets.split(",")]
+        except ValueError:
+            raise InputError(
+                f"--offsets {args.offsets}: give aims as metres right of the pin, comma-separated"
+            ) from None
+    try:
+        result = aim.search(
+            scenario, n=n, half_width_m=args.half_width, centre_m=args.centre,
+            coarse_m=args.step, resolution_m=args.resolution, offsets_m=offsets,
+            baseline=baseline,
+        )  # fmt: skip
+    except KeyboardInterrupt:
+        raise Interrupted("nothing was written") from None
+    print(_report(result))
+    if destination is not None:
+        provenance = {
+            "file": "aim", "scenario_name": scenario.name, "scenario_path": str(scenario.path),
+            "scenario_text": scenario.text, "seed": scenario.seed, "n": n,
+            "baseline": "PGA Tour (Broadie 2012)" if baseline is None else args.baseline,
+            "versions": output.versions(),
+        }  # fmt: skip
+        output.write_table(
+            destination, pd.DataFrame(aim.table(result)), output.encode_provenance(provenance)
+        )
+        print(f"wrote {destination}")
+    if args.plot is not None:
+        aim_plot.write_aim_plot(result, args.plot)
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _report(result):
+    hole = result.scenario.hole
+    at_pin = abs(result.clubs[0].reference_m) < 1e-9
+    reference = "the pin" if at_pin else "the scenario's aim"
+    aims = sum(len(c.offsets_m) for c in result.clubs)
+    lines = [
+        f"aim search on {hole.name or hole.source}: {len(result.clubs)} club(s), {aims} aims x "
+        f"{result.n:,} shots each, the same shots at every aim ({result.shots_flown:,} shots in "
+        f"{result.seconds:.1f} s); expected strokes from the tee {result.expected_start:.3f}",
+        f"aims are metres right (+) of the line to the pin at its distance, "
+        f"{result.pin_distance_m:.1f} m; differences are to {reference} "
+        f"({result.clubs[0].reference_m:+.1f} m), paired shot by shot",
+    ]
+    header = ["club", "aims", "best aim", "E after", "+/-", "gained", "vs ref", "+/-"]
+    rows = []
+    for c in result.clubs:
+        k = c.best
+        bearing = math.degrees(math.atan2(c.offsets_m[k], result.pin_distance_m))
+        rows.append([
+            c.club, str(len(c.offsets_m)), f"{c.offsets_m[k]:+.1f} m ({bearing:+.1f} deg)",
+            f"{c.expected[k]:.3f}", f"{c.expected_se[k]:.3f}",
+            f"{result.expected_start - 1.0 - c.expected[k]:+.3f}",
+            f"{c.difference[k]:+.3f}", f"{c.difference_se[k]:.3f}",
+        ])  # fmt: skip
+    widths = [max(len(r[i]) for r in [header, *rows]) for i in range(len(header))]
+    for line in [header, *rows]:
+        lines.append("  ".join(v.ljust(w) for v, w in zip(line, widths, strict=True)).rstrip())
+    club, k = result.best()
+    lines.append(
+        f"best: {club.club} aimed {club.offsets_m[k]:+.1f} m: {club.expected[k]:.3f} expected "
+        f"strokes left (+/- {club.expected_se[k]:.3f}), {club.difference[k]:+.3f} "
+        f"(+/- {club.difference_se[k]:.3f}) against {reference}"
+    )
+    return "\n".join(lines)
+
+
+def register(subparsers):
+    """Add ``aim`` to an argparse subparsers object."""
+    p = subparsers.add_parser(
+        "aim",
+        help="find where to aim (and which club) on a scenario's hole, by expected strokes",
+        description="Fly the scenario's shots on its hole at a range of aims (start lines, "
+        "given as metres right of the line to the pin at the pin's distance) and score each "
+        "shot by the strokes it leaves (the PGA Tour baseline of Broadie 2012, or --baseline; "
+        "penalties by the Rules). Every aim of a club is flown with the same sampled shots, so "
+        "that the differences between aims are measured shot by shot. The search is coarse to "
+        "fine: --step apart over the region, then finer around the best down to --resolution. "
+        "Each group of the scenario is a club.",
+        epilog="example: mcrun aim par3-over-water -n 10000 --plot aim.png",
+        allow_abbrev=False,
+    )
+    p.add_argument("scenario", metavar="SCENARIO", help="a scenario file or a library name")
+    p.add_argument("-n", metavar="N", default="10000", help="shots per aim (10000)")
+    p.add_argument("--seed", metavar="S", help="random seed (default: the scenario's)")
+    p.add_argument(
+        "--centre",
+        type=float,
+        default=None,
+        metavar="M",
+        help="centre of the region, m right of the pin (default the scenario's aim)",
+    )
+    p.add_argument(
+        "--half-width",
+        type=float,
+        default=aim.DEFAULT_HALF_WIDTH_M,
+        metavar="M",
+        help=f"the region reaches this far each side (m, {aim.DEFAULT_HALF_WIDTH_M:g})",
+    )
+    p.add_argument(
+        "--step",
+        type=float,
+        default=aim.DEFAULT_COARSE_M,
+        metavar="M",
+        help=f"the coarse aims' spacing (m, {aim.DEFAULT_COARSE_M:g})",
+    )
+    p.add_argument(
+        "--resolution",
+        type=float,
+        default=aim.DEFAULT_RESOLUTION_M,
+        metavar="M",
+        help=f"the finest spacing (m, {aim.DEFAULT_RESOLUTION_M:g})",
+    )
+    p.add_argument(
+        "--offsets",
+        metavar="M,M,...",
+        help="fly exactly these aims instead (m right of the pin), no refinement",
+    )
+    p.add_argument("--baseline", metavar="CSV", help="your own expected-strokes table")
+    p.add_argument("-o", "--output", metavar="PARQUET", help="write every aim flown here")
+    p.add_argument("--plot", metavar="PNG", help="draw the search and the best aim's pattern")
+    p.add_argument("--force", action="store_true", help="replace existing output files")
+    p.set_defaults(func=_cmd_aim)
