@@ -1,16 +1,22 @@
-"""The ground under the ball: what the shot loop asks of it, and the one kind there is today.
+"""The ground under the ball: what the shot loop asks of it, and the two kinds there are.
 
-The shot loop (``engine.batch``) does not hold a slope or a turf of its own: at the landing,
-at every impact and when the ball settles into its roll it asks the ground under the ball for
+The shot loop (``engine.batch``) holds no slope or turf of its own: it asks the ground, where
+the ball is, for the ball's height above it (``clearance``, ``clearance_rate``: the flight ends
+where it goes below), its normal and turf (``normal_at``, ``turf_at``: every impact), where a hop
+comes down on it (``hop_landing``), what the roll needs at each step (``surface``: height, normal,
+turf, state, the longest step), the state there under the Rules (``state_at``: in play, or a
+penalty area, out of bounds, off the map) and where the ball crossed into such a place
+(``crossing``). Two kinds of ground answer:
 
-- ``height_at(ground, x, y)``: the height of its surface (m), where the flight ends;
-- ``normal_at(ground, x, y)``: its unit normal, in the core's frame (y to the LEFT);
-- ``turf_at(ground, x, y)``: the turf there (``physics.turf.Turf``).
+- a shot's own ``Plane`` (``terrain`` None): the slope model. The flight comes down to z = 0 and
+  the landing area is the plane of the shot's slope through the landing point, of one turf,
+  built from the shot's input row;
+- a hole's ``Terrain`` (``make_terrain``): heights on a grid, bilinear between nodes, and a zone
+  per node with its turf and its status.
 
-Today's one kind is ``Plane``: the flight ends at z = 0, and the landing area is the plane of
-the shot's slope through the landing point, of one turf, built from the shot's own input row
-(``plane_of``). A terrain and turf zones (a real hole) are other kinds behind the same three
-functions, which is all the loop needs to change to play them.
+Each question is a Numba ``overload`` on the type of ``terrain``, so the loop is compiled once
+for each kind, and the Plane's loop is the same code, with the same numbers, as before there
+were terrains.
 """
 
 import math
