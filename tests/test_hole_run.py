@@ -140,6 +140,13 @@ def test_the_aim_turns_every_shot(tmp_path):
 
 
 RECTANGLE = "[hole]\nlength_m = 150.0\nwidth_m = 60.0\n"
+# A course of one hole, 150 m north from (15 E, 45 N), its green round the pin.
+ONE_HOLE = """{"type": "FeatureCollection", "features": [
+ {"type": "Feature", "properties": {"golf": "hole"}, "geometry": {"type": "LineString",
+  "coordinates": [[15.0, 45.0], [15.0, 45.00135]]}},
+ {"type": "Feature", "properties": {"golf": "green"}, "geometry": {"type": "Polygon",
+  "coordinates": [[[14.9998, 45.0012], [15.0002, 45.0012], [15.0002, 45.0015],
+                   [14.9998, 45.0015], [14.9998, 45.0012]]]}}]}"""
 
 
 @pytest.mark.parametrize(
@@ -163,11 +170,15 @@ RECTANGLE = "[hole]\nlength_m = 150.0\nwidth_m = 60.0\n"
         ('[hole]\nfile = "nowhere.toml"\n', "", "hole.file: cannot read"),
         (RECTANGLE + "bogus = 1\n", "", "unknown key 'bogus'"),
         ('[hole]\nmap = "missing.geojson"\nhole = 1\n', "", "missing.geojson"),
+        ('[hole]\nmap = "not-a-map.geojson"\nhole = 1\n', "", "not-a-map.geojson"),
+        ('[hole]\nmap = "one-hole.geojson"\nhole = 5\n', "", "hole"),
     ],
 )
 def test_bad_hole_tables_give_one_line(tmp_path, capsys, hole, extra, message):
     """Each mistake in ``[hole]`` is one line naming the file and the key, exit 2, and the
     run writes nothing."""
+    (tmp_path / "not-a-map.geojson").write_text('{"type": "Feature"}')
+    (tmp_path / "one-hole.geojson").write_text(ONE_HOLE)
     path = scenario_file(tmp_path, hole, extra)
     with pytest.raises(ScenarioError, match=re.escape(message)):
         sc.load(path)
@@ -192,3 +203,28 @@ def test_every_library_hole_scenario_loads():
 def test_hole_shots_read_in_pandas_as_categories(par3):
     shots, _, _ = par3
     assert isinstance(shots["finish_zone"].dtype, pd.CategoricalDtype)
+
+
+def test_a_hole_run_on_dask_is_the_local_run(tmp_path):
+    """The same run on a local Dask cluster: every shot and the zone shares, bit for bit."""
+    pytest.importorskip("distributed")
+    from mcrun.results.reader import read_shots
+    from mcrun.run import distributed
+
+    local.run_scenario("par3-over-water", n=600, out_dir=tmp_path / "local", progress=False,
+                       chunk_size=256)  # fmt: skip
+    distributed.run_scenario("par3-over-water", n=600, out_dir=tmp_path / "dask",
+                             progress=False, chunk_size=256, workers=2)  # fmt: skip
+    a, b = read_shots(tmp_path / "local"), read_shots(tmp_path / "dask")
+    key = ["point", "shot"]
+    a = a.sort_values(key).reset_index(drop=True).drop(columns="group")
+    b = b.sort_values(key).reset_index(drop=True).drop(columns="group")
+    for frame in (a, b):
+        for name in frame.columns:
+            if isinstance(frame[name].dtype, pd.CategoricalDtype):
+                frame[name] = frame[name].astype(str)
+    pd.testing.assert_frame_equal(a, b, check_exact=True)
+    sa = pd.read_parquet(tmp_path / "local" / "summary.parquet")
+    sb = pd.read_parquet(tmp_path / "dask" / "summary.parquet")
+    zones = [c for c in sa.columns if c.startswith(("p_finish_", "p_landing_", "expected_"))]
+    pd.testing.assert_frame_equal(sa[zones], sb[zones], check_exact=True)
