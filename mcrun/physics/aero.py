@@ -55,7 +55,7 @@ MODELS = {
 
 # The model that best predicts measured shots it was not fitted to (cross-validated on the
 # TrackMan 2019 tour averages: benchmarks/calibration.md, README). Before: trackman2019.
-DEFAULT_MODEL = "trackman2019"
+DEFAULT_MODEL = "trackman2019_lyu"
 
 SOURCES = {
     "ferguson2022": "Ferguson, McNally and McPhee (2022), ISEA proceedings, "
