@@ -70,7 +70,7 @@ def reference_landing(row):
     """Landing of the shot ``row`` by DOP853: (t, x, y, vx, vy, vz, spin, axis), core frame."""
     c = {name: row[k] for name, k in COLUMN.items()}
     model = int(c["aero_model"])
-    a0, a1, a2, b0, b1, b2, s_max = QUADRATIC_COEFFICIENTS[model]
+    a0, a1, a2, b0, b1, b2, s_max = QUADRATIC_COEFFICIENTS[model][:7]
     if not math.isfinite(a0):
         raise ValueError(f"the reference knows the quadratic aerodynamic models only, not {model}")
     k = 0.5 * c["air_density_kgpm3"] * AREA / M

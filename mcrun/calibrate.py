@@ -8,9 +8,11 @@ standard air (20 C, 101325 Pa, 50 % RH), without wind, with zero azimuth and spi
 default step.
 
 ``predict`` flies the table's launches with a model, ``errors`` compares the result with the
-table (residual = simulated - measured), and ``fit`` refits the quadratic form of
+table (residual = simulated - measured), and ``fit`` refits a form of
 ``aero.QUADRATIC_COEFFICIENTS`` (C_D = a0 + a1 S + a2 S^2, C_L = b0 + b1 S + b2 S^2, S clipped
-at s_max) by least squares; its output is the ``trackman2019`` row of that table.
+at s_max, plus for a Reynolds model the scale of its low-Re drag rise) by least squares; its
+output is that model's row of the table. ``cross_validate`` judges a form by how it predicts
+clubs it was not fitted to: leave one club out, and one tour fitted to predict the other.
 """
 
 import math
@@ -308,6 +310,31 @@ def round_significant(values, digits=4):
     return np.array(out)
 
 
+# The forms ``fit`` refits, each the model of that name: the quadratic C_D(S), C_L(S) with s_max
+# (7 unknowns), plus, for a Reynolds model, the scale of its low-Re drag rise (one more). The
+# spin decay of each form is held at its published value (aero.QUADRATIC_COEFFICIENTS columns
+# 9-10): Smits and Smith's k = 2e-5, or 4 % per second.
+FORMS = {
+    "trackman2019": (),
+    "trackman2019_exp": (),
+    "trackman2019_lyu": (aero.C_LYU,),
+    "trackman2019_lyu_exp": (aero.C_LYU,),
+    "trackman2019_ramp": (aero.C_RAMP,),
+}
+# Names, bounds and start values of the columns a form fits beside the quadratic. The starts are
+# the published rises: Lyu et al.'s as measured, libgolf's C_D 0.2 -> 0.5.
+EXTRA_COLUMNS = {
+    aero.C_LYU: ("c_lyu", (0.0, 3.0), 1.0),
+    aero.C_RAMP: ("c_ramp", (0.0, 1.0), 0.3),
+}
+QUADRATIC_NAMES = ("a0", "a1", "a2", "b0", "b1", "b2", "s_max")
+
+
+def parameter_names(form):
+    """Names of the fitted parameters of ``form``, in the order of ``FitResult.parameters``."""
+    return QUADRATIC_NAMES + tuple(EXTRA_COLUMNS[c][0] for c in FORMS[form])
+
+
 @dataclass(frozen=True)
 class FitResult:
     """Outcome of ``fit``: the fitted row (4 significant digits), the errors before and after."""
@@ -320,32 +347,47 @@ class FitResult:
     before: Errors
     after: Errors
     message: str
+    form: str = "trackman2019"
+
+    @property
+    def parameters(self):
+        """The fitted parameters, by name (``parameter_names``)."""
+        columns = list(range(7)) + list(FORMS[self.form])
+        return dict(zip(parameter_names(self.form), map(float, self.row[columns]), strict=True))
 
 
-def fit(frame, start="ferguson2022", s_max=None):
-    """Least-squares fit of the quadratic C_D(S), C_L(S) to measured carry, apex and land angle.
+def _check_form(form):
+    if form not in FORMS:
+        _fail(f"cannot fit the form '{form}': choose one of {', '.join(FORMS)}")
+
+
+def fit(frame, start="ferguson2022", s_max=None, form="trackman2019"):
+    """Least-squares fit of a form's C_D(S, Re), C_L(S) to measured carry, apex and land angle.
 
     The residuals are scaled by CARRY_SCALE_M, APEX_SCALE_M and LAND_ANGLE_SCALE_DEG. The
-    unknowns are C_D and C_L at S = 0.1, 0.3, 0.5 (the six coefficients, in a better-conditioned
-    basis), each bounded to [0.05, 0.6], and s_max within S_MAX_BOUNDS, unless ``s_max`` is given
-    (then it is held there, e.g. 0.75 as ferguson2022). A penalty keeps C_D(S) and C_L(S) inside
-    [0.05, 0.6] for all S in [0.05, 0.6], not only at the nodes. Deterministic: the same start
-    gives the same row.
+    unknowns are C_D and C_L at S = 0.1, 0.3, 0.5 (the six coefficients of the quadratics, in a
+    better-conditioned basis), each bounded to [0.05, 0.6], and s_max within S_MAX_BOUNDS, unless
+    ``s_max`` is given (then it is held there, e.g. 0.75 as ferguson2022), and the scale of the
+    form's low-Re drag rise, if it has one (``EXTRA_COLUMNS``). A penalty keeps C_D(S) and C_L(S)
+    inside [0.05, 0.6] for all S in [0.05, 0.6], not only at the nodes. Deterministic: the same
+    start gives the same row.
 
     Parameters
     ----------
     frame : DataFrame
         ``load_measured`` output.
     start : str
-        A quadratic model whose row starts the fit.
+        A quadratic model whose row starts the fit (the rise starts at its published size).
     s_max : float, optional
         Hold the clip of S at this value instead of fitting it.
+    form : str
+        A key of ``FORMS``: the model whose row is fitted.
 
     Returns
     -------
     FitResult
-        ``row`` = (a0, a1, a2, b0, b1, b2, s_max) rounded to 4 significant digits; ``before`` and
-        ``after`` are ``errors`` of the start row and of the rounded row.
+        ``row`` = the form's row of ``aero.QUADRATIC_COEFFICIENTS`` rounded to 4 significant
+        digits; ``before`` and ``after`` are ``errors`` of the start row and of the rounded row.
     """
     try:
         from scipy.optimize import least_squares
@@ -358,9 +400,14 @@ def fit(frame, start="ferguson2022", s_max=None):
             f"cannot start a fit from '{start}': choose a quadratic model "
             f"({', '.join(m for m in aero.MODELS if _quadratic_model(m))})"
         )
-    target = aero.TRACKMAN2019
+    _check_form(form)
+    target = aero.model_id(form)
+    extras = FORMS[form]
     table = aero.QUADRATIC_COEFFICIENTS.copy()
-    start_row = table[aero.model_id(start)].copy()
+    start_row = table[target].copy()
+    start_row[:7] = table[aero.model_id(start)][:7]
+    for column in extras:
+        start_row[column] = EXTRA_COLUMNS[column][2]
     lo, hi = COEFFICIENT_BAND
     x0 = _node_values(start_row)
     lower = np.full(6, lo)
@@ -369,12 +416,25 @@ def fit(frame, start="ferguson2022", s_max=None):
         x0 = np.append(x0, start_row[6])
         lower = np.append(lower, S_MAX_BOUNDS[0])
         upper = np.append(upper, S_MAX_BOUNDS[1])
+    n_quadratic = x0.size
+    for column in extras:
+        _, (a, b), _ = EXTRA_COLUMNS[column]
+        x0 = np.append(x0, start_row[column])
+        lower = np.append(lower, a)
+        upper = np.append(upper, b)
     x0 = np.clip(x0, lower + 1e-9, upper - 1e-9)
 
+    def make_row(x):
+        row = start_row.copy()
+        row[:7] = _row_from_unknowns(x[:n_quadratic], s_max)
+        for j, column in enumerate(extras):
+            row[column] = x[n_quadratic + j]
+        return row
+
     def residuals(x):
-        row = _row_from_unknowns(x, s_max)
+        row = make_row(x)
         table[target] = row
-        simulated = predict("trackman2019", frame, table)
+        simulated = predict(form, frame, table)
         res = _scaled_residuals(frame, simulated)
         # A shot that does not land (absurd coefficients) counts as far off.
         res = np.where(np.isfinite(res), res, 1e3)
@@ -382,7 +442,7 @@ def fit(frame, start="ferguson2022", s_max=None):
         return np.append(res, band_violation(row) / 1e-3)
 
     table[target] = start_row
-    before = errors("trackman2019", frame, table)
+    before = errors(form, frame, table)
     began = time.perf_counter()
     solution = least_squares(
         residuals,
@@ -390,14 +450,14 @@ def fit(frame, start="ferguson2022", s_max=None):
         bounds=(lower, upper),
         method="trf",
         diff_step=1e-6,
-        x_scale=np.abs(x0),
+        x_scale=np.maximum(np.abs(x0), 0.05),
         xtol=1e-10,
         ftol=1e-10,
     )
     seconds = time.perf_counter() - began
-    row = round_significant(_row_from_unknowns(solution.x, s_max), 4)
+    row = round_significant(make_row(solution.x), 4)
     table[target] = row
-    after = errors("trackman2019", frame, table)
+    after = errors(form, frame, table)
     return FitResult(
         row=row,
         start=start,
@@ -407,9 +467,105 @@ def fit(frame, start="ferguson2022", s_max=None):
         before=Errors(start, before.per_club, before.rmse),
         after=after,
         message=str(solution.message),
+        form=form,
     )
 
 
 def row_literal(row):
     """The row as Python source, to paste into ``aero.QUADRATIC_COEFFICIENTS``."""
     return "[" + ", ".join(f"{v:.4g}" for v in row) + "],"
+
+
+# --- cross-validation ----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class CrossValidation:
+    """How a form predicts clubs it was not fitted to.
+
+    ``held_out``: one row per club of the table, the error (simulated - measured) of its carry
+    (m), apex (m) and land angle (deg) when the form is fitted to the other 22 clubs (leave one
+    club out). ``rmse``: RMSE and bias of those errors per tour and overall, and the RMSE of the
+    tour transfers (fit on one tour, predict the other; rows 'PGA->LPGA' and 'LPGA->PGA').
+    ``parameters``: the fitted parameters of every fold (rows: the club left out, then the two
+    transfers, then 'all', the fit to every club). ``seconds``: time of all the fits.
+    """
+
+    form: str
+    held_out: pd.DataFrame
+    rmse: pd.DataFrame
+    parameters: pd.DataFrame
+    seconds: float
+
+
+def _rmse_row(errors_frame):
+    row = {}
+    for name, unit in (("carry", "m"), ("apex", "m"), ("land_angle", "deg")):
+        err = errors_frame[f"{name}_error_{unit}"].to_numpy()
+        row[f"{name}_rmse_{unit}"] = float(np.sqrt(np.mean(err**2)))
+        row[f"{name}_bias_{unit}"] = float(np.mean(err))
+    return row
+
+
+def cross_validate(frame, form="trackman2019", start="ferguson2022"):
+    """Cross-validate ``form``: leave one club out (each of the table's rows in turn), and fit
+    on one tour to predict the other. Every fold is fitted from the same start (``fit``).
+
+    Returns
+    -------
+    CrossValidation
+    """
+    _check_form(form)
+    began = time.perf_counter()
+    target = aero.model_id(form)
+    names = parameter_names(form)
+    held_out = []
+    parameters = {}
+
+    def predict_with(result, rows):
+        table = aero.QUADRATIC_COEFFICIENTS.copy()
+        table[target] = result.row
+        return errors(form, rows, table).per_club
+
+    for i in range(len(frame)):
+        keep = frame.drop(index=frame.index[i])
+        result = fit(keep, start=start, form=form)
+        held_out.append(predict_with(result, frame.iloc[[i]]))
+        label = f"{frame['tour'].iloc[i]} {frame['club'].iloc[i]}"
+        parameters[label] = [result.parameters[n] for n in names]
+    held_out = pd.concat(held_out, ignore_index=True)
+    rows = {}
+    tours = list(dict.fromkeys(frame["tour"]))
+    for tour in [*tours, "all"]:
+        pick = held_out if tour == "all" else held_out[held_out["tour"] == tour]
+        rows[tour] = _rmse_row(pick)
+    if len(tours) == 2:
+        for a, b in (tours, tours[::-1]):
+            result = fit(frame[frame["tour"] == a], start=start, form=form)
+            rows[f"{a}->{b}"] = _rmse_row(predict_with(result, frame[frame["tour"] == b]))
+            parameters[f"{a}->{b}"] = [result.parameters[n] for n in names]
+    result = fit(frame, start=start, form=form)
+    parameters["all"] = [result.parameters[n] for n in names]
+    rows["fit (training)"] = _rmse_row(result.after.per_club)
+    rmse = pd.DataFrame.from_dict(rows, orient="index")
+    rmse.index.name = "fold"
+    parameters = pd.DataFrame.from_dict(parameters, orient="index", columns=list(names))
+    parameters.index.name = "fold"
+    return CrossValidation(form, held_out, rmse, parameters, seconds=time.perf_counter() - began)
+
+
+def parameter_stability(cv):
+    """Mean, standard deviation and range of each fitted parameter over the leave-one-club-out
+    folds, and the largest relative change of C_D and C_L (at S = 0.1, 0.3, 0.5) between a fold
+    and the fit to every club: how much one club moves the fit."""
+    folds = cv.parameters.drop(index=["all", *[i for i in cv.parameters.index if "->" in i]])
+    summary = pd.DataFrame(
+        {
+            "all": cv.parameters.loc["all"],
+            "mean": folds.mean(),
+            "std": folds.std(ddof=0),
+            "min": folds.min(),
+            "max": folds.max(),
+        }
+    )
+    return summary

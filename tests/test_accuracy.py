@@ -18,7 +18,9 @@ from scipy.integrate import solve_ivp
 
 from mcrun.api import WIND_PROFILE_DEFAULTS, air_properties, simulate
 from mcrun.engine.shot import default_dt_s
-from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
+from mcrun.physics.aero import MODELS, QUADRATIC_COEFFICIENTS
+
+REYNOLDS = ("trackman2019_lyu", "trackman2019_ramp", "trackman2019_exp", "trackman2019_lyu_exp")
 
 R = 0.021335  # ball radius (m), physics.md
 M = 0.04593  # ball mass (kg)
@@ -49,14 +51,37 @@ def lyu(s, re):
     return cd, 1.99 * s - 3.25 * s * s
 
 
+def reynolds(a0, a1, a2, b0, b1, b2, s_max, c_lyu, c_ramp, *_decay):
+    """The quadratic plus Lyu et al.'s low-Re drag above its minimum (Re 2.59e-5 / 2.58e-10)
+    and libgolf's linear rise from Re 1e5 to 5e4, scaled (physics.md, aero.py)."""
+    s_part = quadratic(a0, a1, a2, b0, b1, b2, s_max)
+
+    def lyu_low(re):
+        return 1.29e-10 * re * re - 2.59e-5 * re + 1.50
+
+    re_min = 2.59e-5 / 2.58e-10
+
+    def coefficients(s, re):
+        cd, cl = s_part(s, re)
+        lyu = lyu_low(min(re, re_min)) - lyu_low(re_min)
+        ramp = min(max((1.0e5 - re) / 5.0e4, 0.0), 1.0)
+        return cd + c_lyu * lyu + c_ramp * ramp, cl
+
+    return coefficients
+
+
 COEFFICIENTS = {
     "ferguson2022": quadratic(0.1304, 0.9287, -0.8259, 0.0504, 1.2031, -1.1490, 0.75),
     "smits_smith1994": smits_smith,
     "lyu2018": lyu,
     # Fitted models: their coefficients are data, read from the table.
-    "penner2002": quadratic(*QUADRATIC_COEFFICIENTS[3]),
-    "trackman2019": quadratic(*QUADRATIC_COEFFICIENTS[4]),
+    "penner2002": quadratic(*QUADRATIC_COEFFICIENTS[3][:7]),
+    "trackman2019": quadratic(*QUADRATIC_COEFFICIENTS[4][:7]),
+    **{name: reynolds(*QUADRATIC_COEFFICIENTS[MODELS[name]]) for name in REYNOLDS},
 }
+# Spin decay dw/dt = -(k |v_rel| / r + lambda) w: (k, lambda) of each model.
+DECAY = {name: (SPIN_DECAY, 0.0) for name in COEFFICIENTS}
+DECAY.update({name: tuple(QUADRATIC_COEFFICIENTS[MODELS[name]][9:11]) for name in REYNOLDS})
 
 
 def wind_factor(z, profile, z_ref, parameter):
@@ -73,6 +98,7 @@ def reference_flight(shot):
     """Carry, lateral (m, right positive), apex (m) and landing speed (m/s) by DOP853."""
     rho, nu = air_properties(**shot.get("air", {}))
     coefficients = COEFFICIENTS[shot["aero_model"]]
+    decay_k, decay_rate = DECAY[shot["aero_model"]]
     profile = shot.get("wind_profile", "uniform")
     parameter = WIND_PROFILE_DEFAULTS[profile]
     z_ref = 10.0
@@ -105,7 +131,7 @@ def reference_flight(shot):
         lift = np.cross(axis, u)
         a = -k * cd * u_mag * u + k * cl * u_mag * u_mag * lift / math.sqrt(lift @ lift)
         a[2] -= G
-        return [*v, *a, -SPIN_DECAY * u_mag / R * s[6]]
+        return [*v, *a, -(decay_k * u_mag / R + decay_rate) * s[6]]
 
     def ground(t, s):
         return s[2]
@@ -168,6 +194,14 @@ SHOTS = {
     # Flights of one and two steps: the landing and the apex lie in the step from the ground.
     "chip, shorter than one step": shot("trackman2019", 10.0, 5.0, 100.0),
     "chip, two steps": shot("ferguson2022", 12.0, 8.0, 150.0, wind=(2.0, 3.0)),
+    # The Reynolds models, in their vectorised lanes (uniform wind) and the general (log).
+    "7-iron, Lyu rise": shot("trackman2019_lyu", 53.6, 16.3, 743.0, axis=4.0, wind=(-3.0, 2.0)),
+    "7-iron, Lyu rise, log wind": shot(
+        "trackman2019_lyu", 53.6, 16.3, 743.0, wind=(4.0, -3.0), wind_profile="log"
+    ),
+    "wedge, ramp": shot("trackman2019_ramp", 45.6, 24.2, 974.0, wind=(0.0, 3.0)),
+    "driver, 4 %/s decay": shot("trackman2019_exp", 74.7, 10.9, 281.0, axis=-3.0),
+    "5-iron, Lyu rise and 4 %/s": shot("trackman2019_lyu_exp", 59.0, 12.1, 561.0),
 }
 
 

@@ -118,10 +118,21 @@ def test_trackman2019_beats_ferguson2022(compared):
     assert fitted["scaled_rms"] < published["scaled_rms"]
 
 
-def test_default_model_is_the_most_accurate(compared):
-    """DEFAULT_MODEL has the lowest scaled RMS of the compared models (2.60; next 3.65)."""
+def test_default_model_is_the_cross_validation_winner(compared):
+    """DEFAULT_MODEL is trackman2019_lyu, the form with the lowest cross-validated errors
+    (benchmarks/calibration.md: held-out RMSE 3.43 m / 1.63 m / 2.63 deg against trackman2019's
+    4.34 / 2.43 / 3.44; the fit is not run here). On the table itself: carry / apex / land-angle
+    RMSE 2.52 m / 1.37 m / 2.14 deg, land-angle bias -0.31 deg (trackman2019: -2.70), and it
+    beats every model without a low-Re rise (next best scaled RMS 2.589, trackman2019_exp)."""
+    assert aero.DEFAULT_MODEL == "trackman2019_lyu"
+    rmse = compared[aero.DEFAULT_MODEL].rmse.loc["all"]
+    assert rmse["carry_rmse_m"] < 2.52 + 0.05
+    assert rmse["apex_rmse_m"] < 1.37 + 0.05
+    assert rmse["land_angle_rmse_deg"] < 2.14 + 0.05
+    assert abs(rmse["land_angle_bias_deg"]) < 0.31 + 0.05
     scores = {m: r.rmse.loc["all", "scaled_rms"] for m, r in compared.items()}
-    assert min(scores, key=scores.get) == aero.DEFAULT_MODEL
+    without_rise = {m: v for m, v in scores.items() if "lyu" not in m and "ramp" not in m}
+    assert scores[aero.DEFAULT_MODEL] < min(without_rise.values())
 
 
 def test_shipped_trackman2019_row_is_physical():

@@ -283,7 +283,7 @@ def test_metadata_round_trips_and_reproduces_the_run(drive, tmp_path):
         assert meta["groups"] == ["driver", "driver", "wild", "wild"]
         assert meta["versions"] == output.versions()
         assert meta["models"] == {
-            "aero": ["trackman2019"],
+            "aero": ["trackman2019_lyu"],
             "bounce": ["penner2002"],
             "wind_profile": ["uniform"],
         }

@@ -653,7 +653,7 @@ def test_defaults(tmp_path):
     assert p["weather.pressure"].value == 101325.0
     assert p["weather.humidity"].value == 0.5
     assert p["weather.temperature"].value == 293.15
-    assert p["models.aero"] == "trackman2019"
+    assert p["models.aero"] == "trackman2019_lyu"
     assert p["models.dt"].value == 0.2  # the default step in uniform wind
     log = sc.load(write(tmp_path, BALL + '[weather]\nwind_profile = "log"\n'))
     assert log.points[0].params["models.dt"].value == 0.02  # and with a wind profile

@@ -9,11 +9,14 @@ from mcrun.calibrate import (
     CARRY_SCALE_M,
     COEFFICIENT_BAND,
     COMPARED_MODELS,
+    FORMS,
     LAND_ANGLE_SCALE_DEG,
+    cross_validate,
     curves,
     errors,
     fit,
     load_measured,
+    parameter_stability,
     row_literal,
 )
 from mcrun.physics import aero
@@ -72,21 +75,57 @@ def format_rmse(results):
 
 def format_fit(result):
     """Summary of a fit, as text, ending with the row to paste into aero.py."""
-    names = ("a0", "a1", "a2", "b0", "b1", "b2", "s_max")
     fitted = "fitted" if result.s_max_fitted else "held"
     cd, cl = curves(result.row, BAND_SPIN_RATIOS)
+    rise = {(): "", (aero.C_LYU,): " + c_lyu D_lyu(Re)", (aero.C_RAMP,): " + c_ramp D_ramp(Re)"}
     lines = [
-        f"Fit of C_D = a0 + a1 S + a2 S^2, C_L = b0 + b1 S + b2 S^2 (S clipped at s_max, {fitted})"
+        f"Fit of {result.form}: C_D = a0 + a1 S + a2 S^2{rise[FORMS[result.form]]}, "
+        f"C_L = b0 + b1 S + b2 S^2 (S clipped at s_max, {fitted})"
         f" from {result.start}: {result.evaluations} evaluations, {result.seconds:.2f} s",
-        "  " + "  ".join(f"{n} = {v:.4g}" for n, v in zip(names, result.row, strict=True)),
+        "  " + "  ".join(f"{n} = {v:.4g}" for n, v in result.parameters.items()),
         f"  over S in [0.05, 0.6]: C_D {cd.min():.3f}-{cd.max():.3f}, "
         f"C_L {cl.min():.3f}-{cl.max():.3f} (band {COEFFICIENT_BAND[0]:g}-{COEFFICIENT_BAND[1]:g})",
         "",
         format_rmse({f"{result.start}": result.before, "fitted": result.after}),
         "",
-        "Row for aero.QUADRATIC_COEFFICIENTS (trackman2019):",
+        f"Row for aero.QUADRATIC_COEFFICIENTS ({result.form}):",
         f"        {row_literal(result.row)}",
     ]
+    return "\n".join(lines)
+
+
+def format_cv(cv):
+    """Cross-validation of one form, as text: RMSE and bias of the held-out predictions, the
+    error of each club when left out, and the fitted parameters across the folds."""
+    lines = [
+        f"Form {cv.form}: cross-validated (each fold fitted afresh; {cv.seconds:.0f} s)",
+        f"{'fold':<16} | {'carry RMSE (m)':>14} {'bias':>6} | {'apex RMSE (m)':>13} {'bias':>6} | "
+        f"{'land RMSE (deg)':>15} {'bias':>6}",
+    ]
+    labels = {"all": "left out, all", "PGA": "left out, PGA", "LPGA": "left out, LPGA"}
+    for fold, r in cv.rmse.iterrows():
+        lines.append(
+            f"{labels.get(fold, fold):<16} | {r.carry_rmse_m:14.2f} {r.carry_bias_m:+6.2f} | "
+            f"{r.apex_rmse_m:13.2f} {r.apex_bias_m:+6.2f} | "
+            f"{r.land_angle_rmse_deg:15.2f} {r.land_angle_bias_deg:+6.2f}"
+        )
+    lines += ["", "Each club predicted by the fit to the other clubs (simulated - measured):"]
+    lines.append(
+        f"{'tour':<5} {'club':<7} | {'carry (m)':>9} | {'apex (m)':>8} | {'land (deg)':>10}"
+    )
+    for r in cv.held_out.itertuples(index=False):
+        lines.append(
+            f"{r.tour:<5} {r.club:<7} | {r.carry_error_m:+9.2f} | {r.apex_error_m:+8.2f} | "
+            f"{r.land_angle_error_deg:+10.2f}"
+        )
+    stability = parameter_stability(cv)
+    lines += ["", "Fitted parameters: all clubs, and over the leave-one-club-out folds:"]
+    lines.append(f"{'':<7} {'all':>9} {'mean':>9} {'std':>9} {'min':>9} {'max':>9}")
+    for name, r in stability.iterrows():
+        lines.append(
+            f"{name:<7} {r['all']:9.4g} {r['mean']:9.4g} {r['std']:9.3g} {r['min']:9.4g} "
+            f"{r['max']:9.4g}"
+        )
     return "\n".join(lines)
 
 
@@ -96,28 +135,39 @@ def _cmd_calibrate(args):
     output = {}
     text = []
     if args.fit:
-        result = fit(frame)
+        result = fit(frame, form=args.form)
         output["fit"] = {
+            "form": result.form,
             "start": result.start,
             "s_max_fitted": result.s_max_fitted,
             "seconds": result.seconds,
             "evaluations": result.evaluations,
-            "row": dict(
-                zip(
-                    ("a0", "a1", "a2", "b0", "b1", "b2", "s_max"),
-                    map(float, result.row),
-                    strict=True,
-                )
-            ),
+            "parameters": result.parameters,
+            "row": [float(v) for v in result.row],
             "rmse_before": _rmse_json(result.before.rmse),
             "rmse_after": _rmse_json(result.after.rmse),
         }
         text.append(format_fit(result))
+    if args.cv is not None:
+        forms = args.cv or list(FORMS)
+        output["cv"] = {}
+        for form in forms:
+            cv = cross_validate(frame, form=form)
+            output["cv"][form] = {
+                "rmse": _rmse_json(cv.rmse),
+                "held_out": _records(cv.held_out),
+                "parameters": {
+                    fold: {k: float(v) for k, v in row.items()}
+                    for fold, row in cv.parameters.iterrows()
+                },
+                "seconds": cv.seconds,
+            }
+            text.append(format_cv(cv))
     if args.compare:
         results = {m: errors(m, frame) for m in COMPARED_MODELS}
         output["compare"] = {m: _rmse_json(r.rmse) for m, r in results.items()}
         text.append(format_rmse(results))
-    if not (args.fit or args.compare):
+    if not (args.fit or args.compare or args.cv is not None):
         result = errors(args.model, frame)
         output["model"] = args.model
         output["per_club"] = _records(result.per_club)
@@ -158,7 +208,22 @@ def register(subparsers):
     parser.add_argument(
         "--fit",
         action="store_true",
-        help="refit the quadratic C_D, C_L from ferguson2022 and print the row for aero.py",
+        help="refit a form (--form) from ferguson2022 and print its row for aero.py",
+    )
+    parser.add_argument(
+        "--form",
+        choices=list(FORMS),
+        default=aero.DEFAULT_MODEL if aero.DEFAULT_MODEL in FORMS else "trackman2019",
+        help="the form --fit refits (default: the default model's)",
+    )
+    parser.add_argument(
+        "--cv",
+        nargs="*",
+        choices=list(FORMS),
+        metavar="FORM",
+        default=None,
+        help="cross-validate forms (default all): leave one club out, and fit one tour to "
+        f"predict the other; forms: {', '.join(FORMS)}",
     )
     parser.add_argument("--json", action="store_true", help="print JSON instead of tables")
     parser.set_defaults(func=_cmd_calibrate)

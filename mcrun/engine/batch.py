@@ -32,7 +32,14 @@ from mcrun.engine.shot import (
     write_landing,
     write_run,
 )
-from mcrun.physics.aero import QUADRATIC_COEFFICIENTS, is_quadratic
+from mcrun.physics.aero import (
+    C_LYU,
+    C_RAMP,
+    QUADRATIC_COEFFICIENTS,
+    SPIN_K,
+    SPIN_RATE,
+    flies_in_lanes,
+)
 from mcrun.physics.bounce import HOPS, TOO_MANY, impact, impact_rebound, incidence
 from mcrun.physics.constants import BALL_AREA_M2, BALL_MASS_KG, G_MPS2
 from mcrun.physics.flight import (
@@ -87,7 +94,8 @@ def _params(inputs, i):
     )  # fmt: skip
 
 
-# How a shot flies: a quadratic aerodynamic model in uniform wind (the usual case) in lanes
+# How a shot flies: a quadratic or Reynolds aerodynamic model in uniform wind (the usual case)
+# in lanes
 # whose steps the compiler turns into vector instructions (``flight.derivatives_quadratic``),
 # any other model or wind profile in lanes of the general form (``flight.derivatives``).
 # Both are the same loop (``_make_flight``) and give the same numbers for a shot both can fly.
@@ -108,7 +116,8 @@ def _kind(inputs, i, out):
         c[FALL_LINE], c[DT_IN], out, i,
     ):  # fmt: skip
         return INVALID
-    return QUADRATIC if is_quadratic(p.aero_model) and p.wind_profile == WIND_UNIFORM else GENERAL
+    vectorised = flies_in_lanes(p.aero_model) and p.wind_profile == WIND_UNIFORM
+    return QUADRATIC if vectorised else GENERAL
 
 
 # Flight lanes: a block of LANES shots stepped together, one loop per RK4 stage over the lanes.
@@ -121,27 +130,32 @@ LANES = 16
 # the height and vertical speed at the end of the last step, the spin axis, the flight's
 # constants (C0.., below), the step, the time and the apex, ...
 (X, Y, Z, VX, VY, VZ, W, Z1, VZ1, AXIS_X, AXIS_Y, AXIS_Z) = range(12)
-C0 = 12  # 11 rows
-(DT, T, APEX) = range(23, 26)
-N_SHOT_ROWS = 26  # (the rows that go with a shot into the landing table)
+C0 = 12
+N_CONSTANTS = 16
+(DT, T, APEX) = range(C0 + N_CONSTANTS, C0 + N_CONSTANTS + 3)
+N_SHOT_ROWS = APEX + 1  # (the rows that go with a shot into the landing table)
 # ... the derivatives (K) and velocities (V) of the RK4 stages of the step under way, the rest
 # of the state at its end (with Z1 and VZ1), and, in the landing table only, the flight step,
 # the ground's normal, the shot, the speed and angle at landing and the time of landing.
-K1, K2, K3 = 26, 30, 34  # four rows each: ax, ay, az, dspin/dt
-V2, V3 = 38, 41  # three rows each: vx, vy, vz
-(X1, Y1, VX1, VY1, W1, H_MAX, NX, NY, NZ, SHOT, SPEED_LANDING, ANGLE, T_LANDING) = range(44, 57)
-N_LANE_ROWS = 57
+K1, K2, K3 = N_SHOT_ROWS, N_SHOT_ROWS + 4, N_SHOT_ROWS + 8  # four rows each: ax, ay, az, dw/dt
+V2, V3 = K3 + 4, K3 + 7  # three rows each: vx, vy, vz
+(X1, Y1, VX1, VY1, W1, H_MAX, NX, NY, NZ, SHOT, SPEED_LANDING, ANGLE, T_LANDING) = range(
+    V3 + 3, V3 + 16
+)
+N_LANE_ROWS = T_LANDING + 1
 
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _quadratic_constants(lanes, k, p, table):
-    """Rows C0.. of lane k for a quadratic model in uniform wind: the wind, k C_D-scale and
-    k C_L-scale (k = rho A / 2m) and the model's row of ``table``."""
+    """Rows C0.. of lane k for a quadratic or Reynolds model in uniform wind: the wind,
+    k C_D-scale and k C_L-scale (k = rho A / 2m), the model's row of ``table`` and the
+    kinematic viscosity."""
     k_air = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
     row = table[p.aero_model]
     for j, value in enumerate((p.wind_x_mps, p.wind_y_mps, k_air * p.cd_scale,
                                k_air * p.cl_scale, row[0], row[1], row[2], row[3], row[4],
-                               row[5], row[6])):  # fmt: skip
+                               row[5], row[6], p.kinematic_viscosity_m2ps, row[C_LYU],
+                               row[C_RAMP], row[SPIN_K], row[SPIN_RATE])):  # fmt: skip
         lanes[(C0 + j) * LANES + k] = value
 
 
@@ -155,6 +169,9 @@ def _quadratic_context(lanes, k, table):
         lanes[(C0 + 5) * LANES + k], lanes[(C0 + 6) * LANES + k],
         lanes[(C0 + 7) * LANES + k], lanes[(C0 + 8) * LANES + k],
         lanes[(C0 + 9) * LANES + k], lanes[(C0 + 10) * LANES + k],
+        lanes[(C0 + 11) * LANES + k], lanes[(C0 + 12) * LANES + k],
+        lanes[(C0 + 13) * LANES + k], lanes[(C0 + 14) * LANES + k],
+        lanes[(C0 + 15) * LANES + k],
     )  # fmt: skip
 
 

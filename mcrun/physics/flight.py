@@ -11,6 +11,8 @@ later performance pass step a block of shots in lockstep.
 
     m dv/dt = -m g z - 1/2 rho A C_D |v_rel| v_rel + 1/2 rho A C_L |v_rel|^2 (w x v_rel)/|w x v_rel|
     dw/dt   = -k |v_rel| / r w                              (Smits and Smith 1994, k = 2e-5)
+
+or, for the Reynolds models of ``aero``, the spin decay of their row (``aero.spin_decay_rate``).
 """
 
 import math
@@ -18,7 +20,14 @@ from typing import NamedTuple
 
 from numba import njit
 
-from mcrun.physics.aero import coefficients, quadratic
+from mcrun.physics.aero import (
+    coefficients,
+    is_reynolds,
+    lyu_rise,
+    quadratic,
+    ramp_rise,
+    spin_decay_rate,
+)
 from mcrun.physics.constants import BALL_AREA_M2, BALL_MASS_KG, BALL_RADIUS_M, G_MPS2, SPIN_DECAY_K
 
 WIND_UNIFORM = 0
@@ -108,26 +117,37 @@ def derivatives(vx, vy, vz, spin, z, ctx):
     reynolds = speed * 2.0 * BALL_RADIUS_M / p.kinematic_viscosity_m2ps
     cd, cl = coefficients(p.aero_model, spin_ratio, reynolds, table)
     k = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
-    return forces(
+    ax, ay, az, dspin = forces(
         ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, k * p.cd_scale, k * p.cl_scale, cd, cl
     )
+    if is_reynolds(p.aero_model):  # a spin decay of its own (aero.spin_decay_rate)
+        dspin = -spin_decay_rate(p.aero_model, speed, table) * spin
+    return ax, ay, az, dspin
 
 
 @njit(cache=True, error_model="numpy")
 def derivatives_quadratic(vx, vy, vz, spin, z, ctx):
-    """``derivatives`` for a quadratic aerodynamic model in uniform wind, without branches, so
-    that a loop over a block of shots vectorises. Bit for bit the same numbers as
-    ``derivatives`` gives for such a shot (ignoring the measure-zero case |v_rel| = 0).
+    """``derivatives`` for a quadratic or Reynolds aerodynamic model in uniform wind, without
+    branches, so that a loop over a block of shots vectorises. Bit for bit the same numbers as
+    ``derivatives`` gives for such a shot (ignoring the measure-zero case |v_rel| = 0): for a
+    quadratic model the rises are scaled by 0 and the spin decay is k |v_rel| / r + 0 with
+    k = constants.SPIN_DECAY_K.
 
-    ``ctx`` = (axis_x, axis_y, axis_z, wind_x, wind_y, k_cd, k_cl, a0, a1, a2, b0, b1, b2, s_max).
+    ``ctx`` = (axis_x, axis_y, axis_z, wind_x, wind_y, k_cd, k_cl, a0, a1, a2, b0, b1, b2, s_max,
+    nu, c_lyu, c_ramp, spin_k, spin_rate): the columns of the model's row of
+    ``aero.QUADRATIC_COEFFICIENTS`` and the kinematic viscosity nu.
     """
-    axis_x, axis_y, axis_z, wind_x, wind_y, k_cd, k_cl, a0, a1, a2, b0, b1, b2, s_max = ctx
+    (axis_x, axis_y, axis_z, wind_x, wind_y, k_cd, k_cl, a0, a1, a2, b0, b1, b2, s_max, nu,
+     c_lyu, c_ramp, spin_k, spin_rate) = ctx  # fmt: skip
     ux = vx - wind_x
     uy = vy - wind_y
     uz = vz
     speed, inverse_speed, lx, ly, lz, lift_scale = air_speed(ux, uy, uz, axis_x, axis_y, axis_z)
     cd, cl = quadratic(BALL_RADIUS_M * spin * inverse_speed, a0, a1, a2, b0, b1, b2, s_max)
-    return forces(ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, k_cd, k_cl, cd, cl)
+    reynolds = speed * 2.0 * BALL_RADIUS_M / nu
+    cd += c_lyu * lyu_rise(reynolds) + c_ramp * ramp_rise(reynolds)
+    ax, ay, az, _ = forces(ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, k_cd, k_cl, cd, cl)
+    return ax, ay, az, -(spin_k * speed / BALL_RADIUS_M + spin_rate) * spin
 
 
 @njit(cache=True, error_model="numpy", inline="always")
