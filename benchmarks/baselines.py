@@ -78,7 +78,7 @@ class FlightSet(NamedTuple):
             k=0.5 * col["air_density_kgpm3"] * AREA / M,
             cd_scale=np.ascontiguousarray(col["cd_scale"]),
             cl_scale=np.ascontiguousarray(col["cl_scale"]),
-            coefficients=QUADRATIC_COEFFICIENTS[MODELS[model]].copy(),
+            coefficients=QUADRATIC_COEFFICIENTS[MODELS[model]][:7].copy(),
         )
 
     def __len__(self):

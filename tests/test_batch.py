@@ -156,4 +156,7 @@ def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):
         assert same(simulate_batch(inputs[:n]), alone[:n]), n
     out = np.empty((1, N_OUTCOME), order="F")
     assert simulate_batch(inputs[3:4], out) is out and same(out, alone[3:4])
-    assert len(_simulate_batch.signatures) == 1, _simulate_batch.signatures
+    # One compiled layout of the rows per kind of ground (a plane, and a hole's Terrain when
+    # another test ran one).
+    plane = [sig for sig in _simulate_batch.signatures if str(sig[-1]) == "none"]
+    assert len(plane) == 1, _simulate_batch.signatures

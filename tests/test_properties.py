@@ -331,6 +331,7 @@ def test_tour_drive_ends_on_a_sloped_green(slope_deg):
         spin_radps=281.3,
         turf="green",
         slope_deg=slope_deg,
+        aero_model="trackman2019",  # the model of the drive that failed
     ).outcome
     assert out["status"] == status.OK
     assert out["carry_m"] == pytest.approx(246.3, abs=0.1)

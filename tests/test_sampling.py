@@ -20,7 +20,7 @@ from mcrun import api
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import COLUMN, INPUT_FIELDS, N_INPUT, OUTCOME_FIELDS, PLANE_FIELDS
 from mcrun.engine.shot import default_dt_s
-from mcrun.physics import atmosphere
+from mcrun.physics import aero, atmosphere
 from mcrun.physics.constants import DEG
 from mcrun.physics.launch import launch_from_club
 from mcrun.physics.turf import PRESETS, rho_g_from_stimp
@@ -446,7 +446,7 @@ def test_weather_turf_and_model_conversions(random_scenario, drawn):
     for name in ("e0", "e1", "e2", "e_high"):
         assert np.allclose(col[name], getattr(fairway, name) * x["restitution"], rtol=1e-14)
     assert (col["e_break_speed_mps"] == fairway.e_break_speed_mps).all()
-    assert (col["aero_model"] == 4.0).all()  # trackman2019
+    assert (col["aero_model"] == aero.MODELS[aero.DEFAULT_MODEL]).all()  # the default
     assert (col["dt_s"] == default_dt_s("uniform")).all()
     assert (col["mu"] == x["mu"]).all()
 

@@ -32,7 +32,7 @@ import pandas as pd
 
 from mcrun.api import InputError
 from mcrun.engine.backend import simulate_traced
-from mcrun.engine.schema import OUTCOME_FIELDS
+from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
 from mcrun.results import on_hole as on_hole_results
 from mcrun.results import output, reader, stats
 from mcrun.run import sampling
@@ -165,8 +165,9 @@ BYTES_PER_COLUMN_SHOT = 8
 # holds output.ROW_GROUP_ROWS shots or more (``output.ShotsWriter``).
 BYTES_PER_ROW_GROUP_COLUMN = 500
 # A trajectory is recorded every 10 ms to rest (a drive: about 1,500 rows of 7 columns, 35 kB
-# in Parquet); the bound is that of a 30 s shot, 3,000 rows at 40 B.
-BYTES_PER_TRAJECTORY = 120_000
+# in Parquet; with the fairway's roll-out of the flight's calibration, about 15 kB); the bound
+# is that of a 15 s shot, 1,500 rows at 40 B (a tour drive comes to rest on a fairway in 14-15 s).
+BYTES_PER_TRAJECTORY = 60_000
 # summary.parquet: about 60 kB for one point (its metadata holds the scenario and the schema
 # of about 120 columns) and 1.5 kB per further point (measured on 4 and 100 points).
 BYTES_SUMMARY = 100_000
@@ -177,8 +178,9 @@ BYTES_SUMMARY_POINT = 2_000
 SHOTS_PER_S = 4e5
 SECONDS_PER_POINT = 2e-3
 # The columns of shots.parquet besides the sampled inputs: point, group, label, shot, the
-# outcome fields and status_name.
-_FIXED_COLUMNS = 5 + len(OUTCOME_FIELDS)
+# outcome fields and status_name; and those a run on a hole adds.
+_FIXED_COLUMNS = 5 + len(PLANE_FIELDS)
+_HOLE_COLUMNS = len(HOLE_FIELDS) + len(on_hole_results.COLUMNS)
 
 
 class Chunk(NamedTuple):
@@ -287,7 +289,7 @@ def plan(
     shots = points * n
     input_names, integer_columns = run_columns(scenario)
     drivers = [driver_inputs(point, input_names) for point in scenario.points]
-    width = len(input_names) + _FIXED_COLUMNS
+    width = len(input_names) + _FIXED_COLUMNS + (0 if scenario.hole is None else _HOLE_COLUMNS)
     row_groups = shots // output.ROW_GROUP_ROWS + 1
     size = shots * width * BYTES_PER_COLUMN_SHOT + row_groups * width * BYTES_PER_ROW_GROUP_COLUMN
     size += BYTES_SUMMARY + points * BYTES_SUMMARY_POINT
