@@ -351,18 +351,20 @@ def test_energy_is_never_created(kind, params, ball):
     work = np.trapezoid(rho_g * G * nz * speed, t[1:-1])
     assert e[0] - e[-1] == pytest.approx(work, rel=1e-3)
     increases = e[100:] - e[:-100] > tol
-    if LOCAL_ENERGY_KNOWN_BAD:
-        # Known: the path shows rises of E of 0.1 to 1 J/kg over a few points (a jump of the
-        # recorded speed, found before and after the fixes of the roll on a terrain), while
-        # the total loss is the resistance's work: not yet explained.
+    if kind in LOCAL_ENERGY_KNOWN_BAD:
+        # Known: the path shows rises of E of 0.02 to 0.07 J/kg where it crosses a cell's edge
+        # on the steep front (0.1 to 1 J/kg before the Runge-Kutta steps on smooth patches),
+        # while the total loss is the resistance's work: the velocity turns there by up to
+        # ~8 deg, and the central differences across that corner read the speed low by
+        # v (1 - cos(angle / 2)), which the tolerance (jumps of the acceleration) leaves out.
         assert increases.any()
     else:
         assert not increases.any()
 
 
-# Set to False once the rises of the path's energy (see ``test_energy_is_never_created``)
-# are explained and fixed.
-LOCAL_ENERGY_KNOWN_BAD = True
+# The shapes whose path still shows rises of E (see ``test_energy_is_never_created``); the
+# bowl and the ridge showed them too before the roll's Runge-Kutta steps on smooth patches.
+LOCAL_ENERGY_KNOWN_BAD = {"two_tier"}
 
 
 # -- 5. flight onto raised and lowered ground ---------------------------------------------------
