@@ -210,7 +210,7 @@ def _turned(vx, vy, vz, dgx, dgy, dgz, h):
 # rest, as on calm ground.
 PATCH_DT_MAX_S = 0.25
 PATCH_DT_MIN_S = 0.02
-STOP_FRACTION = 0.25
+STOP_FRACTION = 0.4
 PATCH_OVERSHOOT_M = 1e-6
 # A step that ends further past the edge than this (s at its speed) is taken again, shortened.
 PATCH_REFINE_S = 1e-6
@@ -427,19 +427,29 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
                     # The velocity in the patch's tangent plane at the step's end.
                     u = x1 - patch[1]
                     w = patch[2] - y1
-                    vz = (patch[4] + patch[6] * w) * vx1 - (patch[5] + patch[6] * u) * vy1
+                    hx = patch[4] + patch[6] * w
+                    hy = -(patch[5] + patch[6] * u)
+                    vz = hx * vx1 + hy * vy1
                     px, py, vx, vy = x1, y1, vx1, vy1
                     t += h
-                    pz, nx, ny, nz, under, state, ds, patch = surface(
-                        terrain, plane, px, py, pz
-                    )
-                    if state != OK:
-                        return px, py, pz, t, state, n, qx, qy
-                    # Into the tangent plane there (that of the next patch past an edge).
-                    vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
+                    if (u >= patch[7]) & (u <= patch[8]) & (w >= patch[9]) & (w <= patch[10]):
+                        # Still on the patch: its height and normal there.
+                        pz = patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
+                        k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+                        nx = -hx * k
+                        ny = -hy * k
+                        nz = k
+                    else:
+                        pz, nx, ny, nz, under, state, ds, patch = surface(
+                            terrain, plane, px, py, pz
+                        )
+                        if state != OK:
+                            return px, py, pz, t, state, n, qx, qy
+                        # Into the tangent plane of the next patch.
+                        vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
+                        turf = under
                     g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
                     snap = (5.0 / 7.0) * snap
-                    turf = under
                     k_roll = turf.rho_g * g_n
                     static = g_t <= k_roll
                     continue
