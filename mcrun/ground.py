@@ -311,9 +311,11 @@ def _state_at(terrain, x, y):
 # patch of one zone (a cell of the grid, or the quarter of it nearest one node where its nodes'
 # zones differ), in the core's frame, the numbers (SMOOTH, XC, YC, HC, BX, BY, EC, U_LO, U_HI,
 # W_LO, W_HI): SMOOTH 1.0 where the roll may take the patch's own steps (on a grid, where the
-# cell is not calm; else 0.0, and the rest is not used); at U = x - XC, W = YC - y (the grid's
+# cell is not calm), LEVEL_PATCH where that patch is level (where the roll's steps are exact up
+# to its edge and to the ball's stop), else 0.0 (and the rest is not used); at U = x - XC, W = YC - y (the grid's
 # fractions times the cell), its height is HC + BX U + BY W + EC U W, for U in [U_LO, U_HI]
 # and W in [W_LO, W_HI].
+LEVEL_PATCH = 2.0
 NO_PATCH = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
@@ -369,10 +371,14 @@ def _grid_surface(terrain, plane, x, y, z):
         u_hi = c if upper_x else 0.5 * c
         w_lo = 0.5 * c if upper_y else 0.0
         w_hi = c if upper_y else 0.5 * c
+    inv = 1.0 / c
+    smooth = 0.0
+    if (calm == 0) & inside:
+        smooth = LEVEL_PATCH if (h10 == h00) & (h01 == h00) & (h11 == h00) else 1.0
     patch = (
-        1.0 if (calm == 0) & inside else 0.0, terrain.x0_m + ix * c, -(terrain.y0_m + iy * c),
-        h00, (h10 - h00) / c, (h01 - h00) / c, (h11 - h10 - h01 + h00) / (c * c), u_lo, u_hi,
-        w_lo, w_hi,
+        smooth, terrain.x0_m + ix * c, -(terrain.y0_m + iy * c),
+        h00, (h10 - h00) * inv, (h01 - h00) * inv, (h11 - h10 - h01 + h00) * (inv * inv), u_lo,
+        u_hi, w_lo, w_hi,
     )  # fmt: skip
     return (
         height, -hx * k, -hy * k, k, Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]),
@@ -461,7 +467,7 @@ HOP_GAP_TOLERANCE_M = 1e-9
 def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     """``hop_landing`` on the grid. A hop that stays on calm ground (``calm_cells``) ends after
     ``hop_time``, the plane's exact return, as on a Plane. Any other follows its ground track
-    from cell to cell: over a cell the gap between the parabola and the bilinear surface is a
+    from cell to cell (across a calm cell's square of one plane at once): over a cell the gap between the parabola and the bilinear surface is a
     quadratic in time, and the hop ends at its first root (``_marched_hop`` where that finds
     none: a track that leaves the grid)."""
     vh = math.sqrt(vx * vx + vy * vy)
@@ -486,17 +492,19 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     sy = 1 if dfy > 0.0 else -1
     t_in = 0.0
     for _ in range(MAX_HOP_STEPS):
-        # When the track leaves cell (ix, iy), unless at the grid's edge (extended beyond it).
+        # When the track leaves cell (ix, iy), unless at the grid's edge (extended beyond it),
+        # or the square of r cells around it, all of its plane, where the cell is calm.
+        r = int(terrain.calm[iy, ix])
         tx = math.inf
-        if (dfx > 0.0) & (ix < nx - 2):
-            tx = (ix + 1 - fx0) / dfx
-        elif (dfx < 0.0) & (ix > 0):
-            tx = (ix - fx0) / dfx
+        if (dfx > 0.0) & (ix + r < nx - 2):
+            tx = (ix + r + 1 - fx0) / dfx
+        elif (dfx < 0.0) & (ix - r > 0):
+            tx = (ix - r - fx0) / dfx
         ty = math.inf
-        if (dfy > 0.0) & (iy < ny - 2):
-            ty = (iy + 1 - fy0) / dfy
-        elif (dfy < 0.0) & (iy > 0):
-            ty = (iy - fy0) / dfy
+        if (dfy > 0.0) & (iy + r < ny - 2):
+            ty = (iy + r + 1 - fy0) / dfy
+        elif (dfy < 0.0) & (iy - r > 0):
+            ty = (iy - r - fy0) / dfy
         t_out = min(tx, ty)
         # The gap at t_in + s: c0 + c1 s + c2 s^2, the cell's height h00 + a u + b w + e u w.
         u = fx0 + dfx * t_in - ix
@@ -523,9 +531,11 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
             break
         t_in = t_out
         if tx <= ty:
-            ix += sx
+            ix += sx * (r + 1)
+            iy = min(max(int(math.floor(fy0 + dfy * t_in)), iy - r, 0), iy + r, ny - 2)
         else:
-            iy += sy
+            iy += sy * (r + 1)
+            ix = min(max(int(math.floor(fx0 + dfx * t_in)), ix - r, 0), ix + r, nx - 2)
     return _marched_hop(terrain, x, y, z, vx, vy, vz, hop_time)
 
 

@@ -212,6 +212,8 @@ PATCH_DT_MAX_S = 0.25
 PATCH_DT_MIN_S = 0.02
 STOP_FRACTION = 0.4
 PATCH_OVERSHOOT_M = 1e-6
+# ``surface``'s mark of a level patch (``ground.LEVEL_PATCH``).
+LEVEL_PATCH = 2.0
 # A step that ends further past the edge than this (s at its speed) is taken again, shortened.
 PATCH_REFINE_S = 1e-6
 
@@ -392,67 +394,78 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         if t - t0 > MAX_ROLL_TIME_S or rolled_too_far(px, py, x0, y0):
             return px, py, pz, t, NOT_STOPPED, n, qx, qy
         v = math.sqrt(vx * vx + vy * vy + vz * vz)
+        h_cap = ds / v if v > 0.0 else math.inf
+        to_edge = False  # a step to the edge of a level patch, where the next one turns it
         if (patch[0] != 0.0) & (v > 1e-12):
             # On smooth ground: a Runge-Kutta step to the patch's edge, unless the ball is
             # about to stop.
             decel = (5.0 / 7.0) * G_MPS2 * (vz / v + turf.rho_g * nz)
-            h = STOP_FRACTION * v / decel if decel > 0.0 else PATCH_DT_MAX_S
-            if h >= PATCH_DT_MIN_S:
+            t_stop = v / decel if decel > 0.0 else math.inf
+            level = patch[0] == LEVEL_PATCH
+            if level:
+                # On a level patch the roll's own step is exact: it goes to the patch's edge.
+                to_edge = True
+                k = (5.0 / 7.0) * turf.rho_g * G_MPS2 / v
+                h_cap = min(
+                    _exit_time(px - patch[1], vx, -k * vx, patch[7], patch[8]),
+                    _exit_time(patch[2] - py, -vy, k * vy, patch[9], patch[10]),
+                )
+            elif STOP_FRACTION * t_stop >= PATCH_DT_MIN_S:
                 ax, ay = _patch_acceleration(px, py, vx, vy, patch, turf.rho_g)
-                h = min(
-                    h,
-                    PATCH_DT_MAX_S,
+                h_edge = min(
                     _exit_time(px - patch[1], vx, ax, patch[7], patch[8]),
                     _exit_time(patch[2] - py, -vy, -ay, patch[9], patch[10]),
                 )
-                x1, y1, vx1, vy1 = _patch_step(px, py, vx, vy, ax, ay, h, patch, turf.rho_g)
-                # Past the patch's edge by more than PATCH_OVERSHOOT_M (the step's length was
-                # foreseen at constant acceleration): the step again, ending there.
-                over = _overshoot(x1 - patch[1], vx1, patch[7], patch[8])
-                over_w = _overshoot(patch[2] - y1, -vy1, patch[9], patch[10])
-                if over_w > over:
-                    over = over_w
-                if (over > PATCH_REFINE_S) & (over < h):
-                    h -= over
-                    x1, y1, vx1, vy1 = _patch_step(
-                        px, py, vx, vy, ax, ay, h, patch, turf.rho_g
-                    )
-                if (vx1 * vx + vy1 * vy > 0.0) & (h > 0.0):
-                    n, t_next = _record_patch_step(
-                        traj, n, t_next, dt_record, t, h, px, py, vx, vy, x1, y1, vx1, vy1,
-                        patch,
-                    )  # fmt: skip
-                    qx = px
-                    qy = py
-                    # The velocity in the patch's tangent plane at the step's end.
-                    u = x1 - patch[1]
-                    w = patch[2] - y1
-                    hx = patch[4] + patch[6] * w
-                    hy = -(patch[5] + patch[6] * u)
-                    vz = hx * vx1 + hy * vy1
-                    px, py, vx, vy = x1, y1, vx1, vy1
-                    t += h
-                    if (u >= patch[7]) & (u <= patch[8]) & (w >= patch[9]) & (w <= patch[10]):
-                        # Still on the patch: its height and normal there.
-                        pz = patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
-                        k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
-                        nx = -hx * k
-                        ny = -hy * k
-                        nz = k
-                    else:
-                        pz, nx, ny, nz, under, state, ds, patch = surface(
-                            terrain, plane, px, py, pz
+                h = min(STOP_FRACTION * t_stop, PATCH_DT_MAX_S, h_edge)
+                if h > 0.0:
+                    x1, y1, vx1, vy1 = _patch_step(px, py, vx, vy, ax, ay, h, patch, turf.rho_g)
+                    # Past the patch's edge by more than PATCH_OVERSHOOT_M (the step's length was
+                    # foreseen at constant acceleration): the step again, ending there.
+                    over = _overshoot(x1 - patch[1], vx1, patch[7], patch[8])
+                    over_w = _overshoot(patch[2] - y1, -vy1, patch[9], patch[10])
+                    if over_w > over:
+                        over = over_w
+                    if (over > PATCH_REFINE_S) & (over < h):
+                        h -= over
+                        x1, y1, vx1, vy1 = _patch_step(
+                            px, py, vx, vy, ax, ay, h, patch, turf.rho_g
                         )
-                        if state != OK:
-                            return px, py, pz, t, state, n, qx, qy
-                        # Into the tangent plane of the next patch.
-                        vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
-                        turf = under
-                    g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
-                    snap = (5.0 / 7.0) * snap
-                    k_roll = turf.rho_g * g_n
-                    static = g_t <= k_roll
-                    continue
+                    if vx1 * vx + vy1 * vy > 0.0:
+                        n, t_next = _record_patch_step(
+                            traj, n, t_next, dt_record, t, h, px, py, vx, vy, x1, y1, vx1, vy1,
+                            patch,
+                        )  # fmt: skip
+                        qx = px
+                        qy = py
+                        # The velocity in the patch's tangent plane at the step's end.
+                        u = x1 - patch[1]
+                        w = patch[2] - y1
+                        hx = patch[4] + patch[6] * w
+                        hy = -(patch[5] + patch[6] * u)
+                        vz = hx * vx1 + hy * vy1
+                        px, py, vx, vy = x1, y1, vx1, vy1
+                        t += h
+                        if (u >= patch[7]) & (u <= patch[8]) & (w >= patch[9]) & (w <= patch[10]):
+                            # Still on the patch: its height and normal there.
+                            pz = patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
+                            k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+                            nx = -hx * k
+                            ny = -hy * k
+                            nz = k
+                        else:
+                            pz, nx, ny, nz, under, state, ds, patch = surface(
+                                terrain, plane, px, py, pz
+                            )
+                            if state != OK:
+                                return px, py, pz, t, state, n, qx, qy
+                            # Into the tangent plane of the next patch.
+                            vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
+                            turf = under
+                        g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
+                        snap = (5.0 / 7.0) * snap
+                        k_roll = turf.rho_g * g_n
+                        static = g_t <= k_roll
+                        continue
         if v <= 1e-12:
             if static:
                 break
@@ -465,7 +478,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
             dy = vy * (1.0 / v)
             dz = vz * (1.0 / v)
         (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1 = roll_step(
-            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, min(h_max, ds / v), snap
+            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, min(h_max, h_cap), snap
         )
         n, t_next = _record_segment(
             traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
@@ -482,7 +495,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         if (mx != nx) | (my != ny) | (mz != nz) | (under.rho_g != turf.rho_g):
             nx, ny, nz = mx, my, mz
             g_n, gx1, gy1, gz1, g_t, h_max, snap = plane_gravity(nx, ny, nz)
-            if not done:
+            if not (done | to_edge):
                 vx, vy, vz = _turned(vx, vy, vz, gx1 - gx, gy1 - gy, gz1 - gz, h)
             gx, gy, gz = gx1, gy1, gz1
             vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
