@@ -270,7 +270,7 @@ def _kernel_on_holes(config, plane_rows):
         s = scenario_module.load(ROOT / "scenarios" / f"{name}.toml")
         rows, _ = sampling.sample(s, s.points[0], 0, n)
         variants[name] = (np.asfortranarray(rows), s.hole.terrain(), _outputs(n))
-    for rows, terrain, out in variants.values():
+    for rows, terrain, _ in variants.values():
         simulate_batch(rows[:1000], _outputs(min(1000, n)), terrain=terrain)  # compile
 
     def run(rows, terrain, out):
@@ -290,8 +290,11 @@ def _kernel_on_holes(config, plane_rows):
         "threads": threads,
         "plane_shots_per_s": n / min(times["plane"]),
         "rows": [
-            {"scenario": f"scenarios/{name}.toml", **_timing(n, times[name]),
-             "status_counts": _status_counts(variants[name][2])}
+            {
+                "scenario": f"scenarios/{name}.toml",
+                **_timing(n, times[name]),
+                "status_counts": _status_counts(variants[name][2]),
+            }
             for name in HOLE_SCENARIOS
         ],  # fmt: skip
     }

@@ -312,9 +312,9 @@ def _state_at(terrain, x, y):
 # zones differ), in the core's frame, the numbers (SMOOTH, XC, YC, HC, BX, BY, EC, U_LO, U_HI,
 # W_LO, W_HI): SMOOTH 1.0 where the roll may take the patch's own steps (on a grid, where the
 # cell is not calm), LEVEL_PATCH where that patch is level (where the roll's steps are exact up
-# to its edge and to the ball's stop), else 0.0 (and the rest is not used); at U = x - XC, W = YC - y (the grid's
-# fractions times the cell), its height is HC + BX U + BY W + EC U W, for U in [U_LO, U_HI]
-# and W in [W_LO, W_HI].
+# to its edge and to the ball's stop), else 0.0 (and the rest is not used); at U = x - XC,
+# W = YC - y (the grid's fractions times the cell), its height is HC + BX U + BY W + EC U W,
+# for U in [U_LO, U_HI] and W in [W_LO, W_HI].
 LEVEL_PATCH = 2.0
 NO_PATCH = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
@@ -363,8 +363,10 @@ def _grid_surface(terrain, plane, x, y, z):
     u_hi = c
     w_lo = 0.0
     w_hi = c
-    if (zones[iy, ix] != zones[iy, ix + 1]) | (zones[iy, ix] != zones[iy + 1, ix]) | (
-        zones[iy, ix] != zones[iy + 1, ix + 1]
+    if (
+        (zones[iy, ix] != zones[iy, ix + 1])
+        | (zones[iy, ix] != zones[iy + 1, ix])
+        | (zones[iy, ix] != zones[iy + 1, ix + 1])
     ):
         # The quarter of the cell nearest the node whose zone is that of (x, y).
         u_lo = 0.5 * c if upper_x else 0.0
@@ -467,9 +469,9 @@ HOP_GAP_TOLERANCE_M = 1e-9
 def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     """``hop_landing`` on the grid. A hop that stays on calm ground (``calm_cells``) ends after
     ``hop_time``, the plane's exact return, as on a Plane. Any other follows its ground track
-    from cell to cell (across a calm cell's square of one plane at once): over a cell the gap between the parabola and the bilinear surface is a
-    quadratic in time, and the hop ends at its first root (``_marched_hop`` where that finds
-    none: a track that leaves the grid)."""
+    from cell to cell (across a calm cell's square of one plane at once): over a cell the gap
+    between the parabola and the bilinear surface is a quadratic in time, and the hop ends at
+    its first root (``_marched_hop`` where that finds none: a track that leaves the grid)."""
     vh = math.sqrt(vx * vx + vy * vy)
     ix, iy, _, _, _ = _locate(terrain, x, y)
     reach_m = float(terrain.calm[iy, ix]) * terrain.cell_m
@@ -477,9 +479,13 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
         x1, y1, z1, vz1 = hop(x, y, z, vx, vy, vz, hop_time)
         return x1, y1, z1, vz1, hop_time
     t_min = HOP_T_MIN_S
-    if z + vz * t_min - 0.5 * G_MPS2 * t_min * t_min - _grid_height(
-        terrain, x + vx * t_min, y + vy * t_min
-    ) <= 0.0:
+    if (
+        z
+        + vz * t_min
+        - 0.5 * G_MPS2 * t_min * t_min
+        - _grid_height(terrain, x + vx * t_min, y + vy * t_min)
+        <= 0.0
+    ):
         return x, y, z, vz, 0.0
     ny, nx = terrain.height_m.shape
     c = terrain.cell_m

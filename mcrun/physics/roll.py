@@ -427,9 +427,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
                         over = over_w
                     if (over > PATCH_REFINE_S) & (over < h):
                         h -= over
-                        x1, y1, vx1, vy1 = _patch_step(
-                            px, py, vx, vy, ax, ay, h, patch, turf.rho_g
-                        )
+                        x1, y1, vx1, vy1 = _patch_step(px, py, vx, vy, ax, ay, h, patch, turf.rho_g)
                     if vx1 * vx + vy1 * vy > 0.0:
                         n, t_next = _record_patch_step(
                             traj, n, t_next, dt_record, t, h, px, py, vx, vy, x1, y1, vx1, vy1,
