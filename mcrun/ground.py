@@ -313,9 +313,21 @@ def _state_at(terrain, x, y):
     return lambda terrain, x, y: _grid_state(terrain, x, y)
 
 
+# ``surface``'s patch: where the ground around the ball is one smooth piece, one bilinear
+# patch of one zone (a cell of the grid, or the quarter of it nearest one node where its nodes'
+# zones differ), in the core's frame, the numbers (SMOOTH, XC, YC, HC, BX, BY, EC, U_LO, U_HI,
+# W_LO, W_HI): SMOOTH 1.0 where the roll may take the patch's own steps (on a grid, where the
+# cell is not calm), LEVEL_PATCH where that patch is level (where the roll's steps are exact up
+# to its edge and to the ball's stop), else 0.0 (and the rest is not used); at U = x - XC,
+# W = YC - y (the grid's fractions times the cell), its height is HC + BX U + BY W + EC U W,
+# for U in [U_LO, U_HI] and W in [W_LO, W_HI].
+LEVEL_PATCH = 2.0
+NO_PATCH = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
 @njit(cache=True, error_model="numpy")
 def _plane_surface(terrain, plane, x, y, z):
-    return z, plane.nx, plane.ny, plane.nz, plane.turf, OK, math.inf
+    return z, plane.nx, plane.ny, plane.nz, plane.turf, OK, math.inf, NO_PATCH
 
 
 @njit(cache=True, error_model="numpy")
@@ -338,7 +350,10 @@ def _grid_surface(terrain, plane, x, y, z):
     hx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) / terrain.cell_m
     hy = -((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) / terrain.cell_m
     k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
-    zone = terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
+    upper_x = tx >= 0.5
+    upper_y = ty >= 0.5
+    zones = terrain.zone
+    zone = zones[iy + (1 if upper_y else 0), ix + (1 if upper_x else 0)]
     t = terrain.turf[zone]
     kind = terrain.penalty[zone]
     state = OK
@@ -348,9 +363,34 @@ def _grid_surface(terrain, plane, x, y, z):
         state = IN_PENALTY_AREA
     elif kind == OUT_OF_BOUNDS:
         state = OUT_OF_BOUNDS_STATUS
+    calm = terrain.calm[iy, ix]
+    c = terrain.cell_m
+    u_lo = 0.0
+    u_hi = c
+    w_lo = 0.0
+    w_hi = c
+    if (
+        (zones[iy, ix] != zones[iy, ix + 1])
+        | (zones[iy, ix] != zones[iy + 1, ix])
+        | (zones[iy, ix] != zones[iy + 1, ix + 1])
+    ):
+        # The quarter of the cell nearest the node whose zone is that of (x, y).
+        u_lo = 0.5 * c if upper_x else 0.0
+        u_hi = c if upper_x else 0.5 * c
+        w_lo = 0.5 * c if upper_y else 0.0
+        w_hi = c if upper_y else 0.5 * c
+    inv = 1.0 / c
+    smooth = 0.0
+    if (calm == 0) & inside:
+        smooth = LEVEL_PATCH if (h10 == h00) & (h01 == h00) & (h11 == h00) else 1.0
+    patch = (
+        smooth, terrain.x0_m + ix * c, -(terrain.y0_m + iy * c),
+        h00, (h10 - h00) * inv, (h01 - h00) * inv, (h11 - h10 - h01 + h00) * (inv * inv), u_lo,
+        u_hi, w_lo, w_hi,
+    )  # fmt: skip
     return (
         height, -hx * k, -hy * k, k, Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]),
-        state, max(0.25, float(terrain.calm[iy, ix])) * terrain.cell_m,
+        state, max(0.25, float(calm)) * c, patch,
     )  # fmt: skip
 
 
@@ -370,7 +410,8 @@ def surface(terrain, plane, x, y, z):
     """What the roll asks at each step (``roll.roll``, to which it is passed): the height of
     the ground at (x, y) (on a Plane, z itself: the ball stays on the plane), its normal and
     turf, the state there (``state_at``) and the longest distance (m) a step may go on it (a
-    quarter of a cell of a grid; on a Plane, the same everywhere, no limit)."""
+    quarter of a cell of a grid; on a Plane, the same everywhere, no limit), and the smooth
+    patch of ground around it (``NO_PATCH``'s numbers), where the roll may step further."""
     return _surface(terrain, plane, x, y, z)
 
 
@@ -433,16 +474,108 @@ HOP_GAP_TOLERANCE_M = 1e-9
 @njit(cache=True, error_model="numpy")
 def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     """``hop_landing`` on the grid. A hop that stays on calm ground (``calm_cells``) ends after
-    ``hop_time``, the plane's exact return, as on a Plane. Any other marches along the
-    parabola in steps of at most half that and a quarter of a cell, to the first step that
-    ends below the surface, then locates the crossing inside it (Illinois' false position, to
-    a nanometre)."""
+    ``hop_time``, the plane's exact return, as on a Plane. Any other follows its ground track
+    from cell to cell (across a calm cell's square of one plane at once): over a cell the gap
+    between the parabola and the bilinear surface is a quadratic in time, and the hop ends at
+    its first root (``_marched_hop`` where that finds none: a track that leaves the grid)."""
     vh = math.sqrt(vx * vx + vy * vy)
     ix, iy, _, _, _ = _locate(terrain, x, y)
     reach_m = float(terrain.calm[iy, ix]) * terrain.cell_m
     if (hop_time > 0.0) & (vh * hop_time <= reach_m):
         x1, y1, z1, vz1 = hop(x, y, z, vx, vy, vz, hop_time)
         return x1, y1, z1, vz1, hop_time
+    t_min = HOP_T_MIN_S
+    if (
+        z
+        + vz * t_min
+        - 0.5 * G_MPS2 * t_min * t_min
+        - _grid_height(terrain, x + vx * t_min, y + vy * t_min)
+        <= 0.0
+    ):
+        return x, y, z, vz, 0.0
+    ny, nx = terrain.height_m.shape
+    c = terrain.cell_m
+    h = terrain.height_m
+    fx0 = (x - terrain.x0_m) / c
+    fy0 = (-y - terrain.y0_m) / c
+    dfx = vx / c
+    dfy = -vy / c
+    sx = 1 if dfx > 0.0 else -1
+    sy = 1 if dfy > 0.0 else -1
+    t_in = 0.0
+    for _ in range(MAX_HOP_STEPS):
+        # When the track leaves cell (ix, iy), unless at the grid's edge (extended beyond it),
+        # or the square of r cells around it, all of its plane, where the cell is calm.
+        r = int(terrain.calm[iy, ix])
+        tx = math.inf
+        if (dfx > 0.0) & (ix + r < nx - 2):
+            tx = (ix + r + 1 - fx0) / dfx
+        elif (dfx < 0.0) & (ix - r > 0):
+            tx = (ix - r - fx0) / dfx
+        ty = math.inf
+        if (dfy > 0.0) & (iy + r < ny - 2):
+            ty = (iy + r + 1 - fy0) / dfy
+        elif (dfy < 0.0) & (iy - r > 0):
+            ty = (iy - r - fy0) / dfy
+        t_out = min(tx, ty)
+        # The gap at t_in + s: c0 + c1 s + c2 s^2, the cell's height h00 + a u + b w + e u w.
+        u = fx0 + dfx * t_in - ix
+        w = fy0 + dfy * t_in - iy
+        h00 = h[iy, ix]
+        a = h[iy, ix + 1] - h00
+        b = h[iy + 1, ix] - h00
+        e = h[iy + 1, ix + 1] - h[iy, ix + 1] - h[iy + 1, ix] + h00
+        c0 = z + (vz - 0.5 * G_MPS2 * t_in) * t_in - (h00 + a * u + b * w + e * u * w)
+        c1 = vz - G_MPS2 * t_in - (a * dfx + b * dfy + e * (u * dfy + w * dfx))
+        c2 = -0.5 * G_MPS2 - e * dfx * dfy
+        if t_in == 0.0:
+            s = _root_after(c2, c1, c0, t_min)
+        elif c0 <= 0.0:
+            s = 0.0  # (rounding, where the track grazes the ground at a cell's edge)
+        else:
+            s = _root_after(c2, c1, c0, 0.0)
+        if t_in + s <= t_out:
+            t = t_in + s
+            x1 = x + vx * t
+            y1 = y + vy * t
+            return x1, y1, _grid_height(terrain, x1, y1), vz - G_MPS2 * t, t
+        if t_out == math.inf:
+            break
+        t_in = t_out
+        if tx <= ty:
+            ix += sx * (r + 1)
+            iy = min(max(int(math.floor(fy0 + dfy * t_in)), iy - r, 0), iy + r, ny - 2)
+        else:
+            iy += sy * (r + 1)
+            ix = min(max(int(math.floor(fx0 + dfx * t_in)), ix - r, 0), ix + r, nx - 2)
+    return _marched_hop(terrain, x, y, z, vx, vy, vz, hop_time)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _root_after(a, b, c, s_min):
+    """The first root s > s_min of a s^2 + b s + c (inf if none)."""
+    if a == 0.0:
+        r = -c / b if b != 0.0 else -math.inf
+        return r if r > s_min else math.inf
+    d = b * b - 4.0 * a * c
+    if d < 0.0:
+        return math.inf
+    q = -0.5 * (b + math.copysign(math.sqrt(d), b))
+    r1 = q / a
+    r2 = c / q if q != 0.0 else -math.inf
+    r1 = r1 if r1 > s_min else math.inf
+    r2 = r2 if r2 > s_min else math.inf
+    return min(r1, r2)
+
+
+@njit(cache=True, error_model="numpy")
+def _marched_hop(terrain, x, y, z, vx, vy, vz, hop_time):
+    """``hop_landing`` on the grid by a march along the parabola in steps of at most half
+    ``hop_time`` and a quarter of a cell, to the first step that ends below the surface, then
+    the crossing inside it (Illinois' false position, to a nanometre)."""
+    vh = math.sqrt(vx * vx + vy * vy)
+    ix, iy, _, _, _ = _locate(terrain, x, y)
+    reach_m = float(terrain.calm[iy, ix]) * terrain.cell_m
     dt = 0.5 * hop_time if hop_time > 0.0 else 1e-3
     if vh > 0.0:
         dt = min(dt, max(0.25 * terrain.cell_m, reach_m) / vh)

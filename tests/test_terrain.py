@@ -351,18 +351,20 @@ def test_energy_is_never_created(kind, params, ball):
     work = np.trapezoid(rho_g * G * nz * speed, t[1:-1])
     assert e[0] - e[-1] == pytest.approx(work, rel=1e-3)
     increases = e[100:] - e[:-100] > tol
-    if LOCAL_ENERGY_KNOWN_BAD:
-        # Known: the path shows rises of E of 0.1 to 1 J/kg over a few points (a jump of the
-        # recorded speed, found before and after the fixes of the roll on a terrain), while
-        # the total loss is the resistance's work: not yet explained.
+    if kind in LOCAL_ENERGY_KNOWN_BAD:
+        # Known: the path shows rises of E of 0.02 to 0.07 J/kg where it crosses a cell's edge
+        # on the steep front (0.1 to 1 J/kg before the Runge-Kutta steps on smooth patches),
+        # while the total loss is the resistance's work: the velocity turns there by up to
+        # ~8 deg, and the central differences across that corner read the speed low by
+        # v (1 - cos(angle / 2)), which the tolerance (jumps of the acceleration) leaves out.
         assert increases.any()
     else:
         assert not increases.any()
 
 
-# Set to False once the rises of the path's energy (see ``test_energy_is_never_created``)
-# are explained and fixed.
-LOCAL_ENERGY_KNOWN_BAD = True
+# The shapes whose path still shows rises of E (see ``test_energy_is_never_created``); the
+# bowl and the ridge showed them too before the roll's Runge-Kutta steps on smooth patches.
+LOCAL_ENERGY_KNOWN_BAD = {"two_tier"}
 
 
 # -- 5. flight onto raised and lowered ground ---------------------------------------------------
@@ -513,3 +515,43 @@ def test_threads_and_row_order_change_nothing_on_a_terrain():
     assert {OK, IN_PENALTY_AREA} <= statuses  # the mix is real
     for out in outs[1:]:
         assert np.array_equal(out, outs[0], equal_nan=True)
+
+
+# -- 8. the end of a hop on the grid ------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "height",
+    [shape("ridge", crest_x_m=20.0, height_m=0.8, half_width_m=4.0, angle_deg=25.0),
+     shape("bowl", centre_x_m=20.0, centre_y_m=0.0, radius_m=15.0),
+     lambda X, Y: np.where(X > 20.0, 0.5, 0.0) + 0.0 * Y],
+)  # fmt: skip
+def test_a_hop_ends_at_the_first_crossing_of_the_surface(height):
+    """``ground._grid_hop`` (cell by cell, the gap's quadratic over each; a calm cell's whole
+    square at once): where it ends the ball is on the bilinear surface within 1e-9 m, and no
+    earlier time of 400 along the hop finds it below (by more than rounding); it agrees with
+    the march along the parabola (``_marched_hop``) within 1 um where that is not grazing."""
+    terrain = grid(0.0, 40.0, -20.0, 20.0, 0.5, height)
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        x, y = rng.uniform(8.0, 30.0), rng.uniform(-8.0, 8.0)
+        z = ground._grid_height(terrain, x, y)
+        hx, hy = ground._grid_gradient(terrain, x, y)
+        vx, vy = rng.normal(6.0, 3.0), rng.normal(0.0, 3.0)
+        vz = hx * vx + hy * vy + rng.uniform(0.3, 3.0)  # leaving the ground
+        # (the exact return to the tangent plane, which a hop on calm ground takes)
+        hop_time = 2.0 * (vz - hx * vx - hy * vy) / G
+        x1, y1, z1, vz1, t = ground._grid_hop(terrain, x, y, z, vx, vy, vz, hop_time)
+        assert t > 0.0
+
+        def gap(s, x=x, y=y, z=z, vx=vx, vy=vy, vz=vz):
+            return z + vz * s - 0.5 * G * s * s - ground._grid_height(terrain, x + vx * s,
+                                                                      y + vy * s)  # fmt: skip
+
+        assert abs(gap(t)) < 1e-9
+        assert (x1, y1, vz1) == pytest.approx((x + vx * t, y + vy * t, vz - G * t), abs=1e-12)
+        assert z1 == pytest.approx(ground._grid_height(terrain, x1, y1), abs=1e-9)
+        assert min(gap(s) for s in np.linspace(1e-6, t, 400)[:-1]) > -1e-9
+        marched = ground._marched_hop(terrain, x, y, z, vx, vy, vz, hop_time)
+        if min(gap(s) for s in np.linspace(0.05 * t, 0.95 * t, 50)) > 1e-4:
+            assert marched[4] == pytest.approx(t, abs=1e-6)

@@ -610,6 +610,11 @@ ENDS = -1.0
 # compiler from vectorising the loop: 12 % of the kernel's time.)
 (EX, EY, EZ, VNE) = range(4)
 N_SURFACE_ROWS = 4
+# On a terrain, the rebounds of the impacts under way, a table of their own too
+# (``_impact_lanes_on_grid``): a row each for (vx, vy, vz, wx, wy, wz, height, hop_time, then),
+# so that the rebounds stay one vectorised loop and the hops (``ground.hop_landing`` on the
+# grid, one lane at a time) another.
+N_REBOUND_ROWS = 9
 # The landing of a shot, kept until its bounces run: (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny,
 # nz) in the core's frame.
 N_LANDING = 12
@@ -630,7 +635,7 @@ def _lane_ground(b, k):
 def _ask_ground(b, k, terrain):
     """Rows BNX.. and MU.. of bounce lane k: the normal and turf of the ground under its ball,
     asked of a ground that varies (``ground.surface``, one look-up), before an impact."""
-    _, nx, ny, nz, turf, _, _ = ground.surface(
+    _, nx, ny, nz, turf, _, _, _ = ground.surface(
         terrain, _lane_ground(b, k), b[BX * LANES + k], b[BY * LANES + k], b[BZ * LANES + k]
     )
     b[BNX * LANES + k] = nx
@@ -641,7 +646,7 @@ def _ask_ground(b, k, terrain):
 
 
 @njit(cache=True, error_model="numpy")
-def _impact_lanes(b, e, terrain):
+def _impact_lanes(b, e, terrain, rb):
     """One impact, and the hop it starts, for every bounce lane: ``bounce.impact`` in two
     vectorised loops (as ``step_lanes``, so that the lanes' long chains overlap), on the ground
     under the ball. Returns the number of lanes (empty ones included) whose ball no longer
@@ -649,6 +654,7 @@ def _impact_lanes(b, e, terrain):
     if ground.varies(terrain):
         for k in range(LANES):
             _ask_ground(b, k, terrain)
+        return _impact_lanes_on_grid(b, e, terrain, rb)
     for k in range(LANES):
         under = _lane_ground(b, k)
         ex, ey, ez, vne, _ = incidence(
@@ -696,6 +702,86 @@ def _impact_lanes(b, e, terrain):
         b[BT * LANES + k] = b[BT * LANES + k] + hop_time if hops else b[BT * LANES + k]
         b[PREVIOUS * LANES + k] = height if hops else b[PREVIOUS * LANES + k]
         b[BOUNCES * LANES + k] = bounces + 1.0 if hops else bounces
+        b[THEN * LANES + k] = then
+        ended += 0 if then == HOPS else 1
+    return ended
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _incidences(b, e):
+    """The equivalent surface of every bounce lane's impact (``bounce.incidence``) into e."""
+    for k in range(LANES):
+        under = _lane_ground(b, k)
+        ex, ey, ez, vne, _ = incidence(
+            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], under.nx, under.ny,
+            under.nz, under.turf,
+        )  # fmt: skip
+        e[EX * LANES + k] = ex
+        e[EY * LANES + k] = ey
+        e[EZ * LANES + k] = ez
+        e[VNE * LANES + k] = vne
+
+
+@njit(cache=True, error_model="numpy")
+def _impact_lanes_on_grid(b, e, terrain, rb):
+    """``_impact_lanes`` on a terrain: the impacts' rebounds in vectorised loops (into the
+    rebound table ``rb``), then each lane's hop on the grid."""
+    _incidences(b, e)
+    for k in range(LANES):
+        under = _lane_ground(b, k)
+        vx, vy, vz, wx, wy, wz, height, hop_time, then = impact_rebound(
+            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], b[BWX * LANES + k],
+            b[BWY * LANES + k], b[BWZ * LANES + k], under.nx, under.ny, under.nz,
+            e[EX * LANES + k], e[EY * LANES + k], e[EZ * LANES + k], e[VNE * LANES + k],
+            under.turf, b[BOUNCES * LANES + k], b[PREVIOUS * LANES + k],
+        )  # fmt: skip
+        rb[k] = vx
+        rb[LANES + k] = vy
+        rb[2 * LANES + k] = vz
+        rb[3 * LANES + k] = wx
+        rb[4 * LANES + k] = wy
+        rb[5 * LANES + k] = wz
+        rb[6 * LANES + k] = height
+        rb[7 * LANES + k] = hop_time
+        rb[8 * LANES + k] = then
+    ended = 0
+    for k in range(LANES):
+        x = b[BX * LANES + k]
+        y = b[BY * LANES + k]
+        vx = rb[k]
+        vy = rb[LANES + k]
+        vz = rb[2 * LANES + k]
+        height = rb[6 * LANES + k]
+        then = rb[8 * LANES + k]
+        bounces = b[BOUNCES * LANES + k]
+        hops = then == HOPS
+        x1, y1, z1, vz1, hop_time = x, y, b[BZ * LANES + k], vz, 0.0
+        state = OK
+        if hops:
+            x1, y1, z1, vz1, hop_time = ground.hop_landing(
+                terrain, x, y, b[BZ * LANES + k], vx, vy, vz, rb[7 * LANES + k]
+            )
+            state = ground.state_at(terrain, x1, y1)
+            b[QX * LANES + k] = x
+            b[QY * LANES + k] = y
+            b[STATE * LANES + k] = state
+            if state != OK:
+                then = ENDS
+            if bounces == 0:
+                b[FIRST_HEIGHT * LANES + k] = height
+                b[FIRST_LENGTH * LANES + k] = x1 - x
+            b[BX * LANES + k] = x1
+            b[BY * LANES + k] = y1
+            b[BZ * LANES + k] = z1
+            b[BT * LANES + k] += hop_time
+            b[PREVIOUS * LANES + k] = height
+            b[BOUNCES * LANES + k] = bounces + 1.0
+        b[BVX * LANES + k] = vx
+        b[BVY * LANES + k] = vy
+        b[BVZ * LANES + k] = vz1 if hops else vz
+        b[BWX * LANES + k] = rb[3 * LANES + k]
+        b[BWY * LANES + k] = rb[4 * LANES + k]
+        b[BWZ * LANES + k] = rb[5 * LANES + k]
         b[THEN * LANES + k] = then
         ended += 0 if then == HOPS else 1
     return ended
@@ -805,6 +891,7 @@ def _bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain):
     b = np.zeros(N_BOUNCE_ROWS * LANES)
     r = np.zeros(N_BOUNCE_ROWS * LANES)  # the roll table
     e = np.zeros(N_SURFACE_ROWS * LANES)  # the equivalent surfaces of the impacts
+    rb = np.zeros(N_REBOUND_ROWS * LANES)  # their rebounds, on a terrain
     before = np.zeros(N_BOUNCE_ROWS)  # the traced lane before its impact
     waiting = 0  # shots in it
     shot = np.full(LANES, -1)
@@ -818,7 +905,7 @@ def _bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain):
                 if shot[k] == tracer[TRACED]:
                     traced = k
                     before[:] = b[k::LANES]
-        ended = _impact_lanes(b, e, terrain)
+        ended = _impact_lanes(b, e, terrain, rb)
         if traced >= 0 and (b[THEN * LANES + traced] == HOPS) | (b[THEN * LANES + traced] == ENDS):
             _record_hop(b, traced, before, traj, tracer, terrain)
         if ended == 0:

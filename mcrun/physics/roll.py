@@ -201,6 +201,128 @@ def _turned(vx, vy, vz, dgx, dgy, dgz, h):
     return x * k, y * k, z * k
 
 
+# On smooth ground of a terrain (``surface``'s patch: one bilinear patch of one zone) the roll
+# takes steps of the classical Runge-Kutta method (fourth order) on the ball's horizontal
+# position and velocity, with its height on the patch: each step ends where the ball leaves the
+# patch (PATCH_OVERSHOOT_M past its edge, where the next patch turns the velocity), or after at
+# most PATCH_DT_MAX_S, or STOP_FRACTION of the time the ball would take to stop at its present
+# deceleration. Where that time is shorter than PATCH_DT_MIN_S, ROLL_DT_S steps bring it to
+# rest, as on calm ground.
+PATCH_DT_MAX_S = 0.25
+PATCH_DT_MIN_S = 0.02
+STOP_FRACTION = 0.4
+PATCH_OVERSHOOT_M = 1e-6
+# ``surface``'s mark of a level patch (``ground.LEVEL_PATCH``).
+LEVEL_PATCH = 2.0
+# A step that ends further past the edge than this (s at its speed) is taken again, shortened.
+PATCH_REFINE_S = 1e-6
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _patch_acceleration(x, y, vx, vy, patch, rho_g):
+    """The horizontal acceleration of a ball rolling without slipping at (x, y) on the patch at
+    horizontal velocity (vx, vy): (5/7) (g_t - rho_g g n_z v_hat), plus the normal force that
+    keeps it on the patch's surface h (which bends it by the twist h_xy = -EC)."""
+    hx = patch[4] + patch[6] * (patch[2] - y)
+    hy = -(patch[5] + patch[6] * (x - patch[1]))
+    n2 = 1.0 + hx * hx + hy * hy
+    vz = hx * vx + hy * vy
+    inv = 1.0 / n2
+    k = (5.0 / 7.0) * rho_g * G_MPS2 / math.sqrt(n2 * (vx * vx + vy * vy + vz * vz))
+    c = ((5.0 / 7.0) * G_MPS2 - 2.0 * patch[6] * vx * vy) * inv
+    return -c * hx - k * vx, -c * hy - k * vy
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _first_root(a, b, c):
+    """The first t > 0 where a t^2 + b t + c = 0 (inf if none)."""
+    if a == 0.0:
+        r = -c / b if b != 0.0 else -1.0
+        return r if r > 0.0 else math.inf
+    d = b * b - 4.0 * a * c
+    if d < 0.0:
+        return math.inf
+    q = -0.5 * (b + math.copysign(math.sqrt(d), b))
+    r1 = q / a
+    r2 = c / q if q != 0.0 else -1.0
+    r1 = r1 if r1 > 0.0 else math.inf
+    r2 = r2 if r2 > 0.0 else math.inf
+    return min(r1, r2)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _exit_time(p, v, a, lo, hi):
+    """The first time p + v t + a t^2 / 2 leaves [lo, hi] by PATCH_OVERSHOOT_M."""
+    return min(
+        _first_root(0.5 * a, v, p - hi - PATCH_OVERSHOOT_M),
+        _first_root(0.5 * a, v, p - lo + PATCH_OVERSHOOT_M),
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _overshoot(p, v, lo, hi):
+    """How long (s) a ball at p moving at v has been past [lo, hi] by more than
+    PATCH_OVERSHOOT_M (0 if it has not)."""
+    past = max(p - hi, lo - p) - PATCH_OVERSHOOT_M
+    return past / abs(v) if (past > 0.0) & (v != 0.0) else 0.0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _patch_step(px, py, vx, vy, ax, ay, h, patch, rho_g):
+    """A step of h of the classical Runge-Kutta method from (px, py) at (vx, vy), where the
+    acceleration is (ax, ay): the position and velocity after it."""
+    h2 = 0.5 * h
+    x2 = px + h2 * vx
+    y2 = py + h2 * vy
+    u2 = vx + h2 * ax
+    w2 = vy + h2 * ay
+    a2x, a2y = _patch_acceleration(x2, y2, u2, w2, patch, rho_g)
+    x3 = px + h2 * u2
+    y3 = py + h2 * w2
+    u3 = vx + h2 * a2x
+    w3 = vy + h2 * a2y
+    a3x, a3y = _patch_acceleration(x3, y3, u3, w3, patch, rho_g)
+    x4 = px + h * u3
+    y4 = py + h * w3
+    u4 = vx + h * a3x
+    w4 = vy + h * a3y
+    a4x, a4y = _patch_acceleration(x4, y4, u4, w4, patch, rho_g)
+    h6 = h / 6.0
+    return (
+        px + h6 * (vx + 2.0 * (u2 + u3) + u4),
+        py + h6 * (vy + 2.0 * (w2 + w3) + w4),
+        vx + h6 * (ax + 2.0 * (a2x + a3x) + a4x),
+        vy + h6 * (ay + 2.0 * (a2y + a3y) + a4y),
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _patch_height(x, y, patch):
+    u = x - patch[1]
+    w = patch[2] - y
+    return patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
+
+
+@njit(cache=True)
+def _record_patch_step(traj, n, t_next, dt_record, t0, h, px, py, vx, vy, x1, y1, vx1, vy1,
+                       patch):  # fmt: skip
+    """Record the points of the trajectory grid inside [t0, t0 + h) of a step on a patch: the
+    cubic through its ends with their velocities, on the patch's surface."""
+    if traj.shape[0] == 0:
+        return n, t_next
+    while t_next < t0 + h:
+        s = (t_next - t0) / h
+        a = (1.0 - s) * (1.0 - s) * (1.0 + 2.0 * s)
+        b = s * (1.0 - s) * (1.0 - s) * h
+        c = s * s * (3.0 - 2.0 * s)
+        d = s * s * (s - 1.0) * h
+        x = a * px + b * vx + c * x1 + d * vx1
+        y = a * py + b * vy + c * y1 + d * vy1
+        n = record(traj, n, t_next, x, y, _patch_height(x, y, patch), ROLL)
+        t_next += dt_record
+    return n, t_next
+
+
 @njit(cache=True, error_model="numpy")
 def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, n, t_next,
          dt_record):  # fmt: skip
@@ -218,7 +340,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
     row of the trajectory buffer, (qx, qy) the last point in play (where the status is not OK,
     the ball stopped at the first point of the step that left play).
     """
-    _, nx, ny, nz, turf, state, ds = surface(terrain, plane, px, py, pz)
+    _, nx, ny, nz, turf, state, ds, patch = surface(terrain, plane, px, py, pz)
     qx = px
     qy = py
     if state != OK:
@@ -247,7 +369,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         qy = py
         px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
         t += h
-        pz, mx, my, mz, under, state, ds = surface(terrain, plane, px, py, pz)
+        pz, mx, my, mz, under, state, ds, patch = surface(terrain, plane, px, py, pz)
         if state != OK:
             return px, py, pz, t, state, n, qx, qy
         if (
@@ -272,6 +394,76 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         if t - t0 > MAX_ROLL_TIME_S or rolled_too_far(px, py, x0, y0):
             return px, py, pz, t, NOT_STOPPED, n, qx, qy
         v = math.sqrt(vx * vx + vy * vy + vz * vz)
+        h_cap = ds / v if v > 0.0 else math.inf
+        to_edge = False  # a step to the edge of a level patch, where the next one turns it
+        if (patch[0] != 0.0) & (v > 1e-12):
+            # On smooth ground: a Runge-Kutta step to the patch's edge, unless the ball is
+            # about to stop.
+            decel = (5.0 / 7.0) * G_MPS2 * (vz / v + turf.rho_g * nz)
+            t_stop = v / decel if decel > 0.0 else math.inf
+            level = patch[0] == LEVEL_PATCH
+            if level:
+                # On a level patch the roll's own step is exact: it goes to the patch's edge.
+                to_edge = True
+                k = (5.0 / 7.0) * turf.rho_g * G_MPS2 / v
+                h_cap = min(
+                    _exit_time(px - patch[1], vx, -k * vx, patch[7], patch[8]),
+                    _exit_time(patch[2] - py, -vy, k * vy, patch[9], patch[10]),
+                )
+            elif STOP_FRACTION * t_stop >= PATCH_DT_MIN_S:
+                ax, ay = _patch_acceleration(px, py, vx, vy, patch, turf.rho_g)
+                h_edge = min(
+                    _exit_time(px - patch[1], vx, ax, patch[7], patch[8]),
+                    _exit_time(patch[2] - py, -vy, -ay, patch[9], patch[10]),
+                )
+                h = min(STOP_FRACTION * t_stop, PATCH_DT_MAX_S, h_edge)
+                if h > 0.0:
+                    x1, y1, vx1, vy1 = _patch_step(px, py, vx, vy, ax, ay, h, patch, turf.rho_g)
+                    # Past the patch's edge by more than PATCH_OVERSHOOT_M (the step's length was
+                    # foreseen at constant acceleration): the step again, ending there.
+                    over = _overshoot(x1 - patch[1], vx1, patch[7], patch[8])
+                    over_w = _overshoot(patch[2] - y1, -vy1, patch[9], patch[10])
+                    if over_w > over:
+                        over = over_w
+                    if (over > PATCH_REFINE_S) & (over < h):
+                        h -= over
+                        x1, y1, vx1, vy1 = _patch_step(px, py, vx, vy, ax, ay, h, patch, turf.rho_g)
+                    if vx1 * vx + vy1 * vy > 0.0:
+                        n, t_next = _record_patch_step(
+                            traj, n, t_next, dt_record, t, h, px, py, vx, vy, x1, y1, vx1, vy1,
+                            patch,
+                        )  # fmt: skip
+                        qx = px
+                        qy = py
+                        # The velocity in the patch's tangent plane at the step's end.
+                        u = x1 - patch[1]
+                        w = patch[2] - y1
+                        hx = patch[4] + patch[6] * w
+                        hy = -(patch[5] + patch[6] * u)
+                        vz = hx * vx1 + hy * vy1
+                        px, py, vx, vy = x1, y1, vx1, vy1
+                        t += h
+                        if (u >= patch[7]) & (u <= patch[8]) & (w >= patch[9]) & (w <= patch[10]):
+                            # Still on the patch: its height and normal there.
+                            pz = patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
+                            k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+                            nx = -hx * k
+                            ny = -hy * k
+                            nz = k
+                        else:
+                            pz, nx, ny, nz, under, state, ds, patch = surface(
+                                terrain, plane, px, py, pz
+                            )
+                            if state != OK:
+                                return px, py, pz, t, state, n, qx, qy
+                            # Into the tangent plane of the next patch.
+                            vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
+                            turf = under
+                        g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
+                        snap = (5.0 / 7.0) * snap
+                        k_roll = turf.rho_g * g_n
+                        static = g_t <= k_roll
+                        continue
         if v <= 1e-12:
             if static:
                 break
@@ -284,7 +476,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
             dy = vy * (1.0 / v)
             dz = vz * (1.0 / v)
         (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1 = roll_step(
-            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, min(h_max, ds / v), snap
+            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, min(h_max, h_cap), snap
         )
         n, t_next = _record_segment(
             traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
@@ -293,7 +485,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         qy = py
         px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
         t += h
-        pz, mx, my, mz, under, state, ds = surface(terrain, plane, px, py, pz)
+        pz, mx, my, mz, under, state, ds, patch = surface(terrain, plane, px, py, pz)
         if state != OK:
             return px, py, pz, t, state, n, qx, qy
         if pz != z1:  # on a terrain: the ground is put under the ball again
@@ -301,7 +493,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         if (mx != nx) | (my != ny) | (mz != nz) | (under.rho_g != turf.rho_g):
             nx, ny, nz = mx, my, mz
             g_n, gx1, gy1, gz1, g_t, h_max, snap = plane_gravity(nx, ny, nz)
-            if not done:
+            if not (done | to_edge):
                 vx, vy, vz = _turned(vx, vy, vz, gx1 - gx, gy1 - gy, gz1 - gz, h)
             gx, gy, gz = gx1, gy1, gz1
             vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
@@ -318,7 +510,7 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
 def roll_out(x, y, z, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t, traj, n, t_next, dt):
     """After the last impact: the ball stays on the ground with its velocity along it, slides
     and rolls to rest (``roll.roll``). Returns (x, y, z, t, status, n, qx, qy)."""
-    _, nx, ny, nz, _, _, _ = surface(terrain, plane, x, y, z)
+    _, nx, ny, nz, _, _, _, _ = surface(terrain, plane, x, y, z)
     vn = vx * nx + vy * ny + vz * nz
     x, y, z, t, status, n, qx, qy = roll(
         x, y, z, vx - vn * nx, vy - vn * ny, vz - vn * nz, wx, wy, wz, surface, terrain, plane,
