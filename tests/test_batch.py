@@ -7,6 +7,8 @@ recorded or not), whatever the mix of shots, their order, the number of threads 
 chunking; and the two forms of lanes give the same numbers for a shot both can fly.
 """
 
+from pathlib import Path
+
 import numba
 import numpy as np
 import pytest
@@ -160,3 +162,21 @@ def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):
     # another test ran one).
     plane = [sig for sig in _simulate_batch.signatures if str(sig[-1]) == "none"]
     assert len(plane) == 1, _simulate_batch.signatures
+
+
+def test_every_row_name_of_the_tables_is_given_once():
+    """The lane tables' row names are module constants that the compiled loops read: one name
+    given twice (the flight's and the bounce's tables) silently moves one table's rows onto
+    the other's."""
+    import ast
+    import collections
+
+    tree = ast.parse(Path(batch.__file__).read_text(encoding="utf-8"))
+    names = collections.Counter()
+    for node in tree.body:
+        if isinstance(node, ast.Assign):
+            for target in node.targets:
+                for name in target.elts if isinstance(target, ast.Tuple) else [target]:
+                    if isinstance(name, ast.Name):
+                        names[name.id] += 1
+    assert [name for name, count in names.items() if count > 1] == []

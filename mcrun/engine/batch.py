@@ -142,11 +142,12 @@ V2, V3 = K3 + 4, K3 + 7  # three rows each: vx, vy, vz
 (X1, Y1, VX1, VY1, W1, H_MAX, NX, NY, NZ, SHOT, SPEED_LANDING, ANGLE, T_LANDING) = range(
     V3 + 3, V3 + 16
 )
-# On a ground that varies: the end of the last step whose ground track was in play (QX, QY;
-# the tee at first), and the end of the step after it (PX, PY) once WET (1.0) says there is
-# one: a ball that lands where its shot ends crossed in between (``ground.crossing``).
-(QX, QY, PX, PY, WET) = range(T_LANDING + 1, T_LANDING + 6)
-N_LANE_ROWS = WET + 1
+# On a ground that varies: the end of the last step whose ground track was in play (PLAY_X,
+# PLAY_Y; the tee at first), and the end of the step after it (OUT_X, OUT_Y) once LEFT_PLAY
+# (1.0) says there is one: a ball that lands where its shot ends crossed in between
+# (``ground.crossing``).
+(PLAY_X, PLAY_Y, OUT_X, OUT_Y, LEFT_PLAY) = range(T_LANDING + 1, T_LANDING + 6)
+N_LANE_ROWS = LEFT_PLAY + 1
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -396,13 +397,13 @@ def _make_flight(derivative, stage, step, constants, context):
                 x1 = lanes[X1 * LANES + k]
                 y1 = lanes[Y1 * LANES + k]
                 if ground.state_at(terrain, x1, y1) == OK:
-                    lanes[QX * LANES + k] = x1
-                    lanes[QY * LANES + k] = y1
-                    lanes[WET * LANES + k] = 0.0
-                elif lanes[WET * LANES + k] == 0.0:
-                    lanes[PX * LANES + k] = x1
-                    lanes[PY * LANES + k] = y1
-                    lanes[WET * LANES + k] = 1.0
+                    lanes[PLAY_X * LANES + k] = x1
+                    lanes[PLAY_Y * LANES + k] = y1
+                    lanes[LEFT_PLAY * LANES + k] = 0.0
+                elif lanes[LEFT_PLAY * LANES + k] == 0.0:
+                    lanes[OUT_X * LANES + k] = x1
+                    lanes[OUT_Y * LANES + k] = y1
+                    lanes[LEFT_PLAY * LANES + k] = 1.0
         if traced >= 0:
             k = traced
             tracer[ROW] = record(
@@ -472,10 +473,11 @@ def _make_flight(derivative, stage, step, constants, context):
             )
             state = ground.state_at(terrain, s[X1], s[Y1])
             if state != OK:
-                wet = s[WET] == 1.0
+                left = s[LEFT_PLAY] == 1.0
                 ref_x, ref_y = ground.crossing(
-                    terrain, s[QX], s[QY], s[PX] if wet else s[X1], s[PY] if wet else s[Y1]
-                )
+                    terrain, s[PLAY_X], s[PLAY_Y], s[OUT_X] if left else s[X1],
+                    s[OUT_Y] if left else s[Y1],
+                )  # fmt: skip
                 write_run(out, i, s[X1], s[X1], s[Y1], z1, s[T_LANDING], state, 0.0, np.nan,
                           np.nan, ref_x, ref_y)  # fmt: skip
                 continue
@@ -504,8 +506,8 @@ def _make_flight(derivative, stage, step, constants, context):
             )
             for row, value in ((X, 0.0), (Y, 0.0), (Z, 0.0), (VX, vx), (VY, vy), (VZ, vz),
                                (W, w), (AXIS_X, ax), (AXIS_Y, ay), (AXIS_Z, az),
-                               (DT, c[DT_IN]), (T, 0.0), (APEX, 0.0), (QX, 0.0), (QY, 0.0),
-                               (WET, 0.0)):  # fmt: skip
+                               (DT, c[DT_IN]), (T, 0.0), (APEX, 0.0), (PLAY_X, 0.0),
+                               (PLAY_Y, 0.0), (LEFT_PLAY, 0.0)):  # fmt: skip
                 lanes[row * LANES + k] = value
             constants(lanes, k, p, table)
             shot[k] = i
@@ -540,7 +542,7 @@ def _make_flight(derivative, stage, step, constants, context):
                     for row in range(N_SHOT_ROWS):
                         g[row * LANES + waiting] = lanes[row * LANES + k]
                     # (Where the step went below the ground, and where it was last in play.)
-                    for row in (X1, Y1, VX1, VY1, QX, QY, PX, PY, WET):
+                    for row in (X1, Y1, VX1, VY1, PLAY_X, PLAY_Y, OUT_X, OUT_Y, LEFT_PLAY):
                         g[row * LANES + waiting] = lanes[row * LANES + k]
                     nx, ny, nz = _plane_normal(inputs, i)
                     for row, value in ((H_MAX, lanes[DT * LANES + k]), (NX, nx), (NY, ny),
