@@ -21,7 +21,7 @@ import numpy as np
 
 from mcrun.api import InputError
 from mcrun.engine.backend import simulate_batch
-from mcrun.engine.schema import COLUMN
+from mcrun.engine.schema import COLUMN, FINAL_X, FINAL_Y, N_OUTCOME
 from mcrun.results import on_hole
 from mcrun.run import sampling
 from mcrun.strokes import start_of, tour_baseline
@@ -137,7 +137,7 @@ def search(
     for point in scenario.points:
         inputs, _ = sampling.sample(scenario, point, 0, n)
         azimuth = inputs[:, AZIMUTH].copy()
-        out = np.empty((n, len(on_hole._COLUMN)), order="F")
+        out = np.empty((n, N_OUTCOME), order="F")
         aims = ClubAims(point.label or point.group or "shot", reference_m=centre_m)
 
         def fly(offset, aims=aims, inputs=inputs, azimuth=azimuth, out=out):
@@ -209,4 +209,4 @@ def finishes(result, club, offset_m):
     bearing = _bearing(offset_m, result.pin_distance_m)
     inputs[:, AZIMUTH] += bearing - scenario.aim_rad
     out = simulate_batch(inputs, terrain=scenario.hole.terrain())
-    return out[:, on_hole._COLUMN["final_x_m"]], out[:, on_hole._COLUMN["final_y_m"]]
+    return out[:, FINAL_X], out[:, FINAL_Y]
