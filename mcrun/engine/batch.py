@@ -647,16 +647,9 @@ def _ask_ground(b, k, terrain):
         b[(MU + j) * LANES + k] = value
 
 
-@njit(cache=True, error_model="numpy")
-def _impact_lanes(b, e, terrain, rb):
-    """One impact, and the hop it starts, for every bounce lane: ``bounce.impact`` in two
-    vectorised loops (as ``step_lanes``, so that the lanes' long chains overlap), on the ground
-    under the ball. Returns the number of lanes (empty ones included) whose ball no longer
-    hops."""
-    if ground.varies(terrain):
-        for k in range(LANES):
-            _ask_ground(b, k, terrain)
-        return _impact_lanes_on_grid(b, e, terrain, rb)
+@njit(cache=True, error_model="numpy", inline="always")
+def _incidences(b, e):
+    """The equivalent surface of every bounce lane's impact (``bounce.incidence``) into e."""
     for k in range(LANES):
         under = _lane_ground(b, k)
         ex, ey, ez, vne, _ = incidence(
@@ -667,6 +660,19 @@ def _impact_lanes(b, e, terrain, rb):
         e[EY * LANES + k] = ey
         e[EZ * LANES + k] = ez
         e[VNE * LANES + k] = vne
+
+
+@njit(cache=True, error_model="numpy")
+def _impact_lanes(b, e, terrain, rb):
+    """One impact, and the hop it starts, for every bounce lane: ``bounce.impact`` in two
+    vectorised loops (as ``step_lanes``, so that the lanes' long chains overlap), on the ground
+    under the ball (on a terrain, ``_impact_lanes_on_grid``). Returns the number of lanes
+    (empty ones included) whose ball no longer hops."""
+    if ground.varies(terrain):
+        for k in range(LANES):
+            _ask_ground(b, k, terrain)
+        return _impact_lanes_on_grid(b, e, terrain, rb)
+    _incidences(b, e)
     ended = 0
     for k in range(LANES):
         under = _lane_ground(b, k)
@@ -680,15 +686,11 @@ def _impact_lanes(b, e, terrain, rb):
             e[EY * LANES + k], e[EZ * LANES + k], e[VNE * LANES + k],
             under.turf, bounces, b[PREVIOUS * LANES + k],
         )  # fmt: skip
+        # (On a plane, always in play: the hop's end is the exact return to it.)
         x1, y1, z1, vz1, hop_time = ground.hop_landing(
             terrain, x, y, b[BZ * LANES + k], vx, vy, vz, hop_time
         )
         hops = then == HOPS
-        state = ground.state_at(terrain, x1, y1)
-        b[QX * LANES + k] = x if hops else b[QX * LANES + k]
-        b[QY * LANES + k] = y if hops else b[QY * LANES + k]
-        b[STATE * LANES + k] = state if hops else b[STATE * LANES + k]
-        then = ENDS if hops & (state != OK) else then
         first = hops & (bounces == 0)
         b[FIRST_HEIGHT * LANES + k] = height if first else b[FIRST_HEIGHT * LANES + k]
         b[FIRST_LENGTH * LANES + k] = x1 - x if first else b[FIRST_LENGTH * LANES + k]
@@ -707,21 +709,6 @@ def _impact_lanes(b, e, terrain, rb):
         b[THEN * LANES + k] = then
         ended += 0 if then == HOPS else 1
     return ended
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _incidences(b, e):
-    """The equivalent surface of every bounce lane's impact (``bounce.incidence``) into e."""
-    for k in range(LANES):
-        under = _lane_ground(b, k)
-        ex, ey, ez, vne, _ = incidence(
-            b[BVX * LANES + k], b[BVY * LANES + k], b[BVZ * LANES + k], under.nx, under.ny,
-            under.nz, under.turf,
-        )  # fmt: skip
-        e[EX * LANES + k] = ex
-        e[EY * LANES + k] = ey
-        e[EZ * LANES + k] = ez
-        e[VNE * LANES + k] = vne
 
 
 @njit(cache=True, error_model="numpy")
