@@ -237,6 +237,38 @@ def _clearance_rate(terrain, x, y, vx, vy, vz):
     return rate
 
 
+def flight_check(terrain, x, y, z):
+    """What a flight step asks of the ground where it ends, (x, y, z), in one look-up: the
+    ball's height above it (``clearance``) and the state of the ground under it
+    (``state_at``)."""
+    raise NotImplementedError("compiled code only")
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_flight_check(terrain, x, y, z):
+    ix, iy, tx, ty, inside = _locate(terrain, x, y)
+    h = terrain.height_m
+    height = (h[iy, ix] * (1.0 - tx) + h[iy, ix + 1] * tx) * (1.0 - ty) + (
+        h[iy + 1, ix] * (1.0 - tx) + h[iy + 1, ix + 1] * tx
+    ) * ty
+    kind = terrain.penalty[terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]]
+    state = OK
+    if not inside:
+        state = OFF_MAP
+    elif kind == PENALTY_AREA:
+        state = IN_PENALTY_AREA
+    elif kind == OUT_OF_BOUNDS:
+        state = OUT_OF_BOUNDS_STATUS
+    return z - height, state
+
+
+@overload(flight_check, inline="always")
+def _flight_check(terrain, x, y, z):
+    if _flat(terrain):
+        return lambda terrain, x, y, z: (z, OK)
+    return lambda terrain, x, y, z: _grid_flight_check(terrain, x, y, z)
+
+
 def normal_at(terrain, plane, x, y):
     """Unit normal (nx, ny, nz) of the ground at (x, y), core frame: the Plane's, or the grid's
     (-dh/dx, -dh/dy, 1) normalised."""
@@ -313,6 +345,51 @@ def _state_at(terrain, x, y):
     return lambda terrain, x, y: _grid_state(terrain, x, y)
 
 
+def contact(terrain, plane, x, y):
+    """What an impact asks of the ground at (x, y), in one look-up: the state there
+    (``state_at``), its unit normal (``normal_at``) and turf (``turf_at``)."""
+    raise NotImplementedError("compiled code only")
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_contact(terrain, x, y):
+    ny_, nx_ = terrain.height_m.shape
+    fx = (x - terrain.x0_m) / terrain.cell_m
+    fy = (-y - terrain.y0_m) / terrain.cell_m
+    inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
+    ix = min(max(int(math.floor(fx)), 0), nx_ - 2)
+    iy = min(max(int(math.floor(fy)), 0), ny_ - 2)
+    tx = min(max(fx - ix, 0.0), 1.0)
+    ty = min(max(fy - iy, 0.0), 1.0)
+    h = terrain.height_m
+    h00 = h[iy, ix]
+    h10 = h[iy, ix + 1]
+    h01 = h[iy + 1, ix]
+    h11 = h[iy + 1, ix + 1]
+    hx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) / terrain.cell_m
+    hy = -((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) / terrain.cell_m
+    k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+    zone = terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
+    t = terrain.turf[zone]
+    kind = terrain.penalty[zone]
+    state = OK
+    if not inside:
+        state = OFF_MAP
+    elif kind == PENALTY_AREA:
+        state = IN_PENALTY_AREA
+    elif kind == OUT_OF_BOUNDS:
+        state = OUT_OF_BOUNDS_STATUS
+    turf = Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8])
+    return state, -hx * k, -hy * k, k, turf
+
+
+@overload(contact, inline="always")
+def _contact(terrain, plane, x, y):
+    if _flat(terrain):
+        return lambda terrain, plane, x, y: (OK, plane.nx, plane.ny, plane.nz, plane.turf)
+    return lambda terrain, plane, x, y: _grid_contact(terrain, x, y)
+
+
 # ``surface``'s patch: where the ground around the ball is one smooth piece, one bilinear
 # patch of one zone (a cell of the grid, or the quarter of it nearest one node where its nodes'
 # zones differ), in the core's frame, the numbers (SMOOTH, XC, YC, HC, BX, BY, EC, U_LO, U_HI,
@@ -330,7 +407,7 @@ def _plane_surface(terrain, plane, x, y, z):
     return z, plane.nx, plane.ny, plane.nz, plane.turf, OK, math.inf, NO_PATCH
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _grid_surface(terrain, plane, x, y, z):
     """``surface`` on the grid: one look-up of the cell for all of it."""
     ny_, nx_ = terrain.height_m.shape
@@ -405,7 +482,7 @@ def _surface_overload(terrain, plane, x, y, z):
     return lambda terrain, plane, x, y, z: _grid_surface(terrain, plane, x, y, z)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def surface(terrain, plane, x, y, z):
     """What the roll asks at each step (``roll.roll``, to which it is passed): the height of
     the ground at (x, y) (on a Plane, z itself: the ball stays on the plane), its normal and

@@ -147,7 +147,9 @@ V2, V3 = K3 + 4, K3 + 7  # three rows each: vx, vy, vz
 # (1.0) says there is one: a ball that lands where its shot ends crossed in between
 # (``ground.crossing``).
 (PLAY_X, PLAY_Y, OUT_X, OUT_Y, LEFT_PLAY) = range(T_LANDING + 1, T_LANDING + 6)
-N_LANE_ROWS = LEFT_PLAY + 1
+# Whether the last step ended below the ground (1.0), in the lane table.
+LANDED = LEFT_PLAY + 1
+N_LANE_ROWS = LANDED + 1
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -371,6 +373,27 @@ def _make_flight(derivative, stage, step, constants, context):
                     tracer[ROW] = record_step(
                         lanes, k, lanes[DT * LANES + k], table, traj, int(tracer[ROW])
                     )
+        # Where each step ends: below the ground (LANDED), and, on a ground that varies, over
+        # ground in play or not (one look-up of the ground each).
+        if ground.varies(terrain):
+            for k in range(LANES):
+                x1 = lanes[X1 * LANES + k]
+                y1 = lanes[Y1 * LANES + k]
+                clear, state = ground.flight_check(terrain, x1, y1, lanes[Z1 * LANES + k])
+                lanes[LANDED * LANES + k] = 1.0 if clear < 0.0 else 0.0
+                if clear < 0.0:
+                    continue
+                if state == OK:
+                    lanes[PLAY_X * LANES + k] = x1
+                    lanes[PLAY_Y * LANES + k] = y1
+                    lanes[LEFT_PLAY * LANES + k] = 0.0
+                elif lanes[LEFT_PLAY * LANES + k] == 0.0:
+                    lanes[OUT_X * LANES + k] = x1
+                    lanes[OUT_Y * LANES + k] = y1
+                    lanes[LEFT_PLAY * LANES + k] = 1.0
+        else:
+            for k in range(LANES):
+                lanes[LANDED * LANES + k] = 1.0 if _below_ground(lanes, k, terrain) else 0.0
         events = 0
         for k in range(LANES):
             z = lanes[Z * LANES + k]
@@ -378,7 +401,7 @@ def _make_flight(derivative, stage, step, constants, context):
             z1 = lanes[Z1 * LANES + k]
             vz1 = lanes[VZ1 * LANES + k]
             dt = lanes[DT * LANES + k]
-            landed = _below_ground(lanes, k, terrain)
+            landed = lanes[LANDED * LANES + k] != 0.0
             apex = lanes[APEX * LANES + k]
             lanes[APEX * LANES + k] = apex if landed else apex_after_step(apex, z, vz, z1, vz1, dt)
             lanes[T * LANES + k] = lanes[T * LANES + k] if landed else lanes[T * LANES + k] + dt
@@ -390,20 +413,6 @@ def _make_flight(derivative, stage, step, constants, context):
             lanes[VZ * LANES + k] = vz if landed else vz1
             lanes[W * LANES + k] = lanes[W * LANES + k] if landed else lanes[W1 * LANES + k]
             events += 1 if landed | (lanes[T * LANES + k] > MAX_FLIGHT_TIME_S) else 0
-        if ground.varies(terrain):
-            for k in range(LANES):
-                if _below_ground(lanes, k, terrain):
-                    continue
-                x1 = lanes[X1 * LANES + k]
-                y1 = lanes[Y1 * LANES + k]
-                if ground.state_at(terrain, x1, y1) == OK:
-                    lanes[PLAY_X * LANES + k] = x1
-                    lanes[PLAY_Y * LANES + k] = y1
-                    lanes[LEFT_PLAY * LANES + k] = 0.0
-                elif lanes[LEFT_PLAY * LANES + k] == 0.0:
-                    lanes[OUT_X * LANES + k] = x1
-                    lanes[OUT_Y * LANES + k] = y1
-                    lanes[LEFT_PLAY * LANES + k] = 1.0
         if traced >= 0:
             k = traced
             tracer[ROW] = record(
@@ -538,7 +547,7 @@ def _make_flight(derivative, stage, step, constants, context):
                 i = shot[k]
                 if i < 0:
                     continue
-                if _below_ground(lanes, k, terrain):
+                if lanes[LANDED * LANES + k] != 0.0:
                     for row in range(N_SHOT_ROWS):
                         g[row * LANES + waiting] = lanes[row * LANES + k]
                     # (Where the step went below the ground, and where it was last in play.)
@@ -634,12 +643,8 @@ def _lane_ground(b, k):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _ask_ground(b, k, terrain):
-    """Rows BNX.. and MU.. of bounce lane k: the normal and turf of the ground under its ball,
-    asked of a ground that varies (``ground.surface``, one look-up), before an impact."""
-    _, nx, ny, nz, turf, _, _, _ = ground.surface(
-        terrain, _lane_ground(b, k), b[BX * LANES + k], b[BY * LANES + k], b[BZ * LANES + k]
-    )
+def _set_lane_ground(b, k, nx, ny, nz, turf):
+    """Rows BNX.. and MU.. of bounce lane k: the normal and turf of the ground under it."""
     b[BNX * LANES + k] = nx
     b[BNY * LANES + k] = ny
     b[BNZ * LANES + k] = nz
@@ -669,8 +674,6 @@ def _impact_lanes(b, e, terrain, rb):
     under the ball (on a terrain, ``_impact_lanes_on_grid``). Returns the number of lanes
     (empty ones included) whose ball no longer hops."""
     if ground.varies(terrain):
-        for k in range(LANES):
-            _ask_ground(b, k, terrain)
         return _impact_lanes_on_grid(b, e, terrain, rb)
     _incidences(b, e)
     ended = 0
@@ -750,7 +753,9 @@ def _impact_lanes_on_grid(b, e, terrain, rb):
             x1, y1, z1, vz1, hop_time = ground.hop_landing(
                 terrain, x, y, b[BZ * LANES + k], vx, vy, vz, rb[7 * LANES + k]
             )
-            state = ground.state_at(terrain, x1, y1)
+            # The ground where it comes down: what the next impact asks of it.
+            state, nx, ny, nz, turf = ground.contact(terrain, _lane_ground(b, k), x1, y1)
+            _set_lane_ground(b, k, nx, ny, nz, turf)
             b[QX * LANES + k] = x
             b[QY * LANES + k] = y
             b[STATE * LANES + k] = state
@@ -807,15 +812,18 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terr
         return next_j
     i = pending[next_j]
     g = landings[i - start]
-    turf = _turf(inputs, i)
     for row, value in ((BX, g[0]), (BY, g[1]), (BZ, ground.height_at(terrain, g[0], g[1])),
                        (BVX, g[2]), (BVY, g[3]), (BVZ, g[4]), (BWX, g[5]), (BWY, g[6]),
-                       (BWZ, g[7]), (BT, g[8]), (BNX, g[9]), (BNY, g[10]), (BNZ, g[11]),
-                       (BOUNCES, 0.0), (PREVIOUS, 0.0), (FIRST_HEIGHT, 0.0), (FIRST_LENGTH, 0.0),
-                       (QX, g[0]), (QY, g[1]), (STATE, float(OK))):  # fmt: skip
+                       (BWZ, g[7]), (BT, g[8]), (BOUNCES, 0.0), (PREVIOUS, 0.0),
+                       (FIRST_HEIGHT, 0.0), (FIRST_LENGTH, 0.0), (QX, g[0]), (QY, g[1]),
+                       (STATE, float(OK))):  # fmt: skip
         b[row * LANES + k] = value
-    for j, value in enumerate(turf):
-        b[(MU + j) * LANES + k] = value
+    # The ground where it landed: the Plane of the landing (its normal, the shot's turf), or
+    # the terrain's there.
+    _, nx, ny, nz, turf = ground.contact(
+        terrain, ground.Plane(g[9], g[10], g[11], _turf(inputs, i)), g[0], g[1]
+    )
+    _set_lane_ground(b, k, nx, ny, nz, turf)
     shot[k] = i
     return next_j + 1
 
