@@ -347,7 +347,8 @@ def _state_at(terrain, x, y):
 
 def contact(terrain, plane, x, y):
     """What an impact asks of the ground at (x, y), in one look-up: the state there
-    (``state_at``), its unit normal (``normal_at``) and turf (``turf_at``)."""
+    (``state_at``), its unit normal (``normal_at``) and turf (``turf_at``), and its
+    ``calm_reach``."""
     raise NotImplementedError("compiled code only")
 
 
@@ -380,14 +381,37 @@ def _grid_contact(terrain, x, y):
     elif kind == OUT_OF_BOUNDS:
         state = OUT_OF_BOUNDS_STATUS
     turf = Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8])
-    return state, -hx * k, -hy * k, k, turf
+    reach = float(terrain.calm[iy, ix]) * terrain.cell_m
+    return state, -hx * k, -hy * k, k, turf, reach
 
 
 @overload(contact, inline="always")
 def _contact(terrain, plane, x, y):
     if _flat(terrain):
-        return lambda terrain, plane, x, y: (OK, plane.nx, plane.ny, plane.nz, plane.turf)
+        return lambda terrain, plane, x, y: (
+            OK, plane.nx, plane.ny, plane.nz, plane.turf, math.inf
+        )  # fmt: skip
     return lambda terrain, plane, x, y: _grid_contact(terrain, x, y)
+
+
+def calm_reach(terrain, x, y):
+    """How far (m) a ball at (x, y) may go in any direction on one plane of one zone: the
+    ``calm_cells`` of the cell under it, in metres (0 where the ground bends or the zone
+    changes there; no limit on a Plane)."""
+    raise NotImplementedError("compiled code only")
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_calm_reach(terrain, x, y):
+    ix, iy, _, _, _ = _locate(terrain, x, y)
+    return float(terrain.calm[iy, ix]) * terrain.cell_m
+
+
+@overload(calm_reach, inline="always")
+def _calm_reach(terrain, x, y):
+    if _flat(terrain):
+        return lambda terrain, x, y: math.inf
+    return lambda terrain, x, y: _grid_calm_reach(terrain, x, y)
 
 
 # ``surface``'s patch: where the ground around the ball is one smooth piece, one bilinear

@@ -16,6 +16,8 @@ so the results are the same bit for bit whatever the thread count or the order o
 Frames as in ``engine.shot``: user frame in and out, the core's (y to the LEFT) inside.
 """
 
+import math
+
 import numba
 import numpy as np
 from numba import njit, prange
@@ -40,7 +42,7 @@ from mcrun.physics.aero import (
     SPIN_RATE,
     flies_in_lanes,
 )
-from mcrun.physics.bounce import HOPS, TOO_MANY, impact, impact_rebound, incidence
+from mcrun.physics.bounce import HOPS, TOO_MANY, hop, impact, impact_rebound, incidence
 from mcrun.physics.constants import BALL_AREA_M2, BALL_MASS_KG, G_MPS2
 from mcrun.physics.flight import (
     WIND_UNIFORM,
@@ -608,11 +610,12 @@ def _plane_normal(inputs, i):
  FIRST_LENGTH, THEN, MU) = range(19)  # fmt: skip
 # ... where the ball last touched the ground in play (QX, QY) and the state where it touched it
 # last (``ground.state_at``), and, in the roll table only, the shot and where and when
-# ``roll.roll_out_short`` brings it to rest, if it does (SHORT).
-(QX, QY, STATE, BSHOT, REST_X, REST_Y, REST_T, SHORT) = range(
-    MU + len(Turf._fields), MU + len(Turf._fields) + 8
+# ``roll.roll_out_short`` brings it to rest, if it does (SHORT); on a terrain, how far (m) the
+# ground around the ball is one plane of one zone (REACH, ``ground.calm_reach``).
+(QX, QY, STATE, BSHOT, REST_X, REST_Y, REST_T, SHORT, REACH) = range(
+    MU + len(Turf._fields), MU + len(Turf._fields) + 9
 )
-N_BOUNCE_ROWS = SHORT + 1
+N_BOUNCE_ROWS = REACH + 1
 # What comes after an impact (``bounce.impact``'s HOPS, ROLLS, TOO_MANY), or: its hop came down
 # where the shot ends (STATE).
 ENDS = -1.0
@@ -622,10 +625,12 @@ ENDS = -1.0
 (EX, EY, EZ, VNE) = range(4)
 N_SURFACE_ROWS = 4
 # On a terrain, the rebounds of the impacts under way, a table of their own too
-# (``_impact_lanes_on_grid``): a row each for (vx, vy, vz, wx, wy, wz, height, hop_time, then),
-# so that the rebounds stay one vectorised loop and the hops (``ground.hop_landing`` on the
-# grid, one lane at a time) another.
-N_REBOUND_ROWS = 9
+# (``_impact_lanes_on_grid``): their (vx, vy, vz, wx, wy, wz, height, hop_time, then), and the
+# end (x1, y1, z1, vz1) of the hop on the plane under the ball and whether it ends there (CALM:
+# within its REACH), so that the rebounds and the hops on calm ground stay one vectorised loop
+# and the other hops (``ground.hop_landing`` on the grid, one lane at a time) another.
+(RVX, RVY, RVZ, RWX, RWY, RWZ, RHEIGHT, RHOP_T, RTHEN, RX1, RY1, RZ1, RVZ1, CALM) = range(14)
+N_REBOUND_ROWS = CALM + 1
 # The landing of a shot, kept until its bounces run: (x, y, vx, vy, vz, wx, wy, wz, t, nx, ny,
 # nz) in the core's frame.
 N_LANDING = 12
@@ -716,8 +721,11 @@ def _impact_lanes(b, e, terrain, rb):
 
 @njit(cache=True, error_model="numpy")
 def _impact_lanes_on_grid(b, e, terrain, rb):
-    """``_impact_lanes`` on a terrain: the impacts' rebounds in vectorised loops (into the
-    rebound table ``rb``), then each lane's hop on the grid."""
+    """``_impact_lanes`` on a terrain: the impacts' rebounds, and their hops where the ground
+    is calm (one plane and zone as far as the hop goes: there the plane's exact hop, as on a
+    Plane), in vectorised loops (into the rebound table ``rb``), then each other lane's hop on
+    the grid (``ground.hop_landing``) and the ground where it comes down (``ground.contact``).
+    """
     _incidences(b, e)
     for k in range(LANES):
         under = _lane_ground(b, k)
@@ -727,35 +735,54 @@ def _impact_lanes_on_grid(b, e, terrain, rb):
             e[EX * LANES + k], e[EY * LANES + k], e[EZ * LANES + k], e[VNE * LANES + k],
             under.turf, b[BOUNCES * LANES + k], b[PREVIOUS * LANES + k],
         )  # fmt: skip
-        rb[k] = vx
-        rb[LANES + k] = vy
-        rb[2 * LANES + k] = vz
-        rb[3 * LANES + k] = wx
-        rb[4 * LANES + k] = wy
-        rb[5 * LANES + k] = wz
-        rb[6 * LANES + k] = height
-        rb[7 * LANES + k] = hop_time
-        rb[8 * LANES + k] = then
+        x1, y1, z1, vz1 = hop(
+            b[BX * LANES + k], b[BY * LANES + k], b[BZ * LANES + k], vx, vy, vz, hop_time
+        )
+        calm = (hop_time > 0.0) & (math.sqrt(vx * vx + vy * vy) * hop_time <= b[REACH * LANES + k])
+        rb[RVX * LANES + k] = vx
+        rb[RVY * LANES + k] = vy
+        rb[RVZ * LANES + k] = vz
+        rb[RWX * LANES + k] = wx
+        rb[RWY * LANES + k] = wy
+        rb[RWZ * LANES + k] = wz
+        rb[RHEIGHT * LANES + k] = height
+        rb[RHOP_T * LANES + k] = hop_time
+        rb[RTHEN * LANES + k] = then
+        rb[RX1 * LANES + k] = x1
+        rb[RY1 * LANES + k] = y1
+        rb[RZ1 * LANES + k] = z1
+        rb[RVZ1 * LANES + k] = vz1
+        rb[CALM * LANES + k] = 1.0 if calm else 0.0
     ended = 0
     for k in range(LANES):
         x = b[BX * LANES + k]
         y = b[BY * LANES + k]
-        vx = rb[k]
-        vy = rb[LANES + k]
-        vz = rb[2 * LANES + k]
-        height = rb[6 * LANES + k]
-        then = rb[8 * LANES + k]
+        vx = rb[RVX * LANES + k]
+        vy = rb[RVY * LANES + k]
+        vz = rb[RVZ * LANES + k]
+        height = rb[RHEIGHT * LANES + k]
+        then = rb[RTHEN * LANES + k]
         bounces = b[BOUNCES * LANES + k]
         hops = then == HOPS
-        x1, y1, z1, vz1, hop_time = x, y, b[BZ * LANES + k], vz, 0.0
-        state = OK
+        vz1 = vz
         if hops:
-            x1, y1, z1, vz1, hop_time = ground.hop_landing(
-                terrain, x, y, b[BZ * LANES + k], vx, vy, vz, rb[7 * LANES + k]
-            )
-            # The ground where it comes down: what the next impact asks of it.
-            state, nx, ny, nz, turf = ground.contact(terrain, _lane_ground(b, k), x1, y1)
-            _set_lane_ground(b, k, nx, ny, nz, turf)
+            if rb[CALM * LANES + k] != 0.0:
+                # On the plane and zone under the ball: its normal and turf stay.
+                x1 = rb[RX1 * LANES + k]
+                y1 = rb[RY1 * LANES + k]
+                z1 = rb[RZ1 * LANES + k]
+                vz1 = rb[RVZ1 * LANES + k]
+                hop_time = rb[RHOP_T * LANES + k]
+                state = OK
+                b[REACH * LANES + k] = ground.calm_reach(terrain, x1, y1)
+            else:
+                x1, y1, z1, vz1, hop_time = ground.hop_landing(
+                    terrain, x, y, b[BZ * LANES + k], vx, vy, vz, rb[RHOP_T * LANES + k]
+                )
+                # The ground where it comes down: what the next impact asks of it.
+                state, nx, ny, nz, turf, reach = ground.contact(terrain, _lane_ground(b, k), x1, y1)
+                _set_lane_ground(b, k, nx, ny, nz, turf)
+                b[REACH * LANES + k] = reach
             b[QX * LANES + k] = x
             b[QY * LANES + k] = y
             b[STATE * LANES + k] = state
@@ -772,10 +799,10 @@ def _impact_lanes_on_grid(b, e, terrain, rb):
             b[BOUNCES * LANES + k] = bounces + 1.0
         b[BVX * LANES + k] = vx
         b[BVY * LANES + k] = vy
-        b[BVZ * LANES + k] = vz1 if hops else vz
-        b[BWX * LANES + k] = rb[3 * LANES + k]
-        b[BWY * LANES + k] = rb[4 * LANES + k]
-        b[BWZ * LANES + k] = rb[5 * LANES + k]
+        b[BVZ * LANES + k] = vz1
+        b[BWX * LANES + k] = rb[RWX * LANES + k]
+        b[BWY * LANES + k] = rb[RWY * LANES + k]
+        b[BWZ * LANES + k] = rb[RWZ * LANES + k]
         b[THEN * LANES + k] = then
         ended += 0 if then == HOPS else 1
     return ended
@@ -820,10 +847,11 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terr
         b[row * LANES + k] = value
     # The ground where it landed: the Plane of the landing (its normal, the shot's turf), or
     # the terrain's there.
-    _, nx, ny, nz, turf = ground.contact(
+    _, nx, ny, nz, turf, reach = ground.contact(
         terrain, ground.Plane(g[9], g[10], g[11], _turf(inputs, i)), g[0], g[1]
     )
     _set_lane_ground(b, k, nx, ny, nz, turf)
+    b[REACH * LANES + k] = reach
     shot[k] = i
     return next_j + 1
 
