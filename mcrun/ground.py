@@ -572,7 +572,7 @@ MAX_HOP_STEPS = 100_000
 HOP_GAP_TOLERANCE_M = 1e-9
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     """``hop_landing`` on the grid. A hop that stays on calm ground (``calm_cells``) ends after
     ``hop_time``, the plane's exact return, as on a Plane. Any other follows its ground track
