@@ -2,11 +2,13 @@
 
 The shot loop (``engine.batch``) holds no slope or turf of its own: it asks the ground, where
 the ball is, for the ball's height above it (``clearance``, ``clearance_rate``: the flight ends
-where it goes below), its normal and turf (``normal_at``, ``turf_at``: every impact), where a hop
-comes down on it (``hop_landing``), what the roll needs at each step (``surface``: height, normal,
-turf, state, the longest step), the state there under the Rules (``state_at``: in play, or a
-penalty area, out of bounds, off the map) and where the ball crossed into such a place
-(``crossing``). Two kinds of ground answer:
+where it goes below; ``flight_check`` with the state under it, at each flight step), its normal
+and turf (``normal_at``, ``turf_at``; ``contact`` with the state and the ``calm_reach``, where a
+ball comes down for its next impact), where a hop comes down on it (``hop_landing``), what the
+roll needs at each step (``surface``: height, normal, turf, state, the longest step), the state
+there under the Rules (``state_at``: in play, or a penalty area, out of bounds, off the map) and
+where the ball crossed into such a place (``crossing``). The questions a loop asks at every
+step are answered in one look-up of the grid each. Two kinds of ground answer:
 
 - a shot's own ``Plane`` (``terrain`` None): the slope model. The flight comes down to z = 0 and
   the landing area is the plane of the shot's slope through the landing point, of one turf,
