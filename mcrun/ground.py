@@ -196,6 +196,17 @@ def _grid_zone(terrain, x, y):
     return terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _state_of(inside, kind):
+    """The state (``state_at``) of a point on the grid or not (``inside``) in a zone of this
+    ``penalty`` kind."""
+    if not inside:
+        return OFF_MAP
+    if kind == PENALTY_AREA:
+        return IN_PENALTY_AREA
+    return OUT_OF_BOUNDS_STATUS if kind == OUT_OF_BOUNDS else OK
+
+
 def height_at(terrain, x, y):
     """Height (m) of the ground's surface at (x, y): where the flight ends. On a Plane the flight
     comes down to z = 0 and the plane through the landing point is the landing area."""
@@ -254,13 +265,7 @@ def _grid_flight_check(terrain, x, y, z):
         h[iy + 1, ix] * (1.0 - tx) + h[iy + 1, ix + 1] * tx
     ) * ty
     kind = terrain.penalty[terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]]
-    state = OK
-    if not inside:
-        state = OFF_MAP
-    elif kind == PENALTY_AREA:
-        state = IN_PENALTY_AREA
-    elif kind == OUT_OF_BOUNDS:
-        state = OUT_OF_BOUNDS_STATUS
+    state = _state_of(inside, kind)
     return z - height, state
 
 
@@ -332,12 +337,7 @@ def state_at(terrain, x, y):
 @njit(cache=True, error_model="numpy")
 def _grid_state(terrain, x, y):
     _, _, _, _, inside = _locate(terrain, x, y)
-    if not inside:
-        return OFF_MAP
-    kind = terrain.penalty[_grid_zone(terrain, x, y)]
-    if kind == PENALTY_AREA:
-        return IN_PENALTY_AREA
-    return OUT_OF_BOUNDS_STATUS if kind == OUT_OF_BOUNDS else OK
+    return _state_of(inside, terrain.penalty[_grid_zone(terrain, x, y)])
 
 
 @overload(state_at, inline="always")
@@ -375,13 +375,7 @@ def _grid_contact(terrain, x, y):
     zone = terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
     t = terrain.turf[zone]
     kind = terrain.penalty[zone]
-    state = OK
-    if not inside:
-        state = OFF_MAP
-    elif kind == PENALTY_AREA:
-        state = IN_PENALTY_AREA
-    elif kind == OUT_OF_BOUNDS:
-        state = OUT_OF_BOUNDS_STATUS
+    state = _state_of(inside, kind)
     turf = Turf(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8])
     reach = float(terrain.calm[iy, ix]) * terrain.cell_m
     return state, -hx * k, -hy * k, k, turf, reach
@@ -459,13 +453,7 @@ def _grid_surface(terrain, plane, x, y, z):
     zone = zones[iy + (1 if upper_y else 0), ix + (1 if upper_x else 0)]
     t = terrain.turf[zone]
     kind = terrain.penalty[zone]
-    state = OK
-    if not inside:
-        state = OFF_MAP
-    elif kind == PENALTY_AREA:
-        state = IN_PENALTY_AREA
-    elif kind == OUT_OF_BOUNDS:
-        state = OUT_OF_BOUNDS_STATUS
+    state = _state_of(inside, kind)
     calm = terrain.calm[iy, ix]
     c = terrain.cell_m
     u_lo = 0.0
