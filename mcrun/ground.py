@@ -169,6 +169,32 @@ def _locate(terrain, x, y):
     return ix, iy, min(max(fx - ix, 0.0), 1.0), min(max(fy - iy, 0.0), 1.0), inside
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _cell_at(terrain, x, y):
+    """``_locate`` inlined where a loop asks at every step (a call counts the terrain's arrays
+    in and out), with the heights of the cell's four nodes: (ix, iy, tx, ty, inside, h00,
+    h10, h01, h11)."""
+    ny_, nx_ = terrain.height_m.shape
+    fx = (x - terrain.x0_m) / terrain.cell_m
+    fy = (-y - terrain.y0_m) / terrain.cell_m
+    inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
+    ix = min(max(int(math.floor(fx)), 0), nx_ - 2)
+    iy = min(max(int(math.floor(fy)), 0), ny_ - 2)
+    tx = min(max(fx - ix, 0.0), 1.0)
+    ty = min(max(fy - iy, 0.0), 1.0)
+    h = terrain.height_m
+    return ix, iy, tx, ty, inside, h[iy, ix], h[iy, ix + 1], h[iy + 1, ix], h[iy + 1, ix + 1]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _cell_slope(terrain, tx, ty, h00, h10, h01, h11):
+    """(dh/dx, dh/dy) at fractions (tx, ty) of a cell of these node heights, y to the LEFT
+    (``_grid_gradient``'s numbers)."""
+    hx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) / terrain.cell_m
+    hy = -((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) / terrain.cell_m
+    return hx, hy
+
+
 @njit(cache=True, error_model="numpy")
 def _grid_height(terrain, x, y):
     """Bilinear height (m) of the grid at core-frame (x, y)."""
@@ -259,11 +285,8 @@ def flight_check(terrain, x, y, z):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _grid_flight_check(terrain, x, y, z):
-    ix, iy, tx, ty, inside = _locate(terrain, x, y)
-    h = terrain.height_m
-    height = (h[iy, ix] * (1.0 - tx) + h[iy, ix + 1] * tx) * (1.0 - ty) + (
-        h[iy + 1, ix] * (1.0 - tx) + h[iy + 1, ix + 1] * tx
-    ) * ty
+    ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
+    height = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
     kind = terrain.penalty[terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]]
     state = _state_of(inside, kind)
     return z - height, state
@@ -356,21 +379,8 @@ def contact(terrain, plane, x, y):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _grid_contact(terrain, x, y):
-    ny_, nx_ = terrain.height_m.shape
-    fx = (x - terrain.x0_m) / terrain.cell_m
-    fy = (-y - terrain.y0_m) / terrain.cell_m
-    inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
-    ix = min(max(int(math.floor(fx)), 0), nx_ - 2)
-    iy = min(max(int(math.floor(fy)), 0), ny_ - 2)
-    tx = min(max(fx - ix, 0.0), 1.0)
-    ty = min(max(fy - iy, 0.0), 1.0)
-    h = terrain.height_m
-    h00 = h[iy, ix]
-    h10 = h[iy, ix + 1]
-    h01 = h[iy + 1, ix]
-    h11 = h[iy + 1, ix + 1]
-    hx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) / terrain.cell_m
-    hy = -((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) / terrain.cell_m
+    ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
+    hx, hy = _cell_slope(terrain, tx, ty, h00, h10, h01, h11)
     k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
     zone = terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
     t = terrain.turf[zone]
@@ -430,22 +440,9 @@ def _plane_surface(terrain, plane, x, y, z):
 @njit(cache=True, error_model="numpy", inline="always")
 def _grid_surface(terrain, plane, x, y, z):
     """``surface`` on the grid: one look-up of the cell for all of it."""
-    ny_, nx_ = terrain.height_m.shape
-    fx = (x - terrain.x0_m) / terrain.cell_m
-    fy = (-y - terrain.y0_m) / terrain.cell_m
-    inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
-    ix = min(max(int(math.floor(fx)), 0), nx_ - 2)
-    iy = min(max(int(math.floor(fy)), 0), ny_ - 2)
-    tx = min(max(fx - ix, 0.0), 1.0)
-    ty = min(max(fy - iy, 0.0), 1.0)
-    h = terrain.height_m
-    h00 = h[iy, ix]
-    h10 = h[iy, ix + 1]
-    h01 = h[iy + 1, ix]
-    h11 = h[iy + 1, ix + 1]
+    ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
     height = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
-    hx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) / terrain.cell_m
-    hy = -((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) / terrain.cell_m
+    hx, hy = _cell_slope(terrain, tx, ty, h00, h10, h01, h11)
     k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
     upper_x = tx >= 0.5
     upper_y = ty >= 0.5
