@@ -1,6 +1,8 @@
 """The Python API for one shot: SI keyword arguments with units in their names, results as
-dicts and DataFrames. Every check of user input lives here (and nowhere in the kernels), so the
-command line and a Python user get the same one-line errors.
+dicts and DataFrames. Every check of a shot's input lives here (and nowhere in the kernels), so
+the command line and a Python user get the same one-line errors; the ranges, the defaults and the
+conversion to the kernel's columns are those of the table of quantities (``mcrun.quantities``),
+which the runs share.
 """
 
 import math
@@ -9,65 +11,48 @@ from dataclasses import dataclass
 from mcrun import status
 from mcrun.engine.backend import simulate_batch, simulate_traced
 from mcrun.engine.schema import outcome_record, pack
-from mcrun.engine.shot import default_dt_s
-from mcrun.physics import aero, atmosphere
+from mcrun.physics import aero
 from mcrun.physics.bounce import bounce_in_plane, critical_backspin_radps
-from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_WIND_HEIGHT_M
+from mcrun.physics.constants import DEG
 from mcrun.physics.flight import WIND_PROFILES, make_flight_params
-from mcrun.physics.launch import DEFAULT_CLUB_MASS_KG, launch_from_club
 from mcrun.physics.turf import Turf, check_turf, rho_g_from_stimp, turf_preset
+from mcrun.quantities import (  # RANGES, InputError and check_range: re-exported, public here
+    DEFAULTS,
+    RANGES,
+    WIND_PROFILE_DEFAULTS,
+    InputError,
+    air,
+    by_column,
+    check_range,
+    club_launch,
+    default_of,
+    kernel_columns,
+    kernel_part,
+    to_si,
+    with_defaults,
+)
 from mcrun.trajectory import PHASE_NAMES
-from mcrun.units import shown
+
+__all__ = [
+    "RANGES",
+    "WIND_PROFILE_DEFAULTS",
+    "InputError",
+    "ShotResult",
+    "air_properties",
+    "bounce_once",
+    "check_range",
+    "conditions_inputs",
+    "flight_params",
+    "launch_conditions",
+    "resolve_turf",
+    "shot_inputs",
+    "simulate",
+]
 
 
-class InputError(ValueError):
-    """An input out of its documented range; the message is one line meant for the user."""
-
-
-# Documented input ranges (inclusive), in the units of the argument names.
-RANGES = {
-    "ball_speed_mps": (0.5, 120.0),
-    "launch_angle_deg": (-20.0, 89.0),
-    "azimuth_deg": (-60.0, 60.0),
-    "spin_radps": (0.0, 2000.0),
-    "spin_axis_deg": (-90.0, 90.0),
-    "club_speed_mps": (1.0, 90.0),
-    "club_mass_kg": (0.05, 1.0),
-    "loft_deg": (0.0, 70.0),
-    "temperature_c": (-40.0, 55.0),
-    "pressure_pa": (50000.0, 110000.0),
-    "altitude_m": (-500.0, 5000.0),
-    "relative_humidity": (0.0, 1.0),
-    "air_density_kgpm3": (0.5, 1.5),
-    "wind_speed_mps": (0.0, 50.0),
-    "wind_reference_height_m": (0.1, 100.0),
-    "cd_scale": (0.0, 3.0),
-    "cl_scale": (0.0, 3.0),
-    "slope_deg": (0.0, 45.0),
-    "fall_line_deg": (-360.0, 360.0),
-    "dt_s": (1e-4, 0.25),
-    # One impact (bounce_once): angle from the vertical, backspin positive (topspin negative).
-    "impact_angle_deg": (0.0, 89.9),
-    "backspin_radps": (-2000.0, 2000.0),
-}
-
-# Default parameter of each wind profile: roughness length z0 (m) of the log law over short
-# grass, and the 1/7 exponent of the power law.
-WIND_PROFILE_DEFAULTS = {"uniform": 0.0, "log": 0.03, "power": 1.0 / 7.0}
-
-
-def check_range(name, value):
-    """Return ``value`` as a float, or raise InputError naming ``name`` and its allowed range."""
-    lo, hi = RANGES[name]
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {shown(value)}") from None
-    if not math.isfinite(value):
-        raise InputError(f"{name} must be finite, got {value}")
-    if not lo <= value <= hi:
-        raise InputError(f"{name} = {value:g} is outside the allowed range [{lo:g}, {hi:g}]")
-    return value
+def _checked_si(column, value):
+    """A keyword argument checked against its range, in SI."""
+    return to_si(check_range(column, value), by_column(column).kind)
 
 
 @dataclass(frozen=True)
@@ -90,7 +75,7 @@ class ShotResult:
         return status.NAMES[int(self.outcome["status"])]
 
 
-def resolve_turf(turf="green", **overrides):
+def resolve_turf(turf=DEFAULTS["turf"], **overrides):
     """A Turf from a preset name or a Turf, with fields overridden (``stimp_m`` sets rho_g)."""
     if isinstance(turf, str):
         try:
@@ -125,7 +110,7 @@ def launch_conditions(
     loft_deg=None,
 ):
     """(ball speed m/s, launch angle deg, spin rad/s) from a launch monitor or a club delivery
-    (club mass default DEFAULT_CLUB_MASS_KG, a driver head)."""
+    (club mass default that of ``quantities``, a driver head's)."""
     club = club_speed_mps is not None or loft_deg is not None or club_mass_kg is not None
     ball = ball_speed_mps is not None or launch_angle_deg is not None or spin_radps is not None
     if club and ball:
@@ -136,14 +121,13 @@ def launch_conditions(
     if club:
         if club_speed_mps is None or loft_deg is None:
             raise InputError("a club delivery needs both the club speed and the dynamic loft")
-        speed, angle, spin = launch_from_club(
+        return club_launch(
             check_range("club_speed_mps", club_speed_mps),
             check_range(
-                "club_mass_kg", DEFAULT_CLUB_MASS_KG if club_mass_kg is None else club_mass_kg
+                "club_mass_kg", DEFAULTS["club_mass_kg"] if club_mass_kg is None else club_mass_kg
             ),
-            check_range("loft_deg", loft_deg) * DEG,
+            _checked_si("loft_deg", loft_deg),
         )
-        return speed, angle / DEG, spin
     missing = [
         n
         for n, v in (
@@ -162,44 +146,57 @@ def launch_conditions(
     )
 
 
-def air_properties(
-    temperature_c=20.0,
+def _air_values(
+    temperature_c=DEFAULTS["temperature_c"],
     pressure_pa=None,
     altitude_m=None,
-    relative_humidity=STANDARD_HUMIDITY,
+    relative_humidity=DEFAULTS["relative_humidity"],
     air_density_kgpm3=None,
 ):
-    """(density kg/m^3, kinematic viscosity m^2/s) from the weather; an explicit density wins."""
-    t_k = check_range("temperature_c", temperature_c) + 273.15
+    """The weather's SI values by key path, checked, and the density given (or None)."""
+    values = {"weather.temperature": _checked_si("temperature_c", temperature_c)}
     if pressure_pa is not None and altitude_m is not None:
         raise InputError("give the pressure or the altitude, not both")
     if altitude_m is not None:
-        pressure = atmosphere.pressure_at_altitude_pa(check_range("altitude_m", altitude_m))
+        values["weather.altitude"] = check_range("altitude_m", altitude_m)
     elif pressure_pa is not None:
-        pressure = check_range("pressure_pa", pressure_pa)
+        values["weather.pressure"] = check_range("pressure_pa", pressure_pa)
     else:
-        pressure = atmosphere.STANDARD_PRESSURE_PA
-    rh = check_range("relative_humidity", relative_humidity)
+        values["weather.pressure"] = default_of("weather.pressure")
+    values["weather.humidity"] = check_range("relative_humidity", relative_humidity)
     if air_density_kgpm3 is not None:
-        rho = check_range("air_density_kgpm3", air_density_kgpm3)
-    else:
-        rho = atmosphere.air_density_kgpm3(t_k, float(pressure), rh)
-    return rho, atmosphere.kinematic_viscosity_m2ps(t_k, rho)
+        return values, check_range("air_density_kgpm3", air_density_kgpm3)
+    return values, None
 
 
-def flight_params(
-    aero_model=aero.DEFAULT_MODEL,
-    cd_scale=1.0,
-    cl_scale=1.0,
-    wind_mps=(0.0, 0.0),
-    wind_profile="uniform",
-    wind_reference_height_m=STANDARD_WIND_HEIGHT_M,
-    wind_profile_parameter=None,
-    **air,
+def air_properties(
+    temperature_c=DEFAULTS["temperature_c"],
+    pressure_pa=None,
+    altitude_m=None,
+    relative_humidity=DEFAULTS["relative_humidity"],
+    air_density_kgpm3=None,
 ):
-    """FlightParams (core frame) from user-frame arguments; ``air`` as for ``air_properties``."""
+    """(density kg/m^3, kinematic viscosity m^2/s) from the weather; an explicit density wins."""
+    _, rho, nu = air(
+        *_air_values(temperature_c, pressure_pa, altitude_m, relative_humidity, air_density_kgpm3)
+    )
+    return rho, nu
+
+
+def _flight_values(
+    aero_model=DEFAULTS["aero_model"],
+    cd_scale=DEFAULTS["cd_scale"],
+    cl_scale=DEFAULTS["cl_scale"],
+    wind_mps=(0.0, 0.0),
+    wind_profile=DEFAULTS["wind_profile"],
+    wind_reference_height_m=DEFAULTS["wind_reference_height_m"],
+    wind_profile_parameter=None,
+    **air_args,
+):
+    """The flight's SI values by key path, checked, the wind (along, right; m/s) and the
+    density given (or None); the arguments are those of ``flight_params``."""
     try:
-        model = aero.model_id(aero_model)
+        aero.model_id(aero_model)
     except ValueError as err:
         raise InputError(str(err)) from None
     if wind_profile not in WIND_PROFILES:
@@ -208,8 +205,9 @@ def flight_params(
         )
     wind_x, wind_right = (float(w) for w in wind_mps)
     check_range("wind_speed_mps", math.hypot(wind_x, wind_right))
+    values = {"models.aero": aero_model, "weather.wind_profile": wind_profile}
     if wind_profile_parameter is None:
-        wind_profile_parameter = WIND_PROFILE_DEFAULTS[wind_profile]
+        wind_profile_parameter = default_of("weather.wind_profile_parameter", values)
     ref_h = check_range("wind_reference_height_m", wind_reference_height_m)
     if wind_profile == "log" and not 0.0 < wind_profile_parameter < ref_h:
         raise InputError(
@@ -218,48 +216,87 @@ def flight_params(
         )
     if wind_profile == "power" and not 0.0 <= wind_profile_parameter <= 1.0:
         raise InputError("the power wind profile's exponent must be within [0, 1]")
-    rho, nu = air_properties(**air)
+    weather, density = _air_values(**air_args)
+    values.update(weather)
+    values["weather.wind_reference_height"] = ref_h
+    values["weather.wind_profile_parameter"] = float(wind_profile_parameter)
+    values["models.cd_scale"] = check_range("cd_scale", cd_scale)
+    values["models.cl_scale"] = check_range("cl_scale", cl_scale)
+    return values, (wind_x, wind_right), density
+
+
+def flight_params(
+    aero_model=DEFAULTS["aero_model"],
+    cd_scale=DEFAULTS["cd_scale"],
+    cl_scale=DEFAULTS["cl_scale"],
+    wind_mps=(0.0, 0.0),
+    wind_profile=DEFAULTS["wind_profile"],
+    wind_reference_height_m=DEFAULTS["wind_reference_height_m"],
+    wind_profile_parameter=None,
+    **air_args,
+):
+    """FlightParams (core frame) from user-frame arguments; ``air_args`` as for
+    ``air_properties``."""
+    values, (wind_x, wind_right), density = _flight_values(
+        aero_model,
+        cd_scale,
+        cl_scale,
+        wind_mps,
+        wind_profile,
+        wind_reference_height_m,
+        wind_profile_parameter,
+        **air_args,
+    )
+    _, rho, nu = air(values, density)
     return make_flight_params(
         rho,
         nu,
-        model,
-        check_range("cd_scale", cd_scale),
-        check_range("cl_scale", cl_scale),
+        aero.model_id(aero_model),
+        values["models.cd_scale"],
+        values["models.cl_scale"],
         wind_x,
         wind_right,
         WIND_PROFILES[wind_profile],
-        ref_h,
-        float(wind_profile_parameter),
+        values["weather.wind_reference_height"],
+        values["weather.wind_profile_parameter"],
     )
 
 
-def conditions_inputs(turf="green", slope_deg=0.0, fall_line_deg=0.0, dt_s=None, **conditions):
+def _conditions_values(
+    turf=DEFAULTS["turf"],
+    slope_deg=DEFAULTS["slope_deg"],
+    fall_line_deg=DEFAULTS["fall_line_deg"],
+    dt_s=None,
+    **conditions,
+):
+    """(SI values by key path, wind, density) of ``conditions_inputs``' arguments, checked."""
+    values = {
+        "turf.slope": _checked_si("slope_deg", slope_deg),
+        "turf.fall_line": _checked_si("fall_line_deg", fall_line_deg),
+    }
+    if dt_s is None:
+        profile = conditions.get("wind_profile", DEFAULTS["wind_profile"])
+        dt_s = default_of("models.dt", {"weather.wind_profile": profile})
+    values["models.dt"] = check_range("dt_s", dt_s)
+    values["turf.preset"] = resolve_turf(turf)
+    flight, wind, density = _flight_values(**conditions)
+    values.update(flight)
+    # The turf's fields are the Turf's (its restitution as it is).
+    return with_defaults(values, ("turf",)), wind, density
+
+
+def conditions_inputs(
+    turf=DEFAULTS["turf"],
+    slope_deg=DEFAULTS["slope_deg"],
+    fall_line_deg=DEFAULTS["fall_line_deg"],
+    dt_s=None,
+    **conditions,
+):
     """The kernel's input columns that do not depend on the launch (turf, ground, air, wind,
     models, step), checked: {name of ``schema.INPUT_FIELDS``: float}. ``turf`` is a preset name
     or a Turf; ``conditions`` are the keyword arguments of ``flight_params``."""
-    slope = check_range("slope_deg", slope_deg) * DEG
-    fall_line = check_range("fall_line_deg", fall_line_deg) * DEG
-    if dt_s is None:
-        dt_s = default_dt_s(conditions.get("wind_profile", "uniform"))
-    dt = check_range("dt_s", dt_s)
-    turf = resolve_turf(turf)
-    params = flight_params(**conditions)
-    return {
-        "air_density_kgpm3": params.air_density_kgpm3,
-        "kinematic_viscosity_m2ps": params.kinematic_viscosity_m2ps,
-        "aero_model": float(params.aero_model),
-        "cd_scale": params.cd_scale,
-        "cl_scale": params.cl_scale,
-        "wind_x_mps": params.wind_x_mps,
-        "wind_right_mps": -params.wind_y_mps,  # FlightParams is in the core's frame, y left
-        "wind_profile": float(params.wind_profile),
-        "wind_reference_height_m": params.wind_reference_height_m,
-        "wind_profile_parameter": params.wind_profile_parameter,
-        **turf._asdict(),
-        "slope_rad": slope,
-        "fall_line_rad": fall_line,
-        "dt_s": dt,
-    }
+    values, wind, density = _conditions_values(turf, slope_deg, fall_line_deg, dt_s, **conditions)
+    return kernel_part(kernel_columns(values, wind, density))
 
 
 def shot_inputs(
@@ -267,8 +304,8 @@ def shot_inputs(
     ball_speed_mps=None,
     launch_angle_deg=None,
     spin_radps=None,
-    azimuth_deg=0.0,
-    spin_axis_deg=0.0,
+    azimuth_deg=DEFAULTS["azimuth_deg"],
+    spin_axis_deg=DEFAULTS["spin_axis_deg"],
     club_speed_mps=None,
     club_mass_kg=None,
     loft_deg=None,
@@ -284,14 +321,19 @@ def shot_inputs(
     speed, angle_deg, spin = launch_conditions(
         ball_speed_mps, launch_angle_deg, spin_radps, club_speed_mps, club_mass_kg, loft_deg
     )
-    launch = {
-        "ball_speed_mps": speed,
-        "launch_angle_rad": angle_deg * DEG,
-        "azimuth_rad": check_range("azimuth_deg", azimuth_deg) * DEG,
-        "spin_radps": spin,
-        "spin_axis_rad": check_range("spin_axis_deg", spin_axis_deg) * DEG,
-    }
-    return pack({**launch, **conditions_inputs(**conditions)}, 1), angle_deg
+    values, wind, density = _conditions_values(
+        **conditions,
+    )
+    values.update(
+        {
+            "launch.ball_speed": speed,
+            "launch.launch_angle": angle_deg * DEG,
+            "launch.spin": spin,
+            "launch.azimuth": _checked_si("azimuth_deg", azimuth_deg),
+            "launch.spin_axis": _checked_si("spin_axis_deg", spin_axis_deg),
+        }
+    )
+    return pack(kernel_part(kernel_columns(values, wind, density)), 1), angle_deg
 
 
 def simulate(*, trajectory=False, **shot):

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun.api import InputError, check_range, conditions_inputs
+from mcrun.api import conditions_inputs
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import APEX as APEX_FIELD
 from mcrun.engine.schema import CARRY, pack
@@ -32,6 +32,7 @@ from mcrun.engine.schema import LANDING_ANGLE as LANDING_ANGLE_FIELD
 from mcrun.engine.shot import DEFAULT_DT_S
 from mcrun.physics import aero
 from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA
+from mcrun.quantities import InputError, check_range
 from mcrun.units import parse_quantity, shown
 
 DEFAULT_DATA = resources.files("mcrun") / "data" / "trackman_tour_averages_2019.csv"

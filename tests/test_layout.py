@@ -16,6 +16,7 @@ LAYERS = (
     ("mcrun.hole",),
     ("mcrun.strokes",),
     ("mcrun.engine",),
+    ("mcrun.quantities",),
     ("mcrun.api",),
     ("mcrun.results",),
     ("mcrun.run",),

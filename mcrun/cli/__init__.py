@@ -27,8 +27,8 @@ import sys
 import time
 
 from mcrun import api, exits
-from mcrun.api import InputError
 from mcrun.hole.errors import HoleError
+from mcrun.quantities import InputError
 from mcrun.units import UnitError
 
 

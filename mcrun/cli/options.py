@@ -12,8 +12,8 @@ import inspect
 import math
 
 from mcrun import api, units
-from mcrun.api import InputError
 from mcrun.physics import aero, atmosphere, turf
+from mcrun.quantities import InputError
 
 DPI_RANGE = (30, 600)
 

@@ -8,9 +8,10 @@ import sys
 from pathlib import Path
 
 from mcrun import status
-from mcrun.api import InputError, conditions_inputs
+from mcrun.api import conditions_inputs
 from mcrun.cli import Interrupted
 from mcrun.cli.options import DPI_RANGE, add_conditions_options, conditions_kwargs, dpi_value
+from mcrun.quantities import InputError
 from mcrun.report import plots, replay_plots
 from mcrun.results.output import OutputError
 from mcrun.run import clubs, replay

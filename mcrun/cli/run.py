@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.api import InputError
 from mcrun.cli import Interrupted
+from mcrun.quantities import InputError
 from mcrun.results import stats
 from mcrun.run import local, plan, sampling
 from mcrun.run import scenario as scenario_module

@@ -25,6 +25,7 @@ from mcrun.cli.options import (
     quantity,
 )
 from mcrun.physics import aero, turf
+from mcrun.quantities import DEFAULTS
 
 # --- printing ----------------------------------------------------------------------------------
 
@@ -254,7 +255,7 @@ def _add_shot(subparsers):
     club.add_argument(
         "--club-mass",
         metavar="MASS",
-        help=f"club-head mass (bare: kg; default {api.DEFAULT_CLUB_MASS_KG:.3f})",
+        help=f"club-head mass (bare: kg; default {DEFAULTS['club_mass_kg']:.3f})",
     )
     club.add_argument(
         "--loft", metavar="ANGLE", help="dynamic loft, face to the vertical (bare: deg)"

@@ -30,9 +30,9 @@ from typing import NamedTuple
 import numpy as np
 import pandas as pd
 
-from mcrun.api import InputError
 from mcrun.engine.backend import simulate_traced
 from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
+from mcrun.quantities import DRIVER_COLUMNS, InputError
 from mcrun.results import on_hole as on_hole_results
 from mcrun.results import output, reader, stats
 from mcrun.run import sampling
@@ -43,37 +43,6 @@ DEFAULT_CHUNK_SIZE = 65536
 RUNS_FOLDER = Path("runs")
 FORMAT_VERSION = 1
 
-# The sampled column of each parameter a user can give a distribution (scenario.PARAMETERS key
-# paths): the candidate drivers of the variance. Derived columns (the ball launch of a club
-# delivery, the air density, the wind components) are not candidates: their parameters are.
-DRIVER_COLUMNS = {
-    "launch.ball_speed": "ball_speed_mps",
-    "launch.launch_angle": "launch_angle_deg",
-    "launch.spin": "spin_radps",
-    "launch.azimuth": "azimuth_deg",
-    "launch.spin_axis": "spin_axis_deg",
-    "club.speed": "club_speed_mps",
-    "club.mass": "club_mass_kg",
-    "club.loft": "loft_deg",
-    "club.azimuth": "azimuth_deg",
-    "club.spin_axis": "spin_axis_deg",
-    "turf.mu": "mu",
-    "turf.softness": "softness",
-    "turf.restitution": "restitution",
-    "turf.rho_g": "rho_g",
-    "turf.stimp": "stimp_m",
-    "turf.critical_height": "critical_height_m",
-    "turf.slope": "slope_deg",
-    "turf.fall_line": "fall_line_deg",
-    "weather.wind_speed": "wind_speed_mps",
-    "weather.wind_direction": "wind_direction_deg",
-    "weather.temperature": "temperature_c",
-    "weather.altitude": "altitude_m",
-    "weather.pressure": "pressure_pa",
-    "weather.humidity": "relative_humidity",
-    "models.cd_scale": "cd_scale",
-    "models.cl_scale": "cl_scale",
-}
 # A resampled launch-monitor file varies the launch quantities it holds or jitters.
 _FILE_DRIVERS = {
     "ball_speed": "ball_speed_mps",

@@ -29,10 +29,11 @@ import numpy as np
 import pandas as pd
 
 from mcrun import status
-from mcrun.api import InputError, conditions_inputs
+from mcrun.api import conditions_inputs
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import OUTCOME_FIELDS, encode_outcomes, pack
 from mcrun.physics.constants import DEG
+from mcrun.quantities import InputError
 from mcrun.results import output
 from mcrun.run import clubs
 from mcrun.run.monitors import read_session, session_of_frame

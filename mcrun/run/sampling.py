@@ -10,7 +10,8 @@ change them, and the first N samples of a longer run are those of a shorter run.
 blocks, so that every value comes out of the same operation on arrays of the same shape,
 whichever chunk asks for it. Nothing here touches NumPy's global random state.
 
-Conversions at this edge (the kernel sees only SI floats, ``mcrun.engine.schema.INPUT_FIELDS``):
+Conversions at this edge (the kernel sees only SI floats, ``mcrun.engine.schema.INPUT_FIELDS``),
+those of the single shot (``mcrun.quantities.kernel_columns``):
 
 - club delivery -> ball launch with ``mcrun.physics.launch.launch_from_club`` (Penner 2001);
 - temperature, pressure or altitude, humidity -> air density and kinematic viscosity
@@ -22,7 +23,7 @@ Conversions at this edge (the kernel sees only SI floats, ``mcrun.engine.schema.
 
 A constant stays a Python float through these conversions (computed once, as the single-shot
 API computes it), so a scenario of constants gives exactly the kernel inputs of
-``mcrun.api.simulate``. A drawn value outside its documented range (``scenario.PARAMETERS``
+``mcrun.api.simulate``. A drawn value outside its documented range (``mcrun.quantities``'
 limits) makes its shot's ball speed NaN in ``inputs``, so the kernel returns ``invalid_input``
 for that shot; ``sampled`` keeps the value drawn.
 """
@@ -33,12 +34,7 @@ import numpy as np
 from numba import njit
 
 from mcrun.engine.schema import N_INPUT, pack
-from mcrun.physics import aero, atmosphere
-from mcrun.physics.constants import DEG
-from mcrun.physics.flight import WIND_PROFILES
-from mcrun.physics.launch import launch_from_club
-from mcrun.physics.turf import PRESETS, rho_g_from_stimp
-from mcrun.run.scenario import PARAMETERS
+from mcrun.quantities import QUANTITIES, SAMPLED_ORDER, by_path, kernel_columns, kernel_part
 
 __all__ = [
     "block_generator",
@@ -49,19 +45,14 @@ __all__ = [
     "truncnormal_standard",
 ]
 
-LAUNCH_COLUMNS = (
-    "ball_speed_mps",
-    "launch_angle_deg",
-    "azimuth_deg",
-    "spin_radps",
-    "spin_axis_deg",
-)
-CLUB_COLUMNS = ("club_speed_mps", "club_mass_kg", "loft_deg")
-FILE_COLUMNS = ("source_row",)
+# The columns of the alternatives (a club delivery, an altitude, a Stimp reading): in a run's
+# table when a point gives them.
+_OPTIONAL = {q.column: q.paths for q in QUANTITIES if q.optional}
 
 
 def sampled_columns(scenario):
-    """Names of the ``sampled`` columns of every point of ``scenario``, in order.
+    """Names of the ``sampled`` columns of every point of ``scenario``, in order
+    (``quantities.SAMPLED_ORDER``).
 
     The same for all points of a scenario (one Parquet schema): club columns appear when a
     point uses a club delivery (NaN for the others), ``source_row`` (the file's row of the
@@ -69,37 +60,16 @@ def sampled_columns(scenario):
     draws from a normal fitted to the file), ``altitude_m`` and
     ``stimp_m`` when a point gives them (NaN otherwise).
     """
-    modes = {p.mode for p in scenario.points}
-    columns = list(LAUNCH_COLUMNS)
-    if "club" in modes:
-        columns += CLUB_COLUMNS
-    if any(_resamples(p) for p in scenario.points):
-        columns += FILE_COLUMNS
-    columns += [
-        "wind_speed_mps",
-        "wind_direction_deg",
-        "wind_x_mps",
-        "wind_right_mps",
-        "wind_reference_height_m",
-        "wind_profile_parameter",
-        "temperature_c",
-        "pressure_pa",
-    ]
-    if any("weather.altitude" in p.params for p in scenario.points):
-        columns.append("altitude_m")
-    columns += [
-        "relative_humidity",
-        "air_density_kgpm3",
-        "kinematic_viscosity_m2ps",
-        "mu",
-        "softness",
-        "restitution",
-        "rho_g",
-    ]
-    if any("turf.stimp" in p.params for p in scenario.points):
-        columns.append("stimp_m")
-    columns += ["critical_height_m", "slope_deg", "fall_line_deg", "cd_scale", "cl_scale", "dt_s"]
-    return columns
+    given = set().union(*(p.params for p in scenario.points))
+    resamples = any(_resamples(p) for p in scenario.points)
+
+    def kept(name):
+        if name == "source_row":
+            return resamples
+        paths = _OPTIONAL.get(name)
+        return paths is None or not given.isdisjoint(paths)
+
+    return [name for name in SAMPLED_ORDER if kept(name)]
 
 
 def _resamples(point):
@@ -280,174 +250,34 @@ def draw_block(scenario, point, block):
 # --- conversions -------------------------------------------------------------------------------
 
 
-@njit(cache=True)
-def _launch_from_club_array(club_speed, club_mass, loft):
-    n = club_speed.shape[0]
-    speed = np.empty(n)
-    angle = np.empty(n)
-    spin = np.empty(n)
-    for k in range(n):
-        speed[k], angle[k], spin[k] = launch_from_club(club_speed[k], club_mass[k], loft[k])
-    return speed, angle, spin
-
-
-def _scalar(*values):
-    return all(isinstance(v, float) for v in values)
-
-
-def _club_launch(club_speed, club_mass, loft):
-    """(ball speed, launch angle rad, spin) of a club delivery, as mcrun.api does it: the angle
-    goes through degrees and back (``launch_conditions`` returns degrees)."""
-    if _scalar(club_speed, club_mass, loft):
-        speed, angle, spin = launch_from_club(club_speed, club_mass, loft)
-        return speed, (angle / DEG) * DEG, spin
-    n = max(np.size(v) for v in (club_speed, club_mass, loft))
-    arrays = [np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy() for v in (
-        club_speed, club_mass, loft)]  # fmt: skip
-    speed, angle, spin = _launch_from_club_array(*arrays)
-    return speed, (angle / DEG) * DEG, spin
-
-
-def _air(t_k, pressure, humidity):
-    """(density, kinematic viscosity) as mcrun.api.air_properties computes them."""
-    if _scalar(t_k, humidity) and np.ndim(pressure) == 0:
-        rho = atmosphere.air_density_kgpm3(t_k, float(pressure), humidity)
-    else:
-        rho = atmosphere.air_density_kgpm3(t_k, pressure, humidity)
-    return rho, atmosphere.kinematic_viscosity_m2ps(t_k, rho)
-
-
 def _convert(scenario, point, raw, columns, inputs=None):
     """(inputs, sampled) of one block from its raw draws; ``inputs`` may be given, a view of
     block_size rows to fill. A sampled column that is constant is a read-only broadcast view."""
     n = scenario.block_size
-    p = point.params
-    launch = {}
-    sampled = {}
-    if point.mode == "club":
-        speed, angle, spin = _club_launch(raw["club.speed"], raw["club.mass"], raw["club.loft"])
-        launch = {
-            "ball_speed": speed,
-            "launch_angle": angle,
-            "spin": spin,
-            "azimuth": raw["club.azimuth"],
-            "spin_axis": raw["club.spin_axis"],
-        }
-    else:
-        launch = {name: raw[f"launch.{name}"] for name in PARAMETERS["launch"]}
-
-    # Weather.
-    t_k = raw["weather.temperature"]
-    if "weather.altitude" in p:
-        altitude = raw["weather.altitude"]
-        pressure = atmosphere.pressure_at_altitude_pa(altitude)
-    else:
-        altitude = math.nan
-        pressure = raw["weather.pressure"]
-    humidity = raw["weather.humidity"]
-    rho, nu = _air(t_k, pressure, humidity)
-    wind_speed = raw["weather.wind_speed"]
-    direction = raw["weather.wind_direction"]
-    if _scalar(wind_speed, direction):
-        wind_x = wind_speed * math.cos(direction)
-        wind_right = wind_speed * math.sin(direction)
-    else:
-        wind_x = wind_speed * np.cos(direction)
-        wind_right = wind_speed * np.sin(direction)
-
-    # Turf.
-    preset = PRESETS[p["turf.preset"]]
-    scale = raw["turf.restitution"]
-    if "turf.stimp" in p:
-        stimp = raw["turf.stimp"]
-        rho_g = rho_g_from_stimp(stimp)
-    else:
-        stimp = math.nan
-        rho_g = raw["turf.rho_g"]
+    names = {key: spec for key, spec in point.params.items() if isinstance(spec, str)}
+    everything = kernel_columns({**raw, **names})
+    kernel = kernel_part(everything)
+    if scenario.aim_rad is not None:
+        # On a hole, about the line from the tee to its aim point.
+        kernel["azimuth_rad"] = everything["azimuth_rad"] + scenario.aim_rad
 
     # Drawn values outside their documented range: the kernel must refuse the shot.
     bad = np.zeros(n, dtype=bool)
     for key, value in raw.items():
         if isinstance(value, float) or key == "launch.file.rows":
             continue
-        section, _, name = key.partition(".")
-        lo, hi = PARAMETERS[section][name].limits
+        lo, hi = by_path(key).limits
         bad |= ~((value >= lo) & (value <= hi))
-    kernel_inputs = {
-        "ball_speed_mps": launch["ball_speed"],
-        "launch_angle_rad": launch["launch_angle"],
-        # (On a hole, about the line from the tee to its aim point.)
-        "azimuth_rad": launch["azimuth"]
-        if scenario.aim_rad is None
-        else launch["azimuth"] + scenario.aim_rad,
-        "spin_radps": launch["spin"],
-        "spin_axis_rad": launch["spin_axis"],
-        "air_density_kgpm3": rho,
-        "kinematic_viscosity_m2ps": nu,
-        "aero_model": float(aero.MODELS[p["models.aero"]]),
-        "cd_scale": raw["models.cd_scale"],
-        "cl_scale": raw["models.cl_scale"],
-        "wind_x_mps": wind_x,
-        "wind_right_mps": wind_right,
-        "wind_profile": float(WIND_PROFILES[p["weather.wind_profile"]]),
-        "wind_reference_height_m": raw["weather.wind_reference_height"],
-        "wind_profile_parameter": raw["weather.wind_profile_parameter"],
-        "mu": raw["turf.mu"],
-        "softness": raw["turf.softness"],
-        "e0": preset.e0 * scale,
-        "e1": preset.e1 * scale,
-        "e2": preset.e2 * scale,
-        "e_break_speed_mps": preset.e_break_speed_mps,
-        "e_high": preset.e_high * scale,
-        "rho_g": rho_g,
-        "critical_height_m": raw["turf.critical_height"],
-        "slope_rad": raw["turf.slope"],
-        "fall_line_rad": raw["turf.fall_line"],
-        "dt_s": raw["models.dt"],
-    }
-    inputs = pack(kernel_inputs, n, out=inputs, invalid=bad)
+    inputs = pack(kernel, n, out=inputs, invalid=bad)
 
-    nan = math.nan
-    club = point.mode == "club"
-    everything = {
-        "ball_speed_mps": launch["ball_speed"],
-        "launch_angle_deg": launch["launch_angle"] / DEG,
-        "azimuth_deg": launch["azimuth"] / DEG,
-        "spin_radps": launch["spin"],
-        "spin_axis_deg": launch["spin_axis"] / DEG,
-        "club_speed_mps": raw["club.speed"] if club else nan,
-        "club_mass_kg": raw["club.mass"] if club else nan,
-        "loft_deg": raw["club.loft"] / DEG if club else nan,
-        "wind_speed_mps": wind_speed,
-        "wind_direction_deg": direction / DEG,
-        "wind_x_mps": wind_x,
-        "wind_right_mps": wind_right,
-        "wind_reference_height_m": raw["weather.wind_reference_height"],
-        "wind_profile_parameter": raw["weather.wind_profile_parameter"],
-        "temperature_c": t_k - 273.15,
-        "pressure_pa": pressure,
-        "altitude_m": altitude,
-        "relative_humidity": humidity,
-        "air_density_kgpm3": rho,
-        "kinematic_viscosity_m2ps": nu,
-        "mu": raw["turf.mu"],
-        "softness": raw["turf.softness"],
-        "restitution": scale,
-        "rho_g": rho_g,
-        "stimp_m": stimp,
-        "critical_height_m": raw["turf.critical_height"],
-        "slope_deg": raw["turf.slope"] / DEG,
-        "fall_line_deg": raw["turf.fall_line"] / DEG,
-        "cd_scale": raw["models.cd_scale"],
-        "cl_scale": raw["models.cl_scale"],
-        "dt_s": raw["models.dt"],
-    }
+    sampled = {}
     for name in columns:
         if name == "source_row":
             rows = raw.get("launch.file.rows")
             sampled[name] = np.full(n, -1, dtype=np.int64) if rows is None else rows
         else:
-            sampled[name] = np.broadcast_to(np.asarray(everything[name], dtype=float), (n,))
+            value = everything.get(name, math.nan)
+            sampled[name] = np.broadcast_to(np.asarray(value, dtype=float), (n,))
     return inputs, sampled
 
 

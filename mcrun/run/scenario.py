@@ -20,7 +20,8 @@ fall_line; ``[weather]`` wind_speed, wind_direction (towards which it blows: 0 t
 left to right), wind_profile, wind_reference_height, wind_profile_parameter, temperature,
 altitude or pressure, humidity; ``[models]`` aero, bounce, cd_scale, cl_scale, dt;
 ``[[group]]`` name, target and dotted overrides (``launch.spin = ...``); ``[sweep]``
-"section.key" = [values]. Defaults are those of ``mcrun.api.simulate``, and the turf preset's.
+"section.key" = [values]. Defaults are those of ``mcrun.quantities`` (as for
+``mcrun.api.simulate``), and the turf preset's.
 
 Units: values may carry a unit (``"167 mph"``), or the key may (``ball_speed_mph = 167``); bare
 values are SI, except angles (degrees) and temperatures (Celsius), as in ``mcrun.units``.
@@ -29,8 +30,8 @@ Distributions (``dist``): constant (a bare value, or ``{dist = "constant", value
 normal (mean, sd), truncnormal (mean, sd, low, high), uniform (low, high), triangular (low,
 mode, high), lognormal (median, sigma; sigma is the sd of the log, dimensionless). Ranges: a
 constant, a normal's mean, a lognormal's median and the bounds of a truncnormal, uniform or
-triangular must lie in the quantity's documented range (``mcrun.api.RANGES`` and the turf
-limits of ``PARAMETERS``). A normal or lognormal draw may still fall outside it; the sampler
+triangular must lie in the quantity's documented range (``mcrun.quantities``, whose table
+``PARAMETERS`` is read from). A normal or lognormal draw may still fall outside it; the sampler
 then makes that shot's kernel input invalid, so the kernel returns status ``invalid_input`` for
 it (bound a quantity with a truncnormal to avoid that).
 """
@@ -46,22 +47,10 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.api import RANGES, WIND_PROFILE_DEFAULTS, InputError
-from mcrun.engine.shot import default_dt_s
 from mcrun.hole.errors import HoleError
 from mcrun.hole.hole import hole_from_table
-from mcrun.physics import aero
-from mcrun.physics.constants import (
-    DEG,
-    STANDARD_HUMIDITY,
-    STANDARD_PRESSURE_PA,
-    STANDARD_TEMPERATURE_K,
-    STANDARD_WIND_HEIGHT_M,
-)
-from mcrun.physics.flight import WIND_PROFILES
-from mcrun.physics.launch import DEFAULT_CLUB_MASS_KG
-from mcrun.physics.turf import LIMITS as TURF_LIMITS
-from mcrun.physics.turf import PRESETS
+from mcrun.physics.constants import DEG
+from mcrun.quantities import BOUNCE_MODELS, QUANTITIES, SECTIONS, InputError, default_of
 from mcrun.run.monitors import FILE_COLUMNS, check_file, read_session
 from mcrun.run.monitors import NAMES as MONITOR_FORMATS
 from mcrun.units import (
@@ -102,22 +91,11 @@ class ScenarioError(InputError):
 
 DEFAULT_BLOCK_SIZE = 4096
 MAX_BLOCK_SIZE = 1 << 20
-BOUNCE_MODELS = ("penner2002",)
 ENV_LIBRARY = "MCRUN_SCENARIOS"
 
 # A truncnormal whose interval lies further than this many sd from its mean is refused: its
 # probability mass underflows.
 _TRUNCNORMAL_MAX_Z = 30.0
-
-
-def _range_si(name):
-    """SI limits of ``RANGES[name]`` (deg -> rad, C -> K)."""
-    lo, hi = RANGES[name]
-    if name.endswith("_deg"):
-        return lo * DEG, hi * DEG
-    if name.endswith("_c"):
-        return lo + 273.15, hi + 273.15
-    return float(lo), float(hi)
 
 
 @dataclass(frozen=True)
@@ -131,56 +109,14 @@ class Param:
     constant_only: bool = False
 
 
-_ANGLE_ANY = (-360.0 * DEG, 360.0 * DEG)
-
 PARAMETERS: dict[str, dict[str, Param]] = {
-    "launch": {
-        "ball_speed": Param("speed", _range_si("ball_speed_mps")),
-        "launch_angle": Param("angle", _range_si("launch_angle_deg")),
-        "spin": Param("spin", _range_si("spin_radps")),
-        "azimuth": Param("angle", _range_si("azimuth_deg")),
-        "spin_axis": Param("angle", _range_si("spin_axis_deg")),
-    },
-    "club": {
-        "speed": Param("speed", _range_si("club_speed_mps")),
-        "mass": Param("mass", _range_si("club_mass_kg")),
-        "loft": Param("angle", _range_si("loft_deg")),
-        "azimuth": Param("angle", _range_si("azimuth_deg")),
-        "spin_axis": Param("angle", _range_si("spin_axis_deg")),
-    },
-    "turf": {
-        "preset": Param("choice", choices=tuple(PRESETS)),
-        # Limits of mcrun.physics.turf.check_turf; restitution scales e0, e1, e2 and e_high, and
-        # above 1.9 the paper's e0 = 0.510 would exceed 0.97.
-        "mu": Param("number", TURF_LIMITS["mu"]),
-        "softness": Param("number", TURF_LIMITS["softness"]),
-        "restitution": Param("number", (0.0, 1.9)),
-        "rho_g": Param("number", TURF_LIMITS["rho_g"]),
-        "stimp": Param("length", (0.1, 6.0)),
-        "critical_height": Param("length", TURF_LIMITS["critical_height_m"]),
-        "slope": Param("angle", _range_si("slope_deg")),
-        "fall_line": Param("angle", _range_si("fall_line_deg")),
-    },
-    "weather": {
-        "wind_speed": Param("speed", _range_si("wind_speed_mps")),
-        "wind_direction": Param("angle", _ANGLE_ANY),
-        "wind_profile": Param("choice", choices=tuple(WIND_PROFILES)),
-        "wind_reference_height": Param(
-            "length", _range_si("wind_reference_height_m"), constant_only=True
-        ),
-        "wind_profile_parameter": Param("number", (0.0, 100.0), constant_only=True),
-        "temperature": Param("temperature", _range_si("temperature_c")),
-        "altitude": Param("length", _range_si("altitude_m")),
-        "pressure": Param("pressure", _range_si("pressure_pa")),
-        "humidity": Param("fraction", _range_si("relative_humidity")),
-    },
-    "models": {
-        "aero": Param("choice", choices=tuple(aero.MODELS)),
-        "bounce": Param("choice", choices=BOUNCE_MODELS),
-        "cd_scale": Param("number", _range_si("cd_scale")),
-        "cl_scale": Param("number", _range_si("cl_scale")),
-        "dt": Param("time", _range_si("dt_s"), constant_only=True),
-    },
+    section: {
+        path.partition(".")[2]: Param(q.kind, q.limits, q.choices, q.constant_only)
+        for q in QUANTITIES
+        for path in q.paths
+        if path.partition(".")[0] == section
+    }
+    for section in SECTIONS
 }
 """Section -> parameter name -> Param. Every sampled quantity of a scenario is one of these."""
 
@@ -1096,10 +1032,11 @@ def _resolve(ctx, sections, scenario_dir, context):
     launch = sections.get("launch", {})
     club = sections.get("club", {})
 
-    def quantity(section, name, default=None):
+    def quantity(section, name):
         leaf = sections.get(section, {}).get(name)
         param = PARAMETERS[section][name]
         if leaf is None:
+            default = default_of(f"{section}.{name}", params)
             if default is None:
                 return None
             dist = Dist(param.kind, "constant", (float(default),))
@@ -1110,9 +1047,12 @@ def _resolve(ctx, sections, scenario_dir, context):
         params[f"{section}.{name}"] = dist
         return dist
 
-    def choice(section, name, default):
+    def choice(section, name):
         leaf = sections.get(section, {}).get(name)
-        value = default if leaf is None else _choice(ctx, leaf, PARAMETERS[section][name])
+        if leaf is None:
+            value = default_of(f"{section}.{name}", params)
+        else:
+            value = _choice(ctx, leaf, PARAMETERS[section][name])
         params[f"{section}.{name}"] = value
         return value
 
@@ -1131,8 +1071,7 @@ def _resolve(ctx, sections, scenario_dir, context):
             )
         dists = {}
         for name in PARAMETERS["club"]:
-            default = DEFAULT_CLUB_MASS_KG if name == "mass" else 0.0
-            dists[name] = quantity("club", name, default)
+            dists[name] = quantity("club", name)
         if "correlation" in club:
             params["club.correlation"] = _correlation(
                 ctx, club["correlation"], "club", dists, club, context
@@ -1174,7 +1113,7 @@ def _resolve(ctx, sections, scenario_dir, context):
                         f"{name} is given here and jittered in launch.jitter: give one{context}",
                     )
                 if name not in resample.jitter:
-                    quantity("launch", name, 0.0)
+                    quantity("launch", name)
     else:
         for key in ("jitter", "club", "format", "sample"):
             if key in launch:
@@ -1192,36 +1131,32 @@ def _resolve(ctx, sections, scenario_dir, context):
                 f"missing: a ball launch needs ball_speed, launch_angle and spin (or give launch."
                 f"file, or [club]){context}",
             )
-        dists = {name: quantity("launch", name, 0.0) for name in PARAMETERS["launch"]}
+        dists = {name: quantity("launch", name) for name in PARAMETERS["launch"]}
         if "correlation" in launch:
             params["launch.correlation"] = _correlation(
                 ctx, launch["correlation"], "launch", dists, launch, context
             )
 
-    # Turf: the preset's fields unless given.
-    preset_name = choice("turf", "preset", "green")
-    preset = PRESETS[preset_name]
+    # Turf: the preset's fields unless given (the defaults of ``mcrun.quantities``).
+    choice("turf", "preset")
     turf = sections.get("turf", {})
     if "rho_g" in turf and "stimp" in turf:
         raise ctx.error(turf["stimp"].where, f"give turf.rho_g or turf.stimp, not both{context}")
-    quantity("turf", "mu", preset.mu)
-    quantity("turf", "softness", preset.softness)
-    quantity("turf", "restitution", 1.0)
-    if "stimp" in turf:
-        quantity("turf", "stimp")
-    else:
-        quantity("turf", "rho_g", preset.rho_g)
-    quantity("turf", "critical_height", preset.critical_height_m)
-    quantity("turf", "slope", 0.0)
-    quantity("turf", "fall_line", 0.0)
+    quantity("turf", "mu")
+    quantity("turf", "softness")
+    quantity("turf", "restitution")
+    quantity("turf", "stimp" if "stimp" in turf else "rho_g")
+    quantity("turf", "critical_height")
+    quantity("turf", "slope")
+    quantity("turf", "fall_line")
 
     # Weather.
     weather = sections.get("weather", {})
-    quantity("weather", "wind_speed", 0.0)
-    quantity("weather", "wind_direction", 0.0)
-    profile = choice("weather", "wind_profile", "uniform")
-    reference = quantity("weather", "wind_reference_height", STANDARD_WIND_HEIGHT_M).value
-    parameter = quantity("weather", "wind_profile_parameter", WIND_PROFILE_DEFAULTS[profile]).value
+    quantity("weather", "wind_speed")
+    quantity("weather", "wind_direction")
+    profile = choice("weather", "wind_profile")
+    reference = quantity("weather", "wind_reference_height").value
+    parameter = quantity("weather", "wind_profile_parameter").value
     if "wind_profile_parameter" in weather:
         where = weather["wind_profile_parameter"].where
         if profile == "log" and not 0.0 < parameter < reference:
@@ -1239,24 +1174,21 @@ def _resolve(ctx, sections, scenario_dir, context):
             weather["wind_reference_height"].where,
             f"must be above the log profile's roughness length ({parameter:g} m){context}",
         )
-    quantity("weather", "temperature", STANDARD_TEMPERATURE_K)
+    quantity("weather", "temperature")
     if "altitude" in weather and "pressure" in weather:
         raise ctx.error(
             weather["pressure"].where,
             f"give weather.altitude or weather.pressure, not both{context}",
         )
-    if "altitude" in weather:
-        quantity("weather", "altitude")
-    else:
-        quantity("weather", "pressure", STANDARD_PRESSURE_PA)
-    quantity("weather", "humidity", STANDARD_HUMIDITY)
+    quantity("weather", "altitude" if "altitude" in weather else "pressure")
+    quantity("weather", "humidity")
 
     # Models.
-    choice("models", "aero", aero.DEFAULT_MODEL)
-    choice("models", "bounce", "penner2002")
-    quantity("models", "cd_scale", 1.0)
-    quantity("models", "cl_scale", 1.0)
-    quantity("models", "dt", default_dt_s(profile))
+    choice("models", "aero")
+    choice("models", "bounce")
+    quantity("models", "cd_scale")
+    quantity("models", "cl_scale")
+    quantity("models", "dt")
     return params
 
 

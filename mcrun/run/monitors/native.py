@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from mcrun.api import InputError
+from mcrun.quantities import InputError
 from mcrun.units import from_column_name
 
 # Columns of a launch-monitor file: quantity -> accepted base names (the unit is the suffix).

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mcrun.api import InputError
+from mcrun.quantities import InputError
 from mcrun.run.monitors import formats
 from mcrun.run.monitors.native import (
     KIND,
