@@ -1137,58 +1137,59 @@ def _resolve(ctx, sections, scenario_dir, context):
                 ctx, launch["correlation"], "launch", dists, launch, context
             )
 
-    # Turf: the preset's fields unless given (the defaults of ``mcrun.quantities``).
-    choice("turf", "preset")
+    # The conditions: every quantity of the turf, the weather and the models, given or its
+    # default (``mcrun.quantities``: a turf field's is the preset's); a Stimp reading replaces
+    # rho_g, an altitude the pressure. The checks across quantities come where they did.
     turf = sections.get("turf", {})
-    if "rho_g" in turf and "stimp" in turf:
-        raise ctx.error(turf["stimp"].where, f"give turf.rho_g or turf.stimp, not both{context}")
-    quantity("turf", "mu")
-    quantity("turf", "softness")
-    quantity("turf", "restitution")
-    quantity("turf", "stimp" if "stimp" in turf else "rho_g")
-    quantity("turf", "critical_height")
-    quantity("turf", "slope")
-    quantity("turf", "fall_line")
-
-    # Weather.
     weather = sections.get("weather", {})
-    quantity("weather", "wind_speed")
-    quantity("weather", "wind_direction")
-    profile = choice("weather", "wind_profile")
-    reference = quantity("weather", "wind_reference_height").value
-    parameter = quantity("weather", "wind_profile_parameter").value
-    if "wind_profile_parameter" in weather:
-        where = weather["wind_profile_parameter"].where
-        if profile == "log" and not 0.0 < parameter < reference:
-            raise ctx.error(
-                where,
-                "the log profile's roughness length (m) must be > 0 and below the reference "
-                f"height ({reference:g} m), got {parameter:g}{context}",
-            )
-        if profile == "power" and not 0.0 <= parameter <= 1.0:
-            raise ctx.error(
-                where, f"the power profile's exponent must be within [0, 1], got {parameter:g}"
-            )
-    elif profile == "log" and not parameter < reference:
-        raise ctx.error(
-            weather["wind_reference_height"].where,
-            f"must be above the log profile's roughness length ({parameter:g} m){context}",
-        )
-    quantity("weather", "temperature")
-    if "altitude" in weather and "pressure" in weather:
-        raise ctx.error(
-            weather["pressure"].where,
-            f"give weather.altitude or weather.pressure, not both{context}",
-        )
-    quantity("weather", "altitude" if "altitude" in weather else "pressure")
-    quantity("weather", "humidity")
 
-    # Models.
-    choice("models", "aero")
-    choice("models", "bounce")
-    quantity("models", "cd_scale")
-    quantity("models", "cl_scale")
-    quantity("models", "dt")
+    def check_turf():
+        if "rho_g" in turf and "stimp" in turf:
+            raise ctx.error(
+                turf["stimp"].where, f"give turf.rho_g or turf.stimp, not both{context}"
+            )
+
+    def check_profile():
+        profile = params["weather.wind_profile"]
+        reference = params["weather.wind_reference_height"].value
+        parameter = params["weather.wind_profile_parameter"].value
+        if "wind_profile_parameter" in weather:
+            where = weather["wind_profile_parameter"].where
+            if profile == "log" and not 0.0 < parameter < reference:
+                raise ctx.error(
+                    where,
+                    "the log profile's roughness length (m) must be > 0 and below the reference "
+                    f"height ({reference:g} m), got {parameter:g}{context}",
+                )
+            if profile == "power" and not 0.0 <= parameter <= 1.0:
+                raise ctx.error(
+                    where, f"the power profile's exponent must be within [0, 1], got {parameter:g}"
+                )
+        elif profile == "log" and not parameter < reference:
+            raise ctx.error(
+                weather["wind_reference_height"].where,
+                f"must be above the log profile's roughness length ({parameter:g} m){context}",
+            )
+
+    def check_air():
+        if "altitude" in weather and "pressure" in weather:
+            raise ctx.error(
+                weather["pressure"].where,
+                f"give weather.altitude or weather.pressure, not both{context}",
+            )
+
+    before = {"turf.mu": check_turf, "weather.temperature": check_profile}
+    before["weather.altitude"] = check_air
+    replaced = {"turf.rho_g": "stimp" in turf, "weather.pressure": "altitude" in weather}
+    for section in ("turf", "weather", "models"):
+        for name, param in PARAMETERS[section].items():
+            path = f"{section}.{name}"
+            if path in before:
+                before[path]()
+            if param.kind == "choice":
+                choice(section, name)
+            elif not replaced.get(path, False):
+                quantity(section, name)
     return params
 
 
