@@ -1,0 +1,329 @@
+"""The TOML reader: a scenario file into a ``Scenario``, every point resolved (its
+quantities given or their defaults, the launch by ball, club or file)."""
+
+import itertools
+import tomllib
+from pathlib import Path
+
+from mcrun.quantities import default_of
+from mcrun.run.scenario.correlation import read_correlation
+from mcrun.run.scenario.hole_table import read_hole
+from mcrun.run.scenario.launch_file import read_launch_file
+from mcrun.run.scenario.library import find, question_of
+from mcrun.run.scenario.specs import (
+    DEFAULT_BLOCK_SIZE,
+    MAX_BLOCK_SIZE,
+    PARAMETERS,
+    Dist,
+    Point,
+    Scenario,
+    ScenarioError,
+)
+from mcrun.run.scenario.values import (
+    SECTION_NAMES,
+    Context,
+    as_table,
+    as_written,
+    read_choice,
+    read_dist,
+    read_target,
+    section_leaves,
+    short,
+    sweep_leaves,
+)
+
+_TOP_KEYS = ("scenario", *SECTION_NAMES, "group", "sweep", "hole")
+_SCENARIO_KEYS = ("name", "question", "description", "shots", "seed", "target", "block_size")
+_GROUP_KEYS = ("name", "target", *SECTION_NAMES)
+_BALL = ("ball_speed", "launch_angle", "spin")
+_CLUB = ("speed", "loft")
+_OPTIONAL_LAUNCH = ("azimuth", "spin_axis")
+
+
+def _resolve(ctx, sections, scenario_dir, context):
+    """The params of one point from its merged {section: {name: Leaf}}."""
+    params = {}
+    launch = sections.get("launch", {})
+    club = sections.get("club", {})
+
+    def quantity(section, name):
+        leaf = sections.get(section, {}).get(name)
+        param = PARAMETERS[section][name]
+        if leaf is None:
+            default = default_of(f"{section}.{name}", params)
+            if default is None:
+                return None
+            dist = Dist(param.kind, "constant", (float(default),))
+        elif param.kind == "choice":
+            return read_choice(ctx, leaf, param)
+        else:
+            dist = read_dist(ctx, leaf, param)
+        params[f"{section}.{name}"] = dist
+        return dist
+
+    def choice(section, name):
+        leaf = sections.get(section, {}).get(name)
+        if leaf is None:
+            value = default_of(f"{section}.{name}", params)
+        else:
+            value = read_choice(ctx, leaf, PARAMETERS[section][name])
+        params[f"{section}.{name}"] = value
+        return value
+
+    # Launch: ball, club or file.
+    if launch and club:
+        first = next(iter(club.values())).where
+        raise ctx.error(
+            first,
+            f"give the ball launch [launch] or the club delivery [club], not both{context}",
+        )
+    if club:
+        missing = [n for n in _CLUB if n not in club]
+        if missing:
+            raise ctx.error(
+                f"club.{missing[0]}", f"missing: a club delivery needs speed and loft{context}"
+            )
+        dists = {}
+        for name in PARAMETERS["club"]:
+            dists[name] = quantity("club", name)
+        if "correlation" in club:
+            params["club.correlation"] = read_correlation(
+                ctx, club["correlation"], "club", dists, club, context
+            )
+    elif "file" in launch:
+        for name in _BALL:
+            if name in launch:
+                raise ctx.error(
+                    launch[name].where,
+                    f"not allowed with launch.file, which gives {name}{context}",
+                )
+        if "correlation" in launch:
+            raise ctx.error(
+                launch["correlation"].where,
+                f"not allowed with launch.file: the measured shots keep their own correlation"
+                f"{context}",
+            )
+        resample = read_launch_file(
+            ctx,
+            launch["file"],
+            launch.get("jitter"),
+            scenario_dir,
+            launch.get("club"),
+            launch.get("format"),
+            launch.get("sample"),
+        )
+        params["launch.file"] = resample
+        for name in _OPTIONAL_LAUNCH:
+            if name in resample.columns:
+                if name in launch:
+                    raise ctx.error(
+                        launch[name].where,
+                        f"not allowed: the file {resample.path.name} gives {name}{context}",
+                    )
+            else:
+                if name in launch and name in resample.jitter:
+                    raise ctx.error(
+                        launch[name].where,
+                        f"{name} is given here and jittered in launch.jitter: give one{context}",
+                    )
+                if name not in resample.jitter:
+                    quantity("launch", name)
+    else:
+        for key in ("jitter", "club", "format", "sample"):
+            if key in launch:
+                raise ctx.error(launch[key].where, f"only allowed with launch.file{context}")
+        if not launch:
+            raise ctx.error(
+                "launch",
+                "missing: give [launch] with ball_speed, launch_angle and spin, [launch] with "
+                f"file = a launch-monitor CSV or Parquet, or [club] with speed and loft{context}",
+            )
+        missing = [n for n in _BALL if n not in launch]
+        if missing:
+            raise ctx.error(
+                f"launch.{missing[0]}",
+                f"missing: a ball launch needs ball_speed, launch_angle and spin (or give launch."
+                f"file, or [club]){context}",
+            )
+        dists = {name: quantity("launch", name) for name in PARAMETERS["launch"]}
+        if "correlation" in launch:
+            params["launch.correlation"] = read_correlation(
+                ctx, launch["correlation"], "launch", dists, launch, context
+            )
+
+    # The conditions: every quantity of the turf, the weather and the models, given or its
+    # default (``mcrun.quantities``: a turf field's is the preset's); a Stimp reading replaces
+    # rho_g, an altitude the pressure. The checks across quantities come where they did.
+    turf = sections.get("turf", {})
+    weather = sections.get("weather", {})
+
+    def check_turf():
+        if "rho_g" in turf and "stimp" in turf:
+            raise ctx.error(
+                turf["stimp"].where, f"give turf.rho_g or turf.stimp, not both{context}"
+            )
+
+    def check_profile():
+        profile = params["weather.wind_profile"]
+        reference = params["weather.wind_reference_height"].value
+        parameter = params["weather.wind_profile_parameter"].value
+        if "wind_profile_parameter" in weather:
+            where = weather["wind_profile_parameter"].where
+            if profile == "log" and not 0.0 < parameter < reference:
+                raise ctx.error(
+                    where,
+                    "the log profile's roughness length (m) must be > 0 and below the reference "
+                    f"height ({reference:g} m), got {parameter:g}{context}",
+                )
+            if profile == "power" and not 0.0 <= parameter <= 1.0:
+                raise ctx.error(
+                    where, f"the power profile's exponent must be within [0, 1], got {parameter:g}"
+                )
+        elif profile == "log" and not parameter < reference:
+            raise ctx.error(
+                weather["wind_reference_height"].where,
+                f"must be above the log profile's roughness length ({parameter:g} m){context}",
+            )
+
+    def check_air():
+        if "altitude" in weather and "pressure" in weather:
+            raise ctx.error(
+                weather["pressure"].where,
+                f"give weather.altitude or weather.pressure, not both{context}",
+            )
+
+    before = {"turf.mu": check_turf, "weather.temperature": check_profile}
+    before["weather.altitude"] = check_air
+    replaced = {"turf.rho_g": "stimp" in turf, "weather.pressure": "altitude" in weather}
+    for section in ("turf", "weather", "models"):
+        for name, param in PARAMETERS[section].items():
+            path = f"{section}.{name}"
+            if path in before:
+                before[path]()
+            if param.kind == "choice":
+                choice(section, name)
+            elif not replaced.get(path, False):
+                quantity(section, name)
+    return params
+
+
+# --- loading ---------------------------------------------------------------------------------
+
+
+def _integer(ctx, where, value, low, high=None):
+    if (
+        not isinstance(value, int)
+        or isinstance(value, bool)
+        or value < low
+        or (high is not None and value > high)
+    ):
+        bound = f">= {low}" if high is None else f"within [{low}, {high}]"
+        raise ctx.error(where, f"must be an integer {bound}, got {short(value)}")
+    return value
+
+
+def load(path):
+    """Read and validate a scenario file (or a library scenario's name) into a Scenario.
+
+    Raises
+    ------
+    ScenarioError
+        With one line naming the file, the key path and what is allowed.
+    """
+    path = find(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise ScenarioError(f"{path}: cannot read the file: {err}") from None
+    return loads(text, path)
+
+
+def loads(text, path):
+    """A Scenario from its TOML ``text``, as if read from ``path`` (which names it in errors
+    and against which a resampled shots file is found): how a worker of a distributed run, or
+    a rerun from a run's provenance, gets the scenario without the file."""
+    path = Path(path)
+    ctx = Context(str(path))
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ScenarioError(f"{path}: not valid TOML: {err}") from None
+    for key in data:
+        if key not in _TOP_KEYS:
+            raise ctx.error(key, f"unknown key; allowed: {', '.join(_TOP_KEYS)}")
+
+    head = as_table(ctx, "scenario", data.get("scenario", {}))
+    for key in head:
+        if key not in _SCENARIO_KEYS:
+            raise ctx.error(f"scenario.{key}", f"unknown key; allowed: {', '.join(_SCENARIO_KEYS)}")
+    for key in ("name", "question", "description"):
+        if key in head and not isinstance(head[key], str):
+            raise ctx.error(f"scenario.{key}", f"must be a string, got {short(head[key])}")
+    name = head.get("name", path.stem)
+    question = question_of(text)
+    shots = _integer(ctx, "scenario.shots", head.get("shots", 100_000), 1)
+    seed = _integer(ctx, "scenario.seed", head.get("seed", 0), 0)
+    block_size = _integer(
+        ctx, "scenario.block_size", head.get("block_size", DEFAULT_BLOCK_SIZE), 1, MAX_BLOCK_SIZE
+    )
+    target = read_target(ctx, "scenario.target", head["target"]) if "target" in head else None
+    hole, aim_rad = read_hole(ctx, data, path) if "hole" in data else (None, None)
+    if hole is not None and target is None:
+        target = tuple(float(v) for v in hole.pin_xy)
+
+    base = {s: section_leaves(ctx, s, data[s], f"{s}.") for s in SECTION_NAMES if s in data}
+
+    groups = data.get("group")
+    if groups is None:
+        groups = []
+        group_list = [("", {}, target, "")]
+    else:
+        if not isinstance(groups, list) or not all(isinstance(g, dict) for g in groups):
+            raise ctx.error("group", "must be an array of tables ([[group]] with a name each)")
+        group_list = []
+        names = set()
+        for k, table in enumerate(groups):
+            where = f"group[{k}]"
+            for key in table:
+                if key not in _GROUP_KEYS:
+                    raise ctx.error(
+                        f"{where}.{key}", f"unknown key; allowed: {', '.join(_GROUP_KEYS)}"
+                    )
+            gname = table.get("name")
+            if not isinstance(gname, str) or not gname.strip():
+                got = "" if gname is None else f", got {short(gname)}"
+                raise ctx.error(f"{where}.name", f"missing: every group needs a name{got}")
+            if gname in names:
+                raise ctx.error(f"{where}.name", f"group name {gname!r} is used twice")
+            names.add(gname)
+            overrides = {
+                s: section_leaves(ctx, s, table[s], f"{where}.{s}.")
+                for s in SECTION_NAMES
+                if s in table
+            }
+            gtarget = target
+            if "target" in table:
+                gtarget = read_target(ctx, f"{where}.target", table["target"])
+            group_list.append((gname, overrides, gtarget, where))
+
+    sweep = sweep_leaves(ctx, data["sweep"]) if "sweep" in data else []
+    combos = list(itertools.product(*(leaves for _, _, _, leaves in sweep))) if sweep else [()]
+
+    points = []
+    single = len(group_list) * len(combos) == 1
+    for gname, overrides, gtarget, _ in group_list:
+        for combo in combos:
+            sections = {s: dict(base.get(s, {})) for s in SECTION_NAMES}
+            for s, leaves in overrides.items():
+                sections[s].update(leaves)
+            values = {}
+            for (section, pname, written, _), leaf in zip(sweep, combo, strict=True):
+                sections[section][pname] = leaf
+                values[written] = leaf.value
+            sweep_label = ", ".join(f"{k}={as_written(v)}" for k, v in values.items())
+            label = " | ".join(p for p in (gname, sweep_label) if p)
+            context = "" if single else f" (point {label!r})"
+            sections = {s: v for s, v in sections.items() if v}
+            params = _resolve(ctx, sections, path.parent, context)
+            points.append(Point(len(points), label, gname, values, params, gtarget))
+    return Scenario(path, text, name, question, shots, seed, block_size, points, hole, aim_rad)

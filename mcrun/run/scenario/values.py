@@ -1,0 +1,335 @@
+"""A value of a scenario file as written, read and checked: a number with its unit, a
+distribution table, a choice; and the file's tables read into leaves (a value and where it was
+written), sections, targets and sweeps."""
+
+import math
+import numbers
+import re
+from dataclasses import dataclass
+
+from mcrun.run.scenario.specs import (
+    DIMENSIONLESS,
+    DISTRIBUTIONS,
+    PARAMETERS,
+    SPREADS,
+    Dist,
+    ScenarioError,
+    bare_unit,
+    in_bare_unit,
+    spread_in_bare_unit,
+)
+from mcrun.units import (
+    KINDS,
+    UnitError,
+    foreign_digits,
+    from_column_name,
+    parse_quantity,
+    shown,
+)
+
+# A truncnormal whose interval lies further than this many sd from its mean is refused: its
+# probability mass underflows.
+_TRUNCNORMAL_MAX_Z = 30.0
+
+# Keys of a section that are not quantities.
+_SPECIAL = {
+    "launch": ("correlation", "file", "jitter", "club", "format", "sample"),
+    "club": ("correlation",),
+}
+SECTION_NAMES = tuple(PARAMETERS)
+
+
+def short(value):
+    return shown(value, 60)
+
+
+_LEADING_NUMBER = re.compile(r"^\s*[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
+
+
+@dataclass
+class Context:
+    """Where a value comes from, for messages: the file and a key path."""
+
+    file: str
+
+    def error(self, where, what):
+        return ScenarioError(f"{self.file}: {where}: {what}")
+
+
+@dataclass(frozen=True)
+class Leaf:
+    """A raw value of a parameter as written: the value, where it was written, and the unit
+    its key carried (``spin_rpm`` -> "rpm"), or None."""
+
+    value: object
+    where: str
+    key_unit: str | None = None
+
+
+def is_number(value):
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def read_value(ctx, where, value, kind, key_unit, spread=False):
+    """One value of a quantity (a number or a string with an optional unit) in SI."""
+    if kind == "number" or key_unit is not None and kind != "choice":
+        if isinstance(value, str):
+            foreign = foreign_digits(value)
+            if foreign is not None:
+                raise ctx.error(where, f"cannot read {short(value)}: {foreign}")
+            try:
+                value = float(value)
+            except ValueError:
+                if kind == "number":
+                    raise ctx.error(
+                        where, f"must be a number (dimensionless), got {short(value)}"
+                    ) from None
+                raise ctx.error(
+                    where,
+                    f"the key gives the unit ({key_unit}): give a bare number, got {short(value)}",
+                ) from None
+        if not is_number(value):
+            raise ctx.error(where, f"must be a number, got {short(value)}")
+        if not math.isfinite(value):
+            raise ctx.error(where, f"must be finite, got {value}")
+        if kind == "number":
+            return float(value)
+        value = f"{float(value)!r} {key_unit}"
+    if not (isinstance(value, str) or is_number(value)):
+        raise ctx.error(
+            where,
+            f"must be a number or a string with a unit ({', '.join(KINDS[kind][1])}), "
+            f"got {short(value)}",
+        )
+    try:
+        si = parse_quantity(value, kind)
+        if spread:
+            zero = _LEADING_NUMBER.sub("0", value, count=1) if isinstance(value, str) else 0.0
+            si -= parse_quantity(zero, kind)
+    except UnitError as err:
+        raise ctx.error(where, str(err)) from None
+    return si
+
+
+def fmt(value_si, kind, spread=False):
+    """An SI value in the kind's bare unit, e.g. "-5 rad/s", "12 deg"."""
+    if kind == "number":
+        return f"{value_si:g}"
+    number = spread_in_bare_unit(value_si, kind) if spread else in_bare_unit(value_si, kind)
+    return f"{number:g}{bare_unit(kind)}"
+
+
+def _check_in(ctx, where, value_si, param, what="must be"):
+    lo, hi = param.limits
+    if not lo <= value_si <= hi:
+        raise ctx.error(
+            where,
+            f"{what} within [{fmt(lo, param.kind)}, {fmt(hi, param.kind)}], "
+            f"got {fmt(value_si, param.kind)}",
+        )
+
+
+def read_dist(ctx, leaf, param):
+    """A Dist from a raw value (constant or distribution table), validated against param."""
+    value, where = leaf.value, leaf.where
+    kind = param.kind
+    if not isinstance(value, dict):
+        if isinstance(value, list):
+            raise ctx.error(
+                where,
+                "must be a value or a distribution table {dist = ...}, got a list "
+                "(sweep a parameter in [sweep])",
+            )
+        si = read_value(ctx, where, value, kind, leaf.key_unit)
+        _check_in(ctx, where, si, param)
+        return Dist(kind, "constant", (si,))
+    if "dist" not in value:
+        raise ctx.error(f"{where}.dist", f"missing; choose one of {', '.join(DISTRIBUTIONS)}")
+    name = value["dist"]
+    if name not in DISTRIBUTIONS:
+        raise ctx.error(
+            f"{where}.dist",
+            f"unknown distribution {short(name)}; choose one of {', '.join(DISTRIBUTIONS)}",
+        )
+    keys = DISTRIBUTIONS[name]
+    for key in value:
+        if key != "dist" and key not in keys:
+            raise ctx.error(
+                f"{where}.{key}",
+                f"unknown key for a {name} distribution; allowed: dist, {', '.join(keys)}",
+            )
+    args = []
+    for key in keys:
+        if key not in value:
+            raise ctx.error(
+                f"{where}.{key}", f"missing: a {name} distribution needs {', '.join(keys)}"
+            )
+        if key in DIMENSIONLESS:
+            args.append(read_value(ctx, f"{where}.{key}", value[key], "number", None))
+        else:
+            args.append(
+                read_value(ctx, f"{where}.{key}", value[key], kind, leaf.key_unit, key in SPREADS)
+            )
+    if param.constant_only and name != "constant":
+        raise ctx.error(where, f"must be a constant, not a {name} distribution")
+    if name == "constant":
+        _check_in(ctx, f"{where}.value", args[0], param)
+    elif name in ("normal", "truncnormal"):
+        mean, sd = args[:2]
+        if sd < 0.0:
+            raise ctx.error(f"{where}.sd", f"must be >= 0, got {fmt(sd, kind, spread=True)}")
+        if name == "normal":
+            _check_in(ctx, f"{where}.mean", mean, param)
+        else:
+            low, high = args[2:]
+            if sd == 0.0:
+                raise ctx.error(f"{where}.sd", "must be > 0 for a truncnormal, got 0")
+            if not low < high:
+                raise ctx.error(
+                    f"{where}.low",
+                    f"must be < high ({fmt(high, kind)}), got {fmt(low, kind)}",
+                )
+            _check_in(ctx, f"{where}.low", low, param)
+            _check_in(ctx, f"{where}.high", high, param)
+            if (low - mean) / sd > _TRUNCNORMAL_MAX_Z or (high - mean) / sd < -_TRUNCNORMAL_MAX_Z:
+                raise ctx.error(
+                    where,
+                    f"[low, high] must come within {_TRUNCNORMAL_MAX_Z:g} sd of the mean",
+                )
+    elif name in ("uniform", "triangular"):
+        low, high = args[0], args[-1]
+        if not low < high:
+            raise ctx.error(
+                f"{where}.low", f"must be < high ({fmt(high, kind)}), got {fmt(low, kind)}"
+            )
+        _check_in(ctx, f"{where}.low", low, param)
+        _check_in(ctx, f"{where}.high", high, param)
+        if name == "triangular" and not low <= args[1] <= high:
+            raise ctx.error(
+                f"{where}.mode",
+                f"must be within [low, high] = [{fmt(low, kind)}, {fmt(high, kind)}], "
+                f"got {fmt(args[1], kind)}",
+            )
+    else:  # lognormal
+        median, sigma = args
+        if not median > 0.0:
+            raise ctx.error(f"{where}.median", f"must be > 0, got {fmt(median, kind)}")
+        if sigma < 0.0:
+            raise ctx.error(f"{where}.sigma", f"must be >= 0, got {sigma:g}")
+        _check_in(ctx, f"{where}.median", median, param)
+    return Dist(kind, name, tuple(args))
+
+
+def read_choice(ctx, leaf, param):
+    if not isinstance(leaf.value, str) or leaf.value not in param.choices:
+        raise ctx.error(
+            leaf.where,
+            f"must be one of {', '.join(param.choices)}, got {short(leaf.value)}",
+        )
+    return leaf.value
+
+
+# --- reading the file into leaves ------------------------------------------------------------
+
+
+def as_table(ctx, where, value):
+    if not isinstance(value, dict):
+        raise ctx.error(where, f"must be a table, got {short(value)}")
+    return value
+
+
+def key_name(ctx, section, key, where):
+    """(parameter name, key unit) of a key of a section; units may be in the name."""
+    names = PARAMETERS[section]
+    if key in names or key in _SPECIAL.get(section, ()):
+        return key, None
+    found = from_column_name(key)
+    if found is not None and found[0] in names:
+        base, kind, unit = found
+        if names[base].kind != kind:
+            expected = names[base].kind
+            allowed = (
+                f"units of a {expected}: {', '.join(KINDS[expected][1])}"
+                if expected in KINDS
+                else "no unit (dimensionless)"
+                if expected == "number"
+                else "no unit"
+            )
+            raise ctx.error(where, f"{unit} is a {kind} unit, but {base} takes {allowed}")
+        return base, unit
+    allowed = ", ".join((*names, *_SPECIAL.get(section, ())))
+    raise ctx.error(
+        where,
+        f"unknown key; allowed: {allowed} (a unit may end the name, e.g. ball_speed_mph)",
+    )
+
+
+def section_leaves(ctx, section, table, prefix):
+    """{parameter: Leaf} of one section table; ``prefix`` is where it sits in the file."""
+    table = as_table(ctx, prefix.rstrip("."), table)
+    leaves = {}
+    for key, value in table.items():
+        where = f"{prefix}{key}"
+        name, unit = key_name(ctx, section, key, where)
+        if name in leaves:
+            raise ctx.error(
+                where, f"{section}.{name} is given twice ({leaves[name].where} and {where})"
+            )
+        leaves[name] = Leaf(value, where, unit)
+    return leaves
+
+
+def read_target(ctx, where, value):
+    if not isinstance(value, list) or len(value) != 2:
+        raise ctx.error(
+            where, f'must be a pair [x, y] of lengths, e.g. ["251 m", "0 m"], got {short(value)}'
+        )
+    return tuple(read_value(ctx, f"{where}[{k}]", v, "length", None) for k, v in enumerate(value))
+
+
+def _flatten_sweep(ctx, table, prefix=""):
+    """{key path: list} of a [sweep] table; accepts "launch.spin" = [...] and nested tables."""
+    out = {}
+    for key, value in table.items():
+        path = f"{prefix}{key}"
+        if isinstance(value, dict):
+            out.update(_flatten_sweep(ctx, value, path + "."))
+        else:
+            out[path] = value
+    return out
+
+
+def sweep_leaves(ctx, table):
+    """[(section, name, key path as written, [leaf per value])] of the [sweep] table."""
+    entries = []
+    seen = {}
+    for path, values in _flatten_sweep(ctx, as_table(ctx, "sweep", table)).items():
+        where = f'sweep."{path}"'
+        section, _, key = path.partition(".")
+        if section not in SECTION_NAMES or not key or "." in key:
+            raise ctx.error(
+                where,
+                "a sweep key is a parameter path section.name with section one of "
+                f'{", ".join(SECTION_NAMES)} (e.g. "launch.spin")',
+            )
+        name, unit = key_name(ctx, section, key, where)
+        if (section, name) in seen:
+            raise ctx.error(where, f"{section}.{name} is swept twice (also {seen[section, name]})")
+        seen[section, name] = where
+        if not isinstance(values, list) or not values:
+            raise ctx.error(where, f"must be a non-empty list of values, got {short(values)}")
+        leaves = [Leaf(v, f"{where}[{k}]", unit) for k, v in enumerate(values)]
+        entries.append((section, name, path, leaves))
+    return entries
+
+
+def as_written(value):
+    """A sweep value as written, for labels."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, dict):
+        inner = ", ".join(f"{k}={as_written(v)}" for k, v in value.items() if k != "dist")
+        return f"{value.get('dist', '')}({inner})"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
