@@ -31,8 +31,8 @@ from mcrun.engine.schema import CARRY, pack
 from mcrun.engine.schema import LANDING_ANGLE as LANDING_ANGLE_FIELD
 from mcrun.engine.shot import DEFAULT_DT_S
 from mcrun.physics import aero
-from mcrun.physics.constants import DEG, STANDARD_HUMIDITY, STANDARD_PRESSURE_PA
-from mcrun.quantities import InputError, check_range
+from mcrun.physics.constants import DEG
+from mcrun.quantities import DEFAULTS, InputError, check_range
 from mcrun.units import parse_quantity, shown
 
 DEFAULT_DATA = resources.files("mcrun") / "data" / "trackman_tour_averages_2019.csv"
@@ -50,9 +50,9 @@ MEASURED_COLUMNS = (
 )
 
 # Standard conditions the table is flown in (TrackMan: altitude and weather not accounted for).
-STANDARD_CONDITIONS = dict(
-    temperature_c=20.0, pressure_pa=STANDARD_PRESSURE_PA, relative_humidity=STANDARD_HUMIDITY
-)
+STANDARD_CONDITIONS = {
+    name: DEFAULTS[name] for name in ("temperature_c", "pressure_pa", "relative_humidity")
+}
 
 # Models compared by ``--compare``: every model, in the order aero.MODELS lists them.
 COMPARED_MODELS = tuple(aero.MODELS)
@@ -129,7 +129,7 @@ def load_measured(path=None):
     frame = pd.DataFrame(
         {"tour": raw["tour"].astype(str).str.strip(), "club": raw["club"].astype(str).str.strip()}
     )
-    # Launches must be inside the documented input ranges (api.RANGES); outcomes positive,
+    # Launches must be inside the documented input ranges (quantities.RANGES); outcomes positive,
     # and the land angle (above the horizontal) below 90 deg.
     for column, name, factor, checked in (
         ("ball_mph", "ball_speed_mps", mph, "ball_speed_mps"),

@@ -55,6 +55,7 @@ __all__ = [
     "by_path",
     "check_range",
     "club_launch",
+    "column_and_factor",
     "default_of",
     "from_si",
     "kernel_columns",
@@ -349,6 +350,17 @@ def by_column(column):
 def by_path(path):
     """The Quantity of a scenario key path (``"turf.mu"``)."""
     return _BY_PATH[path]
+
+
+def column_and_factor(path):
+    """(sampled column, factor from SI to its unit) of a scenario key path whose unit is a
+    scale of SI (not a temperature): ``launch.launch_angle`` -> ``("launch_angle_deg", 1 / DEG)``.
+    """
+    q = _BY_PATH[path]
+    factor, offset = _factor(q.kind)
+    if offset:
+        raise ValueError(f"{path}: its unit {KINDS[q.kind][0]} is not a scale of SI")
+    return q.column, 1.0 / factor
 
 
 def default_of(path, chosen=None):

@@ -6,7 +6,7 @@ from its header or forced with ``format``, or mcrun's own columns ``ball_speed_m
 turf and in the weather given once for the whole session: what the session would have given on
 another course or another day. The rows run through the same batch kernel as a Monte Carlo run.
 
-A row with a missing value or a value outside ``mcrun.api.RANGES`` is not simulated: it keeps
+A row with a missing value or a value outside ``mcrun.quantities.RANGES`` is not simulated: it keeps
 its place with status ``invalid_input`` (a session often holds a misread shot; one bad row
 should not stop the others). The output keeps the file's own columns (renamed ``input_<name>``
 where a name is also an output column), then ``club`` (where the file names the club), the
@@ -33,19 +33,15 @@ from mcrun.api import conditions_inputs
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import OUTCOME_FIELDS, encode_outcomes, pack
 from mcrun.physics.constants import DEG
-from mcrun.quantities import InputError
+from mcrun.quantities import InputError, by_path, column_and_factor
 from mcrun.results import output
 from mcrun.run import clubs
 from mcrun.run.monitors import read_session, session_of_frame
-from mcrun.run.scenario import PARAMETERS
 
 # The launch columns of the output, by quantity (scenario.FILE_COLUMNS): (name, SI -> factor).
 LAUNCH_COLUMNS = {
-    "ball_speed": ("ball_speed_mps", 1.0),
-    "launch_angle": ("launch_angle_deg", 1.0 / DEG),
-    "spin": ("spin_radps", 1.0),
-    "spin_axis": ("spin_axis_deg", 1.0 / DEG),
-    "azimuth": ("azimuth_deg", 1.0 / DEG),
+    q: column_and_factor(f"launch.{q}")
+    for q in ("ball_speed", "launch_angle", "spin", "spin_axis", "azimuth")
 }
 
 
@@ -63,13 +59,13 @@ DEVICE_COLUMNS = {
 def launches(session):
     """(SI arrays by quantity, valid row mask) of the measured launches of a ``Session``: a
     quantity the file does not give is 0 (spin axis, azimuth); a value missing or outside
-    ``PARAMETERS`` makes its row invalid."""
+    its range (``mcrun.quantities``) makes its row invalid."""
     n = len(session.frame)
     valid = np.ones(n, dtype=bool)
     values = {}
     for quantity in LAUNCH_COLUMNS:
         si = session.launch.get(quantity, np.zeros(n))
-        lo, hi = PARAMETERS["launch"][quantity].limits
+        lo, hi = by_path(f"launch.{quantity}").limits
         valid &= np.isfinite(si) & (si >= lo) & (si <= hi)
         values[quantity] = si
     return values, valid

@@ -6,8 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.physics.constants import DEG
-from mcrun.quantities import InputError
+from mcrun.quantities import InputError, column_and_factor
 from mcrun.run.monitors import FILE_COLUMNS, check_file, read_session
 from mcrun.run.monitors import NAMES as MONITOR_FORMATS
 from mcrun.run.scenario.correlation import semidefinite_cholesky
@@ -22,11 +21,8 @@ FILE_SAMPLING = ("resample", "normal")
 
 # The name and the SI -> factor of each launch quantity in a fit's table (the sampled columns).
 FIT_COLUMNS = {
-    "ball_speed": ("ball_speed_mps", 1.0),
-    "launch_angle": ("launch_angle_deg", 1.0 / DEG),
-    "azimuth": ("azimuth_deg", 1.0 / DEG),
-    "spin": ("spin_radps", 1.0),
-    "spin_axis": ("spin_axis_deg", 1.0 / DEG),
+    q: column_and_factor(f"launch.{q}")
+    for q in ("ball_speed", "launch_angle", "azimuth", "spin", "spin_axis")
 }
 
 
