@@ -34,6 +34,13 @@ triangular must lie in the quantity's documented range (``mcrun.quantities``, wh
 ``PARAMETERS`` is read from). A normal or lognormal draw may still fall outside it; the sampler
 then makes that shot's kernel input invalid, so the kernel returns status ``invalid_input`` for
 it (bound a quantity with a truncnormal to avoid that).
+
+The package, one idea a module: ``specs`` (what a read scenario holds: ``PARAMETERS``, read from
+the table of quantities ``mcrun.quantities``, ``Dist``, ``Point``, ``Scenario``), ``values`` (a
+value as written, read and checked, and the file's tables read into leaves), ``correlation``,
+``launch_file`` (a launch monitor's shots resampled, or the normal fitted to them), ``library``,
+``hole_table`` (``[hole]``) and ``reader`` (``load``, ``loads``: the file, each point resolved).
+Every name other modules use is imported from here.
 """
 
 from mcrun.quantities import BOUNCE_MODELS
