@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from mcrun.engine.schema import COLUMN
+from mcrun.engine.schema import INPUT_FIELDS
 from mcrun.engine.shot import default_dt_s
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.constants import (
@@ -533,5 +533,5 @@ def kernel_columns(values, wind=None, air_density=None):
 
 
 def kernel_part(columns):
-    """The kernel's columns of ``kernel_columns``' answer, for ``schema.pack``."""
-    return {name: value for name, value in columns.items() if name in COLUMN}
+    """The kernel's columns of ``kernel_columns``' answer, in their order, for ``schema.pack``."""
+    return {name: columns[name] for name in INPUT_FIELDS if name in columns}
