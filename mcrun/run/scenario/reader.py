@@ -192,8 +192,9 @@ def _resolve(ctx, sections, scenario_dir, context):
                 f"give weather.altitude or weather.pressure, not both{context}",
             )
 
-    before = {"turf.mu": check_turf, "weather.temperature": check_profile}
-    before["weather.altitude"] = check_air
+    # The checks across quantities, each where the file's sections come to it.
+    after = {"turf.preset": check_turf, "weather.wind_profile_parameter": check_profile}
+    before = {"weather.altitude": check_air}
     replaced = {"turf.rho_g": "stimp" in turf, "weather.pressure": "altitude" in weather}
     for section in ("turf", "weather", "models"):
         for name, param in PARAMETERS[section].items():
@@ -204,6 +205,8 @@ def _resolve(ctx, sections, scenario_dir, context):
                 choice(section, name)
             elif not replaced.get(path, False):
                 quantity(section, name)
+            if path in after:
+                after[path]()
     return params
 
 
