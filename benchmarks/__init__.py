@@ -10,7 +10,17 @@ results.
   out again from the equations, independent of ``mcrun.physics.flight``.
 - ``baselines.py``: the flight alone as others would write it (solve_ivp per shot, NumPy
   vectorised RK4, Numba one shot per ``prange`` iteration), for comparison.
-- ``suite.py``: the five figures, the timing, the JSON and the Markdown.
+- ``figures/``: one module per figure, its measurement beside the Markdown it writes:
+  ``kernel.py`` (complete shots/s vs threads, on holes, accuracy against DOP853),
+  ``baselines.py`` (the flight alone as others write it, beside mcrun), ``steps.py`` (accuracy
+  and speed vs the RK4 step), ``end_to_end.py`` (``mcrun run`` to Parquet: rate and peak memory
+  vs N), ``startup.py`` (``mcrun shot`` and a small run, cold and warm).
+- ``common.py``: the sizes of a run (full, quick), the interleaved timing, the shared inputs and
+  number formats; ``children.py``: ``mcrun`` as a measured child process; ``machine.py``: what
+  the numbers were measured on.
+- ``suite.py``: the driver: runs the figures, writes the JSON and the Markdown.
+- ``holes.py``: the kernel on each library hole, an aim search and a course's grid
+  (``python -m benchmarks.holes``, ``results/holes.md``).
 - ``monitors.py``: reading and replaying a 100,000-row launch-monitor export
   (``python -m benchmarks.monitors``, ``results/monitors.md``). Measured once: 0.61 s to read,
   0.90 s to read, replay and summarise per club, of which 0.08 s in the kernel, so 0.82 s

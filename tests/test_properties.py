@@ -128,7 +128,8 @@ def test_shot_always_ends_with_a_status(
     speed, angle, azimuth, spin, axis, wind, profile, model, turf, slope, fall_line, density, dt
 ):
     """Any shot inside ``api.RANGES`` ends with a known status, and an "ok" one has every
-    outcome field finite. (Steps below 1 ms are in range too; they only cost time.)"""
+    outcome field finite; on a slope under half the steepest its turf holds, it ends "ok"
+    (``rolls_to_rest``). (Steps below 1 ms are in range too; they only cost time.)"""
     out = simulate(
         ball_speed_mps=speed,
         launch_angle_deg=angle,
@@ -147,6 +148,61 @@ def test_shot_always_ends_with_a_status(
     assert out["status"] in status.NAMES
     if out["status"] == status.OK:
         assert all(math.isfinite(v) for v in out.values()), out
+    if rolls_to_rest(slope, turf):
+        assert out["status"] == status.OK, out
+
+
+def tipping(slope_deg, turf):
+    """tan(slope) / rho_g: under 1 the turf's rolling resistance holds a ball on the slope
+    (physics.md: only a slope steeper than atan(rho_g) keeps it going), over 1 it does not."""
+    return math.tan(math.radians(slope_deg)) / PRESETS[turf].rho_g
+
+
+def rolls_to_rest(slope_deg, turf):
+    """A slope under half the steepest its turf holds: down it the roll still slows at half
+    the rate it does on level ground, at least (5/7) g rho_g / 2 (0.46 m/s^2 on the green),
+    and any ball in range stops well inside the roll's bounds (120 s, 1000 m)."""
+    return tipping(slope_deg, turf) < 0.5
+
+
+def test_the_share_of_shots_that_end_ok_is_that_of_the_slopes_that_hold_them():
+    """400 shots drawn (seeded) over the ranges of ``test_shot_always_ends_with_a_status``: the
+    slope uniform in 0-45 deg, the turf among the presets. A ball ends "ok" where its turf holds
+    it on the slope, and only there, so that the share of "ok" shots lies between the share
+    drawn under half the tipping slope (every one of those must stop; expected
+    mean(atan(rho_g / 2)) / 45 deg = 0.20 over the presets) and the share drawn under the
+    tipping slope (expected mean(atan(rho_g)) / 45 deg = 0.37). A kernel that let every shot
+    roll on (``not_stopped``) or stopped every ball fails it."""
+    rng = np.random.default_rng(21)
+    names = sorted(PRESETS)
+    models = sorted(MODELS)
+    ended, holds, gentle = [], [], []
+    for _ in range(400):
+        turf = names[rng.integers(len(names))]
+        slope = rng.uniform(*RANGES["slope_deg"])
+        out = simulate(
+            ball_speed_mps=rng.uniform(*RANGES["ball_speed_mps"]),
+            launch_angle_deg=rng.uniform(*RANGES["launch_angle_deg"]),
+            azimuth_deg=rng.uniform(*RANGES["azimuth_deg"]),
+            spin_radps=rng.uniform(*RANGES["spin_radps"]),
+            spin_axis_deg=rng.uniform(*RANGES["spin_axis_deg"]),
+            wind_mps=tuple(rng.uniform(-35.0, 35.0, 2)),
+            wind_profile=("uniform", "log", "power")[rng.integers(3)],
+            aero_model=models[rng.integers(len(models))],
+            turf=turf,
+            slope_deg=slope,
+            fall_line_deg=rng.uniform(*RANGES["fall_line_deg"]),
+            air_density_kgpm3=rng.uniform(*RANGES["air_density_kgpm3"]),
+            dt_s=rng.uniform(1e-3, RANGES["dt_s"][1]),
+        ).outcome
+        ended.append(out["status"] == status.OK)
+        holds.append(tipping(slope, turf) < 1.0)
+        gentle.append(rolls_to_rest(slope, turf))
+    ended, holds, gentle = map(np.array, (ended, holds, gentle))
+    assert 0.15 < gentle.mean() < 0.25 and 0.32 < holds.mean() < 0.42  # the draw is as expected
+    assert ended[gentle].all()
+    assert not ended[~holds].any()
+    assert gentle.mean() <= ended.mean() <= holds.mean()
 
 
 def mirrored(kwargs):

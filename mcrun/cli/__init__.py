@@ -24,9 +24,8 @@ import importlib
 import os
 import re
 import sys
-import time
 
-from mcrun import api, exits
+from mcrun import exits
 from mcrun.hole.errors import HoleError
 from mcrun.quantities import InputError
 from mcrun.units import UnitError
@@ -114,54 +113,41 @@ def build_parser(command=None):
 # --- compiling the kernels ---------------------------------------------------------------------
 
 
-# The kernel each simulating command runs: the single shot or the batch.
+# The ground of the kernel each simulating command runs before it has read its scenario: the
+# batch kernel on the plane, which a single shot runs too (a run on a hole compiles its
+# terrain's kernel as it starts).
 SIMULATING_COMMANDS = {
-    "shot": "single",
-    "calibrate": "single",
-    "paper": "single",
-    "run": "batch",
-    "replay": "batch",
+    "shot": "plane",
+    "calibrate": "plane",
+    "paper": "plane",
+    "run": "plane",
+    "replay": "plane",
 }
 
 
-def _kernel_cached(kind):
-    """Whether the kernel is in numba's on-disk cache (None when it cannot be told): the shot
-    loop, which a single shot runs too."""
-    from mcrun.engine.batch import _simulate_batch
+def _kernel_cached(ground):
+    """Whether the kernel for ``ground`` is compiled or in numba's on-disk cache (None when it
+    cannot be told)."""
+    from mcrun.engine.warmup import kernel_cached
 
-    try:
-        return os.path.exists(_simulate_batch._cache._cache_file._index_path)
-    except AttributeError:  # numba's cache internals moved
-        return None
+    return kernel_cached(ground)
 
 
-def _compile(kind):
-    """Compile the command's kernel (or load it from numba's cache)."""
-    if kind == "single":
-        api.simulate(ball_speed_mps=70.0, launch_angle_deg=12.0, spin_radps=250.0)
-    else:
-        import numpy as np
-
-        from mcrun.engine.backend import simulate_batch
-        from mcrun.engine.schema import N_INPUT
-
-        simulate_batch(np.zeros((0, N_INPUT)))
-
-
-def _compile_if_needed(kind):
+def _compile_if_needed(ground):
     """When the command's kernel is not in numba's on-disk cache yet (the first run after an
     install or an upgrade compiles it, which takes a while), compile it before the command
     starts, saying so on stderr with the time it took: a run's rate is then its own."""
-    if _kernel_cached(kind) is not False:
+    if _kernel_cached(ground) is not False:
         return
+    from mcrun.engine.warmup import warm_up
+
     print(
         "mcrun: compiling the kernels (first run after install; cached for the next runs)",
         file=sys.stderr,
         flush=True,
     )
-    started = time.perf_counter()
-    _compile(kind)
-    print(f"mcrun: compiled the kernels in {time.perf_counter() - started:.0f} s", file=sys.stderr)
+    seconds = sum(done.seconds for done in warm_up((ground,)))
+    print(f"mcrun: compiled the kernels in {seconds:.0f} s", file=sys.stderr)
 
 
 # --- running a command -------------------------------------------------------------------------
