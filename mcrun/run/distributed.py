@@ -98,8 +98,8 @@ import pyarrow.parquet as pq
 
 from mcrun import exits
 from mcrun import status as status_codes
-from mcrun.api import InputError
 from mcrun.engine.backend import simulate_batch
+from mcrun.quantities import InputError
 from mcrun.results import location, output, stats
 from mcrun.results.output import SHOTS_DIR, SUCCESS_FILE, TRAJECTORIES_DIR
 from mcrun.results.reader import read_shots  # a Dask run's shots, as the local file reads

@@ -25,9 +25,9 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from mcrun.api import InputError
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import N_INPUT, N_OUTCOME
+from mcrun.quantities import InputError
 from mcrun.results import output, stats
 from mcrun.run import plan, sampling
 
