@@ -19,7 +19,7 @@ import pytest
 from mcrun import status as status_codes
 from mcrun.cli import main
 from mcrun.hole.osm import ATTRIBUTION
-from mcrun.report import hole_plots, plots
+from mcrun.report import hole_plots, run_view, style
 from mcrun.report import html as report
 from mcrun.results import output, stats
 from mcrun.run.local import run_scenario
@@ -108,13 +108,13 @@ def test_a_hole_run_adds_the_hole_figure_and_a_plane_run_is_unchanged(
     for path in out.iterdir():
         image = imread(path)
         kind = path.stem.split("-")[-1] if path.stem.startswith("point") else path.stem
-        width_in, height_in = plots.FIGURE_SIZES_IN[kind]
+        width_in, height_in = style.FIGURE_SIZES_IN[kind]
         assert image.shape[:2] == (round(height_in * DPI), round(width_in * DPI)), path.name
         assert_drawn(image[..., :3])
 
 
 def figure_of(run_dir, point):
-    run = plots.open_run(run_dir)
+    run = run_view.open_run(run_dir)
     row = run.summary.loc[run.summary["point"] == point].iloc[0].to_dict()
     sample = hole_plots.read_hole_shots(run, point)
     return run, row, sample, hole_plots.hole_figure(run, row, sample)
@@ -176,7 +176,7 @@ def test_the_hole_figure_draws_the_shots_the_ellipses_and_the_shares(runs, point
 
 
 def test_a_hole_that_cannot_be_rebuilt_is_drawn_without_its_map(runs):
-    run = plots.open_run(runs["library"])
+    run = run_view.open_run(runs["library"])
     run.provenance["scenario_path"] = "/nowhere/par3-over-water.toml"
     hole, aim, reason = hole_plots.hole_of(run)
     assert hole is None and aim is None and "riverside-2.toml" in reason

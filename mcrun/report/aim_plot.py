@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from mcrun.report.hole_map import draw_hole
-from mcrun.report.plots import png_bytes, require_matplotlib
+from mcrun.report.style import png_bytes, require_matplotlib
 from mcrun.run import aim
 
 FIGURE_SIZE_IN = (13.0, 7.0)

@@ -9,7 +9,7 @@ lateral across the page, + right; downrange up the page, as the position plots).
 import numpy as np
 
 from mcrun.hole.zones import ZONE_KINDS
-from mcrun.report.plots import require_matplotlib
+from mcrun.report.style import require_matplotlib
 
 ZONE_COLOURS = {
     "rough": "#4f7d3a",

@@ -30,10 +30,11 @@ import numpy as np
 from mcrun import status as status_codes
 from mcrun.hole.osm import ATTRIBUTION
 from mcrun.hole.zones import ZONE_KINDS
-from mcrun.report import plots
+from mcrun.report import style
+from mcrun.report.run_view import BATCH_ROWS, SCATTER_MAX_SHOTS, ellipse_extent, span
 from mcrun.results import stats
 
-HOLE_DOTS_PER_POINT = plots.SCATTER_MAX_SHOTS
+HOLE_DOTS_PER_POINT = SCATTER_MAX_SHOTS
 HOLE_ELLIPSE_LEVELS = (50, 95)
 ZOOM_PAD = 0.15  # share of the shots' and the green's span added on each side
 ZOOM_MIN_PAD_M = 8.0
@@ -123,7 +124,7 @@ def read_hole_shots(run, point, limit=HOLE_DOTS_PER_POINT):
     none) and ``status``."""
     parts = {"landing": [], "final": [], "status": []}
     taken = 0
-    for batch in run.folder.shot_batches(point, _HOLE_SHOT_COLUMNS, plots.BATCH_ROWS):
+    for batch in run.folder.shot_batches(point, _HOLE_SHOT_COLUMNS, BATCH_ROWS):
         landed = np.isfinite(batch["carry_m"]) & np.isfinite(batch["carry_lateral_m"])
         keep = np.flatnonzero(landed)[: limit - taken]
         parts["landing"].append(np.column_stack([batch["carry_m"], batch["carry_lateral_m"]])[keep])
@@ -183,7 +184,7 @@ def hole_view(row, shots, hole):
     xs += list(xy[:, 0])  # every shot that ended in a penalty area, out of bounds, off the map
     ys += list(xy[:, 1])
     a, b, angle = (row[f"ellipse95_{f}"] for f in ("semi_major_m", "semi_minor_m", "angle_deg"))
-    dx, dy = plots._ellipse_extent(a, b, angle)
+    dx, dy = ellipse_extent(a, b, angle)
     mx, my = row["final_x_m_mean"], row["final_y_m_mean"]
     xs += [mx - dx, mx + dx, row["target_x_m"]]
     ys += [my - dy, my + dy, row["target_y_m"]]
@@ -196,7 +197,7 @@ def hole_view(row, shots, hole):
             ys += [box[2], box[3]]
     spans = []
     for values in (xs, ys):
-        lo, hi = plots._span(values, pad=0.0)
+        lo, hi = span(values, pad=0.0)
         pad = max(ZOOM_PAD * (hi - lo), ZOOM_MIN_PAD_M)
         spans.append((lo - pad, hi + pad))
     return tuple(spans)
@@ -209,7 +210,7 @@ def hole_figure(run, row, shots):
     """The hole map of one point with its landing and finish clouds, the 50 % and 95 %
     ellipses of the finish, the pin, the aim line and the zone shares."""
     hole, aim_rad, reason = hole_of(run)
-    fig = plots._figure("hole", run, "where the balls land and finish on the hole", row)
+    fig = style.new_figure("hole", run, "where the balls land and finish on the hole", row)
     ax, side = fig.subplots(1, 2, width_ratios=(2.1, 1.0))
     if hole is not None:
         from mcrun.report.hole_map import draw_hole
@@ -243,7 +244,7 @@ def hole_figure(run, row, shots):
         landing[:, 1],
         landing[:, 0],
         s=size,
-        color=plots.FLIGHT_COLOUR,
+        color=style.FLIGHT_COLOUR,
         alpha=alpha,
         lw=0,
         rasterized=True,
@@ -253,7 +254,7 @@ def hole_figure(run, row, shots):
         final[ok, 1],
         final[ok, 0],
         s=size,
-        color=plots.RUN_COLOUR,
+        color=style.RUN_COLOUR,
         alpha=alpha,
         lw=0,
         rasterized=True,
@@ -272,7 +273,7 @@ def hole_figure(run, row, shots):
         )
     centre = (row["final_x_m_mean"], row["final_y_m_mean"])
     for level, (a, b, angle) in finish_ellipses(row).items():
-        plots._draw_ellipse(ax, *centre, a, b, angle, level)
+        style.draw_ellipse(ax, *centre, a, b, angle, level)
     ax.plot(centre[1], centre[0], "+", color="black", ms=11, mew=1.6, zorder=7)
     if aim_rad is not None:
         reach = 2.0 * max(abs(xhi), abs(xlo), abs(yhi), abs(ylo), 1.0)
@@ -292,7 +293,7 @@ def hole_figure(run, row, shots):
             target[0],
             marker="*",
             ms=14,
-            color=plots.TARGET_COLOUR,
+            color=style.TARGET_COLOUR,
             mec="white",
             mew=0.8,
             ls="none",
@@ -304,7 +305,7 @@ def hole_figure(run, row, shots):
     ax.set_title(_map_title(run, row, hole, shots), fontsize=9)
     _legend(fig, ax, hole, shots, ended, (xlo, xhi, ylo, yhi), target_drawn=target_drawn)
     _shares_table(side, row)
-    plots._fit_equal(fig, [ax])
+    style.fit_equal(fig, [ax])
     return fig
 
 
@@ -316,7 +317,7 @@ def _map_title(run, row, hole, shots):
     return (
         f"{name}{length}\nthe first {len(shots['status']):,} shots of the point; 50 % and 95 % "
         f"ellipses of the ok shots' finish\n95 % of the finishes within "
-        f"{plots._fmt(row['distance_r95_m'])} m of the "
+        f"{style.fmt(row['distance_r95_m'])} m of the "
         + ("pin" if hole is not None and _target_is_pin(row, hole) else "target")
     )
 
@@ -345,10 +346,10 @@ def _legend(fig, ax, hole, shots, ended, view, target_drawn):
             Patch(color=to_rgb(ZONE_COLOURS[ZONE_KINDS[k]]), label=ZONE_KINDS[k].replace("_", " "))
             for k in seen
         ]
-    line = plots._legend_line
+    line = style.legend_line
     handles += [
-        line(marker="o", ls="none", color=plots.FLIGHT_COLOUR, label="landing"),
-        line(marker="o", ls="none", color=plots.RUN_COLOUR, label="at rest (ok)"),
+        line(marker="o", ls="none", color=style.FLIGHT_COLOUR, label="landing"),
+        line(marker="o", ls="none", color=style.RUN_COLOUR, label="at rest (ok)"),
     ]
     if ended.any():
         handles.append(
@@ -384,7 +385,7 @@ def _legend(fig, ax, hole, shots, ended, view, target_drawn):
     if target_drawn:
         handles.append(
             line(
-                marker="*", ms=13, color=plots.TARGET_COLOUR, mec="white", ls="none", label="target"
+                marker="*", ms=13, color=style.TARGET_COLOUR, mec="white", ls="none", label="target"
             )
         )
     fig.legend(

@@ -19,15 +19,9 @@ from pathlib import Path
 import numpy as np
 
 from mcrun.report import hole_plots
-from mcrun.report.plots import (
-    SCATTER_MAX_SHOTS,
-    TRAJECTORIES_PER_POINT,
-    PlotError,
-    figures,
-    open_run,
-    png_bytes,
-    require_matplotlib,
-)
+from mcrun.report.plots import figures
+from mcrun.report.run_view import SCATTER_MAX_SHOTS, TRAJECTORIES_PER_POINT, PlotError, open_run
+from mcrun.report.style import png_bytes, require_matplotlib
 from mcrun.results import output, stats
 from mcrun.results.reader import reason_of
 
