@@ -18,9 +18,10 @@ attribution) zoomed on the shots and the green, with
 - beside the map, the share of the shots that finish and land in each zone, with the 95 %
   interval (summary.parquet).
 
-The hole is rebuilt from the run's provenance (the scenario's text and path, the hole file
-found beside the scenario as when it ran). When it cannot be (the files were moved), the figure
-is still drawn, without the map, and says why.
+The map, the pin and each point's aim are what the run recorded (``RunFolder.hole_map`` and
+``RunFolder.geometry``, ``mcrun.results.geometry``): the scenario and the hole's map and
+elevation files are not read again, and may have moved. A run written before runs recorded
+their geometry is still drawn, without the map, and says so (``NO_MAP``).
 """
 
 import math
@@ -51,6 +52,8 @@ _HOLE_SHOT_COLUMNS = (
 ENDED_COLOUR = "#7a0000"
 AIM_COLOUR = "#6a1b9a"
 HOLE_LINE_COLOUR = "white"
+# Why a run on a hole is drawn without its map.
+NO_MAP = "the run records no hole map (it was written before runs recorded their geometry)"
 
 
 def is_hole_run(run):
@@ -59,32 +62,25 @@ def is_hole_run(run):
 
 
 def hole_of(run):
-    """(hole, aim azimuth rad, None) of a hole run, rebuilt from its provenance, or (None,
-    None, reason) when it cannot be; computed once per open run."""
-    if run.hole_state is None:
-        from mcrun.run import scenario as sc
+    """(hole map, None) of a hole run, as it recorded it (a ``geometry.HoleMap``), or (None,
+    reason) when it records none."""
+    hole_map = run.hole_map()
+    return (hole_map, None) if hole_map is not None else (None, NO_MAP)
 
-        text = run.provenance.get("scenario_text")
-        path = run.provenance.get("scenario_path") or "scenario.toml"
-        try:
-            if not text:
-                raise ValueError("the run's provenance has no scenario text")
-            scenario = sc.loads(text, path)
-            if scenario.hole is None:
-                raise ValueError("the run's scenario has no [hole]")
-            run.hole_state = (scenario.hole, float(scenario.aim_rad), None)
-        except Exception as err:  # any reason the files are not there as they were
-            reason = str(err).splitlines()[0] if str(err) else type(err).__name__
-            run.hole_state = (None, None, reason)
-    return run.hole_state
+
+def aim_of(run, point):
+    """The aim (rad, + right of the line to the pin) ``point`` was played with, as the run
+    recorded it; None when it records none."""
+    geometry = run.geometry
+    return None if geometry is None else geometry.aim_rad(point)
 
 
 def attribution_of(run):
-    """The attribution of the run's map: the rebuilt hole's, else the OSM one when the
+    """The attribution of the run's map: the recorded hole's, else the OSM one when the
     scenario names a map (the zones come from it), else None."""
-    hole, _, _ = hole_of(run)
-    if hole is not None:
-        return hole.attribution
+    hole_map, _ = hole_of(run)
+    if hole_map is not None:
+        return hole_map.facts.attribution
     text = run.provenance.get("scenario_text") or ""
     return ATTRIBUTION if "[hole]" in text else None
 
@@ -151,24 +147,6 @@ def finish_ellipses(row):
     return out
 
 
-def _green_box(hole):
-    """(x_min, x_max, y_min, y_max) of the green that holds the pin (the nearest green)."""
-    best = None
-    px, py = hole.pin_xy
-    for kind, polygon in hole.zones:
-        if kind != "green" or not polygon:
-            continue
-        xy = np.concatenate(polygon)
-        box = (xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max())
-        gap = math.hypot(
-            max(box[0] - px, 0.0, px - box[1]),
-            max(box[2] - py, 0.0, py - box[3]),
-        )
-        if best is None or gap < best[0]:
-            best = (gap, box)
-    return None if best is None else best[1]
-
-
 def hole_view(row, shots, hole):
     """((downrange lo, hi), (lateral lo, hi)) of the map: the sampled shots (1-99 %), the
     95 % ellipse, the green that holds the pin and the pin, plus a margin."""
@@ -191,7 +169,7 @@ def hole_view(row, shots, hole):
     if hole is not None:
         xs.append(hole.pin_xy[0])
         ys.append(hole.pin_xy[1])
-        box = _green_box(hole)
+        box = hole.facts.green_box_m
         if box is not None:
             xs += [box[0], box[1]]
             ys += [box[2], box[3]]
@@ -209,7 +187,8 @@ def hole_view(row, shots, hole):
 def hole_figure(run, row, shots):
     """The hole map of one point with its landing and finish clouds, the 50 % and 95 %
     ellipses of the finish, the pin, the aim line and the zone shares."""
-    hole, aim_rad, reason = hole_of(run)
+    hole, reason = hole_of(run)
+    aim_rad = aim_of(run, int(row["point"]))
     fig = style.new_figure("hole", run, "where the balls land and finish on the hole", row)
     ax, side = fig.subplots(1, 2, width_ratios=(2.1, 1.0))
     if hole is not None:
@@ -224,7 +203,7 @@ def hole_figure(run, row, shots):
         ax.text(
             0.5,
             0.5,
-            f"the hole map could not be rebuilt:\n{reason}",
+            f"no map:\n{reason}",
             transform=ax.transAxes,
             ha="center",
             va="center",
@@ -310,10 +289,11 @@ def hole_figure(run, row, shots):
 
 
 def _map_title(run, row, hole, shots):
-    name = (hole.name or hole.source) if hole is not None else "the hole"
-    if hole is not None and hole.par is not None:
-        name += f", par {hole.par}"
-    length = f", {hole.length_m:.0f} m tee to pin" if hole is not None else ""
+    facts = None if hole is None else hole.facts
+    name = (facts.name or facts.source) if facts is not None else "the hole"
+    if facts is not None and facts.par is not None:
+        name += f", par {facts.par}"
+    length = f", {facts.length_m:.0f} m tee to pin" if facts is not None else ""
     return (
         f"{name}{length}\nthe first {len(shots['status']):,} shots of the point; 50 % and 95 % "
         f"ellipses of the ok shots' finish\n95 % of the finishes within "
@@ -336,14 +316,15 @@ def _legend(fig, ax, hole, shots, ended, view, target_drawn):
 
     handles = []
     if hole is not None:
-        t = hole.terrain()
+        t = hole
+        kinds = hole.zone_kinds
         xlo, xhi, ylo, yhi = view
         ny, nx = t.zone.shape
         i0, i1 = (int(np.clip((v - t.y0_m) / t.cell_m, 0, ny)) for v in (ylo, yhi))
         j0, j1 = (int(np.clip((v - t.x0_m) / t.cell_m, 0, nx)) for v in (xlo, xhi))
         seen = np.unique(t.zone[i0 : i1 + 1, j0 : j1 + 1])
         handles += [
-            Patch(color=to_rgb(ZONE_COLOURS[ZONE_KINDS[k]]), label=ZONE_KINDS[k].replace("_", " "))
+            Patch(color=to_rgb(ZONE_COLOURS[kinds[k]]), label=kinds[k].replace("_", " "))
             for k in seen
         ]
     line = style.legend_line
@@ -370,7 +351,7 @@ def _legend(fig, ax, hole, shots, ended, view, target_drawn):
             line(marker="^", color="red", mec="black", ms=9, ls="none", label="pin"),
             line(color=AIM_COLOUR, ls="-.", lw=1.2, label="aim line from the tee"),
         ]
-        if hole.line_xy is not None:
+        if hole.facts.line_xy is not None:
             from matplotlib.patheffects import withStroke
 
             handles.append(

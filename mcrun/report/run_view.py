@@ -1,7 +1,9 @@
 """A finished run folder opened for its pictures (``Run``, ``open_run``), and what the plots
 read of one point: its ok shots binned or as dots (``PointShots``, ``read_point_shots``) and a
 sample of its paths (``sample_trajectories``). How much is read, and how, is said in
-``mcrun.report.plots``.
+``mcrun.report.plots``. What a run recorded is all a picture needs: the scenario, its
+question, and its geometry and hole map (``mcrun.results.geometry``); nothing is rebuilt from
+the scenario's files.
 
 The axes' ranges come from summary.parquet's percentiles (``span``, ``position_limits``), so
 that a point is read once, batch by batch, whatever its number of shots.
@@ -18,7 +20,6 @@ import pandas as pd
 from mcrun import status as status_codes
 from mcrun.api import InputError
 from mcrun.results import output, reader, stats
-from mcrun.run.scenario import question_of
 
 # How the plots read a run (see ``mcrun.report.plots``).
 SCATTER_MAX_SHOTS = 5000
@@ -64,9 +65,15 @@ class Run:
     folder: reader.RunFolder
     summary: pd.DataFrame
     sweep_keys: list
-    # A run on a hole: (hole, aim azimuth rad, reason it could not be rebuilt), once
-    # ``hole_plots.hole_of`` has read it.
-    hole_state: tuple | None = None
+
+    @property
+    def geometry(self):
+        """What the run recorded of its geometry (``RunFolder.geometry``), or None."""
+        return self.folder.geometry
+
+    def hole_map(self):
+        """The map of the run's hole as it recorded it (``RunFolder.hole_map``), or None."""
+        return self.folder.hole_map()
 
     @property
     def path(self):
@@ -98,7 +105,7 @@ class Run:
 
     @property
     def question(self):
-        return question_of(self.provenance.get("scenario_text") or "")
+        return output.question_of(self.provenance)
 
     @property
     def explicit_target(self):
