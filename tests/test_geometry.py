@@ -197,9 +197,11 @@ def test_a_plane_run_records_its_targets_and_no_map(tmp_path):
 
 
 def test_the_aim_table_carries_the_geometry(tmp_path):
+    pytest.importorskip("matplotlib")
     out = tmp_path / "aims.parquet"
     argv = ["aim", "par3-over-water", "-n", str(N), "--offsets", "-3,0,3", "-o", str(out)]
-    assert main(argv) == 0
+    assert main([*argv, "--plot", str(tmp_path / "aims.png")]) == 0
+    assert (tmp_path / "aims.png").stat().st_size > 0
     provenance = output.read_provenance(out)
     assert provenance["file"] == "aim" and provenance["n"] == N
     assert provenance["baseline"] == aim.TOUR_BASELINE

@@ -52,7 +52,7 @@ def _cmd_aim(args):
         aim.write_table(result, destination, baseline=args.baseline, force=args.force)
         print(f"wrote {destination}")
     if args.plot is not None:
-        aim_plot.write_aim_plot(result, args.plot)
+        aim_plot.write_aim_plot(result, aim.patterns(result), args.plot)
         print(f"wrote {args.plot}")
     return 0
 

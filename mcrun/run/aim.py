@@ -256,6 +256,17 @@ def write_table(result, path, baseline=None, force=False):
     return Path(path)
 
 
+def patterns(result):
+    """The finishes (x, y) of the best club's shots (``AimSearch.best``) at its best aim and at
+    the reference aim, as the search flew them: {"best": (x, y), "reference": (x, y)}."""
+    club, k = result.best()
+    c = result.clubs.index(club)
+    return {
+        "best": finishes(result, c, club.offsets_m[k]),
+        "reference": finishes(result, c, club.reference_m),
+    }
+
+
 def finishes(result, club, offset_m):
     """(x, y) finish positions (hole frame, m) of the shots of ``club`` (an index of
     ``result.clubs``) aimed ``offset_m`` right of the pin: its shots flown again, as the
