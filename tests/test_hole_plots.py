@@ -19,7 +19,7 @@ import pytest
 from mcrun import status as status_codes
 from mcrun.cli import main
 from mcrun.hole.osm import ATTRIBUTION
-from mcrun.report import hole_plots, plots
+from mcrun.report import hole_plots, run_view, style
 from mcrun.report import html as report
 from mcrun.results import output, stats
 from mcrun.run.local import run_scenario
@@ -108,13 +108,13 @@ def test_a_hole_run_adds_the_hole_figure_and_a_plane_run_is_unchanged(
     for path in out.iterdir():
         image = imread(path)
         kind = path.stem.split("-")[-1] if path.stem.startswith("point") else path.stem
-        width_in, height_in = plots.FIGURE_SIZES_IN[kind]
+        width_in, height_in = style.FIGURE_SIZES_IN[kind]
         assert image.shape[:2] == (round(height_in * DPI), round(width_in * DPI)), path.name
         assert_drawn(image[..., :3])
 
 
 def figure_of(run_dir, point):
-    run = plots.open_run(run_dir)
+    run = run_view.open_run(run_dir)
     row = run.summary.loc[run.summary["point"] == point].iloc[0].to_dict()
     sample = hole_plots.read_hole_shots(run, point)
     return run, row, sample, hole_plots.hole_figure(run, row, sample)
@@ -147,10 +147,11 @@ def test_the_hole_figure_draws_the_shots_the_ellipses_and_the_shares(runs, point
     assert ellipses[1].angle == pytest.approx(90.0 - row["ellipse95_angle_deg"])
     assert ellipses[1].center == pytest.approx((row["final_y_m_mean"], row["final_x_m_mean"]))
     # the view: the pin, the green and every shot that ended are in it
-    hole, aim_rad, reason = hole_plots.hole_of(run)
+    hole, reason = hole_plots.hole_of(run)
+    aim_rad = hole_plots.aim_of(run, point)
     assert reason is None and aim_rad == pytest.approx(np.arctan2(12.0, 160.0))
     (y0, y1), (x0, x1) = ax.get_xlim(), ax.get_ylim()
-    gx0, gx1, gy0, gy1 = hole_plots._green_box(hole)
+    gx0, gx1, gy0, gy1 = hole.facts.green_box_m
     assert x0 < gx0 < hole.pin_xy[0] < gx1 < x1 and y0 < gy0 < gy1 < y1
     ends = shots.loc[ended]
     assert ((ends["final_x_m"] > x0) & (ends["final_x_m"] < x1)).all()
@@ -175,16 +176,19 @@ def test_the_hole_figure_draws_the_shots_the_ellipses_and_the_shares(runs, point
     assert set(rows) == {z.replace("_", " ") for z in hole_plots.ZONES}
 
 
-def test_a_hole_that_cannot_be_rebuilt_is_drawn_without_its_map(runs):
-    run = plots.open_run(runs["library"])
-    run.provenance["scenario_path"] = "/nowhere/par3-over-water.toml"
-    hole, aim, reason = hole_plots.hole_of(run)
-    assert hole is None and aim is None and "riverside-2.toml" in reason
+def test_a_hole_run_that_records_no_map_is_drawn_without_it(runs):
+    """A run written before runs recorded their geometry: no map, the figure and the page say
+    why, the map's attribution is still given (the scenario names a map)."""
+    run = run_view.open_run(runs["library"])
+    for key in ("geometry", "hole_map"):
+        del run.provenance[key]
+    hole, reason = hole_plots.hole_of(run)
+    assert hole is None and hole_plots.aim_of(run, 0) is None and reason == hole_plots.NO_MAP
     row = run.summary.iloc[0].to_dict()
     fig = hole_plots.hole_figure(run, row, hole_plots.read_hole_shots(run, 0))
-    assert any("could not be rebuilt" in t.get_text() for t in fig.axes[0].texts)
+    assert any(hole_plots.NO_MAP in t.get_text() for t in fig.axes[0].texts)
     page = report.report_html(run, dpi=DPI)
-    assert f"Map data: {ATTRIBUTION}." in page and "could not be rebuilt" in page
+    assert f"Map data: {ATTRIBUTION}." in page and "No hole map" in page
 
 
 # --- mcrun report -------------------------------------------------------------------------------

@@ -22,8 +22,8 @@ import pyarrow.parquet as pq
 import pytest
 
 from mcrun.cli import main
+from mcrun.report import figures, plots, run_view, style
 from mcrun.report import html as report
-from mcrun.report import plots
 from mcrun.results import output, reader, stats
 from mcrun.run import scenario as sc
 from mcrun.run.local import run_scenario
@@ -32,7 +32,7 @@ pytest.importorskip("matplotlib")  # the optional extra mcrun[plot]
 
 LIBRARY = Path(__file__).resolve().parent.parent / "scenarios"
 DPI = 40
-SINGLE_N = plots.SCATTER_MAX_SHOTS + 1000  # above the dot limit: drawn as a density
+SINGLE_N = run_view.SCATTER_MAX_SHOTS + 1000  # above the dot limit: drawn as a density
 SWEEP_N = 1200
 
 GROUPS_TOML = """\
@@ -152,7 +152,7 @@ def test_every_png_has_its_size_and_is_not_blank(plotted, name):
     folder, _ = plotted[name]
     for path in sorted(folder.iterdir()):
         image = imread(path)
-        width_in, height_in = plots.FIGURE_SIZES_IN[kind_of(path.name)]
+        width_in, height_in = style.FIGURE_SIZES_IN[kind_of(path.name)]
         assert image.shape[:2] == (round(height_in * DPI), round(width_in * DPI)), path.name
         assert_drawn(image[..., :3])
 
@@ -182,11 +182,11 @@ def ok_shots(run_dir, point, columns):
 def test_histograms_count_every_ok_shot(runs, name, point):
     """The binned histograms equal numpy's over the whole column, and every ok shot is in a
     bin or counted beyond the axis."""
-    run = plots.open_run(runs[name])
-    drawn = plots.read_point_shots(run, point)
-    shots = ok_shots(runs[name], point, [q for q, _ in plots.DISTANCES])
+    run = run_view.open_run(runs[name])
+    drawn = run_view.read_point_shots(run, point)
+    shots = ok_shots(runs[name], point, [q for q, _ in run_view.DISTANCES])
     assert drawn.n_ok == len(shots) == run.summary.loc[point, "n_ok"]
-    for q, _ in plots.DISTANCES:
+    for q, _ in run_view.DISTANCES:
         counts, _ = np.histogram(shots[q].to_numpy(), bins=drawn.edges[q])
         np.testing.assert_array_equal(drawn.hist[q], counts)
         assert drawn.hist[q].sum() + drawn.outside[q] == len(shots)
@@ -195,12 +195,12 @@ def test_histograms_count_every_ok_shot(runs, name, point):
 def test_a_large_point_is_binned_and_a_small_one_drawn_shot_by_shot(runs):
     """Above SCATTER_MAX_SHOTS the positions are a 2-D histogram of every ok shot; at or below
     it, every position is kept, in the file's order."""
-    single = plots.read_point_shots(plots.open_run(runs["single"]), 0)
+    single = run_view.read_point_shots(run_view.open_run(runs["single"]), 0)
     assert not single.scatter
     for key in ("landing", "final"):
         assert single.density[key].sum() + single.beyond[key] == single.n_ok == SINGLE_N
         assert single.positions(key).shape == (0, 2)
-    sweep = plots.read_point_shots(plots.open_run(runs["sweep"]), 1)
+    sweep = run_view.read_point_shots(run_view.open_run(runs["sweep"]), 1)
     assert sweep.scatter
     shots = ok_shots(runs["sweep"], 1, ["final_x_m", "final_y_m"])
     np.testing.assert_array_equal(sweep.positions("final"), shots[["final_x_m", "final_y_m"]])
@@ -210,9 +210,9 @@ def test_a_large_point_is_binned_and_a_small_one_drawn_shot_by_shot(runs):
 def test_ellipses_are_the_summarys(runs, name):
     """The final position's 68 % and 95 % ellipses computed from the shots as they are read
     equal summary.parquet's (the landing ellipses are computed the same way)."""
-    run = plots.open_run(runs[name])
+    run = run_view.open_run(runs[name])
     for row in run.summary.to_dict("records"):
-        drawn = plots.read_point_shots(run, row["point"])
+        drawn = run_view.read_point_shots(run, row["point"])
         for level in stats.ELLIPSE_LEVELS:
             a, b, angle = drawn.ellipse("final", level)
             assert a == pytest.approx(row[f"ellipse{level}_semi_major_m"], rel=1e-9)
@@ -222,10 +222,10 @@ def test_ellipses_are_the_summarys(runs, name):
 
 def test_trajectories_are_the_first_complete_paths_of_the_point(runs):
     """The sample is the first K shots of the point in trajectories.parquet, each complete."""
-    run = plots.open_run(runs["sweep"])
+    run = run_view.open_run(runs["sweep"])
     table = pd.read_parquet(runs["sweep"] / output.TRAJECTORIES_FILE)
     for point in (0, 1):
-        paths = plots.sample_trajectories(run, point, limit=5)
+        paths = run_view.sample_trajectories(run, point, limit=5)
         rows = table[table["point"] == point]
         assert [s for s, *_ in paths] == list(dict.fromkeys(rows["shot"]))[:5]
         for shot, x, y, z, phase in paths:
@@ -247,8 +247,8 @@ def test_shots_are_read_a_row_group_and_the_drawn_columns_at_a_time(runs, monkey
             return super().iter_batches(*args, **kwargs)
 
     monkeypatch.setattr(pq, "ParquetFile", Recording)
-    run = plots.open_run(runs["sweep"])
-    drawn = plots.read_point_shots(run, 1)
+    run = run_view.open_run(runs["sweep"])
+    drawn = run_view.read_point_shots(run, 1)
     assert drawn.n_ok == run.summary.loc[1, "n_ok"]
     metadata = pq.read_metadata(runs["sweep"] / output.SHOTS_FILE)
     # Small points share row groups (output.ROW_GROUP_ROWS): those that may hold point 1.
@@ -261,28 +261,28 @@ def test_shots_are_read_a_row_group_and_the_drawn_columns_at_a_time(runs, monkey
     ]
     assert of_point_1
     assert [groups for groups, _ in calls] == [[g] for g in of_point_1]
-    assert {columns for _, columns in calls} == {plots._SHOT_COLUMNS}
+    assert {columns for _, columns in calls} == {run_view.SHOT_COLUMNS}
 
 
 def test_the_sweep_is_laid_out_against_its_parameter():
     """A numeric sweep with a unit is an x axis with that unit; text values are categories."""
-    assert plots._numeric(["909.8 rad/s", "1124.6 rad/s"])[1] == "rad/s"
-    np.testing.assert_array_equal(plots._numeric(["5 m/s", "10 m/s"])[0], [5.0, 10.0])
-    np.testing.assert_array_equal(plots._numeric([1.5, 2])[0], [1.5, 2.0])
-    assert plots._numeric(["5 m/s", "10 mph"]) is None
-    assert plots._numeric(["green", "firm_green"]) is None
+    assert figures._numeric(["909.8 rad/s", "1124.6 rad/s"])[1] == "rad/s"
+    np.testing.assert_array_equal(figures._numeric(["5 m/s", "10 m/s"])[0], [5.0, 10.0])
+    np.testing.assert_array_equal(figures._numeric([1.5, 2])[0], [1.5, 2.0])
+    assert figures._numeric(["5 m/s", "10 mph"]) is None
+    assert figures._numeric(["green", "firm_green"]) is None
 
 
 def test_groups_and_sweeps_are_laid_out(runs):
-    groups = plots.open_run(runs["groups"])
+    groups = run_view.open_run(runs["groups"])
     assert groups.explicit_target
-    x_label, values, ticks, series = plots.sweep_layout(groups)
+    x_label, values, ticks, series = figures.sweep_layout(groups)
     assert (x_label, values, ticks, series) == ("group", None, ["gap wedge", "sand wedge"],
                                                 [("", [0, 1])])  # fmt: skip
-    sweep = plots.open_run(runs["sweep"])
+    sweep = run_view.open_run(runs["sweep"])
     assert sweep.sweep_keys == ["turf.preset"]
     assert not sweep.explicit_target
-    assert plots.sweep_layout(sweep)[:3] == ("turf.preset", None, ["green", "firm_green"])
+    assert figures.sweep_layout(sweep)[:3] == ("turf.preset", None, ["green", "firm_green"])
 
 
 # --- mcrun report ------------------------------------------------------------------------------
@@ -304,7 +304,7 @@ def test_report_references_nothing_outside_itself(page):
 
 
 def test_report_embeds_every_plot_at_its_size(page, runs):
-    run = plots.open_run(runs["sweep"])
+    run = run_view.open_run(runs["sweep"])
     images = re.findall(r'src="data:image/png;base64,([A-Za-z0-9+/=]+)"', page)
     assert len(images) == len(expected_files(run.points, True))
     for data in images:
@@ -312,12 +312,12 @@ def test_report_embeds_every_plot_at_its_size(page, runs):
         assert png[:8] == b"\x89PNG\r\n\x1a\n"
         width, height = struct.unpack(">II", png[16:24])
         assert (width, height) in {
-            (round(w * DPI), round(h * DPI)) for w, h in plots.FIGURE_SIZES_IN.values()
+            (round(w * DPI), round(h * DPI)) for w, h in style.FIGURE_SIZES_IN.values()
         }
 
 
 def test_report_holds_the_scenario_the_summary_and_the_provenance(page, runs):
-    run = plots.open_run(runs["sweep"])
+    run = run_view.open_run(runs["sweep"])
     text = run.provenance["scenario_text"]
     assert f"<pre>{html.escape(text)}</pre>" in page
     assert html.escape(run.question) in page
@@ -407,5 +407,5 @@ def test_the_report_reads_the_question_as_the_scenario_does(tmp_path):
         tmp_path, None, None, str(tmp_path), "file", pd.DataFrame(), {"scenario_text": text},
         [], False,
     )  # fmt: skip
-    run = plots.Run(folder, pd.DataFrame(), [])
+    run = run_view.Run(folder, pd.DataFrame(), [])
     assert run.question == "from the comment?"

@@ -77,6 +77,9 @@ def test_both_layouts_open_alike(runs):
     assert mine.shot_columns[:2] == ["point", "group"]
     pd.testing.assert_frame_equal(mine.summary, theirs.summary, check_exact=True)
     assert mine.provenance["backend"] == "local" and theirs.provenance["backend"] == "dask"
+    # the same geometry recorded: a plane, each group's target (150 m, 0)
+    assert mine.geometry == theirs.geometry and mine.geometry.surface == "plane"
+    assert mine.geometry.targets_xy_m == ((150.0, 0.0), (150.0, 0.0))
     pd.testing.assert_frame_equal(mine.shots(), theirs.shots(), check_exact=True)
     columns = ["shot", "group", "carry_m"]
     pd.testing.assert_frame_equal(mine.shots(columns), theirs.shots(columns), check_exact=True)

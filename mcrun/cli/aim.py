@@ -1,38 +1,28 @@
 """``mcrun aim``: where to aim each club of a scenario on its hole (``mcrun.run.aim``), by
 expected strokes (``mcrun.strokes``), with common random numbers; a table of every aim flown
-(Parquet) and a picture (``mcrun.report.aim_plot``) on request."""
+(Parquet, written by ``aim.write_table`` with its provenance and geometry) and a picture
+(``mcrun.report.aim_plot``) on request. Here the arguments are read and the results said."""
 
 import math
 from pathlib import Path
 
-import pandas as pd
-
-from mcrun.api import InputError
 from mcrun.cli import Interrupted
-from mcrun.results import output
+from mcrun.quantities import InputError
 from mcrun.run import aim
-from mcrun.run import scenario as scenario_module
-from mcrun.run.plan import positive_int, with_seed
+from mcrun.run.plan import positive_int
 from mcrun.strokes import BaselineError, load_baseline
 
 
 def _cmd_aim(args):
-    scenario = scenario_module.load(scenario_module.find(args.scenario))
+    scenario = aim.load_scenario(args.scenario, args.seed)
     n = positive_int(args.n, "n")
-    if args.seed is not None:
-        scenario = with_seed(scenario, positive_int(args.seed, "seed", minimum=0))
-    if scenario.hole is None:
-        raise InputError(f"{scenario.path}: an aim search needs a hole ([hole] in the scenario)")
-    destination = None if args.output is None else Path(args.output)
-    if destination is not None:
-        if destination.suffix.lower() not in (".parquet", ".pq"):
-            raise InputError(f"-o {args.output}: the output must be a .parquet file")
-        if destination.exists() and not args.force:
-            raise InputError(f"-o {args.output}: already exists: use --force to replace it")
+    destination = None
+    if args.output is not None:
+        destination = aim.check_table_path(args.output, args.force)
     if args.plot is not None:
-        from mcrun.report import aim_plot, plots
+        from mcrun.report import aim_plot, style
 
-        plots.require_matplotlib("aim --plot")
+        style.require_matplotlib("aim --plot")
         if Path(args.plot).exists() and not args.force:
             raise InputError(f"--plot {args.plot}: already exists: use --force to replace it")
     baseline = None
@@ -59,18 +49,10 @@ def _cmd_aim(args):
         raise Interrupted("nothing was written") from None
     print(_report(result))
     if destination is not None:
-        provenance = {
-            "file": "aim", "scenario_name": scenario.name, "scenario_path": str(scenario.path),
-            "scenario_text": scenario.text, "seed": scenario.seed, "n": n,
-            "baseline": "PGA Tour (Broadie 2012)" if baseline is None else args.baseline,
-            "versions": output.versions(),
-        }  # fmt: skip
-        output.write_table(
-            destination, pd.DataFrame(aim.table(result)), output.encode_provenance(provenance)
-        )
+        aim.write_table(result, destination, baseline=args.baseline, force=args.force)
         print(f"wrote {destination}")
     if args.plot is not None:
-        aim_plot.write_aim_plot(result, args.plot)
+        aim_plot.write_aim_plot(result, aim.patterns(result), args.plot)
         print(f"wrote {args.plot}")
     return 0
 

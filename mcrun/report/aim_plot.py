@@ -1,21 +1,22 @@
 """The picture of an aim search (``mcrun.run.aim``): expected strokes against the aim for each
 club, and on the hole's map the finish pattern of the best aim beside that of the reference
-aim (the pin, or the scenario's aim)."""
+aim (the pin, or the scenario's aim), as ``aim.patterns`` flew them again."""
 
 import math
 
 import numpy as np
 
 from mcrun.report.hole_map import draw_hole
-from mcrun.report.plots import png_bytes, require_matplotlib
-from mcrun.run import aim
+from mcrun.report.style import png_bytes, require_matplotlib
 
 FIGURE_SIZE_IN = (13.0, 7.0)
 PATTERN_DOTS = 2000
 
 
-def aim_figure(result):
-    """The Figure of ``result`` (an ``aim.AimSearch``)."""
+def aim_figure(result, patterns):
+    """The Figure of ``result`` (an ``aim.AimSearch``) and its best club's finishes
+    ``patterns`` (``aim.patterns``: {"best": (x, y), "reference": (x, y)}, m in the hole's
+    frame)."""
     figure_class, canvas_class = require_matplotlib("aim --plot")
     fig = figure_class(figsize=FIGURE_SIZE_IN, layout="constrained")
     canvas_class(fig)
@@ -37,10 +38,9 @@ def aim_figure(result):
     hole = result.scenario.hole
     draw_hole(hole, right)
     club, k = result.best()
-    c = result.clubs.index(club)
     best = club.offsets_m[k]
-    x0, y0 = aim.finishes(result, c, best)
-    xr, yr = aim.finishes(result, c, club.reference_m)
+    x0, y0 = patterns["best"]
+    xr, yr = patterns["reference"]
     dots = slice(0, PATTERN_DOTS)
     right.scatter(yr[dots], xr[dots], s=3, color="0.2", alpha=0.5,
                   label=f"aimed at the reference ({club.reference_m:+.1f} m)")  # fmt: skip
@@ -67,7 +67,7 @@ def aim_figure(result):
     return fig
 
 
-def write_aim_plot(result, path, dpi=120):
+def write_aim_plot(result, patterns, path, dpi=120):
     """Write ``aim_figure`` to ``path`` (PNG)."""
     with open(path, "wb") as f:
-        f.write(png_bytes(aim_figure(result), dpi))
+        f.write(png_bytes(aim_figure(result, patterns), dpi))

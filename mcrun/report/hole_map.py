@@ -2,14 +2,16 @@
 contours when the hole has a ground shape, the tee and the pin, in the hole's frame (metres:
 lateral across the page, + right; downrange up the page, as the position plots).
 
-``draw_hole(hole, ax)`` draws onto an axes so that shot clouds can be drawn over it;
-``write_hole_map`` writes a figure of one hole. matplotlib is optional (``mcrun[plot]``).
+``draw_hole(hole_map, ax)`` draws a ``mcrun.results.geometry.HoleMap`` (what a run recorded of
+its hole: ``RunFolder.hole_map``; of a hole in memory: ``geometry.hole_map_of``) onto an axes
+so that shot clouds can be drawn over it; ``write_hole_map`` writes a figure of one hole.
+matplotlib is optional (``mcrun[plot]``).
 """
 
 import numpy as np
 
-from mcrun.hole.zones import ZONE_KINDS
-from mcrun.report.plots import require_matplotlib
+from mcrun.report.style import require_matplotlib
+from mcrun.results.geometry import HoleMap, hole_map_of
 
 ZONE_COLOURS = {
     "rough": "#4f7d3a",
@@ -24,10 +26,11 @@ ZONE_COLOURS = {
 HOLE_FIGURE_SIZE_IN = (6.0, 9.0)
 
 
-def draw_hole(hole, ax=None):
-    """Draw ``hole`` (a ``mcrun.hole.hole.Hole``) onto ``ax`` (a new figure's when None);
-    return the axes. Horizontal: y (m, + right of the tee-pin line); vertical: x (m, from the
-    tee towards the pin). The map's attribution is written on the axes when it has one."""
+def draw_hole(hole_map, ax=None):
+    """Draw ``hole_map`` (a ``mcrun.results.geometry.HoleMap``, or a ``mcrun.hole.hole.Hole``
+    drawn as a run on it records it) onto ``ax`` (a new figure's when None); return the axes.
+    Horizontal: y (m, + right of the tee-pin line); vertical: x (m, from the tee towards the
+    pin). The map's attribution is written on the axes when it has one."""
     if ax is None:
         figure_class, canvas_class = require_matplotlib("hole")
         fig = figure_class(figsize=HOLE_FIGURE_SIZE_IN, layout="constrained")
@@ -36,10 +39,12 @@ def draw_hole(hole, ax=None):
     from matplotlib.colors import to_rgb
     from matplotlib.patches import Patch
 
-    t = hole.terrain()
+    t = hole_map if isinstance(hole_map, HoleMap) else hole_map_of(hole_map)
+    hole = t.facts
+    kinds = t.zone_kinds
     ny, nx = t.zone.shape
     c = t.cell_m
-    colours = np.array([to_rgb(ZONE_COLOURS[k]) for k in ZONE_KINDS])
+    colours = np.array([to_rgb(ZONE_COLOURS[k]) for k in kinds])
     y_max, x_max = t.y0_m + (ny - 1) * c, t.x0_m + (nx - 1) * c
     ax.imshow(
         colours[t.zone.T],  # rows: x (downrange), columns: y (lateral)
@@ -57,11 +62,12 @@ def draw_hole(hole, ax=None):
         )
         ax.clabel(contours, fontsize=6, fmt="%g m")
     if hole.line_xy is not None:
-        ax.plot(hole.line_xy[:, 1], hole.line_xy[:, 0], color="white", lw=0.8, ls="--")
+        line = np.asarray(hole.line_xy, float)
+        ax.plot(line[:, 1], line[:, 0], color="white", lw=0.8, ls="--")
     ax.plot(0.0, 0.0, marker="s", color="white", mec="black", ms=7, ls="none", label="tee")
     ax.plot(
-        hole.pin_xy[1],
-        hole.pin_xy[0],
+        t.pin_xy[1],
+        t.pin_xy[0],
         marker="^",
         color="red",
         mec="black",
@@ -71,8 +77,7 @@ def draw_hole(hole, ax=None):
     )
     present = np.unique(t.zone)
     handles = [
-        Patch(color=ZONE_COLOURS[ZONE_KINDS[k]], label=ZONE_KINDS[k].replace("_", " "))
-        for k in present
+        Patch(color=ZONE_COLOURS[kinds[k]], label=kinds[k].replace("_", " ")) for k in present
     ]
     ax.legend(
         handles=handles + ax.get_legend_handles_labels()[0],
@@ -111,8 +116,8 @@ def _contour_step_m(span_m):
     return 20.0
 
 
-def write_hole_map(hole, path, dpi=150):
-    """Draw ``hole`` and write the figure to ``path`` (PNG, or what its suffix names)."""
-    ax = draw_hole(hole)
+def write_hole_map(hole_map, path, dpi=150):
+    """Draw ``hole_map`` and write the figure to ``path`` (PNG, or what its suffix names)."""
+    ax = draw_hole(hole_map)
     ax.figure.savefig(path, dpi=dpi)
     return path

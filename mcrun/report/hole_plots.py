@@ -18,9 +18,10 @@ attribution) zoomed on the shots and the green, with
 - beside the map, the share of the shots that finish and land in each zone, with the 95 %
   interval (summary.parquet).
 
-The hole is rebuilt from the run's provenance (the scenario's text and path, the hole file
-found beside the scenario as when it ran). When it cannot be (the files were moved), the figure
-is still drawn, without the map, and says why.
+The map, the pin and each point's aim are what the run recorded (``RunFolder.hole_map`` and
+``RunFolder.geometry``, ``mcrun.results.geometry``): the scenario and the hole's map and
+elevation files are not read again, and may have moved. A run written before runs recorded
+their geometry is still drawn, without the map, and says so (``NO_MAP``).
 """
 
 import math
@@ -30,10 +31,11 @@ import numpy as np
 from mcrun import status as status_codes
 from mcrun.hole.osm import ATTRIBUTION
 from mcrun.hole.zones import ZONE_KINDS
-from mcrun.report import plots
+from mcrun.report import style
+from mcrun.report.run_view import BATCH_ROWS, SCATTER_MAX_SHOTS, ellipse_extent, span
 from mcrun.results import stats
 
-HOLE_DOTS_PER_POINT = plots.SCATTER_MAX_SHOTS
+HOLE_DOTS_PER_POINT = SCATTER_MAX_SHOTS
 HOLE_ELLIPSE_LEVELS = (50, 95)
 ZOOM_PAD = 0.15  # share of the shots' and the green's span added on each side
 ZOOM_MIN_PAD_M = 8.0
@@ -50,6 +52,8 @@ _HOLE_SHOT_COLUMNS = (
 ENDED_COLOUR = "#7a0000"
 AIM_COLOUR = "#6a1b9a"
 HOLE_LINE_COLOUR = "white"
+# Why a run on a hole is drawn without its map.
+NO_MAP = "the run records no hole map (it was written before runs recorded their geometry)"
 
 
 def is_hole_run(run):
@@ -58,32 +62,25 @@ def is_hole_run(run):
 
 
 def hole_of(run):
-    """(hole, aim azimuth rad, None) of a hole run, rebuilt from its provenance, or (None,
-    None, reason) when it cannot be; computed once per open run."""
-    if run.hole_state is None:
-        from mcrun.run import scenario as sc
+    """(hole map, None) of a hole run, as it recorded it (a ``geometry.HoleMap``), or (None,
+    reason) when it records none."""
+    hole_map = run.hole_map()
+    return (hole_map, None) if hole_map is not None else (None, NO_MAP)
 
-        text = run.provenance.get("scenario_text")
-        path = run.provenance.get("scenario_path") or "scenario.toml"
-        try:
-            if not text:
-                raise ValueError("the run's provenance has no scenario text")
-            scenario = sc.loads(text, path)
-            if scenario.hole is None:
-                raise ValueError("the run's scenario has no [hole]")
-            run.hole_state = (scenario.hole, float(scenario.aim_rad), None)
-        except Exception as err:  # any reason the files are not there as they were
-            reason = str(err).splitlines()[0] if str(err) else type(err).__name__
-            run.hole_state = (None, None, reason)
-    return run.hole_state
+
+def aim_of(run, point):
+    """The aim (rad, + right of the line to the pin) ``point`` was played with, as the run
+    recorded it; None when it records none."""
+    geometry = run.geometry
+    return None if geometry is None else geometry.aim_rad(point)
 
 
 def attribution_of(run):
-    """The attribution of the run's map: the rebuilt hole's, else the OSM one when the
+    """The attribution of the run's map: the recorded hole's, else the OSM one when the
     scenario names a map (the zones come from it), else None."""
-    hole, _, _ = hole_of(run)
-    if hole is not None:
-        return hole.attribution
+    hole_map, _ = hole_of(run)
+    if hole_map is not None:
+        return hole_map.facts.attribution
     text = run.provenance.get("scenario_text") or ""
     return ATTRIBUTION if "[hole]" in text else None
 
@@ -123,7 +120,7 @@ def read_hole_shots(run, point, limit=HOLE_DOTS_PER_POINT):
     none) and ``status``."""
     parts = {"landing": [], "final": [], "status": []}
     taken = 0
-    for batch in run.folder.shot_batches(point, _HOLE_SHOT_COLUMNS, plots.BATCH_ROWS):
+    for batch in run.folder.shot_batches(point, _HOLE_SHOT_COLUMNS, BATCH_ROWS):
         landed = np.isfinite(batch["carry_m"]) & np.isfinite(batch["carry_lateral_m"])
         keep = np.flatnonzero(landed)[: limit - taken]
         parts["landing"].append(np.column_stack([batch["carry_m"], batch["carry_lateral_m"]])[keep])
@@ -150,24 +147,6 @@ def finish_ellipses(row):
     return out
 
 
-def _green_box(hole):
-    """(x_min, x_max, y_min, y_max) of the green that holds the pin (the nearest green)."""
-    best = None
-    px, py = hole.pin_xy
-    for kind, polygon in hole.zones:
-        if kind != "green" or not polygon:
-            continue
-        xy = np.concatenate(polygon)
-        box = (xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max())
-        gap = math.hypot(
-            max(box[0] - px, 0.0, px - box[1]),
-            max(box[2] - py, 0.0, py - box[3]),
-        )
-        if best is None or gap < best[0]:
-            best = (gap, box)
-    return None if best is None else best[1]
-
-
 def hole_view(row, shots, hole):
     """((downrange lo, hi), (lateral lo, hi)) of the map: the sampled shots (1-99 %), the
     95 % ellipse, the green that holds the pin and the pin, plus a margin."""
@@ -183,20 +162,20 @@ def hole_view(row, shots, hole):
     xs += list(xy[:, 0])  # every shot that ended in a penalty area, out of bounds, off the map
     ys += list(xy[:, 1])
     a, b, angle = (row[f"ellipse95_{f}"] for f in ("semi_major_m", "semi_minor_m", "angle_deg"))
-    dx, dy = plots._ellipse_extent(a, b, angle)
+    dx, dy = ellipse_extent(a, b, angle)
     mx, my = row["final_x_m_mean"], row["final_y_m_mean"]
     xs += [mx - dx, mx + dx, row["target_x_m"]]
     ys += [my - dy, my + dy, row["target_y_m"]]
     if hole is not None:
         xs.append(hole.pin_xy[0])
         ys.append(hole.pin_xy[1])
-        box = _green_box(hole)
+        box = hole.facts.green_box_m
         if box is not None:
             xs += [box[0], box[1]]
             ys += [box[2], box[3]]
     spans = []
     for values in (xs, ys):
-        lo, hi = plots._span(values, pad=0.0)
+        lo, hi = span(values, pad=0.0)
         pad = max(ZOOM_PAD * (hi - lo), ZOOM_MIN_PAD_M)
         spans.append((lo - pad, hi + pad))
     return tuple(spans)
@@ -208,8 +187,9 @@ def hole_view(row, shots, hole):
 def hole_figure(run, row, shots):
     """The hole map of one point with its landing and finish clouds, the 50 % and 95 %
     ellipses of the finish, the pin, the aim line and the zone shares."""
-    hole, aim_rad, reason = hole_of(run)
-    fig = plots._figure("hole", run, "where the balls land and finish on the hole", row)
+    hole, reason = hole_of(run)
+    aim_rad = aim_of(run, int(row["point"]))
+    fig = style.new_figure("hole", run, "where the balls land and finish on the hole", row)
     ax, side = fig.subplots(1, 2, width_ratios=(2.1, 1.0))
     if hole is not None:
         from mcrun.report.hole_map import draw_hole
@@ -223,7 +203,7 @@ def hole_figure(run, row, shots):
         ax.text(
             0.5,
             0.5,
-            f"the hole map could not be rebuilt:\n{reason}",
+            f"no map:\n{reason}",
             transform=ax.transAxes,
             ha="center",
             va="center",
@@ -243,7 +223,7 @@ def hole_figure(run, row, shots):
         landing[:, 1],
         landing[:, 0],
         s=size,
-        color=plots.FLIGHT_COLOUR,
+        color=style.FLIGHT_COLOUR,
         alpha=alpha,
         lw=0,
         rasterized=True,
@@ -253,7 +233,7 @@ def hole_figure(run, row, shots):
         final[ok, 1],
         final[ok, 0],
         s=size,
-        color=plots.RUN_COLOUR,
+        color=style.RUN_COLOUR,
         alpha=alpha,
         lw=0,
         rasterized=True,
@@ -272,7 +252,7 @@ def hole_figure(run, row, shots):
         )
     centre = (row["final_x_m_mean"], row["final_y_m_mean"])
     for level, (a, b, angle) in finish_ellipses(row).items():
-        plots._draw_ellipse(ax, *centre, a, b, angle, level)
+        style.draw_ellipse(ax, *centre, a, b, angle, level)
     ax.plot(centre[1], centre[0], "+", color="black", ms=11, mew=1.6, zorder=7)
     if aim_rad is not None:
         reach = 2.0 * max(abs(xhi), abs(xlo), abs(yhi), abs(ylo), 1.0)
@@ -292,7 +272,7 @@ def hole_figure(run, row, shots):
             target[0],
             marker="*",
             ms=14,
-            color=plots.TARGET_COLOUR,
+            color=style.TARGET_COLOUR,
             mec="white",
             mew=0.8,
             ls="none",
@@ -304,19 +284,20 @@ def hole_figure(run, row, shots):
     ax.set_title(_map_title(run, row, hole, shots), fontsize=9)
     _legend(fig, ax, hole, shots, ended, (xlo, xhi, ylo, yhi), target_drawn=target_drawn)
     _shares_table(side, row)
-    plots._fit_equal(fig, [ax])
+    style.fit_equal(fig, [ax])
     return fig
 
 
 def _map_title(run, row, hole, shots):
-    name = (hole.name or hole.source) if hole is not None else "the hole"
-    if hole is not None and hole.par is not None:
-        name += f", par {hole.par}"
-    length = f", {hole.length_m:.0f} m tee to pin" if hole is not None else ""
+    facts = None if hole is None else hole.facts
+    name = (facts.name or facts.source) if facts is not None else "the hole"
+    if facts is not None and facts.par is not None:
+        name += f", par {facts.par}"
+    length = f", {facts.length_m:.0f} m tee to pin" if facts is not None else ""
     return (
         f"{name}{length}\nthe first {len(shots['status']):,} shots of the point; 50 % and 95 % "
         f"ellipses of the ok shots' finish\n95 % of the finishes within "
-        f"{plots._fmt(row['distance_r95_m'])} m of the "
+        f"{style.fmt(row['distance_r95_m'])} m of the "
         + ("pin" if hole is not None and _target_is_pin(row, hole) else "target")
     )
 
@@ -335,20 +316,21 @@ def _legend(fig, ax, hole, shots, ended, view, target_drawn):
 
     handles = []
     if hole is not None:
-        t = hole.terrain()
+        t = hole
+        kinds = hole.zone_kinds
         xlo, xhi, ylo, yhi = view
         ny, nx = t.zone.shape
         i0, i1 = (int(np.clip((v - t.y0_m) / t.cell_m, 0, ny)) for v in (ylo, yhi))
         j0, j1 = (int(np.clip((v - t.x0_m) / t.cell_m, 0, nx)) for v in (xlo, xhi))
         seen = np.unique(t.zone[i0 : i1 + 1, j0 : j1 + 1])
         handles += [
-            Patch(color=to_rgb(ZONE_COLOURS[ZONE_KINDS[k]]), label=ZONE_KINDS[k].replace("_", " "))
+            Patch(color=to_rgb(ZONE_COLOURS[kinds[k]]), label=kinds[k].replace("_", " "))
             for k in seen
         ]
-    line = plots._legend_line
+    line = style.legend_line
     handles += [
-        line(marker="o", ls="none", color=plots.FLIGHT_COLOUR, label="landing"),
-        line(marker="o", ls="none", color=plots.RUN_COLOUR, label="at rest (ok)"),
+        line(marker="o", ls="none", color=style.FLIGHT_COLOUR, label="landing"),
+        line(marker="o", ls="none", color=style.RUN_COLOUR, label="at rest (ok)"),
     ]
     if ended.any():
         handles.append(
@@ -369,7 +351,7 @@ def _legend(fig, ax, hole, shots, ended, view, target_drawn):
             line(marker="^", color="red", mec="black", ms=9, ls="none", label="pin"),
             line(color=AIM_COLOUR, ls="-.", lw=1.2, label="aim line from the tee"),
         ]
-        if hole.line_xy is not None:
+        if hole.facts.line_xy is not None:
             from matplotlib.patheffects import withStroke
 
             handles.append(
@@ -384,7 +366,7 @@ def _legend(fig, ax, hole, shots, ended, view, target_drawn):
     if target_drawn:
         handles.append(
             line(
-                marker="*", ms=13, color=plots.TARGET_COLOUR, mec="white", ls="none", label="target"
+                marker="*", ms=13, color=style.TARGET_COLOUR, mec="white", ls="none", label="target"
             )
         )
     fig.legend(

@@ -19,16 +19,10 @@ from pathlib import Path
 import numpy as np
 
 from mcrun.report import hole_plots
-from mcrun.report.plots import (
-    SCATTER_MAX_SHOTS,
-    TRAJECTORIES_PER_POINT,
-    PlotError,
-    figures,
-    open_run,
-    png_bytes,
-    require_matplotlib,
-)
-from mcrun.results import output, stats
+from mcrun.report.plots import figures
+from mcrun.report.run_view import SCATTER_MAX_SHOTS, TRAJECTORIES_PER_POINT, PlotError, open_run
+from mcrun.report.style import png_bytes, require_matplotlib
+from mcrun.results import geometry, output, stats
 from mcrun.results.reader import reason_of
 
 DEFAULT_REPORT_DPI = 100
@@ -174,11 +168,12 @@ def _attribution(run):
     text = hole_plots.attribution_of(run)
     if not text:
         return ""
-    hole, _, reason = hole_plots.hole_of(run)
-    source = f" ({Path(hole.map_source).name})" if hole is not None and hole.map_source else ""
+    hole, reason = hole_plots.hole_of(run)
+    facts = None if hole is None else hole.facts
+    source = f" ({Path(facts.map_source).name})" if facts is not None and facts.map_source else ""
     line = f'<p class="attribution">Map data{_esc(source)}: {_esc(text)}.</p>'
     if reason:
-        line += f'<p class="small">The hole map could not be rebuilt: {_esc(reason)}</p>'
+        line += f'<p class="small">No hole map: {_esc(reason)}.</p>'
     return line
 
 
@@ -346,6 +341,17 @@ _PROVENANCE_ORDER = (
 )
 
 
+def _recorded_map(value):
+    """One line for the recorded hole map (``geometry.MAP_KEY``): its grid, not its bytes."""
+    if not isinstance(value, dict):
+        return json.dumps(value)
+    heights = " and heights" if value.get("height_m") else ""
+    return (
+        f"zones{heights} on a grid of {value.get('nx')} x {value.get('ny')} nodes, "
+        f"{value.get('cell_m')} m apart, from x = {value.get('x0_m')} m, y = {value.get('y0_m')} m"
+    )
+
+
 def _provenance_table(run):
     provenance = {k: v for k, v in run.provenance.items() if k not in ("scenario_text", "file")}
     keys = [k for k in _PROVENANCE_ORDER if k in provenance]
@@ -355,6 +361,8 @@ def _provenance_table(run):
         value = provenance[key]
         if key == "versions" and isinstance(value, dict):
             text = ", ".join(f"{k} {v}" for k, v in value.items())
+        elif key == geometry.MAP_KEY:
+            text = _recorded_map(value)
         elif key == "elapsed_s" and isinstance(value, int | float):
             text = f"{value:g} s (start of the run to summary.parquet written)"
         elif isinstance(value, str):

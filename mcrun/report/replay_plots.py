@@ -22,12 +22,12 @@ import numpy as np
 import pandas as pd
 
 from mcrun import status as status_codes
-from mcrun.report.plots import (
+from mcrun.report.run_view import PlotError
+from mcrun.report.style import (
     FLIGHT_COLOUR,
     RUN_COLOUR,
     YARD_M,
-    PlotError,
-    _fmt,
+    fmt,
     png_bytes,
     require_matplotlib,
 )
@@ -135,7 +135,7 @@ def clubs_figure(frame, name):
     gapping.vlines(x + 0.12, p10, p90, color="black", lw=1.0, label="10th to 90th percentile")
     for k, row in enumerate(summary.itertuples()):
         gapping.annotate(
-            f"{_fmt(row.carry_m_mean)} m\n{row.shots_ok}/{row.shots} ok",
+            f"{fmt(row.carry_m_mean)} m\n{row.shots_ok}/{row.shots} ok",
             (x[k], 0.0),
             xytext=(0, 4),
             textcoords="offset points",
@@ -146,7 +146,7 @@ def clubs_figure(frame, name):
         if k + 1 < len(names) and math.isfinite(row.gap_m):
             top = np.nanmax([p90[k], p90[k + 1], mean[k] + np.nan_to_num(sd[k])])
             gapping.annotate(
-                f"gap {_fmt(row.gap_m)} m",
+                f"gap {fmt(row.gap_m)} m",
                 (x[k] + 0.5, top),
                 xytext=(0, 6),
                 textcoords="offset points",
@@ -194,7 +194,7 @@ def device_figure(frame, name):
         ax.set_ylim(-1.25 * reach, 1.6 * reach)  # room above for the legend
         for k, row in mine.iterrows():
             ax.annotate(
-                f"{_fmt(row['bias'], '+.2f')}\n(n {row['shots']})",
+                f"{fmt(row['bias'], '+.2f')}\n(n {row['shots']})",
                 (x[k], 0.0),
                 xytext=(0, -4 if row["bias"] >= 0 else 4),
                 textcoords="offset points",

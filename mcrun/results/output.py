@@ -15,9 +15,11 @@ A run is a folder:
 
 Provenance: every file's Parquet key-value metadata (what DuckDB's ``parquet_kv_metadata`` and
 ``pyarrow.parquet.read_metadata(path).metadata`` show) holds ``mcrun.*`` keys: the scenario
-text and path, seed, N, point labels, versions, models, start time, elapsed time, threads,
-chunk size and backend. ``read_provenance`` decodes them. ``mcrun.elapsed_s`` is the time from
-the start of the run to the completion of that file.
+text, path and question, seed, N, point labels, versions, models, the run's geometry (the
+frame, tee, pin, aim and targets; in summary.parquet also the hole's map:
+``mcrun.results.geometry``), start time, elapsed time, threads, chunk size and backend.
+``read_provenance`` decodes them. ``mcrun.elapsed_s`` is the time from the start of the run to
+the completion of that file.
 
 Atomicity: ``AtomicFolder`` and ``AtomicFile`` write under a hidden temporary name beside the
 destination (``.NAME.partial-HOST-PID-TOKEN``) and rename it into place only when everything is
@@ -41,6 +43,7 @@ import stat
 import struct
 import sys
 import time
+import tomllib
 from pathlib import Path
 
 import numba
@@ -49,8 +52,8 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 import mcrun
-from mcrun.api import InputError
 from mcrun.engine.schema import OUTCOME_DTYPES, OUTCOME_FIELDS, PLANE_FIELDS, encode_outcomes
+from mcrun.quantities import InputError
 from mcrun.results import on_hole as on_hole_columns
 from mcrun.status import NAMES as STATUS_NAMES
 from mcrun.trajectory import PHASE_NAMES
@@ -127,6 +130,27 @@ def decode_provenance(metadata):
 def read_provenance(path):
     """The ``mcrun.*`` provenance of a Parquet file written by mcrun."""
     return decode_provenance(pq.read_metadata(path).metadata)
+
+
+_QUESTION = re.compile(r"^#\s*Question:\s*(.*?)\s*$")
+
+
+def question_of(provenance):
+    """The question a run's scenario answers: its recorded ``question``, else (a run written
+    before it was recorded) the scenario text's first ``# Question:`` comment line, else its
+    ``[scenario] question``, else "" (the rule of ``mcrun.run.scenario.question_of``)."""
+    if "question" in provenance:
+        return provenance["question"] or ""
+    text = provenance.get("scenario_text") or ""
+    for line in text.splitlines():
+        match = _QUESTION.match(line.strip())
+        if match:
+            return match[1]
+    try:
+        question = tomllib.loads(text).get("scenario", {}).get("question", "")
+    except (tomllib.TOMLDecodeError, AttributeError):
+        return ""
+    return question if isinstance(question, str) else ""
 
 
 # --- shots -------------------------------------------------------------------------------------

@@ -16,7 +16,9 @@ data and its metadata), and the shots and trajectories, either whole (``shots``,
 ``trajectories``: the DataFrame the local file reads as in pandas, whatever the layout) or one
 point at a time (``shot_batches``, ``trajectory_batches``: only the files and row groups that
 may hold the point, only the columns asked for, in batches), so that memory does not grow with
-the run. A folder is a path or an fsspec URL (``location``).
+the run; and the geometry the run recorded (``geometry``: the frame, tee, pin, aim and
+targets, ``hole_map``: the map of its hole, ``mcrun.results.geometry``), None for a run
+written before runs recorded it. A folder is a path or an fsspec URL (``location``).
 """
 
 import os
@@ -30,7 +32,7 @@ import pyarrow.dataset as ds
 import pyarrow.fs as pafs
 import pyarrow.parquet as pq
 
-from mcrun.results import location, output
+from mcrun.results import geometry, location, output
 
 FILE_LAYOUT = "file"
 DATASET_LAYOUT = "dataset"
@@ -65,6 +67,20 @@ class RunFolder:
     shot_columns: list
     has_trajectories: bool
     _point_parts: dict = field(default_factory=dict, repr=False)  # ``_parts``, once a folder
+    _hole_map: list = field(default_factory=list, repr=False)  # ``hole_map``, once read
+
+    @property
+    def geometry(self):
+        """The ``geometry.RunGeometry`` the run recorded (its frame, tee, pin, each point's
+        aim and target), None for a run that records none."""
+        return geometry.read_geometry(self.provenance)
+
+    def hole_map(self):
+        """The ``geometry.HoleMap`` of the run's hole as it recorded it, None on a plane or
+        for a run that records none (decoded once)."""
+        if not self._hole_map:
+            self._hole_map.append(geometry.read_hole_map(self.provenance))
+        return self._hole_map[0]
 
     def shots(self, columns=None):
         """The shots as one DataFrame, as pandas reads the local executor's shots.parquet: rows

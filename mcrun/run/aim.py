@@ -11,25 +11,37 @@ paired differences, far smaller than either value's.
 The search is coarse to fine: aims ``coarse_m`` apart over the region, then, around the best
 so far, aims a third as far apart, until they are ``resolution_m`` apart; each round flies the
 club's shots once per new aim.
+
+The table of every aim flown (``table``) is written as a run's files are (``write_table``):
+atomically, with the provenance of a run of the scenario (``plan.provenance``: the scenario,
+seed, N, versions, and the geometry: the hole's frame, tee, pin, the scenario's aim, each
+club's target and the hole's map, ``mcrun.results.geometry``) and the baseline it was scored
+by.
 """
 
 import math
 import time
 from dataclasses import dataclass, field
+from pathlib import Path
 
+import numba
 import numpy as np
+import pandas as pd
 
-from mcrun.api import InputError
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import COLUMN, FINAL_X, FINAL_Y, N_OUTCOME
-from mcrun.results import on_hole
-from mcrun.run import sampling
+from mcrun.quantities import InputError
+from mcrun.results import on_hole, output
+from mcrun.run import plan, sampling
+from mcrun.run import scenario as scenario_module
 from mcrun.strokes import start_of, tour_baseline
 
 AZIMUTH = COLUMN["azimuth_rad"]
 DEFAULT_HALF_WIDTH_M = 20.0
 DEFAULT_COARSE_M = 5.0
 DEFAULT_RESOLUTION_M = 1.0
+TOUR_BASELINE = "PGA Tour (Broadie 2012)"
+TABLE_SUFFIXES = (".parquet", ".pq")
 
 
 class AimError(InputError):
@@ -71,6 +83,28 @@ class AimSearch:
         """(club, index) of the aim with the fewest expected strokes of all the clubs."""
         k = int(np.nanargmin([c.expected[c.best] for c in self.clubs]))
         return self.clubs[k], self.clubs[k].best
+
+
+def load_scenario(scenario, seed=None):
+    """The scenario of an aim search: a file or a library name (``scenario.find``), with
+    ``seed`` (default its own); AimError when it has no hole."""
+    loaded = scenario_module.load(scenario_module.find(scenario))
+    if seed is not None:
+        loaded = plan.with_seed(loaded, plan.positive_int(seed, "seed", minimum=0))
+    if loaded.hole is None:
+        raise AimError(f"{loaded.path}: an aim search needs a hole ([hole] in the scenario)")
+    return loaded
+
+
+def check_table_path(path, force=False, option="-o"):
+    """``path`` as a Path where ``write_table`` may write, checked before the search: a
+    .parquet file, not there yet unless ``force``; AimError (one line) otherwise."""
+    destination = Path(path)
+    if destination.suffix.lower() not in TABLE_SUFFIXES:
+        raise AimError(f"{option} {path}: the output must be a .parquet file")
+    if destination.exists() and not force:
+        raise AimError(f"{option} {path}: already exists: use --force to replace it")
+    return destination
 
 
 def _bearing(offset_m, distance_m):
@@ -197,6 +231,40 @@ def table(result):
             rows["difference_se"].append(club.difference_se[k])
             rows["strokes_gained"].append(result.expected_start - 1.0 - club.expected[k])
     return rows
+
+
+def write_table(result, path, baseline=None, force=False):
+    """Write ``table(result)`` to ``path`` (Parquet) atomically, with the provenance of a run of
+    its scenario (``plan.provenance``, its geometry and its hole's map included: the file
+    describes itself) and ``baseline``, the name of the table the shots were scored by
+    (default the Tour's); return the path."""
+    the_plan = plan.plan(result.scenario, n=result.n)
+    provenance = plan.provenance(
+        the_plan,
+        "local",
+        output.versions(),
+        numba.get_num_threads(),
+        baseline=TOUR_BASELINE if baseline is None else str(baseline),
+        seconds=round(result.seconds, 3),
+        shots_flown=result.shots_flown,
+    )
+    with output.AtomicFile(path, force=force) as target:
+        output.write_table(
+            target.tmp, pd.DataFrame(table(result)), plan.file_metadata(provenance, "aim")
+        )
+        target.commit()
+    return Path(path)
+
+
+def patterns(result):
+    """The finishes (x, y) of the best club's shots (``AimSearch.best``) at its best aim and at
+    the reference aim, as the search flew them: {"best": (x, y), "reference": (x, y)}."""
+    club, k = result.best()
+    c = result.clubs.index(club)
+    return {
+        "best": finishes(result, c, club.offsets_m[k]),
+        "reference": finishes(result, c, club.reference_m),
+    }
 
 
 def finishes(result, club, offset_m):

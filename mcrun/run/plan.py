@@ -11,7 +11,9 @@ chunks and write them. What they share is here, written once:
 - the chunks: every point's N sample indices cut into ranges of ``chunk_size`` (``Plan.chunks``),
   numbered point by point, and the shots of a chunk whose paths are recorded
   (``add_trajectories``);
-- the provenance every file of the run records (``provenance``, ``file_metadata``);
+- the provenance every file of the run records (``provenance``, ``file_metadata``), with the
+  run's geometry (``mcrun.results.geometry``: the frame, tee, pin, aim and targets in every
+  file, the hole's map in summary.parquet);
 - the summary rows, from each point's streamed statistics and its shots wherever they were
   written (``summary_rows``, ``summary_metadata``);
 - what a run wrote (``RunResult``).
@@ -33,8 +35,8 @@ import pandas as pd
 from mcrun.engine.backend import simulate_traced
 from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
 from mcrun.quantities import DRIVER_COLUMNS, InputError
+from mcrun.results import geometry, output, reader, stats
 from mcrun.results import on_hole as on_hole_results
-from mcrun.results import output, reader, stats
 from mcrun.run import sampling
 from mcrun.run import scenario as scenario_module
 from mcrun.units import shown
@@ -327,16 +329,26 @@ def _model_names(points):
 
 
 def provenance(the_plan, backend, versions, threads, **facts):
-    """The provenance every file of a run records: the scenario, its seed, size, points and
-    models, the software ``versions``, the ``backend`` that ran it on how many ``threads``
-    and that backend's own ``facts``, the chunk size and the start time."""
+    """The provenance every file of a run records: the scenario, its question, seed, size,
+    points and models, its geometry (``geometry.record``) and on a hole its map
+    (``geometry.record_map``, which ``file_metadata`` keeps for summary.parquet), the software
+    ``versions``, the ``backend`` that ran it on how many ``threads`` and that backend's own
+    ``facts``, the chunk size and the start time."""
     scenario, points = the_plan.scenario, the_plan.points
+    recorded = {
+        geometry.GEOMETRY_KEY: geometry.record(
+            scenario.hole, scenario.aim_rad, [p.target_m for p in points]
+        )
+    }
+    if scenario.hole is not None:
+        recorded[geometry.MAP_KEY] = geometry.record_map(scenario.hole)
     return {
         "format_version": FORMAT_VERSION,
         "backend": backend,
         "scenario_name": scenario.name,
         "scenario_path": str(scenario.path),
         "scenario_text": scenario.text,
+        "question": scenario.question,
         "seed": the_plan.seed,
         "n": the_plan.n,
         "block_size": scenario.block_size,
@@ -344,6 +356,7 @@ def provenance(the_plan, backend, versions, threads, **facts):
         "groups": [p.group for p in points],
         "models": _model_names(points),
         "launch_fits": scenario_module.launch_fits(points),
+        **recorded,
         "versions": versions,
         "threads": threads,
         **facts,
@@ -353,11 +366,18 @@ def provenance(the_plan, backend, versions, threads, **facts):
     }
 
 
+# The files that hold the hole's map (``geometry.MAP_KEY``): one a run, not every part of it.
+MAP_FILES = ("summary", "aim")
+
+
 def file_metadata(run_provenance, file, started=None):
-    """The Parquet key-value metadata of the run's ``file`` (shots, summary, trajectories):
-    the run's provenance and, once the file is complete, the seconds since ``started``
-    (``time.perf_counter``) as ``elapsed_s``."""
-    fields = {**run_provenance, "file": file}
+    """The Parquet key-value metadata of the run's ``file`` (shots, summary, trajectories,
+    aim): the run's provenance (the hole's map only in ``MAP_FILES``) and, once the file is
+    complete, the seconds since ``started`` (``time.perf_counter``) as ``elapsed_s``."""
+    fields = {
+        **{k: v for k, v in run_provenance.items() if k != geometry.MAP_KEY or file in MAP_FILES},
+        "file": file,
+    }
     if started is not None:
         fields["elapsed_s"] = round(time.perf_counter() - started, 3)
     return output.encode_provenance(fields)
