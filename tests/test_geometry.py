@@ -22,6 +22,7 @@ from mcrun.results import geometry, output, reader
 from mcrun.run import aim
 from mcrun.run import scenario as sc
 from mcrun.run.local import run_scenario
+from mcrun.run.scenario import hole_table
 
 LIBRARY = Path(__file__).resolve().parent.parent / "scenarios"
 N = 200
@@ -56,7 +57,7 @@ def par4(tmp_path_factory):
     result = run_scenario(root / "par4-tee-shot.toml", n=N, out_dir=root / "run", progress=False)
     shutil.rmtree(root / "holes")
     (root / "par4-tee-shot.toml").unlink()
-    sc._HOLES.clear()  # no cached hole either: only the run's record is left
+    hole_table._HOLES.clear()  # no cached hole either: only the run's record is left
     return result.out_dir, scenario, terrain
 
 

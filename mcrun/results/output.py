@@ -137,11 +137,16 @@ _QUESTION = re.compile(r"^#\s*Question:\s*(.*?)\s*$")
 
 def question_of(provenance):
     """The question a run's scenario answers: its recorded ``question``, else (a run written
-    before it was recorded) the scenario text's first ``# Question:`` comment line, else its
-    ``[scenario] question``, else "" (the rule of ``mcrun.run.scenario.question_of``)."""
+    before it was recorded) the one its scenario text asks (``question_in``)."""
     if "question" in provenance:
         return provenance["question"] or ""
-    text = provenance.get("scenario_text") or ""
+    return question_in(provenance.get("scenario_text") or "")
+
+
+def question_in(text):
+    """The question the scenario ``text`` answers: its first ``# Question:`` comment line,
+    else ``[scenario] question``, else "" (the library's list, a scenario's ``load`` and the
+    report's title all read it here)."""
     for line in text.splitlines():
         match = _QUESTION.match(line.strip())
         if match:

@@ -1,10 +1,9 @@
 """The scenario library: its folder, its scenarios and the question each answers."""
 
 import os
-import re
-import tomllib
 from pathlib import Path
 
+from mcrun.results import output
 from mcrun.run.scenario.specs import ScenarioError
 
 ENV_LIBRARY = "MCRUN_SCENARIOS"
@@ -32,22 +31,8 @@ def library_folder():
     )
 
 
-_QUESTION = re.compile(r"^#\s*Question:\s*(.*?)\s*$")
-
-
-def question_of(text):
-    """The question the scenario ``text`` answers: its first ``# Question:`` comment line,
-    else ``[scenario] question``, else "" (the library's list, ``load`` and the report's title
-    all read it here)."""
-    for line in text.splitlines():
-        match = _QUESTION.match(line.strip())
-        if match:
-            return match[1]
-    try:
-        question = tomllib.loads(text).get("scenario", {}).get("question", "")
-    except (tomllib.TOMLDecodeError, AttributeError):
-        return ""
-    return question if isinstance(question, str) else ""
+# The question a scenario's text asks: one rule, with the run's recorded provenance.
+question_of = output.question_in
 
 
 def list_library(folder=None):
