@@ -364,6 +364,32 @@ def test_cli_ctrl_c_leaves_nothing(client, tmp_path, capsys, monkeypatch):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_local_cluster_says_nothing_when_another_holds_the_dashboard_port(tmp_path, capfd):
+    """--dask local while another cluster (here a bare socket) holds the scheduler's default
+    HTTP port, 8787: the run's output is its own, with no warning of the port on stderr, as
+    happened when two clusters ran at once."""
+    import socket
+    import warnings
+
+    holder = socket.socket()
+    try:
+        holder.bind(("127.0.0.1", 8787))
+        holder.listen()
+    except OSError:
+        holder.close()
+        pytest.skip("port 8787 is taken by something that cannot be told apart")
+    try:
+        out = tmp_path / "run"
+        argv = ["run", DRIVER, "-n", "500", "-o", str(out), "--quiet"]
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            assert main([*argv, "--dask", "local", "--workers", "1"]) == 0
+    finally:
+        holder.close()
+    assert "8787" not in capfd.readouterr().err
+    assert [str(w.message) for w in caught if "8787" in str(w.message)] == []
+
+
 def test_without_dask_the_backend_says_how_to_install_it(tmp_path, capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "dask.distributed", None)  # import fails as if missing
     out = tmp_path / "run"

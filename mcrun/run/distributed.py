@@ -346,6 +346,9 @@ def local_cluster(workers=None, **kwargs):
         "threads_per_worker": 1,
         "processes": True,
         "dashboard_address": None,
+        # The scheduler serves its HTTP routes even without a dashboard, on port 8787 unless
+        # told otherwise, and warns on stderr when another cluster has that port: any free one.
+        "scheduler_kwargs": {"dashboard": False, "dashboard_address": ":0"},
     }
     # Set in each worker process as it starts (before it first imports Numba), not through
     # Dask's pre-spawn-environ: the nannies live in this process and would set it in this
@@ -376,8 +379,12 @@ def _connect(client, scheduler, scheduler_file, workers):
         cluster = None
         try:
             # Interrupted while it starts, a cluster can be neither used nor closed.
+            # Its logs are silenced but for the critical: the run reports its failed chunks
+            # itself, and after Ctrl-C or SIGTERM (sent to the whole process group, workers
+            # included) the scheduler logs errors about the workers it lost ("Couldn't gather
+            # keys"), which raced the run's own one line on stderr.
             with exits.interrupts_deferred():
-                cluster = local_cluster(workers, silence_logs=logging.ERROR)
+                cluster = local_cluster(workers, silence_logs=logging.CRITICAL)
             with distributed.Client(cluster) as own:
                 yield own
         finally:
