@@ -6,7 +6,8 @@ the package: every library scenario at N shots with a fixed seed (its shots and 
 and one-shot cases over every aerodynamic model, wind profile, turf preset, slope and club
 delivery, some with their trajectory.
 
-``python tests/golden_cases.py`` writes the file anew (``tests/data/golden/``); do that only
+``python tests/golden_cases.py [SCENARIO ...]`` writes the file anew (``tests/data/golden/``;
+with names, only those library scenarios' files); do that only
 when a change moves numbers on purpose, and say which and why. ``tests/test_golden.py``
 compares the current tree with it, bit for bit.
 """
@@ -73,10 +74,11 @@ def shot_cases():
 
 
 def library_scenarios():
-    """The names of the library scenarios on a plane, from the package's own scenario folder
-    (the golden file was written before there were holes)."""
+    """The names of the library scenarios, from the package's own scenario folder: those on a
+    plane (written before there were holes) and those on a hole (written before the kernel's
+    tables were named and its files split)."""
     folder = Path(__file__).parents[1] / "scenarios"
-    return sorted(p.stem for p in folder.glob("*.toml") if "\n[hole]" not in p.read_text())
+    return sorted(p.stem for p in folder.glob("*.toml"))
 
 
 def _main(argv):
@@ -111,8 +113,12 @@ def run_scenario(name, out_dir):
     )
 
 
-def write():
+def write(names=None):
+    """Write the golden file anew; with ``names``, only those library scenarios' files."""
     GOLDEN.mkdir(parents=True, exist_ok=True)
+    if names:
+        _write_scenarios(names)
+        return
     outcomes, trajectories = {}, []
     for name, (argv, keep) in shot_cases().items():
         outcome, trajectory = run_shot(argv, keep)
@@ -121,8 +127,12 @@ def write():
             trajectories.append(trajectory.assign(case=name))
     (GOLDEN / "shots.json").write_text(json.dumps(outcomes, indent=1, sort_keys=True) + "\n")
     pd.concat(trajectories, ignore_index=True).to_parquet(GOLDEN / "trajectories.parquet")
+    _write_scenarios(library_scenarios())
+
+
+def _write_scenarios(names):
     with tempfile.TemporaryDirectory() as tmp:
-        for name in library_scenarios():
+        for name in names:
             shots, summary = run_scenario(name, Path(tmp) / name)
             shots.to_parquet(GOLDEN / f"{name}.shots.parquet")
             summary.to_parquet(GOLDEN / f"{name}.summary.parquet")
@@ -130,4 +140,4 @@ def write():
 
 
 if __name__ == "__main__":
-    write()
+    write(sys.argv[1:])
