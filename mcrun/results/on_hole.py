@@ -6,7 +6,9 @@ The kernel gives the positions in the hole's frame (x from the tee towards the p
 right): the landing at (carry_m, carry_lateral_m), the finish at (final_x_m, final_y_m) and,
 for a ball that ended in a penalty area or out of bounds, where it crossed into it
 (penalty_x_m, penalty_y_m). The zone of a point is that of the terrain's nearest node, as the
-kernel reads it (``Hole.zone_at``); ``off_map`` beyond the hole's grid.
+kernel reads it (``Hole.zone_at``); ``off_map`` beyond the hole's grid. A shot that its status
+ended (a penalty area, out of bounds, off the map) finishes in the zone its status names: one
+source of truth for where a shot ended, which the zones' shares and the scores both read.
 """
 
 import math
@@ -43,11 +45,27 @@ COLUMNS = {
 Z95 = 1.959963984540054
 
 
-def _zones(hole, x, y):
-    """The zone of each point as a dictionary array of ZONE_NAMES; null where x is NaN."""
+# The zone a shot finishes in where its status ended it (the kernel's word, not the nearest
+# node of where it stopped, which for a ball that left the grid or crossed into a penalty area
+# can be the fairway it crossed from).
+_ZONE_OF_STATUS = {
+    status_codes.IN_PENALTY_AREA: ZONE_NAMES.index("water"),
+    status_codes.OUT_OF_BOUNDS_STATUS: ZONE_NAMES.index("out_of_bounds"),
+    status_codes.OFF_MAP: ZONE_NAMES.index(OFF_MAP),
+}
+
+
+def _zones(hole, x, y, status=None):
+    """The zone of each point as a dictionary array of ZONE_NAMES; null where x is NaN. With
+    the shots' ``status`` (the finish), the zone their status names where it ended them."""
     known = np.isfinite(x) & np.isfinite(y)
     codes = hole.zone_at(np.where(known, x, 0.0), np.where(known, y, 0.0)).astype(np.int32)
     codes[codes < 0] = len(ZONE_KINDS)  # off the grid
+    if status is not None:
+        for code, zone in _ZONE_OF_STATUS.items():
+            ended = status == code
+            codes[ended] = zone
+            known = known | ended
     return pa.DictionaryArray.from_arrays(pa.array(codes, mask=~known), _ZONE_DICTIONARY)
 
 
@@ -58,7 +76,7 @@ def scores(hole, outcomes, strokes=None, finish=None):
     column = {name: outcomes[:, k] for name, k in _COLUMN.items()}
     fx, fy = column["final_x_m"], column["final_y_m"]
     if finish is None:
-        finish = _zones(hole, fx, fy)
+        finish = _zones(hole, fx, fy, column["status"])
     return score_shots(
         {
             "finish_zone": finish,
@@ -82,7 +100,7 @@ def shot_columns(hole, outcomes, strokes=None):
     px, py = hole.pin_xy
     lon, lat = hole.to_lonlat(fx, fy)
     plon, plat = hole.to_lonlat(column["penalty_x_m"], column["penalty_y_m"])
-    finish = _zones(hole, fx, fy)
+    finish = _zones(hole, fx, fy, column["status"])
     scored = scores(hole, outcomes, strokes, finish)
     return {
         "landing_zone": _zones(hole, column["carry_m"], column["carry_lateral_m"]),
