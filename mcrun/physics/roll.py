@@ -15,14 +15,58 @@ a cell of its grid.
 """
 
 import math
+from typing import NamedTuple
 
 from numba import njit
 
 from mcrun.physics.constants import BALL_RADIUS_M, G_MPS2
+from mcrun.physics.turf import Turf
 from mcrun.status import MAX_ROLL_DISTANCE_M, MAX_ROLL_TIME_S, NOT_STOPPED, OK
 from mcrun.trajectory import ROLL, record
 
 ROLL_DT_S = 0.01
+
+
+class Patch(NamedTuple):
+    """Where the ground around the ball is one smooth piece, one bilinear patch of one zone (on
+    a grid, a cell, or the quarter of it nearest one node where its nodes' zones differ), in the
+    core's frame: at u = x - xc, w = yc - y (the grid's fractions times the cell), its height is
+    hc + bx u + by w + ec u w, for u in [u_lo, u_hi] and w in [w_lo, w_hi]. ``smooth`` is 1.0
+    where the roll may take the patch's own steps (on a grid, where the cell is not calm),
+    LEVEL_PATCH where that patch is level (where the roll's steps are exact up to its edge and
+    to the ball's stop), else 0.0 (NO_PATCH: the rest is not used)."""
+
+    smooth: float
+    xc: float
+    yc: float
+    hc: float
+    bx: float
+    by: float
+    ec: float
+    u_lo: float
+    u_hi: float
+    w_lo: float
+    w_hi: float
+
+
+LEVEL_PATCH = 2.0
+NO_PATCH = Patch(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+class Surface(NamedTuple):
+    """What the roll asks of the ground at each step (``ground.surface``): the height (m) of the
+    ground under the ball, its unit normal (core frame) and turf, the state there
+    (``mcrun.status``: OK in play, or where the shot ends), the longest distance (m) a step may
+    go on it, and the smooth Patch around it, where the roll may step further."""
+
+    height_m: float
+    nx: float
+    ny: float
+    nz: float
+    turf: Turf
+    state: int
+    step_m: float
+    patch: Patch
 
 
 @njit(cache=True)
@@ -201,7 +245,7 @@ def _turned(vx, vy, vz, dgx, dgy, dgz, h):
     return x * k, y * k, z * k
 
 
-# On smooth ground of a terrain (``surface``'s patch: one bilinear patch of one zone) the roll
+# On smooth ground of a terrain (``Surface.patch``: one bilinear patch of one zone) the roll
 # takes steps of the classical Runge-Kutta method (fourth order) on the ball's horizontal
 # position and velocity, with its height on the patch: each step ends where the ball leaves the
 # patch (PATCH_OVERSHOOT_M past its edge, where the next patch turns the velocity), or after at
@@ -212,8 +256,6 @@ PATCH_DT_MAX_S = 0.25
 PATCH_DT_MIN_S = 0.02
 STOP_FRACTION = 0.4
 PATCH_OVERSHOOT_M = 1e-6
-# ``surface``'s mark of a level patch (``ground.LEVEL_PATCH``).
-LEVEL_PATCH = 2.0
 # A step that ends further past the edge than this (s at its speed) is taken again, shortened.
 PATCH_REFINE_S = 1e-6
 
@@ -223,13 +265,13 @@ def _patch_acceleration(x, y, vx, vy, patch, rho_g):
     """The horizontal acceleration of a ball rolling without slipping at (x, y) on the patch at
     horizontal velocity (vx, vy): (5/7) (g_t - rho_g g n_z v_hat), plus the normal force that
     keeps it on the patch's surface h (which bends it by the twist h_xy = -EC)."""
-    hx = patch[4] + patch[6] * (patch[2] - y)
-    hy = -(patch[5] + patch[6] * (x - patch[1]))
+    hx = patch.bx + patch.ec * (patch.yc - y)
+    hy = -(patch.by + patch.ec * (x - patch.xc))
     n2 = 1.0 + hx * hx + hy * hy
     vz = hx * vx + hy * vy
     inv = 1.0 / n2
     k = (5.0 / 7.0) * rho_g * G_MPS2 / math.sqrt(n2 * (vx * vx + vy * vy + vz * vz))
-    c = ((5.0 / 7.0) * G_MPS2 - 2.0 * patch[6] * vx * vy) * inv
+    c = ((5.0 / 7.0) * G_MPS2 - 2.0 * patch.ec * vx * vy) * inv
     return -c * hx - k * vx, -c * hy - k * vy
 
 
@@ -298,9 +340,9 @@ def _patch_step(px, py, vx, vy, ax, ay, h, patch, rho_g):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _patch_height(x, y, patch):
-    u = x - patch[1]
-    w = patch[2] - y
-    return patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
+    u = x - patch.xc
+    w = patch.yc - y
+    return patch.hc + patch.bx * u + patch.by * w + patch.ec * u * w
 
 
 @njit(cache=True)
@@ -328,19 +370,22 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
          dt_record):  # fmt: skip
     """Slide, then roll, from a point on the ground until the ball stops.
 
-    The ground is asked at every step: ``surface(terrain, plane, x, y, z)`` gives its height,
-    normal, turf, state (``mcrun.status``: OK in play, or where the shot ends) and the longest
-    step along it (``ground.surface``). Where the normal changes, the velocity (and the slip)
-    turn into the new plane, their length kept, and gravity along it is taken anew; where the
-    turf changes, its friction and rolling resistance. On a plane neither changes, and the
-    steps are those of the plane's exact phases.
+    The ground is asked at every step: ``surface(terrain, plane, x, y, z)`` gives the Surface
+    there (``ground.surface``): its height, normal, turf, state (``mcrun.status``: OK in play,
+    or where the shot ends), the longest step along it and the smooth patch around it. Where
+    the normal changes, the velocity (and the slip) turn into the new plane, their length
+    kept, and gravity along it is taken anew; where the turf changes, its friction and rolling
+    resistance. On a plane neither changes, and the steps are those of the plane's exact
+    phases.
 
     The velocity must lie in the ground's plane. Trajectory points are recorded at the times
     t_next, t_next + dt_record, ... Returns (px, py, pz, t_end, status, n, qx, qy): n the next
     row of the trajectory buffer, (qx, qy) the last point in play (where the status is not OK,
     the ball stopped at the first point of the step that left play).
     """
-    _, nx, ny, nz, turf, state, ds, patch = surface(terrain, plane, px, py, pz)
+    here = surface(terrain, plane, px, py, pz)
+    nx, ny, nz, turf, state = here.nx, here.ny, here.nz, here.turf, here.state
+    ds, patch = here.step_m, here.patch
     qx = px
     qy = py
     if state != OK:
@@ -369,7 +414,9 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         qy = py
         px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
         t += h
-        pz, mx, my, mz, under, state, ds, patch = surface(terrain, plane, px, py, pz)
+        here = surface(terrain, plane, px, py, pz)
+        pz, mx, my, mz, under = here.height_m, here.nx, here.ny, here.nz, here.turf
+        state, ds, patch = here.state, here.step_m, here.patch
         if state != OK:
             return px, py, pz, t, state, n, qx, qy
         if (
@@ -396,33 +443,33 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         v = math.sqrt(vx * vx + vy * vy + vz * vz)
         h_cap = ds / v if v > 0.0 else math.inf
         to_edge = False  # a step to the edge of a level patch, where the next one turns it
-        if (patch[0] != 0.0) & (v > 1e-12):
+        if (patch.smooth != 0.0) & (v > 1e-12):
             # On smooth ground: a Runge-Kutta step to the patch's edge, unless the ball is
             # about to stop.
             decel = (5.0 / 7.0) * G_MPS2 * (vz / v + turf.rho_g * nz)
             t_stop = v / decel if decel > 0.0 else math.inf
-            level = patch[0] == LEVEL_PATCH
+            level = patch.smooth == LEVEL_PATCH
             if level:
                 # On a level patch the roll's own step is exact: it goes to the patch's edge.
                 to_edge = True
                 k = (5.0 / 7.0) * turf.rho_g * G_MPS2 / v
                 h_cap = min(
-                    _exit_time(px - patch[1], vx, -k * vx, patch[7], patch[8]),
-                    _exit_time(patch[2] - py, -vy, k * vy, patch[9], patch[10]),
+                    _exit_time(px - patch.xc, vx, -k * vx, patch.u_lo, patch.u_hi),
+                    _exit_time(patch.yc - py, -vy, k * vy, patch.w_lo, patch.w_hi),
                 )
             elif STOP_FRACTION * t_stop >= PATCH_DT_MIN_S:
                 ax, ay = _patch_acceleration(px, py, vx, vy, patch, turf.rho_g)
                 h_edge = min(
-                    _exit_time(px - patch[1], vx, ax, patch[7], patch[8]),
-                    _exit_time(patch[2] - py, -vy, -ay, patch[9], patch[10]),
+                    _exit_time(px - patch.xc, vx, ax, patch.u_lo, patch.u_hi),
+                    _exit_time(patch.yc - py, -vy, -ay, patch.w_lo, patch.w_hi),
                 )
                 h = min(STOP_FRACTION * t_stop, PATCH_DT_MAX_S, h_edge)
                 if h > 0.0:
                     x1, y1, vx1, vy1 = _patch_step(px, py, vx, vy, ax, ay, h, patch, turf.rho_g)
                     # Past the patch's edge by more than PATCH_OVERSHOOT_M (the step's length was
                     # foreseen at constant acceleration): the step again, ending there.
-                    over = _overshoot(x1 - patch[1], vx1, patch[7], patch[8])
-                    over_w = _overshoot(patch[2] - y1, -vy1, patch[9], patch[10])
+                    over = _overshoot(x1 - patch.xc, vx1, patch.u_lo, patch.u_hi)
+                    over_w = _overshoot(patch.yc - y1, -vy1, patch.w_lo, patch.w_hi)
                     if over_w > over:
                         over = over_w
                     if (over > PATCH_REFINE_S) & (over < h):
@@ -436,24 +483,31 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
                         qx = px
                         qy = py
                         # The velocity in the patch's tangent plane at the step's end.
-                        u = x1 - patch[1]
-                        w = patch[2] - y1
-                        hx = patch[4] + patch[6] * w
-                        hy = -(patch[5] + patch[6] * u)
+                        u = x1 - patch.xc
+                        w = patch.yc - y1
+                        hx = patch.bx + patch.ec * w
+                        hy = -(patch.by + patch.ec * u)
                         vz = hx * vx1 + hy * vy1
                         px, py, vx, vy = x1, y1, vx1, vy1
                         t += h
-                        if (u >= patch[7]) & (u <= patch[8]) & (w >= patch[9]) & (w <= patch[10]):
+                        if (
+                            (u >= patch.u_lo)
+                            & (u <= patch.u_hi)
+                            & (w >= patch.w_lo)
+                            & (w <= patch.w_hi)
+                        ):
                             # Still on the patch: its height and normal there.
-                            pz = patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
+                            pz = patch.hc + patch.bx * u + patch.by * w + patch.ec * u * w
                             k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
                             nx = -hx * k
                             ny = -hy * k
                             nz = k
                         else:
-                            pz, nx, ny, nz, under, state, ds, patch = surface(
-                                terrain, plane, px, py, pz
-                            )
+                            here = surface(terrain, plane, px, py, pz)
+                            pz, nx, ny, nz, under = (
+                                here.height_m, here.nx, here.ny, here.nz, here.turf
+                            )  # fmt: skip
+                            state, ds, patch = here.state, here.step_m, here.patch
                             if state != OK:
                                 return px, py, pz, t, state, n, qx, qy
                             # Into the tangent plane of the next patch.
@@ -485,7 +539,9 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
         qy = py
         px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
         t += h
-        pz, mx, my, mz, under, state, ds, patch = surface(terrain, plane, px, py, pz)
+        here = surface(terrain, plane, px, py, pz)
+        pz, mx, my, mz, under = here.height_m, here.nx, here.ny, here.nz, here.turf
+        state, ds, patch = here.state, here.step_m, here.patch
         if state != OK:
             return px, py, pz, t, state, n, qx, qy
         if pz != z1:  # on a terrain: the ground is put under the ball again
@@ -510,7 +566,8 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, 
 def roll_out(x, y, z, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t, traj, n, t_next, dt):
     """After the last impact: the ball stays on the ground with its velocity along it, slides
     and rolls to rest (``roll.roll``). Returns (x, y, z, t, status, n, qx, qy)."""
-    _, nx, ny, nz, _, _, _, _ = surface(terrain, plane, x, y, z)
+    here = surface(terrain, plane, x, y, z)
+    nx, ny, nz = here.nx, here.ny, here.nz
     vn = vx * nx + vy * ny + vz * nz
     x, y, z, t, status, n, qx, qy = roll(
         x, y, z, vx - vn * nx, vy - vn * ny, vz - vn * nz, wx, wy, wz, surface, terrain, plane,
