@@ -179,3 +179,51 @@ def test_every_row_of_a_table_is_its_own():
     assert tables.GENERAL_ROWS.N <= tables.LANE.DT
     assert tables.QUADRATIC_ROWS._fields[:-1] == QuadraticContext._fields
     assert tables.GENERAL_ROWS._fields[:-1] == FlightParams._fields
+
+
+# Run as Python (``NUMBA_DISABLE_JIT=1``): the same shots on a Plane and on a terrain of
+# slopes with a penalty area, written to a file.
+_AS_PYTHON = """
+import sys
+
+import numpy as np
+
+from mcrun import ground
+from mcrun.engine.backend import simulate_batch
+
+data = np.load(sys.argv[1])
+terrain = ground.make_terrain(
+    0.0, -60.0, 5.0, data["height"], data["zone"], data["turf"], data["penalty"]
+)
+np.savez(sys.argv[2], plane=simulate_batch(data["rows"]),
+         terrain=simulate_batch(data["rows"], terrain=terrain))
+"""
+
+
+def test_the_shot_loop_steps_through_as_python(inputs, tmp_path):
+    """With NUMBA_DISABLE_JIT=1 the shot loop is plain Python, for a developer to step through
+    (the ground's questions pick their answer by the value of ``terrain``, and no lane divides
+    by zero): the same numbers as compiled, to the bit, on a Plane and on a hole's terrain of
+    slopes with a penalty area, for every model, wind profile and status of the mix."""
+    import os
+    import subprocess
+    import sys
+
+    rows = np.asfortranarray(inputs[:40])
+    X, Y = np.meshgrid(np.arange(0.0, 301.0, 5.0), np.arange(-60.0, 61.0, 5.0))
+    height = 0.02 * X + 1.5 * np.sin(X / 40.0) * np.cos(Y / 30.0)
+    zone = (np.hypot(X - 150.0, Y) < 20.0).astype(np.int8)
+    turf = np.array([list(PRESETS["fairway"]), list(PRESETS["green"])])
+    penalty = np.array([ground.IN_PLAY, ground.PENALTY_AREA], np.int8)
+    np.savez(tmp_path / "in.npz", rows=rows, height=height, zone=zone, turf=turf, penalty=penalty)
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    subprocess.run(
+        [sys.executable, "-c", _AS_PYTHON, str(tmp_path / "in.npz"), str(tmp_path / "out.npz")],
+        env=env, check=True, timeout=600,
+    )  # fmt: skip
+    as_python = np.load(tmp_path / "out.npz")
+    terrain = ground.make_terrain(0.0, -60.0, 5.0, height, zone, turf, penalty)
+    on_terrain = simulate_batch(rows, terrain=terrain)
+    assert same(as_python["plane"], simulate_batch(rows))
+    assert same(as_python["terrain"], on_terrain)
+    assert {0.0, 1.0} <= set(np.unique(on_terrain[:, -1]))  # ok and invalid_input

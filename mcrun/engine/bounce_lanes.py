@@ -413,10 +413,11 @@ def _file_rolls(start, landings, r, count, out, traj, tracer, terrain):
 def bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain):
     """The bounces and the roll of the landed shots ``pending``, LANES at a time; a shot that
     stops hopping waits in the roll table until LANES shots roll out together."""
-    b = np.zeros(BOUNCE.N * LANES)
-    r = np.zeros(BOUNCE.N * LANES)  # the roll table
-    e = np.zeros(INCIDENCE.N * LANES)  # the equivalent surfaces of the impacts
-    rb = np.zeros(REBOUND.N * LANES)  # their rebounds, on a terrain
+    # (Of ones: see ``tables.LANES``.)
+    b = np.ones(BOUNCE.N * LANES)
+    r = np.ones(BOUNCE.N * LANES)  # the roll table
+    e = np.ones(INCIDENCE.N * LANES)  # the equivalent surfaces of the impacts
+    rb = np.ones(REBOUND.N * LANES)  # their rebounds, on a terrain
     before = np.zeros(BOUNCE.N)  # the traced lane before its impact
     waiting = 0  # shots in it
     shot = np.full(LANES, -1)

@@ -575,8 +575,9 @@ def _make_flight(derivative, stage, step, constants, context):
             tracer, terrain):  # fmt: skip
         """Fly shots start..stop-1 of ``inputs`` of this ``kind`` LANES at a time, land them
         LANES at a time and queue them in ``pending``; returns the number queued there."""
-        lanes = np.zeros(LANE.N * LANES)
-        g = np.zeros(LANE.N * LANES)  # the landing table
+        # (Of ones: see ``tables.LANES``.)
+        lanes = np.ones(LANE.N * LANES)
+        g = np.ones(LANE.N * LANES)  # the landing table
         waiting = 0  # shots in it
         shot = np.full(LANES, -1)
         next_i = start

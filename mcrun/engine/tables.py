@@ -17,7 +17,10 @@ from mcrun.ground import read_turf
 from mcrun.physics.flight import FlightParams, QuadraticContext, make_flight_params
 from mcrun.physics.turf import Turf
 
-# Shots stepped together in one pass of a loop.
+# Shots stepped together in one pass of a loop. A lane that holds no shot is computed with the
+# others, on what its rows hold: the tables start as ones, not zeros, so that it divides by no
+# zero, which the compiled loop would not mind (error_model="numpy") but Python does, where the
+# loop runs as Python (NUMBA_DISABLE_JIT=1) for a developer to step through it.
 LANES = 16
 
 

@@ -5,10 +5,27 @@ look-up of the cell where a loop asks at every step."""
 import math
 
 from numba import njit
+from numba.extending import overload
 
 from mcrun.ground.terrain import OUT_OF_BOUNDS, PENALTY_AREA, read_turf
 from mcrun.physics.roll import LEVEL_PATCH, Patch, Surface
 from mcrun.status import IN_PENALTY_AREA, OFF_MAP, OK, OUT_OF_BOUNDS_STATUS
+
+
+def cell_index(f, last):
+    """The cell at the fraction f (of cells from the grid's origin) along an axis, in [0,
+    last]: the edge cells are extended. Compiled, ``int(floor(f))`` clamped (its overload); as
+    Python (``NUMBA_DISABLE_JIT=1``) the same, and 0 where f is not a number (the garbage of a
+    lane that holds no shot, which the compiled code clamps as any number), where Python's
+    ``int`` would raise."""
+    if math.isnan(f):
+        return 0
+    return min(max(int(math.floor(f)), 0), last) if math.isfinite(f) else (last if f > 0 else 0)
+
+
+@overload(cell_index, inline="always")
+def _cell_index(f, last):
+    return lambda f, last: min(max(int(math.floor(f)), 0), last)
 
 
 @njit(cache=True, error_model="numpy")
@@ -20,8 +37,8 @@ def _locate(terrain, x, y):
     fx = (x - terrain.x0_m) / terrain.cell_m
     fy = (-y - terrain.y0_m) / terrain.cell_m
     inside = (fx >= 0.0) & (fx <= nx - 1.0) & (fy >= 0.0) & (fy <= ny - 1.0)
-    ix = min(max(int(math.floor(fx)), 0), nx - 2)
-    iy = min(max(int(math.floor(fy)), 0), ny - 2)
+    ix = cell_index(fx, nx - 2)
+    iy = cell_index(fy, ny - 2)
     return ix, iy, min(max(fx - ix, 0.0), 1.0), min(max(fy - iy, 0.0), 1.0), inside
 
 
@@ -34,8 +51,8 @@ def _cell_at(terrain, x, y):
     fx = (x - terrain.x0_m) / terrain.cell_m
     fy = (-y - terrain.y0_m) / terrain.cell_m
     inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
-    ix = min(max(int(math.floor(fx)), 0), nx_ - 2)
-    iy = min(max(int(math.floor(fy)), 0), ny_ - 2)
+    ix = cell_index(fx, nx_ - 2)
+    iy = cell_index(fy, ny_ - 2)
     tx = min(max(fx - ix, 0.0), 1.0)
     ty = min(max(fy - iy, 0.0), 1.0)
     h = terrain.height_m

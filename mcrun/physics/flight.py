@@ -201,9 +201,7 @@ def derivatives_quadratic(vx, vy, vz, spin, z, ctx):
     )
     reynolds = speed * 2.0 * BALL_RADIUS_M / c.nu
     cd += c.c_lyu * lyu_rise(reynolds) + c.c_ramp * ramp_rise(reynolds)
-    ax, ay, az, _ = forces(
-        ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, c.k_cd, c.k_cl, cd, cl
-    )
+    ax, ay, az, _ = forces(ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, c.k_cd, c.k_cl, cd, cl)
     return ax, ay, az, -(c.spin_k * speed / BALL_RADIUS_M + c.spin_rate) * spin
 
 
