@@ -16,11 +16,12 @@ import pytest
 from mcrun import api, ground
 from mcrun.engine import flight_lanes, tables
 from mcrun.engine.backend import simulate_batch, simulate_traced
+from mcrun.engine.rolling import roll_out
 from mcrun.engine.schema import COLUMN, N_INPUT, N_OUTCOME
 from mcrun.engine.shot import default_dt_s
 from mcrun.physics import aero
 from mcrun.physics.flight import WIND_PROFILES, FlightParams, QuadraticContext
-from mcrun.physics.roll import roll_out, roll_out_short
+from mcrun.physics.roll import roll_out_short
 from mcrun.physics.turf import PRESETS
 
 N = 400
@@ -139,7 +140,7 @@ def test_short_roll_is_roll_out_on_level_ground():
             1.0, 2.0, 0.0, *v, *w, 0.0, 0.0, 1.0, turf.mu, turf.rho_g, 3.0
         )
         level = ground.Plane(0.0, 0.0, 1.0, turf)
-        want = roll_out(1.0, 2.0, 0.0, *v, *w, ground.surface, None, level, 3.0, no_trajectory, 0,
+        want = roll_out(1.0, 2.0, 0.0, *v, *w, None, level, 3.0, no_trajectory, 0,
                         3.0, 0.01)  # fmt: skip
         assert short
         assert (x, y, t) == (want[0], want[1], want[3])

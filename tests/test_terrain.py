@@ -33,6 +33,7 @@ from scipy.interpolate import CubicSpline
 from mcrun import api, ground
 from mcrun.engine.backend import simulate_batch, simulate_landed, simulate_traced
 from mcrun.engine.batch import N_LANDING
+from mcrun.engine.rolling import roll_out
 from mcrun.engine.schema import (
     BOUNCES,
     CARRY,
@@ -47,7 +48,6 @@ from mcrun.engine.schema import (
 )
 from mcrun.hole.shapes import shape_gradient, shape_height
 from mcrun.physics.constants import BALL_RADIUS_M, G_MPS2
-from mcrun.physics.roll import roll_out
 from mcrun.physics.turf import PRESETS
 from mcrun.status import IN_PENALTY_AREA, OFF_MAP, OK, OUT_OF_BOUNDS_STATUS
 from mcrun.trajectory import FLIGHT, ROLL
@@ -76,7 +76,7 @@ def shape(kind, **params):
 
 
 def rolling(terrain, x, y, vx, vy, dt_record=0.0, rows=0):
-    """``roll.roll_out`` of a ball put on the terrain at (x, y) (hole frame) rolling without
+    """``rolling.roll_out`` of a ball put on the terrain at (x, y) (hole frame) rolling without
     slipping at horizontal velocity (vx, vy), along the ground. Returns (x, y, z, t, status)
     of its end in the hole frame, and its path (rows t, x, y, z, phase) every ``dt_record``."""
     xc, yc, vxc, vyc = x, -y, vx, -vy  # the core frame: y to the LEFT
@@ -87,7 +87,7 @@ def rolling(terrain, x, y, vx, vy, dt_record=0.0, rows=0):
     traj = np.empty((rows, 5))
     any_plane = ground.Plane(0.0, 0.0, 1.0, PRESETS["green"])
     x1, y1, z1, t1, status, m, _, _ = roll_out(
-        xc, yc, ground.grid._grid_height(terrain, xc, yc), *v, *w, ground.surface, terrain,
+        xc, yc, ground.grid._grid_height(terrain, xc, yc), *v, *w, terrain,
         any_plane, 0.0, traj, 0, dt_record, dt_record,
     )  # fmt: skip
     assert m <= rows or rows == 0

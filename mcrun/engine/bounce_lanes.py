@@ -2,7 +2,7 @@
 
 One impact and hop of every lane per pass of vectorised loops (``bounce.impact`` and
 ``bounce.hop``, ``_impact_lanes``); a lane whose ball stops bouncing hands it to the roll table,
-where LANES shots roll out together (``roll.roll_out_short``, or ``roll.roll_out`` on their own
+where LANES shots roll out together (``roll.roll_out_short``, or ``rolling.roll_out`` on their own
 where that is not enough, ``_file_rolls``), and takes the next landed shot. The tables' rows are
 ``engine.tables``'s BOUNCE, INCIDENCE and REBOUND; a shot comes in as its LANDING.
 """
@@ -13,6 +13,7 @@ import numpy as np
 from numba import njit
 
 from mcrun import ground
+from mcrun.engine.rolling import roll_out
 from mcrun.engine.shot import write_run
 from mcrun.engine.tables import (
     BOUNCE,
@@ -27,7 +28,7 @@ from mcrun.engine.tables import (
 from mcrun.ground import read_turf
 from mcrun.physics.bounce import HOPS, TOO_MANY, hop, impact, impact_rebound, incidence
 from mcrun.physics.constants import G_MPS2
-from mcrun.physics.roll import roll_out, roll_out_short
+from mcrun.physics.roll import roll_out_short
 from mcrun.status import NOT_STOPPED, OK, TOO_MANY_BOUNCES
 from mcrun.trajectory import BOUNCE as BOUNCE_PHASE
 from mcrun.trajectory import record
@@ -331,7 +332,7 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terr
 @njit(cache=True, error_model="numpy")
 def _roll_lanes(r, terrain):
     """``roll.roll_out_short`` of every lane of the roll table ``r`` (the vectorised loop), on
-    a Plane; on a terrain every ball rolls out on its own (``roll.roll_out``)."""
+    a Plane; on a terrain every ball rolls out on its own (``rolling.roll_out``)."""
     plane = not ground.varies(terrain)
     for k in range(LANES):
         under = _lane_ground(r, k)
@@ -365,7 +366,7 @@ def _roll_lanes(r, terrain):
 @njit(cache=True, error_model="numpy")
 def _file_rolls(start, landings, r, count, out, traj, tracer, terrain):
     """Roll out the first ``count`` shots of the roll table ``r`` and write their run: LANES
-    at a time by ``_roll_lanes``, and on their own (``roll.roll_out``) where that is not
+    at a time by ``_roll_lanes``, and on their own (``rolling.roll_out``) where that is not
     enough, the ground is a terrain or the shot is traced."""
     _roll_lanes(r, terrain)
     for j in range(count):
@@ -391,7 +392,6 @@ def _file_rolls(start, landings, r, count, out, traj, tracer, terrain):
                 s[BOUNCE.WX],
                 s[BOUNCE.WY],
                 s[BOUNCE.WZ],
-                ground.surface,
                 terrain,
                 _lane_ground(r, j),
                 s[BOUNCE.T],

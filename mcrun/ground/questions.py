@@ -152,15 +152,16 @@ def calm_reach(terrain, x, y):
 
 @question
 def _surface(terrain, plane, x, y, z):
-    """The Surface at (x, y): ``surface``, which the roll is passed (a question cannot be)."""
+    """The Surface at (x, y): ``surface``."""
     if _flat(terrain):
         return lambda terrain, plane, x, y, z: plane_surface(plane, z)
     return lambda terrain, plane, x, y, z: _grid_surface(terrain, x, y)
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def surface(terrain, plane, x, y, z):
-    """What the roll asks at each step (``roll.roll``, to which it is passed): the Surface at
+    """What the roll asks at each step (``engine.rolling``; a call, not inlined at the roll's
+    five calls, which would cost compile time and nothing else): the Surface at
     (x, y), ball height z: on a Plane, z itself (the ball stays on the plane), its normal and
     turf, always in play, no limit to a step and no patch; on a grid, the height of the ground
     there, its normal and turf, the state there (``state_at``), a quarter of a cell, or the
