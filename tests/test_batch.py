@@ -7,20 +7,21 @@ recorded or not), whatever the mix of shots, their order, the number of threads 
 chunking; and the two forms of lanes give the same numbers for a shot both can fly.
 """
 
-from pathlib import Path
+import itertools
 
 import numba
 import numpy as np
 import pytest
 
 from mcrun import api, ground
-from mcrun.engine import batch
+from mcrun.engine import flight_lanes, tables
 from mcrun.engine.backend import simulate_batch, simulate_traced
+from mcrun.engine.rolling import roll_out
 from mcrun.engine.schema import COLUMN, N_INPUT, N_OUTCOME
 from mcrun.engine.shot import default_dt_s
 from mcrun.physics import aero
-from mcrun.physics.flight import WIND_PROFILES
-from mcrun.physics.roll import roll_out, roll_out_short
+from mcrun.physics.flight import WIND_PROFILES, FlightParams, QuadraticContext
+from mcrun.physics.roll import roll_out_short
 from mcrun.physics.turf import PRESETS
 
 N = 400
@@ -93,15 +94,15 @@ def test_general_lanes_fly_a_quadratic_shot_as_the_quadratic_lanes(inputs):
     n = len(inputs)
     rows = np.asfortranarray(inputs)
     outs = []
-    for fly in (batch._fly_quadratic, batch._fly_general):
+    for fly in (flight_lanes.fly_quadratic, flight_lanes.fly_general):
         out = np.full((n, N_OUTCOME), np.nan, order="F")
-        kinds = np.array([batch._kind(rows, i, out) for i in range(n)], dtype=np.int8)
-        landings = np.empty((n, batch.N_LANDING))
+        kinds = np.array([flight_lanes.flight_kind(rows, i, out) for i in range(n)], dtype=np.int8)
+        landings = np.empty((n, tables.N_LANDING))
         pending = np.empty(n, dtype=np.int64)
         no_path, untraced = np.empty((0, 5)), np.full(4, -1.0)
-        fly(rows, kinds, batch.QUADRATIC, 0, n, aero.QUADRATIC_COEFFICIENTS, out, landings,
+        fly(rows, kinds, flight_lanes.QUADRATIC, 0, n, aero.QUADRATIC_COEFFICIENTS, out, landings,
             pending, 0, no_path, untraced, None)  # fmt: skip
-        outs.append(out[kinds == batch.QUADRATIC])
+        outs.append(out[kinds == flight_lanes.QUADRATIC])
     assert len(outs[0]) > 100
     assert same(outs[0], outs[1])
 
@@ -139,7 +140,7 @@ def test_short_roll_is_roll_out_on_level_ground():
             1.0, 2.0, 0.0, *v, *w, 0.0, 0.0, 1.0, turf.mu, turf.rho_g, 3.0
         )
         level = ground.Plane(0.0, 0.0, 1.0, turf)
-        want = roll_out(1.0, 2.0, 0.0, *v, *w, ground.surface, None, level, 3.0, no_trajectory, 0,
+        want = roll_out(1.0, 2.0, 0.0, *v, *w, None, level, 3.0, no_trajectory, 0,
                         3.0, 0.01)  # fmt: skip
         assert short
         assert (x, y, t) == (want[0], want[1], want[3])
@@ -164,19 +165,66 @@ def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):
     assert len(plane) == 1, _simulate_batch.signatures
 
 
-def test_every_row_name_of_the_tables_is_given_once():
-    """The lane tables' row names are module constants that the compiled loops read: one name
-    given twice (the flight's and the bounce's tables) silently moves one table's rows onto
-    the other's."""
-    import ast
-    import collections
+def test_every_row_of_a_table_is_its_own():
+    """Each lane table's rows are declared once, by name (``tables.rows``), and read as its
+    fields (``LANE.X``, ``BOUNCE.X``): within a table their numbers strictly increase from 0
+    up to its size, so that no two rows share one (a row given twice silently moves one
+    table's rows onto another's); the flight's contexts lie on the lane table's rows kept for
+    them (the spin axis and the constants), in their types' order."""
+    for table in (tables.LANE, tables.BOUNCE, tables.INCIDENCE, tables.REBOUND, tables.LANDING,
+                  tables.TRACER):  # fmt: skip
+        assert table[0] == 0 and all(a < b for a, b in itertools.pairwise(table)), table
+    assert tables.QUADRATIC_ROWS.axis_x == tables.LANE.AXIS_X
+    assert tables.QUADRATIC_ROWS.N == tables.LANE.DT
+    assert tables.GENERAL_ROWS[0] == tables.LANE.CONSTANTS
+    assert tables.GENERAL_ROWS.N <= tables.LANE.DT
+    assert tables.QUADRATIC_ROWS._fields[:-1] == QuadraticContext._fields
+    assert tables.GENERAL_ROWS._fields[:-1] == FlightParams._fields
 
-    tree = ast.parse(Path(batch.__file__).read_text(encoding="utf-8"))
-    names = collections.Counter()
-    for node in tree.body:
-        if isinstance(node, ast.Assign):
-            for target in node.targets:
-                for name in target.elts if isinstance(target, ast.Tuple) else [target]:
-                    if isinstance(name, ast.Name):
-                        names[name.id] += 1
-    assert [name for name, count in names.items() if count > 1] == []
+
+# Run as Python (``NUMBA_DISABLE_JIT=1``): the same shots on a Plane and on a terrain of
+# slopes with a penalty area, written to a file.
+_AS_PYTHON = """
+import sys
+
+import numpy as np
+
+from mcrun import ground
+from mcrun.engine.backend import simulate_batch
+
+data = np.load(sys.argv[1])
+terrain = ground.make_terrain(
+    0.0, -60.0, 5.0, data["height"], data["zone"], data["turf"], data["penalty"]
+)
+np.savez(sys.argv[2], plane=simulate_batch(data["rows"]),
+         terrain=simulate_batch(data["rows"], terrain=terrain))
+"""
+
+
+def test_the_shot_loop_steps_through_as_python(inputs, tmp_path):
+    """With NUMBA_DISABLE_JIT=1 the shot loop is plain Python, for a developer to step through
+    (the ground's questions pick their answer by the value of ``terrain``, and no lane divides
+    by zero): the same numbers as compiled, to the bit, on a Plane and on a hole's terrain of
+    slopes with a penalty area, for every model, wind profile and status of the mix."""
+    import os
+    import subprocess
+    import sys
+
+    rows = np.asfortranarray(inputs[:40])
+    X, Y = np.meshgrid(np.arange(0.0, 301.0, 5.0), np.arange(-60.0, 61.0, 5.0))
+    height = 0.02 * X + 1.5 * np.sin(X / 40.0) * np.cos(Y / 30.0)
+    zone = (np.hypot(X - 150.0, Y) < 20.0).astype(np.int8)
+    turf = np.array([list(PRESETS["fairway"]), list(PRESETS["green"])])
+    penalty = np.array([ground.IN_PLAY, ground.PENALTY_AREA], np.int8)
+    np.savez(tmp_path / "in.npz", rows=rows, height=height, zone=zone, turf=turf, penalty=penalty)
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    subprocess.run(
+        [sys.executable, "-c", _AS_PYTHON, str(tmp_path / "in.npz"), str(tmp_path / "out.npz")],
+        env=env, check=True, timeout=600,
+    )  # fmt: skip
+    as_python = np.load(tmp_path / "out.npz")
+    terrain = ground.make_terrain(0.0, -60.0, 5.0, height, zone, turf, penalty)
+    on_terrain = simulate_batch(rows, terrain=terrain)
+    assert same(as_python["plane"], simulate_batch(rows))
+    assert same(as_python["terrain"], on_terrain)
+    assert {0.0, 1.0} <= set(np.unique(on_terrain[:, -1]))  # ok and invalid_input

@@ -21,6 +21,10 @@ from typing import NamedTuple
 from numba import njit
 
 from mcrun.physics.aero import (
+    C_LYU,
+    C_RAMP,
+    SPIN_K,
+    SPIN_RATE,
     coefficients,
     is_reynolds,
     lyu_rise,
@@ -98,14 +102,64 @@ def forces(ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, k_cd, k_cl, cd, cl):
     return ax, ay, az, -SPIN_DECAY_K * speed / BALL_RADIUS_M * spin
 
 
+class GeneralContext(NamedTuple):
+    """What ``derivatives`` needs besides the state: the unit spin axis, the FlightParams and
+    ``aero.QUADRATIC_COEFFICIENTS``."""
+
+    axis_x: float
+    axis_y: float
+    axis_z: float
+    params: FlightParams
+    table: object  # (n_models, n_columns) float64
+
+
+class QuadraticContext(NamedTuple):
+    """What ``derivatives_quadratic`` needs besides the state, 19 floats: the unit spin axis,
+    the wind, k C_D-scale and k C_L-scale (k = rho A / 2m), the columns of the model's row of
+    ``aero.QUADRATIC_COEFFICIENTS`` and the kinematic viscosity nu (``quadratic_context``). The
+    shot loop keeps it in a table's rows, in this order, by these names."""
+
+    axis_x: float
+    axis_y: float
+    axis_z: float
+    wind_x: float
+    wind_y: float
+    k_cd: float
+    k_cl: float
+    a0: float
+    a1: float
+    a2: float
+    b0: float
+    b1: float
+    b2: float
+    s_max: float
+    nu: float
+    c_lyu: float
+    c_ramp: float
+    spin_k: float
+    spin_rate: float
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def quadratic_context(axis_x, axis_y, axis_z, p, table):
+    """The QuadraticContext of a shot of spin axis ``axis`` and FlightParams p, a quadratic or
+    Reynolds model in uniform wind: the same numbers ``derivatives`` takes from p."""
+    k_air = 0.5 * p.air_density_kgpm3 * BALL_AREA_M2 / BALL_MASS_KG
+    row = table[p.aero_model]
+    return QuadraticContext(
+        axis_x, axis_y, axis_z, p.wind_x_mps, p.wind_y_mps, k_air * p.cd_scale,
+        k_air * p.cl_scale, row[0], row[1], row[2], row[3], row[4], row[5], row[6],
+        p.kinematic_viscosity_m2ps, row[C_LYU], row[C_RAMP], row[SPIN_K], row[SPIN_RATE],
+    )  # fmt: skip
+
+
 @njit(cache=True, error_model="numpy")
 def derivatives(vx, vy, vz, spin, z, ctx):
     """Time derivatives (ax, ay, az, dspin/dt) of the flight state, any model and wind.
 
-    ``ctx`` = (axis_x, axis_y, axis_z, p, table): the unit spin axis, the FlightParams and
-    ``aero.QUADRATIC_COEFFICIENTS``.
+    ``ctx``: a GeneralContext.
     """
-    axis_x, axis_y, axis_z, p, table = ctx
+    axis_x, axis_y, axis_z, p, table = ctx.axis_x, ctx.axis_y, ctx.axis_z, ctx.params, ctx.table
     f = wind_factor(z, p.wind_profile, p.wind_reference_height_m, p.wind_profile_parameter)
     ux = vx - f * p.wind_x_mps
     uy = vy - f * p.wind_y_mps
@@ -133,21 +187,22 @@ def derivatives_quadratic(vx, vy, vz, spin, z, ctx):
     quadratic model the rises are scaled by 0 and the spin decay is k |v_rel| / r + 0 with
     k = constants.SPIN_DECAY_K.
 
-    ``ctx`` = (axis_x, axis_y, axis_z, wind_x, wind_y, k_cd, k_cl, a0, a1, a2, b0, b1, b2, s_max,
-    nu, c_lyu, c_ramp, spin_k, spin_rate): the columns of the model's row of
-    ``aero.QUADRATIC_COEFFICIENTS`` and the kinematic viscosity nu.
+    ``ctx``: a QuadraticContext.
     """
-    (axis_x, axis_y, axis_z, wind_x, wind_y, k_cd, k_cl, a0, a1, a2, b0, b1, b2, s_max, nu,
-     c_lyu, c_ramp, spin_k, spin_rate) = ctx  # fmt: skip
-    ux = vx - wind_x
-    uy = vy - wind_y
+    c = ctx
+    ux = vx - c.wind_x
+    uy = vy - c.wind_y
     uz = vz
-    speed, inverse_speed, lx, ly, lz, lift_scale = air_speed(ux, uy, uz, axis_x, axis_y, axis_z)
-    cd, cl = quadratic(BALL_RADIUS_M * spin * inverse_speed, a0, a1, a2, b0, b1, b2, s_max)
-    reynolds = speed * 2.0 * BALL_RADIUS_M / nu
-    cd += c_lyu * lyu_rise(reynolds) + c_ramp * ramp_rise(reynolds)
-    ax, ay, az, _ = forces(ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, k_cd, k_cl, cd, cl)
-    return ax, ay, az, -(spin_k * speed / BALL_RADIUS_M + spin_rate) * spin
+    speed, inverse_speed, lx, ly, lz, lift_scale = air_speed(
+        ux, uy, uz, c.axis_x, c.axis_y, c.axis_z
+    )
+    cd, cl = quadratic(
+        BALL_RADIUS_M * spin * inverse_speed, c.a0, c.a1, c.a2, c.b0, c.b1, c.b2, c.s_max
+    )
+    reynolds = speed * 2.0 * BALL_RADIUS_M / c.nu
+    cd += c.c_lyu * lyu_rise(reynolds) + c.c_ramp * ramp_rise(reynolds)
+    ax, ay, az, _ = forces(ux, uy, uz, speed, spin, lx, ly, lz, lift_scale, c.k_cd, c.k_cl, cd, cl)
+    return ax, ay, az, -(c.spin_k * speed / BALL_RADIUS_M + c.spin_rate) * spin
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -194,10 +249,9 @@ def _make_rk4(deriv):
     return rk4_stage, rk4_step
 
 
-# rk4_step(x, y, z, vx, vy, vz, spin, h, ctx) and its stage for any shot (ctx as for
-# ``derivatives``), and for a quadratic model in uniform wind (ctx as for
-# ``derivatives_quadratic``), which a block of shots steps through one loop at a time: the same
-# numbers.
+# rk4_step(x, y, z, vx, vy, vz, spin, h, ctx) and its stage for any shot (ctx a GeneralContext),
+# and for a quadratic model in uniform wind (ctx a QuadraticContext), which a block of shots
+# steps through one loop at a time: the same numbers.
 rk4_stage, rk4_step = _make_rk4(derivatives)
 rk4_stage_quadratic, rk4_step_quadratic = _make_rk4(derivatives_quadratic)
 

@@ -10,39 +10,63 @@ Two phases (Penner 2002 section 2 and physics.md):
 Each step holds the direction of u (or v) fixed, which is exact on level ground: there a single
 step runs each phase to its end. On a slope the steps are ROLL_DT_S long. A ball on a slope
 steeper than atan(rho_g) never stops: the bounds in ``status`` end it with NOT_STOPPED. On a
-terrain the ground is asked after every step (``roll``), and a step goes at most a quarter of
-a cell of its grid.
+terrain the ground is asked after every step, and a step goes at most a quarter of a cell of
+its grid: that loop, which asks the ground, is the engine's (``engine.rolling``); here are the
+steps it takes, and the Surface and Patch of ground it asks for.
 """
 
 import math
+from typing import NamedTuple
 
 from numba import njit
 
 from mcrun.physics.constants import BALL_RADIUS_M, G_MPS2
-from mcrun.status import MAX_ROLL_DISTANCE_M, MAX_ROLL_TIME_S, NOT_STOPPED, OK
-from mcrun.trajectory import ROLL, record
+from mcrun.physics.turf import Turf
+from mcrun.status import MAX_ROLL_DISTANCE_M, MAX_ROLL_TIME_S
 
 ROLL_DT_S = 0.01
 
 
-@njit(cache=True)
-def _record_segment(traj, n, t_next, dt_record, t0, h, px, py, pz, vx, vy, vz, ax, ay, az):
-    """Record the points of the trajectory grid that fall inside [t0, t0 + h)."""
-    if traj.shape[0] == 0:
-        return n, t_next
-    while t_next < t0 + h:
-        s = t_next - t0
-        n = record(
-            traj,
-            n,
-            t_next,
-            px + vx * s + 0.5 * ax * s * s,
-            py + vy * s + 0.5 * ay * s * s,
-            pz + vz * s + 0.5 * az * s * s,
-            ROLL,
-        )
-        t_next += dt_record
-    return n, t_next
+class Patch(NamedTuple):
+    """Where the ground around the ball is one smooth piece, one bilinear patch of one zone (on
+    a grid, a cell, or the quarter of it nearest one node where its nodes' zones differ), in the
+    core's frame: at u = x - xc, w = yc - y (the grid's fractions times the cell), its height is
+    hc + bx u + by w + ec u w, for u in [u_lo, u_hi] and w in [w_lo, w_hi]. ``smooth`` is 1.0
+    where the roll may take the patch's own steps (on a grid, where the cell is not calm),
+    LEVEL_PATCH where that patch is level (where the roll's steps are exact up to its edge and
+    to the ball's stop), else 0.0 (NO_PATCH: the rest is not used)."""
+
+    smooth: float
+    xc: float
+    yc: float
+    hc: float
+    bx: float
+    by: float
+    ec: float
+    u_lo: float
+    u_hi: float
+    w_lo: float
+    w_hi: float
+
+
+LEVEL_PATCH = 2.0
+NO_PATCH = Patch(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+class Surface(NamedTuple):
+    """What the roll asks of the ground at each step (``ground.surface``): the height (m) of the
+    ground under the ball, its unit normal (core frame) and turf, the state there
+    (``mcrun.status``: OK in play, or where the shot ends), the longest distance (m) a step may
+    go on it, and the smooth Patch around it, where the roll may step further."""
+
+    height_m: float
+    nx: float
+    ny: float
+    nz: float
+    turf: Turf
+    state: int
+    step_m: float
+    patch: Patch
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -162,7 +186,7 @@ def rolled_too_far(px, py, x0, y0):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _onto_plane(x, y, z, nx, ny, nz):
+def onto_plane(x, y, z, nx, ny, nz):
     """The vector (x, y, z) turned into the plane of normal n, its length kept."""
     m2 = x * x + y * y + z * z
     d = x * nx + y * ny + z * nz
@@ -175,7 +199,7 @@ def _onto_plane(x, y, z, nx, ny, nz):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _climbed(vx, vy, vz, dz):
+def climbed(vx, vy, vz, dz):
     """The velocity of a rolling ball whose step along the tangent plane ended dz (m) below
     the ground, where it is put: its kinetic energy (7/10) v^2 pays for the height, so that
     the step conserves (7/10) v^2 + g z as the ground's curvature would (zero if it cannot)."""
@@ -186,11 +210,11 @@ def _climbed(vx, vy, vz, dz):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _turned(vx, vy, vz, dgx, dgy, dgz, h):
+def turned(vx, vy, vz, dgx, dgy, dgz, h):
     """The velocity at the end of a roll step of h (s) that held the acceleration of its
     start, where gravity along the ground changed by dg over it: turned by the mean of that
     change, (5/7) dg h / 2 (the trapezoid rule, which makes the direction second order), its
-    length kept (``_climbed`` gives it)."""
+    length kept (``climbed`` gives it)."""
     m0 = math.sqrt(vx * vx + vy * vy + vz * vz)
     c = (5.0 / 14.0) * h
     x = vx + c * dgx
@@ -201,7 +225,7 @@ def _turned(vx, vy, vz, dgx, dgy, dgz, h):
     return x * k, y * k, z * k
 
 
-# On smooth ground of a terrain (``surface``'s patch: one bilinear patch of one zone) the roll
+# On smooth ground of a terrain (``Surface.patch``: one bilinear patch of one zone) the roll
 # takes steps of the classical Runge-Kutta method (fourth order) on the ball's horizontal
 # position and velocity, with its height on the patch: each step ends where the ball leaves the
 # patch (PATCH_OVERSHOOT_M past its edge, where the next patch turns the velocity), or after at
@@ -212,24 +236,22 @@ PATCH_DT_MAX_S = 0.25
 PATCH_DT_MIN_S = 0.02
 STOP_FRACTION = 0.4
 PATCH_OVERSHOOT_M = 1e-6
-# ``surface``'s mark of a level patch (``ground.LEVEL_PATCH``).
-LEVEL_PATCH = 2.0
 # A step that ends further past the edge than this (s at its speed) is taken again, shortened.
 PATCH_REFINE_S = 1e-6
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _patch_acceleration(x, y, vx, vy, patch, rho_g):
+def patch_acceleration(x, y, vx, vy, patch, rho_g):
     """The horizontal acceleration of a ball rolling without slipping at (x, y) on the patch at
     horizontal velocity (vx, vy): (5/7) (g_t - rho_g g n_z v_hat), plus the normal force that
     keeps it on the patch's surface h (which bends it by the twist h_xy = -EC)."""
-    hx = patch[4] + patch[6] * (patch[2] - y)
-    hy = -(patch[5] + patch[6] * (x - patch[1]))
+    hx = patch.bx + patch.ec * (patch.yc - y)
+    hy = -(patch.by + patch.ec * (x - patch.xc))
     n2 = 1.0 + hx * hx + hy * hy
     vz = hx * vx + hy * vy
     inv = 1.0 / n2
     k = (5.0 / 7.0) * rho_g * G_MPS2 / math.sqrt(n2 * (vx * vx + vy * vy + vz * vz))
-    c = ((5.0 / 7.0) * G_MPS2 - 2.0 * patch[6] * vx * vy) * inv
+    c = ((5.0 / 7.0) * G_MPS2 - 2.0 * patch.ec * vx * vy) * inv
     return -c * hx - k * vx, -c * hy - k * vy
 
 
@@ -251,7 +273,7 @@ def _first_root(a, b, c):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _exit_time(p, v, a, lo, hi):
+def exit_time(p, v, a, lo, hi):
     """The first time p + v t + a t^2 / 2 leaves [lo, hi] by PATCH_OVERSHOOT_M."""
     return min(
         _first_root(0.5 * a, v, p - hi - PATCH_OVERSHOOT_M),
@@ -260,7 +282,7 @@ def _exit_time(p, v, a, lo, hi):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _overshoot(p, v, lo, hi):
+def overshoot(p, v, lo, hi):
     """How long (s) a ball at p moving at v has been past [lo, hi] by more than
     PATCH_OVERSHOOT_M (0 if it has not)."""
     past = max(p - hi, lo - p) - PATCH_OVERSHOOT_M
@@ -268,7 +290,7 @@ def _overshoot(p, v, lo, hi):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _patch_step(px, py, vx, vy, ax, ay, h, patch, rho_g):
+def patch_step(px, py, vx, vy, ax, ay, h, patch, rho_g):
     """A step of h of the classical Runge-Kutta method from (px, py) at (vx, vy), where the
     acceleration is (ax, ay): the position and velocity after it."""
     h2 = 0.5 * h
@@ -276,17 +298,17 @@ def _patch_step(px, py, vx, vy, ax, ay, h, patch, rho_g):
     y2 = py + h2 * vy
     u2 = vx + h2 * ax
     w2 = vy + h2 * ay
-    a2x, a2y = _patch_acceleration(x2, y2, u2, w2, patch, rho_g)
+    a2x, a2y = patch_acceleration(x2, y2, u2, w2, patch, rho_g)
     x3 = px + h2 * u2
     y3 = py + h2 * w2
     u3 = vx + h2 * a2x
     w3 = vy + h2 * a2y
-    a3x, a3y = _patch_acceleration(x3, y3, u3, w3, patch, rho_g)
+    a3x, a3y = patch_acceleration(x3, y3, u3, w3, patch, rho_g)
     x4 = px + h * u3
     y4 = py + h * w3
     u4 = vx + h * a3x
     w4 = vy + h * a3y
-    a4x, a4y = _patch_acceleration(x4, y4, u4, w4, patch, rho_g)
+    a4x, a4y = patch_acceleration(x4, y4, u4, w4, patch, rho_g)
     h6 = h / 6.0
     return (
         px + h6 * (vx + 2.0 * (u2 + u3) + u4),
@@ -297,227 +319,10 @@ def _patch_step(px, py, vx, vy, ax, ay, h, patch, rho_g):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _patch_height(x, y, patch):
-    u = x - patch[1]
-    w = patch[2] - y
-    return patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
-
-
-@njit(cache=True)
-def _record_patch_step(traj, n, t_next, dt_record, t0, h, px, py, vx, vy, x1, y1, vx1, vy1,
-                       patch):  # fmt: skip
-    """Record the points of the trajectory grid inside [t0, t0 + h) of a step on a patch: the
-    cubic through its ends with their velocities, on the patch's surface."""
-    if traj.shape[0] == 0:
-        return n, t_next
-    while t_next < t0 + h:
-        s = (t_next - t0) / h
-        a = (1.0 - s) * (1.0 - s) * (1.0 + 2.0 * s)
-        b = s * (1.0 - s) * (1.0 - s) * h
-        c = s * s * (3.0 - 2.0 * s)
-        d = s * s * (s - 1.0) * h
-        x = a * px + b * vx + c * x1 + d * vx1
-        y = a * py + b * vy + c * y1 + d * vy1
-        n = record(traj, n, t_next, x, y, _patch_height(x, y, patch), ROLL)
-        t_next += dt_record
-    return n, t_next
-
-
-@njit(cache=True, error_model="numpy")
-def roll(px, py, pz, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t0, traj, n, t_next,
-         dt_record):  # fmt: skip
-    """Slide, then roll, from a point on the ground until the ball stops.
-
-    The ground is asked at every step: ``surface(terrain, plane, x, y, z)`` gives its height,
-    normal, turf, state (``mcrun.status``: OK in play, or where the shot ends) and the longest
-    step along it (``ground.surface``). Where the normal changes, the velocity (and the slip)
-    turn into the new plane, their length kept, and gravity along it is taken anew; where the
-    turf changes, its friction and rolling resistance. On a plane neither changes, and the
-    steps are those of the plane's exact phases.
-
-    The velocity must lie in the ground's plane. Trajectory points are recorded at the times
-    t_next, t_next + dt_record, ... Returns (px, py, pz, t_end, status, n, qx, qy): n the next
-    row of the trajectory buffer, (qx, qy) the last point in play (where the status is not OK,
-    the ball stopped at the first point of the step that left play).
-    """
-    _, nx, ny, nz, turf, state, ds, patch = surface(terrain, plane, px, py, pz)
-    qx = px
-    qy = py
-    if state != OK:
-        return px, py, pz, t0, state, n, qx, qy
-    g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
-    x0 = px
-    y0 = py
-    t = t0
-    ux, uy, uz = contact_slip(vx, vy, vz, wx, wy, wz, nx, ny, nz)
-    k_slide = turf.mu * g_n
-    while True:
-        u = math.sqrt(ux * ux + uy * uy + uz * uz)
-        if u <= 1e-12:
-            break
-        if t - t0 > MAX_ROLL_TIME_S:
-            return px, py, pz, t, NOT_STOPPED, n, qx, qy
-        speed = math.sqrt(vx * vx + vy * vy + vz * vz)
-        (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1, ux, uy, uz = slide_step(
-            px, py, pz, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, k_slide,
-            min(h_max, ds / speed), snap,
-        )  # fmt: skip
-        n, t_next = _record_segment(
-            traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
-        )
-        qx = px
-        qy = py
-        px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
-        t += h
-        pz, mx, my, mz, under, state, ds, patch = surface(terrain, plane, px, py, pz)
-        if state != OK:
-            return px, py, pz, t, state, n, qx, qy
-        if (
-            (mx != nx)
-            | (my != ny)
-            | (mz != nz)
-            | (under.mu != turf.mu)
-            | (under.rho_g != turf.rho_g)
-        ):
-            nx, ny, nz = mx, my, mz
-            vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
-            ux, uy, uz = _onto_plane(ux, uy, uz, nx, ny, nz)
-            g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
-            turf = under
-            k_slide = turf.mu * g_n
-        if done:
-            break
-    k_roll = turf.rho_g * g_n
-    snap = (5.0 / 7.0) * snap
-    static = g_t <= k_roll  # tan(beta) <= rho_g: a ball at rest stays at rest
-    while True:
-        if t - t0 > MAX_ROLL_TIME_S or rolled_too_far(px, py, x0, y0):
-            return px, py, pz, t, NOT_STOPPED, n, qx, qy
-        v = math.sqrt(vx * vx + vy * vy + vz * vz)
-        h_cap = ds / v if v > 0.0 else math.inf
-        to_edge = False  # a step to the edge of a level patch, where the next one turns it
-        if (patch[0] != 0.0) & (v > 1e-12):
-            # On smooth ground: a Runge-Kutta step to the patch's edge, unless the ball is
-            # about to stop.
-            decel = (5.0 / 7.0) * G_MPS2 * (vz / v + turf.rho_g * nz)
-            t_stop = v / decel if decel > 0.0 else math.inf
-            level = patch[0] == LEVEL_PATCH
-            if level:
-                # On a level patch the roll's own step is exact: it goes to the patch's edge.
-                to_edge = True
-                k = (5.0 / 7.0) * turf.rho_g * G_MPS2 / v
-                h_cap = min(
-                    _exit_time(px - patch[1], vx, -k * vx, patch[7], patch[8]),
-                    _exit_time(patch[2] - py, -vy, k * vy, patch[9], patch[10]),
-                )
-            elif STOP_FRACTION * t_stop >= PATCH_DT_MIN_S:
-                ax, ay = _patch_acceleration(px, py, vx, vy, patch, turf.rho_g)
-                h_edge = min(
-                    _exit_time(px - patch[1], vx, ax, patch[7], patch[8]),
-                    _exit_time(patch[2] - py, -vy, -ay, patch[9], patch[10]),
-                )
-                h = min(STOP_FRACTION * t_stop, PATCH_DT_MAX_S, h_edge)
-                if h > 0.0:
-                    x1, y1, vx1, vy1 = _patch_step(px, py, vx, vy, ax, ay, h, patch, turf.rho_g)
-                    # Past the patch's edge by more than PATCH_OVERSHOOT_M (the step's length was
-                    # foreseen at constant acceleration): the step again, ending there.
-                    over = _overshoot(x1 - patch[1], vx1, patch[7], patch[8])
-                    over_w = _overshoot(patch[2] - y1, -vy1, patch[9], patch[10])
-                    if over_w > over:
-                        over = over_w
-                    if (over > PATCH_REFINE_S) & (over < h):
-                        h -= over
-                        x1, y1, vx1, vy1 = _patch_step(px, py, vx, vy, ax, ay, h, patch, turf.rho_g)
-                    if vx1 * vx + vy1 * vy > 0.0:
-                        n, t_next = _record_patch_step(
-                            traj, n, t_next, dt_record, t, h, px, py, vx, vy, x1, y1, vx1, vy1,
-                            patch,
-                        )  # fmt: skip
-                        qx = px
-                        qy = py
-                        # The velocity in the patch's tangent plane at the step's end.
-                        u = x1 - patch[1]
-                        w = patch[2] - y1
-                        hx = patch[4] + patch[6] * w
-                        hy = -(patch[5] + patch[6] * u)
-                        vz = hx * vx1 + hy * vy1
-                        px, py, vx, vy = x1, y1, vx1, vy1
-                        t += h
-                        if (u >= patch[7]) & (u <= patch[8]) & (w >= patch[9]) & (w <= patch[10]):
-                            # Still on the patch: its height and normal there.
-                            pz = patch[3] + patch[4] * u + patch[5] * w + patch[6] * u * w
-                            k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
-                            nx = -hx * k
-                            ny = -hy * k
-                            nz = k
-                        else:
-                            pz, nx, ny, nz, under, state, ds, patch = surface(
-                                terrain, plane, px, py, pz
-                            )
-                            if state != OK:
-                                return px, py, pz, t, state, n, qx, qy
-                            # Into the tangent plane of the next patch.
-                            vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
-                            turf = under
-                        g_n, gx, gy, gz, g_t, h_max, snap = plane_gravity(nx, ny, nz)
-                        snap = (5.0 / 7.0) * snap
-                        k_roll = turf.rho_g * g_n
-                        static = g_t <= k_roll
-                        continue
-        if v <= 1e-12:
-            if static:
-                break
-            # At rest on a slope too steep to hold it: it starts down the fall line.
-            dx = gx / g_t
-            dy = gy / g_t
-            dz = gz / g_t
-        else:
-            dx = vx * (1.0 / v)
-            dy = vy * (1.0 / v)
-            dz = vz * (1.0 / v)
-        (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1 = roll_step(
-            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, min(h_max, h_cap), snap
-        )
-        n, t_next = _record_segment(
-            traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
-        )
-        qx = px
-        qy = py
-        px, py, pz, vx, vy, vz = x1, y1, z1, vx1, vy1, vz1
-        t += h
-        pz, mx, my, mz, under, state, ds, patch = surface(terrain, plane, px, py, pz)
-        if state != OK:
-            return px, py, pz, t, state, n, qx, qy
-        if pz != z1:  # on a terrain: the ground is put under the ball again
-            vx, vy, vz = _climbed(vx, vy, vz, pz - z1)
-        if (mx != nx) | (my != ny) | (mz != nz) | (under.rho_g != turf.rho_g):
-            nx, ny, nz = mx, my, mz
-            g_n, gx1, gy1, gz1, g_t, h_max, snap = plane_gravity(nx, ny, nz)
-            if not (done | to_edge):
-                vx, vy, vz = _turned(vx, vy, vz, gx1 - gx, gy1 - gy, gz1 - gz, h)
-            gx, gy, gz = gx1, gy1, gz1
-            vx, vy, vz = _onto_plane(vx, vy, vz, nx, ny, nz)
-            snap = (5.0 / 7.0) * snap
-            turf = under
-            k_roll = turf.rho_g * g_n
-            static = g_t <= k_roll
-        if done and static:
-            break
-    return px, py, pz, t, OK, n, qx, qy
-
-
-@njit(cache=True)
-def roll_out(x, y, z, vx, vy, vz, wx, wy, wz, surface, terrain, plane, t, traj, n, t_next, dt):
-    """After the last impact: the ball stays on the ground with its velocity along it, slides
-    and rolls to rest (``roll.roll``). Returns (x, y, z, t, status, n, qx, qy)."""
-    _, nx, ny, nz, _, _, _, _ = surface(terrain, plane, x, y, z)
-    vn = vx * nx + vy * ny + vz * nz
-    x, y, z, t, status, n, qx, qy = roll(
-        x, y, z, vx - vn * nx, vy - vn * ny, vz - vn * nz, wx, wy, wz, surface, terrain, plane,
-        t, traj, n, t_next, dt,
-    )  # fmt: skip
-    n = record(traj, n, t, x, y, z, ROLL)
-    return x, y, z, t, status, n, qx, qy
+def patch_height(x, y, patch):
+    u = x - patch.xc
+    w = patch.yc - y
+    return patch.hc + patch.bx * u + patch.by * w + patch.ec * u * w
 
 
 @njit(cache=True, error_model="numpy", inline="always")

@@ -1,0 +1,225 @@
+"""The look-ups of a Terrain's grid: the cell under a point, its height, slope, zone and state,
+and the answers to the shot loop's questions on a grid (``ground.questions``), each in one
+look-up of the cell where a loop asks at every step."""
+
+import math
+
+from numba import njit
+from numba.extending import overload
+
+from mcrun.ground.terrain import OUT_OF_BOUNDS, PENALTY_AREA, read_turf
+from mcrun.physics.roll import LEVEL_PATCH, Patch, Surface
+from mcrun.status import IN_PENALTY_AREA, OFF_MAP, OK, OUT_OF_BOUNDS_STATUS
+
+
+def cell_index(f, last):
+    """The cell at the fraction f (of cells from the grid's origin) along an axis, in [0,
+    last]: the edge cells are extended. Compiled, ``int(floor(f))`` clamped (its overload); as
+    Python (``NUMBA_DISABLE_JIT=1``) the same, and 0 where f is not a number (the garbage of a
+    lane that holds no shot, which the compiled code clamps as any number), where Python's
+    ``int`` would raise."""
+    if math.isnan(f):
+        return 0
+    return min(max(int(math.floor(f)), 0), last) if math.isfinite(f) else (last if f > 0 else 0)
+
+
+@overload(cell_index, inline="always")
+def _cell_index(f, last):
+    return lambda f, last: min(max(int(math.floor(f)), 0), last)
+
+
+@njit(cache=True, error_model="numpy")
+def _locate(terrain, x, y):
+    """The cell of the grid under core-frame (x, y) (y to the LEFT, the grid's y to the right):
+    its lower node (ix, iy), the fractions (tx, ty) across it, and whether (x, y) is on the
+    grid at all (off it, the edge cells are extended)."""
+    ny, nx = terrain.height_m.shape
+    fx = (x - terrain.x0_m) / terrain.cell_m
+    fy = (-y - terrain.y0_m) / terrain.cell_m
+    inside = (fx >= 0.0) & (fx <= nx - 1.0) & (fy >= 0.0) & (fy <= ny - 1.0)
+    ix = cell_index(fx, nx - 2)
+    iy = cell_index(fy, ny - 2)
+    return ix, iy, min(max(fx - ix, 0.0), 1.0), min(max(fy - iy, 0.0), 1.0), inside
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _cell_at(terrain, x, y):
+    """``_locate`` inlined where a loop asks at every step (a call counts the terrain's arrays
+    in and out), with the heights of the cell's four nodes: (ix, iy, tx, ty, inside, h00,
+    h10, h01, h11)."""
+    ny_, nx_ = terrain.height_m.shape
+    fx = (x - terrain.x0_m) / terrain.cell_m
+    fy = (-y - terrain.y0_m) / terrain.cell_m
+    inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
+    ix = cell_index(fx, nx_ - 2)
+    iy = cell_index(fy, ny_ - 2)
+    tx = min(max(fx - ix, 0.0), 1.0)
+    ty = min(max(fy - iy, 0.0), 1.0)
+    h = terrain.height_m
+    return ix, iy, tx, ty, inside, h[iy, ix], h[iy, ix + 1], h[iy + 1, ix], h[iy + 1, ix + 1]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _cell_slope(terrain, tx, ty, h00, h10, h01, h11):
+    """(dh/dx, dh/dy) at fractions (tx, ty) of a cell of these node heights, y to the LEFT
+    (``_grid_gradient``'s numbers)."""
+    hx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) / terrain.cell_m
+    hy = -((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) / terrain.cell_m
+    return hx, hy
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_height(terrain, x, y):
+    """Bilinear height (m) of the grid at core-frame (x, y)."""
+    ix, iy, tx, ty, _ = _locate(terrain, x, y)
+    h = terrain.height_m
+    return (h[iy, ix] * (1.0 - tx) + h[iy, ix + 1] * tx) * (1.0 - ty) + (
+        h[iy + 1, ix] * (1.0 - tx) + h[iy + 1, ix + 1] * tx
+    ) * ty
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_gradient(terrain, x, y):
+    """(dh/dx, dh/dy) of the bilinear grid at core-frame (x, y), y to the LEFT."""
+    ix, iy, tx, ty, _ = _locate(terrain, x, y)
+    h = terrain.height_m
+    dx = (h[iy, ix + 1] - h[iy, ix]) * (1.0 - ty) + (h[iy + 1, ix + 1] - h[iy + 1, ix]) * ty
+    dy = (h[iy + 1, ix] - h[iy, ix]) * (1.0 - tx) + (h[iy + 1, ix + 1] - h[iy, ix + 1]) * tx
+    return dx / terrain.cell_m, -dy / terrain.cell_m
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_zone(terrain, x, y):
+    """The zone of the node nearest core-frame (x, y)."""
+    ix, iy, tx, ty, _ = _locate(terrain, x, y)
+    return terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _state_of(inside, kind):
+    """The state (``state_at``) of a point on the grid or not (``inside``) in a zone of this
+    ``penalty`` kind."""
+    if not inside:
+        return OFF_MAP
+    if kind == PENALTY_AREA:
+        return IN_PENALTY_AREA
+    return OUT_OF_BOUNDS_STATUS if kind == OUT_OF_BOUNDS else OK
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_flight_check(terrain, x, y, z):
+    ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
+    height = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
+    kind = terrain.penalty[terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]]
+    state = _state_of(inside, kind)
+    return z - height, state
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_normal(terrain, x, y):
+    hx, hy = _grid_gradient(terrain, x, y)
+    k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+    return -hx * k, -hy * k, k
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_turf(terrain, x, y):
+    t = terrain.turf[_grid_zone(terrain, x, y)]
+    return read_turf(t, 0, 1)
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_state(terrain, x, y):
+    _, _, _, _, inside = _locate(terrain, x, y)
+    return _state_of(inside, terrain.penalty[_grid_zone(terrain, x, y)])
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_contact(terrain, x, y):
+    ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
+    hx, hy = _cell_slope(terrain, tx, ty, h00, h10, h01, h11)
+    k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+    zone = terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
+    t = terrain.turf[zone]
+    kind = terrain.penalty[zone]
+    state = _state_of(inside, kind)
+    turf = read_turf(t, 0, 1)
+    reach = float(terrain.calm[iy, ix]) * terrain.cell_m
+    return state, -hx * k, -hy * k, k, turf, reach
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_calm_reach(terrain, x, y):
+    ix, iy, _, _, _ = _locate(terrain, x, y)
+    return float(terrain.calm[iy, ix]) * terrain.cell_m
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _grid_surface(terrain, x, y):
+    """``surface`` on the grid: one look-up of the cell for all of it."""
+    ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
+    height = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
+    hx, hy = _cell_slope(terrain, tx, ty, h00, h10, h01, h11)
+    k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
+    upper_x = tx >= 0.5
+    upper_y = ty >= 0.5
+    zones = terrain.zone
+    zone = zones[iy + (1 if upper_y else 0), ix + (1 if upper_x else 0)]
+    t = terrain.turf[zone]
+    kind = terrain.penalty[zone]
+    state = _state_of(inside, kind)
+    calm = terrain.calm[iy, ix]
+    c = terrain.cell_m
+    u_lo = 0.0
+    u_hi = c
+    w_lo = 0.0
+    w_hi = c
+    if (
+        (zones[iy, ix] != zones[iy, ix + 1])
+        | (zones[iy, ix] != zones[iy + 1, ix])
+        | (zones[iy, ix] != zones[iy + 1, ix + 1])
+    ):
+        # The quarter of the cell nearest the node whose zone is that of (x, y).
+        u_lo = 0.5 * c if upper_x else 0.0
+        u_hi = c if upper_x else 0.5 * c
+        w_lo = 0.5 * c if upper_y else 0.0
+        w_hi = c if upper_y else 0.5 * c
+    inv = 1.0 / c
+    smooth = 0.0
+    if (calm == 0) & inside:
+        smooth = LEVEL_PATCH if (h10 == h00) & (h01 == h00) & (h11 == h00) else 1.0
+    patch = Patch(
+        smooth, terrain.x0_m + ix * c, -(terrain.y0_m + iy * c),
+        h00, (h10 - h00) * inv, (h01 - h00) * inv, (h11 - h10 - h01 + h00) * (inv * inv), u_lo,
+        u_hi, w_lo, w_hi,
+    )  # fmt: skip
+    return Surface(
+        height, -hx * k, -hy * k, k, read_turf(t, 0, 1), state, max(0.25, float(calm)) * c, patch
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_crossing(terrain, xa, ya, xb, yb):
+    """``crossing`` on the grid; (xa, ya) may lie in the area too: the search first goes back
+    from b beyond a, a cell at a time, to a point in play (or to the grid's edge)."""
+    dx = xa - xb
+    dy = ya - yb
+    d = math.sqrt(dx * dx + dy * dy)
+    if d == 0.0:
+        return xb, yb
+    ux = dx / d
+    uy = dy / d
+    s = min(d, terrain.cell_m)
+    while _grid_state(terrain, xb + ux * s, yb + uy * s) != OK:
+        if _grid_state(terrain, xb + ux * s, yb + uy * s) == OFF_MAP:
+            return xb + ux * s, yb + uy * s
+        s += terrain.cell_m
+    lo = 0.0  # not in play
+    hi = s  # in play
+    while hi - lo > 1e-3:
+        mid = 0.5 * (lo + hi)
+        if _grid_state(terrain, xb + ux * mid, yb + uy * mid) == OK:
+            hi = mid
+        else:
+            lo = mid
+    return xb + ux * lo, yb + uy * lo
