@@ -14,10 +14,11 @@ club's shots once per new aim.
 
 Before the search, ``check`` refuses what it cannot do in one line naming the option (a value
 that is not a finite number, fewer than two shots, more than ``MAX_AIMS`` aims of a club, a
-search whose shots would not fit in the memory there is: ``memory_bytes``), and ``plan_line``
-says what it will fly. After it, a search none of whose shots stayed on the hole's map is
-refused (its "best" aim would be one of a row of equal penalties); the shots of a best aim that
-left the map are counted (``ClubAims.off_map``) for the command line's warning.
+search whose shots would not fit in the memory there is: ``memory_bytes``), and its plan
+(``SearchPlan.line``) says what it will fly. After it, a search none of whose shots stayed on
+the hole's map is refused (its "best" aim would be one of a row of equal penalties); the shots
+of a best aim that left the map are counted (``ClubAims.off_map``) for the command line's
+warning.
 
 The table of every aim flown (``table``) is written as a run's files are (``write_table``):
 atomically, with the provenance of a run of the scenario (``plan.provenance``: the scenario,
@@ -345,7 +346,9 @@ def search(
     The aims lie ``centre_m`` +/- ``half_width_m`` (m right of the line to the pin, at its
     distance; default centre: the scenario's aim), coarse to fine; ``offsets_m``: fly exactly
     these aims instead (no refinement). ``baseline``, ``lie_of_zone``: as
-    ``strokes.score_shots``. ``progress(text)``: called after each round.
+    ``strokes.score_shots``. ``progress(text)``: called after each round. AimError (one line):
+    arguments ``check`` refuses, before anything is flown; a search none of whose shots stayed
+    on the hole's map, or none of whose shots could be scored, after.
     """
     checked = check(scenario, n, half_width_m, centre_m, coarse_m, resolution_m, offsets_m)
     n, centre_m, offsets_m = checked.n, checked.centre_m, checked.offsets_m
