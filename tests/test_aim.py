@@ -322,6 +322,27 @@ def test_ctrl_c_while_drawing_leaves_no_picture_and_no_table(tmp_path, capsys, m
     assert picture.stat().st_size > 0
 
 
+def test_ctrl_c_while_the_outputs_are_put_in_place_waits_for_both(tmp_path, capsys, monkeypatch):
+    """Ctrl-C while the table is written waits until the picture is in place too, then stops
+    the command, saying that everything was written."""
+    pytest.importorskip("matplotlib")
+    import signal
+
+    s_path = scenario(tmp_path, FLAT, [("7-iron", 0.0, 3.0, 1.5)]).path
+    table, picture = tmp_path / "a.parquet", tmp_path / "aim.png"
+    write_table = aim.write_table
+
+    def interrupted(*args, **kwargs):
+        signal.raise_signal(signal.SIGINT)
+        return write_table(*args, **kwargs)
+
+    monkeypatch.setattr(aim, "write_table", interrupted)
+    argv = ["aim", str(s_path), "-n", "200", "--offsets", "0,2", "-o", str(table)]
+    assert main([*argv, "--plot", str(picture)]) == 130
+    assert capsys.readouterr().err.endswith("mcrun: interrupted: after writing everything\n")
+    assert len(pd.read_parquet(table)) == 2 and picture.stat().st_size > 0
+
+
 # --- the compile of the terrain's kernel ----------------------------------------------------------
 
 

@@ -461,8 +461,9 @@ def test_pictures_are_renamed_with_interrupts_deferred(tmp_path, monkeypatch):
 
     monkeypatch.setattr(output.os, "replace", interrupting_replace)
     paths = [tmp_path / f"{k}.png" for k in range(3)]
-    with pytest.raises(KeyboardInterrupt), style.Pictures() as pictures:
+    with pytest.raises(style.WrittenThenInterrupted) as raised, style.Pictures() as pictures:
         for path in paths:
             pictures.add(path, Figure(figsize=(1, 1)), 10)
         pictures.commit()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["0.png", "1.png", "2.png"]
+    assert raised.value.paths == paths

@@ -69,6 +69,7 @@ def _cmd_aim(args):
         return 0
     # The table and the picture all or nothing: the picture drawn under a temporary name, then
     # the table written and the picture renamed into place, interrupts deferred.
+    written = False
     try:
         with contextlib.ExitStack() as stack:
             pictures = None
@@ -82,8 +83,10 @@ def _cmd_aim(args):
                     aim.write_table(result, destination, baseline=args.baseline, force=args.force)
                 if pictures is not None:
                     pictures.commit()
+                written = True
     except KeyboardInterrupt:
-        raise Interrupted("nothing was written") from None
+        said = "after writing everything" if written else "nothing was written"
+        raise Interrupted(said) from None
     if destination is not None:
         print(f"wrote {destination}")
     if args.plot is not None:

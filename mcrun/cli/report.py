@@ -3,7 +3,7 @@ and its self-contained HTML page (``mcrun.report.html``)."""
 
 from mcrun.cli import Interrupted
 from mcrun.cli.options import DPI_RANGE, dpi_value
-from mcrun.report import hole_plots, html, plots, replay_plots
+from mcrun.report import hole_plots, html, plots, replay_plots, style
 
 
 def _cmd_plot(args):
@@ -15,6 +15,8 @@ def _cmd_plot(args):
         written = plots.write_plots(
             args.run_dir, args.out, args.dpi, point_figures=hole_plots.point_figures
         )
+    except style.WrittenThenInterrupted as err:
+        raise Interrupted(f"after writing the {len(err.paths)} pictures") from None
     except KeyboardInterrupt:
         raise Interrupted("nothing was written") from None
     for path, _ in written:

@@ -168,6 +168,15 @@ def png_bytes(fig, dpi):
     return buffer.getvalue()
 
 
+class WrittenThenInterrupted(KeyboardInterrupt):
+    """Ctrl-C or SIGTERM that came while pictures were renamed into place, and waited until
+    they all were: ``paths`` are written."""
+
+    def __init__(self, paths):
+        super().__init__(f"{len(paths)} picture(s) written")
+        self.paths = list(paths)
+
+
 class Pictures:
     """A set of PNGs written all or nothing, as a run's files are (``output.AtomicFile``): each
     under a hidden temporary name beside its destination (``.NAME.partial-HOST-PID-TOKEN``) as
@@ -201,10 +210,18 @@ class Pictures:
         self.paths.append(target.path)
 
     def commit(self):
-        """Rename every picture into place, interrupts deferred until the last."""
-        with exits.interrupts_deferred():
-            for target in self._files:
-                target.commit()
+        """Rename every picture into place, interrupts deferred until the last; one that came
+        meanwhile is raised then, as ``WrittenThenInterrupted``."""
+        done = False
+        try:
+            with exits.interrupts_deferred():
+                for target in self._files:
+                    target.commit()
+                done = True
+        except KeyboardInterrupt:
+            if not done:
+                raise
+            raise WrittenThenInterrupted(self.paths) from None
 
     def __exit__(self, exc_type, exc, tb):
         return self._stack.__exit__(exc_type, exc, tb)
