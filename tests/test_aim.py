@@ -5,6 +5,7 @@ numbers make the differences between aims far more precise than the values."""
 
 import json
 import math
+import re
 import textwrap
 
 import numpy as np
@@ -168,7 +169,7 @@ def test_the_command_line_writes_every_aim(tmp_path, capsys):
     [
         (["pga-driver"], "an aim search needs a hole"),
         (["par3-over-water", "--offsets", "a,b"], "--offsets a,b"),
-        (["par3-over-water", "-n", "0"], "n must be an integer >= 1"),
+        (["par3-over-water", "-n", "0"], "-n must be an integer >= 2"),
         (["par3-over-water", "-o", "x.csv"], "must be a .parquet file"),
     ],
 )
@@ -176,3 +177,199 @@ def test_bad_aim_commands_give_one_line(capsys, argv, message):
     assert main(["aim", *argv]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and message in err
+
+
+# --- refused before anything is flown -------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        # one shot has no standard error ("All-NaN slice" once)
+        (["-n", "1"], "-n must be an integer >= 2"),
+        (["--centre", "nan"], "--centre nan: must be a finite number of metres"),
+        (["--centre", "inf"], "--centre inf: must be a finite number of metres"),
+        (["--half-width", "-5"], "--half-width -5: must be a finite number of metres > 0"),
+        (["--step", "0"], "--step 0: must be a finite number of metres > 0"),
+        # a 196 TiB allocation once: the plan's memory against what there is
+        (["-n", "1e12"], "-n 1,000,000,000,000: an aim search keeps every aim's score"),
+        # 4 x 10^8 aims, which hung building them
+        (["--half-width", "1e9"], "--half-width 1e+09 with --step 5: 400,000,001 aims per club"),
+        (["--resolution", "1e-9"], "--resolution 1e-09: the finest spacing must be"),
+        (["--resolution", "10"], "--resolution 10: the finest spacing must be at most"),
+        # the NaN was dropped silently
+        (["--offsets", "nan,1"], "--offsets nan,1: every aim must be a finite number"),
+        (["--offsets", "1,,2"], "--offsets 1,,2: every aim must be a finite number"),
+    ],
+)
+def test_bad_aim_options_name_the_option_and_write_nothing(
+    tmp_path, capsys, monkeypatch, argv, message
+):
+    """Each bad value is one line naming the option and what is allowed, exit code 2, before
+    any shot is flown (the search is never called) and with nothing written."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(aim, "search", lambda *a, **k: pytest.fail("the search ran"))
+    out = tmp_path / "a.parquet"
+    code = main(["aim", "par3-over-water", *argv, "-o", str(out)])
+    captured = capsys.readouterr()
+    assert code == 2, captured
+    assert captured.out == ""
+    assert captured.err.count("\n") == 1 and captured.err.startswith("mcrun: error: "), captured
+    assert message in captured.err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_memory_is_checked_against_what_there_is(tmp_path):
+    """The plan's memory is every aim's score of every shot and one club's shots: a search that
+    fits is planned, one that does not is refused naming N."""
+    s = scenario(tmp_path, FLAT, [("7-iron", 0.0, 3.0, 1.5)])
+    planned = aim.check(s, n=1000, offsets_m=[0.0, 1.0], memory=10**9)
+    assert planned.aims == 3 and planned.bytes == aim.memory_bytes(1, 1000, 3)
+    assert "1 club x up to 3 aims x 1,000 shots" in planned.line()
+    with pytest.raises(aim.AimError, match=r"^n 1,000: .* lower n$"):
+        aim.check(s, n=1000, offsets_m=[0.0, 1.0], memory=planned.bytes)
+
+
+@pytest.mark.parametrize("option", ["-o", "--plot"])
+def test_outputs_are_checked_before_the_search(tmp_path, capsys, monkeypatch, option):
+    """An output in a folder that cannot be made, or one that exists without --force, is one
+    line before any shot is flown (it failed after the whole search once)."""
+    pytest.importorskip("matplotlib")
+    monkeypatch.setattr(aim, "search", lambda *a, **k: pytest.fail("the search ran"))
+    suffix = ".parquet" if option == "-o" else ".png"
+    blocker = tmp_path / "a-file"
+    blocker.write_text("x")
+    code = main(["aim", "par3-over-water", option, str(blocker / f"a{suffix}")])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and f"{option} {blocker}" in err, err
+    assert "is not a folder" in err
+    there = tmp_path / f"there{suffix}"
+    there.write_bytes(b"")
+    code = main(["aim", "par3-over-water", option, str(there)])
+    err = capsys.readouterr().err
+    assert code == 2 and "already exists: use --force" in err, err
+
+
+def test_outputs_in_a_missing_folder_are_written_there(tmp_path, capsys):
+    """A missing folder of -o and --plot is made, as a run's is."""
+    pytest.importorskip("matplotlib")
+    s_path = scenario(tmp_path, FLAT, [("7-iron", 0.0, 3.0, 1.5)]).path
+    table = tmp_path / "missing" / "a.parquet"
+    picture = tmp_path / "other" / "a.png"
+    argv = ["aim", str(s_path), "-n", "200", "--offsets", "0,2", "-o", str(table)]
+    assert main([*argv, "--plot", str(picture)]) == 0, capsys.readouterr().err
+    assert len(pd.read_parquet(table)) == 2
+    assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_aims_all_off_the_map_are_refused(tmp_path, capsys, monkeypatch):
+    """--centre 1e6 once reported a best aim of +999980 m: every shot of every aim left the
+    map, so there is no best aim to say; one line, exit code 2, nothing written."""
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "a.parquet"
+    code = main(["aim", "par3-over-water", "-n", "50", "--centre", "1e6", "-o", str(out)])
+    captured = capsys.readouterr()
+    assert code == 2 and captured.out == ""
+    error = captured.err.splitlines()[-1]
+    assert error.startswith("mcrun: error: every shot of every aim (+999980.0 to +1000020.0 m")
+    assert "left the hole's map" in error
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_best_aim_with_shots_off_the_map_is_warned(tmp_path, capsys):
+    """A best aim some of whose shots left the map (scored as out of bounds, where the ground
+    is not known) is said on stderr, with the share; none when every shot stayed on it."""
+    s = scenario(tmp_path, FLAT, [("7-iron", 0.0, 3.0, 1.5)])  # a map 120 m wide
+    code = main(["aim", str(s.path), "-n", "300", "--centre", "60", "--offsets", "60"])
+    err = capsys.readouterr().err
+    assert code == 0
+    warning = [line for line in err.splitlines() if "warning" in line]
+    assert len(warning) == 1 and "7-iron aimed +60.0 m:" in warning[0], err
+    assert "% of its shots left the hole's map" in warning[0]
+    result = aim.search(s, n=300, centre_m=60.0, offsets_m=[60.0])
+    club = result.clubs[0]
+    share = club.off_map_share(club.best)
+    assert 0.0 < share < 1.0 and f"{100 * share:.1f} %" in warning[0]
+    code = main(["aim", str(s.path), "-n", "300", "--offsets", "0"])
+    assert code == 0 and "warning" not in capsys.readouterr().err
+
+
+# --- pictures and tables, all or nothing ----------------------------------------------------------
+
+
+def test_ctrl_c_while_drawing_leaves_no_picture_and_no_table(tmp_path, capsys, monkeypatch):
+    """Ctrl-C while the picture is saved once left a 0-byte aim.png under its final name,
+    which then blocked a rerun: now nothing is left, and the rerun writes both."""
+    pytest.importorskip("matplotlib")
+    from mcrun.report import style
+
+    s_path = scenario(tmp_path, FLAT, [("7-iron", 0.0, 3.0, 1.5)]).path
+    folder = tmp_path / "out"
+    folder.mkdir()
+    table, picture = folder / "a.parquet", folder / "aim.png"
+    argv = ["aim", str(s_path), "-n", "200", "--offsets", "0,2", "-o", str(table)]
+
+    def interrupted(fig, dpi):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(style, "png_bytes", interrupted)
+    assert main([*argv, "--plot", str(picture)]) == 130
+    assert capsys.readouterr().err.endswith("mcrun: interrupted: nothing was written\n")
+    assert list(folder.iterdir()) == []
+    monkeypatch.undo()
+    assert main([*argv, "--plot", str(picture)]) == 0, capsys.readouterr().err
+    assert sorted(p.name for p in folder.iterdir()) == ["a.parquet", "aim.png"]
+    assert picture.stat().st_size > 0
+
+
+def test_ctrl_c_while_the_outputs_are_put_in_place_waits_for_both(tmp_path, capsys, monkeypatch):
+    """Ctrl-C while the table is written waits until the picture is in place too, then stops
+    the command, saying that everything was written."""
+    pytest.importorskip("matplotlib")
+    import signal
+
+    s_path = scenario(tmp_path, FLAT, [("7-iron", 0.0, 3.0, 1.5)]).path
+    table, picture = tmp_path / "a.parquet", tmp_path / "aim.png"
+    write_table = aim.write_table
+
+    def interrupted(*args, **kwargs):
+        signal.raise_signal(signal.SIGINT)
+        return write_table(*args, **kwargs)
+
+    monkeypatch.setattr(aim, "write_table", interrupted)
+    argv = ["aim", str(s_path), "-n", "200", "--offsets", "0,2", "-o", str(table)]
+    assert main([*argv, "--plot", str(picture)]) == 130
+    assert capsys.readouterr().err.endswith("mcrun: interrupted: after writing everything\n")
+    assert len(pd.read_parquet(table)) == 2 and picture.stat().st_size > 0
+
+
+# --- the compile of the terrain's kernel ----------------------------------------------------------
+
+
+def test_the_terrain_kernels_compile_is_said_apart_from_the_search(tmp_path, capsys, monkeypatch):
+    """When the terrain's kernel is not compiled yet, ``mcrun aim`` compiles it before the
+    search, saying so on stderr with the time it took, and the search's time is its own (the
+    first search was silent for 80 s once and counted the compile in its own time)."""
+    from mcrun import cli
+    from mcrun.engine import warmup
+
+    events = []
+    monkeypatch.setattr(cli, "_kernel_cached", lambda ground: events.append(ground) or False)
+
+    def warm_up(grounds):
+        events.append(("compile", grounds))
+        return (warmup.WarmUp("terrain", 61.6, False),)
+
+    monkeypatch.setattr(warmup, "warm_up", warm_up)
+    search = aim.search
+    monkeypatch.setattr(aim, "search", lambda *a, **k: events.append("search") or search(*a, **k))
+    s_path = scenario(tmp_path, FLAT, [("7-iron", 0.0, 3.0, 1.5)]).path
+    code = main(["aim", str(s_path), "-n", "200", "--offsets", "0,2"])
+    captured = capsys.readouterr()
+    assert code == 0, captured.err
+    assert events == ["terrain", ("compile", ("terrain",)), "search"]
+    lines = captured.err.splitlines()
+    assert lines[0].startswith("mcrun: compiling the kernel for a hole's ground (first run on")
+    assert lines[1] == "mcrun: compiled the kernel for a hole's ground in 62 s"
+    seconds = re.search(r"shots in (\d+\.\d) s\)", captured.out)
+    assert seconds is not None and float(seconds[1]) < 30.0, captured.out

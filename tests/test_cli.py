@@ -364,6 +364,54 @@ def test_run_says_the_compile_apart_from_its_rate(tmp_path, capsys, monkeypatch)
     assert float(rate[1]) < 5.0  # the run of 200 shots alone, not a compile
 
 
+def test_run_on_a_hole_says_the_terrain_kernels_compile(tmp_path, capsys, monkeypatch):
+    """A run on a hole whose terrain's kernel is not compiled: that compile is said too, with
+    its time, before the run (it was silent for 62 s once, after "compiled the kernels"), and
+    the run's time and rate are its own."""
+    from mcrun.cli import run as run_command
+    from mcrun.engine import warmup
+
+    events = []
+    monkeypatch.setattr(cli, "_kernel_cached", lambda ground: events.append(ground) or False)
+
+    def warm_up(grounds):
+        events.append(("compile", grounds))
+        return (warmup.WarmUp(grounds[0], 61.6, False),)
+
+    monkeypatch.setattr(warmup, "warm_up", warm_up)
+    run_scenario = run_command.local.run_scenario
+    monkeypatch.setattr(
+        run_command.local,
+        "run_scenario",
+        lambda *a, **k: events.append("run") or run_scenario(*a, **k),
+    )
+    code, out, err = run(
+        capsys, "run", "par3-over-water", "-n", "200", "-o", str(tmp_path / "run"), "--quiet"
+    )
+    assert code == 0, err
+    assert events == [
+        "plane", ("compile", ("plane",)), "terrain", ("compile", ("terrain",)), "run"
+    ]  # fmt: skip
+    assert err.splitlines() == [
+        "mcrun: compiling the kernels (first run after install; cached for the next runs)",
+        "mcrun: compiled the kernels in 62 s",
+        "mcrun: compiling the kernel for a hole's ground (first run on a hole after install; "
+        "cached for the next runs)",
+        "mcrun: compiled the kernel for a hole's ground in 62 s",
+    ]
+    rate = re.search(r"^200 shots in (\d+\.\d) s", out, re.MULTILINE)
+    assert rate is not None and float(rate[1]) < 30.0, out
+
+
+def test_a_run_on_the_plane_compiles_no_terrain_kernel(tmp_path, capsys, monkeypatch):
+    asked = []
+    monkeypatch.setattr(cli, "_kernel_cached", lambda ground: asked.append(ground) or True)
+    code, _, err = run(
+        capsys, "run", "pga-driver", "-n", "100", "-o", str(tmp_path / "run"), "--quiet"
+    )
+    assert code == 0 and err == "" and asked == ["plane"]
+
+
 def test_compile_of_the_single_shot_kernel(capsys, monkeypatch):
     monkeypatch.setattr(cli, "_kernel_cached", lambda kind: False)
     code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--json")

@@ -409,3 +409,61 @@ def test_the_report_reads_the_question_as_the_scenario_does(tmp_path):
     )  # fmt: skip
     run = run_view.Run(folder, pd.DataFrame(), [])
     assert run.question == "from the comment?"
+
+
+# --- written as a run is: all or nothing ----------------------------------------------------------
+
+
+def test_ctrl_c_during_plot_leaves_no_picture(runs, tmp_path, capsys, monkeypatch):
+    """Ctrl-C while the third picture is saved once left the first two: now the pictures are
+    drawn under temporary names and renamed together at the end, so none is left (nor any
+    temporary file), and the pictures of an earlier plot into the folder are kept as they
+    were."""
+    folder = tmp_path / "plots"
+    saved = []
+    png_bytes = style.png_bytes
+
+    def third_interrupted(fig, dpi):
+        saved.append(fig)
+        if len(saved) == 3:
+            raise KeyboardInterrupt
+        return png_bytes(fig, dpi)
+
+    monkeypatch.setattr(style, "png_bytes", third_interrupted)
+    assert main(["plot", str(runs["groups"]), "-o", str(folder), "--dpi", "30"]) == 130
+    assert capsys.readouterr().err == "mcrun: interrupted: nothing was written\n"
+    assert list(folder.iterdir()) == []
+    monkeypatch.undo()
+    assert main(["plot", str(runs["groups"]), "-o", str(folder), "--dpi", "30"]) == 0
+    before = {p.name: p.read_bytes() for p in folder.iterdir()}
+    assert set(before) == expected_files(2, False)
+    saved.clear()
+    monkeypatch.setattr(style, "png_bytes", third_interrupted)
+    assert main(["plot", str(runs["groups"]), "-o", str(folder), "--dpi", "40"]) == 130
+    assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
+
+
+def test_pictures_are_renamed_with_interrupts_deferred(tmp_path, monkeypatch):
+    """Ctrl-C (here SIGINT raised by the second rename) waits until every picture is in place:
+    the set is whole, and the interrupt follows."""
+    import signal
+
+    from matplotlib.figure import Figure
+
+    renames = []
+    replace = output.os.replace
+
+    def interrupting_replace(source, destination):
+        replace(source, destination)
+        renames.append(destination)
+        if len(renames) == 2:
+            signal.raise_signal(signal.SIGINT)
+
+    monkeypatch.setattr(output.os, "replace", interrupting_replace)
+    paths = [tmp_path / f"{k}.png" for k in range(3)]
+    with pytest.raises(style.WrittenThenInterrupted) as raised, style.Pictures() as pictures:
+        for path in paths:
+            pictures.add(path, Figure(figsize=(1, 1)), 10)
+        pictures.commit()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["0.png", "1.png", "2.png"]
+    assert raised.value.paths == paths

@@ -114,14 +114,21 @@ def build_parser(command=None):
 
 
 # The ground of the kernel each simulating command runs before it has read its scenario: the
-# batch kernel on the plane, which a single shot runs too (a run on a hole compiles its
-# terrain's kernel as it starts).
+# batch kernel on the plane, which a single shot runs too. A command that plays on a hole
+# compiles the terrain's kernel too, once it has read that it does (``compile_if_needed``
+# with "terrain": ``mcrun run`` of a scenario with a hole, ``mcrun aim``), before its timed work.
 SIMULATING_COMMANDS = {
     "shot": "plane",
     "calibrate": "plane",
     "paper": "plane",
     "run": "plane",
     "replay": "plane",
+}
+
+# What the compile of each kernel is called on stderr.
+KERNEL_NAMES = {
+    "plane": ("the kernels", "first run after install"),
+    "terrain": ("the kernel for a hole's ground", "first run on a hole after install"),
 }
 
 
@@ -133,21 +140,22 @@ def _kernel_cached(ground):
     return kernel_cached(ground)
 
 
-def _compile_if_needed(ground):
-    """When the command's kernel is not in numba's on-disk cache yet (the first run after an
-    install or an upgrade compiles it, which takes a while), compile it before the command
-    starts, saying so on stderr with the time it took: a run's rate is then its own."""
+def compile_if_needed(ground):
+    """When the kernel for ``ground`` ("plane" or "terrain") is not in numba's on-disk cache
+    yet (the first run after an install or an upgrade compiles it, which takes a while),
+    compile it now, saying so on stderr with the time it took: a command's time and rate that
+    follow are then its own. Returns the seconds the compile took (0.0 when none was needed)."""
     if _kernel_cached(ground) is not False:
-        return
+        return 0.0
     from mcrun.engine.warmup import warm_up
 
+    what, when = KERNEL_NAMES[ground]
     print(
-        "mcrun: compiling the kernels (first run after install; cached for the next runs)",
-        file=sys.stderr,
-        flush=True,
+        f"mcrun: compiling {what} ({when}; cached for the next runs)", file=sys.stderr, flush=True
     )
     seconds = sum(done.seconds for done in warm_up((ground,)))
-    print(f"mcrun: compiled the kernels in {seconds:.0f} s", file=sys.stderr)
+    print(f"mcrun: compiled {what} in {seconds:.0f} s", file=sys.stderr, flush=True)
+    return seconds
 
 
 # --- running a command -------------------------------------------------------------------------
@@ -173,7 +181,7 @@ def _run_command(args):
     """``args.func(args)``, with every error a user can cause as one line and exit code 2."""
     try:
         if args.command in SIMULATING_COMMANDS:
-            _compile_if_needed(SIMULATING_COMMANDS[args.command])
+            compile_if_needed(SIMULATING_COMMANDS[args.command])
         return args.func(args)
     except (InputError, UnitError, CommandError, HoleError) as err:
         return _error(" ".join(str(err).split()))

@@ -3,58 +3,112 @@ expected strokes (``mcrun.strokes``), with common random numbers; a table of eve
 (Parquet, written by ``aim.write_table`` with its provenance and geometry) and a picture
 (``mcrun.report.aim_plot``) on request. Here the arguments are read and the results said."""
 
+import contextlib
 import math
-from pathlib import Path
+import sys
 
-from mcrun.cli import Interrupted
+from mcrun import exits
+from mcrun.cli import Interrupted, compile_if_needed
 from mcrun.quantities import InputError
 from mcrun.run import aim
-from mcrun.run.plan import positive_int
 from mcrun.strokes import BaselineError, load_baseline
+
+# The command line's names of ``aim.search``'s arguments, for its one-line errors.
+OPTION_NAMES = {
+    "n": "-n",
+    "centre_m": "--centre",
+    "half_width_m": "--half-width",
+    "coarse_m": "--step",
+    "resolution_m": "--resolution",
+    "offsets_m": "--offsets",
+}
+
+
+def _offsets(text):
+    """The aims of ``--offsets``, as given (read and checked by ``aim.check``)."""
+    return None if text is None else [v.strip() for v in text.split(",")]
 
 
 def _cmd_aim(args):
     scenario = aim.load_scenario(args.scenario, args.seed)
-    n = positive_int(args.n, "n")
+    checked = aim.check(
+        scenario, n=args.n, half_width_m=args.half_width, centre_m=args.centre,
+        coarse_m=args.step, resolution_m=args.resolution, offsets_m=_offsets(args.offsets),
+        names=OPTION_NAMES,
+    )  # fmt: skip
     destination = None
     if args.output is not None:
-        destination = aim.check_table_path(args.output, args.force)
+        destination = aim.check_output(
+            args.output, args.force, "-o", aim.TABLE_SUFFIXES, ".parquet"
+        )
     if args.plot is not None:
         from mcrun.report import aim_plot, style
 
         style.require_matplotlib("aim --plot")
-        if Path(args.plot).exists() and not args.force:
-            raise InputError(f"--plot {args.plot}: already exists: use --force to replace it")
+        aim.check_output(args.plot, args.force, "--plot", (".png",), ".png")
     baseline = None
     if args.baseline is not None:
         try:
             baseline = load_baseline(args.baseline)
         except BaselineError as err:
             raise InputError(str(err)) from None
-    offsets = None
-    if args.offsets is not None:
-        try:
-            offsets = [float(v) for v in args.offsets.split(",")]
-        except ValueError:
-            raise InputError(
-                f"--offsets {args.offsets}: give aims as metres right of the pin, comma-separated"
-            ) from None
     try:
+        compile_if_needed("terrain")  # said apart from the search's own time
+        print(checked.line(), file=sys.stderr, flush=True)
         result = aim.search(
-            scenario, n=n, half_width_m=args.half_width, centre_m=args.centre,
-            coarse_m=args.step, resolution_m=args.resolution, offsets_m=offsets,
-            baseline=baseline,
+            scenario, n=checked.n, half_width_m=checked.half_width_m, centre_m=checked.centre_m,
+            coarse_m=checked.coarse_m, resolution_m=checked.resolution_m,
+            offsets_m=checked.offsets_m, baseline=baseline,
         )  # fmt: skip
     except KeyboardInterrupt:
         raise Interrupted("nothing was written") from None
     print(_report(result))
+    for line in _off_map_warnings(result):
+        print(line, file=sys.stderr)
+    if destination is None and args.plot is None:
+        return 0
+    # The table and the picture all or nothing: the picture drawn under a temporary name, then
+    # the table written and the picture renamed into place, interrupts deferred.
+    written = False
+    try:
+        with contextlib.ExitStack() as stack:
+            pictures = None
+            if args.plot is not None:
+                pictures = stack.enter_context(style.Pictures(force=args.force))
+                pictures.add(
+                    args.plot, aim_plot.aim_figure(result, aim.patterns(result)), aim_plot.DPI
+                )
+            with exits.interrupts_deferred():
+                if destination is not None:
+                    aim.write_table(result, destination, baseline=args.baseline, force=args.force)
+                if pictures is not None:
+                    pictures.commit()
+                written = True
+    except KeyboardInterrupt:
+        said = "after writing everything" if written else "nothing was written"
+        raise Interrupted(said) from None
     if destination is not None:
-        aim.write_table(result, destination, baseline=args.baseline, force=args.force)
         print(f"wrote {destination}")
     if args.plot is not None:
-        aim_plot.write_aim_plot(result, aim.patterns(result), args.plot)
         print(f"wrote {args.plot}")
     return 0
+
+
+def _off_map_warnings(result):
+    """A warning line for each club whose best aim sent shots off the hole's map (scored as out
+    of bounds: stroke and distance), where the ground, and so the best aim, is not known."""
+    lines = []
+    for club in result.clubs:
+        k = club.best
+        share = club.off_map_share(k)
+        if share > 0.0:
+            lines.append(
+                f"mcrun: warning: {club.club} aimed {club.offsets_m[k]:+.1f} m: "
+                f"{100.0 * share:.1f} % of its shots left the hole's map, where the ground is "
+                "not known (scored as out of bounds); a larger map (margin_m) or aims nearer "
+                "the pin tell more"
+            )
+    return lines
 
 
 def _report(result):
@@ -113,28 +167,24 @@ def register(subparsers):
     p.add_argument("--seed", metavar="S", help="random seed (default: the scenario's)")
     p.add_argument(
         "--centre",
-        type=float,
         default=None,
         metavar="M",
         help="centre of the region, m right of the pin (default the scenario's aim)",
     )
     p.add_argument(
         "--half-width",
-        type=float,
         default=aim.DEFAULT_HALF_WIDTH_M,
         metavar="M",
         help=f"the region reaches this far each side (m, {aim.DEFAULT_HALF_WIDTH_M:g})",
     )
     p.add_argument(
         "--step",
-        type=float,
         default=aim.DEFAULT_COARSE_M,
         metavar="M",
         help=f"the coarse aims' spacing (m, {aim.DEFAULT_COARSE_M:g})",
     )
     p.add_argument(
         "--resolution",
-        type=float,
         default=aim.DEFAULT_RESOLUTION_M,
         metavar="M",
         help=f"the finest spacing (m, {aim.DEFAULT_RESOLUTION_M:g})",

@@ -1,8 +1,9 @@
 """``mcrun plot`` and ``mcrun report``: the pictures of a finished run (``mcrun.report.plots``)
 and its self-contained HTML page (``mcrun.report.html``)."""
 
+from mcrun.cli import Interrupted
 from mcrun.cli.options import DPI_RANGE, dpi_value
-from mcrun.report import hole_plots, html, plots, replay_plots
+from mcrun.report import hole_plots, html, plots, replay_plots, style
 
 
 def _cmd_plot(args):
@@ -10,9 +11,14 @@ def _cmd_plot(args):
         for path in replay_plots.plot_replay_file(args.run_dir, args.out, args.dpi):
             print(f"wrote {path}")
         return 0
-    written = plots.write_plots(
-        args.run_dir, args.out, args.dpi, point_figures=hole_plots.point_figures
-    )
+    try:
+        written = plots.write_plots(
+            args.run_dir, args.out, args.dpi, point_figures=hole_plots.point_figures
+        )
+    except style.WrittenThenInterrupted as err:
+        raise Interrupted(f"after writing the {len(err.paths)} pictures") from None
+    except KeyboardInterrupt:
+        raise Interrupted("nothing was written") from None
     for path, _ in written:
         print(f"wrote {path}")
     return 0

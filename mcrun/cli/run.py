@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.cli import Interrupted
+from mcrun.cli import Interrupted, compile_if_needed
 from mcrun.quantities import InputError
 from mcrun.results import stats
 from mcrun.run import local, plan, sampling
@@ -199,6 +199,8 @@ def _run_options(args):
 def _cmd_run(args):
     try:
         args.scenario = scenario_module.load(args.scenario)
+        if args.scenario.hole is not None:
+            compile_if_needed("terrain")  # said apart from the run's own time
         if _dask_backend(args):
             result = _run_on_dask(args)
         else:

@@ -5,8 +5,9 @@ terrain: each shot lands on its own plane of the slope model) and a ``"terrain"`
 grid, ``ground.Terrain``). A compilation takes a minute or two, the first time after an
 install or a change of the kernel's source; it is then cached on disk (``__pycache__``, or
 ``NUMBA_CACHE_DIR``) and loaded in about a second. The command line asks ``kernel_cached``
-before a command, and when the answer is no, runs ``warm_up`` and says how long it took, so
-that the command's own time and rate are its own.
+before a command (the plane's), and again once a command has read that it plays on a hole
+(the terrain's: ``mcrun run`` of a hole, ``mcrun aim``); when the answer is no, it runs
+``warm_up`` and says how long it took, so that the command's own time and rate are its own.
 """
 
 import os

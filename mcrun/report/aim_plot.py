@@ -7,10 +7,11 @@ import math
 import numpy as np
 
 from mcrun.report.hole_map import draw_hole
-from mcrun.report.style import png_bytes, require_matplotlib
+from mcrun.report.style import Pictures, require_matplotlib
 
 FIGURE_SIZE_IN = (13.0, 7.0)
 PATTERN_DOTS = 2000
+DPI = 120
 
 
 def aim_figure(result, patterns):
@@ -67,7 +68,11 @@ def aim_figure(result, patterns):
     return fig
 
 
-def write_aim_plot(result, patterns, path, dpi=120):
-    """Write ``aim_figure`` to ``path`` (PNG)."""
-    with open(path, "wb") as f:
-        f.write(png_bytes(aim_figure(result, patterns), dpi))
+def write_aim_plot(result, patterns, path, dpi=DPI, force=True):
+    """Write ``aim_figure`` to ``path`` (PNG) as a run's files are (``style.Pictures``): under a
+    temporary name, renamed into place once drawn; an existing ``path`` is replaced only with
+    ``force``. Returns the path."""
+    with Pictures(force=force) as pictures:
+        pictures.add(path, aim_figure(result, patterns), dpi)
+        pictures.commit()
+    return pictures.paths[0]

@@ -57,7 +57,7 @@ from mcrun.report.run_view import (
     read_point_shots,
     sample_trajectories,
 )
-from mcrun.report.style import png_bytes, require_matplotlib
+from mcrun.report.style import Pictures, require_matplotlib
 from mcrun.results import reader
 
 DEFAULT_PLOT_DPI = 150
@@ -146,16 +146,24 @@ def write_plots(
     run_dir, out_dir=None, dpi=DEFAULT_PLOT_DPI, scatter_max=SCATTER_MAX_SHOTS, point_figures=None
 ):
     """Write the PNGs of a run folder into ``out_dir`` (default RUN_DIR/plots); return
-    [(path, caption)]. ``point_figures``: as ``figures``."""
+    [(path, caption)]. ``point_figures``: as ``figures``.
+
+    All or nothing (``style.Pictures``): each PNG is drawn under a temporary name and all are
+    renamed into place at the end, so that an error or Ctrl-C leaves none of this call's
+    pictures (and those of an earlier call as they were), never a part of the set."""
     run = open_run(run_dir)
     require_matplotlib()
     out_dir = writable_folder(run.beside(PLOTS_FOLDER) if out_dir is None else out_dir)
     written = []
-    for stem, caption, fig in figures(run, scatter_max, point_figures=point_figures):
-        path = out_dir / f"{stem}.png"
-        try:
-            path.write_bytes(png_bytes(fig, dpi))
-        except OSError as err:
-            raise PlotError(f"cannot write {path}: {reader.reason_of(err)}") from None
-        written.append((path, caption))
+    with Pictures(force=True) as pictures:
+        for stem, caption, fig in figures(run, scatter_max, point_figures=point_figures):
+            path = out_dir / f"{stem}.png"
+            try:
+                pictures.add(path, fig, dpi)
+            except OSError as err:
+                if exits.is_name_too_long(err):
+                    raise
+                raise PlotError(f"cannot write {path}: {reader.reason_of(err)}") from None
+            written.append((path, caption))
+        pictures.commit()
     return written

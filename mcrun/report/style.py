@@ -1,17 +1,21 @@
 """The look the pictures share: matplotlib loaded on demand (``require_matplotlib``), the
 figure sizes and colours, a figure titled with its run (``new_figure``), the ellipses, notes
 and legend entries of a top view, an honest top view (``fit_equal``), the numbers as shown
-(``fmt``) and a figure's PNG (``png_bytes``).
+(``fmt``), a figure's PNG (``png_bytes``) and pictures written as a run's files are
+(``Pictures``).
 
 matplotlib is optional (``mcrun[plot]``): imported only when drawing, used through Figure
 objects and the Agg canvas (no pyplot, no display, no global state).
 """
 
+import contextlib
 import io
 import math
 import textwrap
 
+from mcrun import exits
 from mcrun.report.run_view import PlotError
+from mcrun.results import output
 
 MISSING_MATPLOTLIB = "mcrun {} needs matplotlib: pip install 'mcrun[plot]'"
 
@@ -162,3 +166,62 @@ def png_bytes(fig, dpi):
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi)
     return buffer.getvalue()
+
+
+class WrittenThenInterrupted(KeyboardInterrupt):
+    """Ctrl-C or SIGTERM that came while pictures were renamed into place, and waited until
+    they all were: ``paths`` are written."""
+
+    def __init__(self, paths):
+        super().__init__(f"{len(paths)} picture(s) written")
+        self.paths = list(paths)
+
+
+class Pictures:
+    """A set of PNGs written all or nothing, as a run's files are (``output.AtomicFile``): each
+    under a hidden temporary name beside its destination (``.NAME.partial-HOST-PID-TOKEN``) as
+    it is drawn, all renamed into place by ``commit``, Ctrl-C and SIGTERM waiting until the
+    last rename (``exits.interrupts_deferred``). On an error or an interrupt before ``commit``
+    the temporary files are removed: no picture is left under its final name, and those of an
+    earlier run of the command are left as they were. ``force``: replace existing pictures
+    (otherwise an existing one is refused, OutputError, before it is drawn).
+
+        with Pictures() as pictures:
+            for path, fig in ...:
+                pictures.add(path, fig, dpi)
+            pictures.commit()
+    """
+
+    def __init__(self, force=True):
+        self.force = force
+        self.paths = []
+        self._files = []
+        self._stack = contextlib.ExitStack()
+
+    def __enter__(self):
+        self._stack.__enter__()
+        return self
+
+    def add(self, path, fig, dpi):
+        """Draw ``fig`` at ``dpi`` into a temporary file beside ``path``."""
+        target = self._stack.enter_context(output.AtomicFile(path, force=self.force))
+        target.tmp.write_bytes(png_bytes(fig, dpi))
+        self._files.append(target)
+        self.paths.append(target.path)
+
+    def commit(self):
+        """Rename every picture into place, interrupts deferred until the last; one that came
+        meanwhile is raised then, as ``WrittenThenInterrupted``."""
+        done = False
+        try:
+            with exits.interrupts_deferred():
+                for target in self._files:
+                    target.commit()
+                done = True
+        except KeyboardInterrupt:
+            if not done:
+                raise
+            raise WrittenThenInterrupted(self.paths) from None
+
+    def __exit__(self, exc_type, exc, tb):
+        return self._stack.__exit__(exc_type, exc, tb)

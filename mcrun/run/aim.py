@@ -12,6 +12,14 @@ The search is coarse to fine: aims ``coarse_m`` apart over the region, then, aro
 so far, aims a third as far apart, until they are ``resolution_m`` apart; each round flies the
 club's shots once per new aim.
 
+Before the search, ``check`` refuses what it cannot do in one line naming the option (a value
+that is not a finite number, fewer than two shots, more than ``MAX_AIMS`` aims of a club, a
+search whose shots would not fit in the memory there is: ``memory_bytes``), and its plan
+(``SearchPlan.line``) says what it will fly. After it, a search none of whose shots stayed on
+the hole's map is refused (its "best" aim would be one of a row of equal penalties); the shots
+of a best aim that left the map are counted (``ClubAims.off_map``) for the command line's
+warning.
+
 The table of every aim flown (``table``) is written as a run's files are (``write_table``):
 atomically, with the provenance of a run of the scenario (``plan.provenance``: the scenario,
 seed, N, versions, and the geometry: the hole's frame, tee, pin, the scenario's aim, each
@@ -20,6 +28,8 @@ by.
 """
 
 import math
+import os
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,7 +39,7 @@ import numpy as np
 import pandas as pd
 
 from mcrun.engine.backend import simulate_batch
-from mcrun.engine.schema import COLUMN, FINAL_X, FINAL_Y, N_OUTCOME
+from mcrun.engine.schema import COLUMN, FINAL_X, FINAL_Y, N_INPUT, N_OUTCOME
 from mcrun.quantities import InputError
 from mcrun.results import on_hole, output
 from mcrun.run import plan, sampling
@@ -42,6 +52,25 @@ DEFAULT_COARSE_M = 5.0
 DEFAULT_RESOLUTION_M = 1.0
 TOUR_BASELINE = "PGA Tour (Broadie 2012)"
 TABLE_SUFFIXES = (".parquet", ".pq")
+# The most aims a club may have: its coarse aims, or the aims given. 4 km of region at the
+# default step; a search over more is a mistake (``--half-width 1e9``: 4 x 10^8 aims).
+MAX_AIMS = 801
+# The finest spacing may be at most this many times finer than the coarse step.
+MAX_REFINEMENT = 1e6
+# The refinement after the coarse aims: rounds of at most this many new aims each.
+NEW_AIMS_PER_ROUND = 6
+# What a search holds per shot besides its inputs and outcomes: the azimuths, and the columns of
+# the scoring of one aim (``strokes.score_shots``), 8 bytes each.
+SCORING_COLUMNS = 24
+# The names of ``search``'s arguments in messages (the command line gives its options').
+ARGUMENT_NAMES = {
+    "n": "n",
+    "centre_m": "centre_m",
+    "half_width_m": "half_width_m",
+    "coarse_m": "coarse_m",
+    "resolution_m": "resolution_m",
+    "offsets_m": "offsets_m",
+}
 
 
 class AimError(InputError):
@@ -60,11 +89,16 @@ class ClubAims:
     difference_se: list = field(default_factory=list)  # paired standard error
     scores: dict = field(default_factory=dict)  # offset -> per-shot expected strokes after
     reference_m: float = 0.0  # the aim the differences are to (the pin, or the scenario's)
+    off_map: dict = field(default_factory=dict)  # offset -> shots that left the hole's map
 
     @property
     def best(self):
         """Index of the aim with the fewest expected strokes."""
         return int(np.nanargmin(self.expected))
+
+    def off_map_share(self, k):
+        """The share of the shots aimed ``offsets_m[k]`` that left the hole's map."""
+        return self.off_map.get(self.offsets_m[k], 0) / max(len(self.scores[self.offsets_m[k]]), 1)
 
 
 @dataclass
@@ -96,15 +130,176 @@ def load_scenario(scenario, seed=None):
     return loaded
 
 
-def check_table_path(path, force=False, option="-o"):
-    """``path`` as a Path where ``write_table`` may write, checked before the search: a
-    .parquet file, not there yet unless ``force``; AimError (one line) otherwise."""
+def check_output(path, force=False, option="-o", suffixes=TABLE_SUFFIXES, what=".parquet"):
+    """``path`` where an output will be written, checked before the search: the right suffix,
+    not a folder, not there yet unless ``force``, and in a folder that exists or can be made
+    (its nearest existing parent a folder one can write in)."""
     destination = Path(path)
-    if destination.suffix.lower() not in TABLE_SUFFIXES:
-        raise AimError(f"{option} {path}: the output must be a .parquet file")
+    if destination.suffix.lower() not in suffixes:
+        raise AimError(f"{option} {path}: the output must be a {what} file")
+    if destination.is_dir():
+        raise AimError(f"{option} {path}: is a folder; give a file name")
     if destination.exists() and not force:
         raise AimError(f"{option} {path}: already exists: use --force to replace it")
+    parent = destination.absolute().parent
+    while not parent.exists() and parent.parent != parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise AimError(f"{option} {path}: {parent} is not a folder")
+    try:  # the only sure test of a folder one can write in (root, read-only mounts, /proc)
+        with tempfile.TemporaryFile(dir=parent):
+            pass
+    except OSError as err:
+        raise AimError(f"{option} {path}: cannot write in {parent}: {err.strerror}") from None
     return destination
+
+
+def check_table_path(path, force=False, option="-o"):
+    """``path`` as a Path where ``write_table`` may write (``check_output``)."""
+    return check_output(path, force, option)
+
+
+def _finite(value, name, positive=False):
+    """``value`` as a float: finite (and > 0 when ``positive``), else AimError naming it."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if not math.isfinite(number) or (positive and number <= 0.0):
+        allowed = "a finite number of metres" + (" > 0" if positive else "")
+        raise AimError(f"{name} {value}: must be {allowed}")
+    return number
+
+
+def aims_per_club(half_width_m, coarse_m, resolution_m, offsets_m=None):
+    """The aims a club will fly at most: ``offsets_m``, or the coarse aims of the region and
+    the refinement's rounds (each a third of the step before, down to the resolution)."""
+    if offsets_m is not None:
+        return len(offsets_m) + 1  # and the reference
+    coarse = math.floor(2.0 * half_width_m / coarse_m + 1e-9) + 1
+    rounds = max(0, math.ceil(math.log(coarse_m / resolution_m, 3.0) - 1e-9))
+    return coarse + 1 + NEW_AIMS_PER_ROUND * rounds
+
+
+def memory_bytes(clubs, n, aims):
+    """The memory (bytes) an aim search of ``clubs`` clubs of ``n`` shots and ``aims`` aims each
+    holds at most: one club's inputs, outcomes and scoring at a time, and every aim's score of
+    every shot, kept for the table's paired differences."""
+    return 8 * n * (N_INPUT + N_OUTCOME + SCORING_COLUMNS) + 8 * n * clubs * aims
+
+
+def available_memory():
+    """The memory (bytes) this machine has available now (Linux's MemAvailable, else its
+    physical memory), or None when it cannot be told."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, OSError, ValueError):
+        return None
+
+
+@dataclass(frozen=True)
+class SearchPlan:
+    """What an aim search will fly: the checked arguments of ``search``, the aims per club (at
+    most) and an estimate of its time (s) and memory (bytes)."""
+
+    n: int
+    centre_m: float | None
+    half_width_m: float
+    coarse_m: float
+    resolution_m: float
+    offsets_m: list | None
+    clubs: int
+    aims: int
+    seconds: float
+    bytes: int
+
+    def line(self):
+        """One line for the terminal, as a run's plan line."""
+        clubs = f"{self.clubs} club" + ("s" if self.clubs != 1 else "")
+        shots = self.clubs * self.aims * self.n
+        return (
+            f"mcrun: {clubs} x up to {self.aims:,} aims x {self.n:,} shots = up to {shots:,} "
+            f"shots; {'under' if self.seconds < 0.05 else 'about'} "
+            f"{plan.duration_text(self.seconds)} of simulation, about "
+            f"{plan.size_text(self.bytes)} of memory"
+        )
+
+
+def check(
+    scenario,
+    n=10_000,
+    half_width_m=DEFAULT_HALF_WIDTH_M,
+    centre_m=None,
+    coarse_m=DEFAULT_COARSE_M,
+    resolution_m=DEFAULT_RESOLUTION_M,
+    offsets_m=None,
+    names=None,
+    memory=None,
+):
+    """The ``SearchPlan`` of ``search``'s arguments, before anything is flown; AimError (one
+    line naming the argument, ``names``: {argument: name}, default ``ARGUMENT_NAMES``) for a
+    value that is not a finite number, fewer than 2 shots (a standard error needs two), more
+    than ``MAX_AIMS`` aims per club, or a search that would not fit in ``memory`` (bytes,
+    default ``available_memory()``)."""
+    names = {**ARGUMENT_NAMES, **(names or {})}
+    if scenario.hole is None:
+        raise AimError(f"{scenario.path}: an aim search needs a hole ([hole] in the scenario)")
+    n = plan.positive_int(n, names["n"], minimum=2)
+    if centre_m is not None:
+        centre_m = _finite(centre_m, names["centre_m"])
+    half_width_m = _finite(half_width_m, names["half_width_m"], positive=True)
+    coarse_m = _finite(coarse_m, names["coarse_m"], positive=True)
+    resolution_m = _finite(resolution_m, names["resolution_m"], positive=True)
+    if offsets_m is not None:
+        given = ",".join(str(o) for o in offsets_m)
+        try:
+            offsets_m = [_finite(o, "") for o in offsets_m]
+        except AimError:
+            raise AimError(
+                f"{names['offsets_m']} {given}: every aim must be a finite number of metres "
+                "right of the pin"
+            ) from None
+        if not offsets_m:
+            raise AimError(f"{names['offsets_m']}: give at least one aim")
+        if len(offsets_m) > MAX_AIMS:
+            raise AimError(
+                f"{names['offsets_m']}: {len(offsets_m):,} aims; at most {MAX_AIMS:,} per club"
+            )
+    elif not coarse_m / MAX_REFINEMENT <= resolution_m <= coarse_m:
+        raise AimError(
+            f"{names['resolution_m']} {resolution_m:g}: the finest spacing must be at most the "
+            f"coarse step, {names['coarse_m']} {coarse_m:g}, and at least a "
+            f"{MAX_REFINEMENT:,.0f}th of it"
+        )
+    else:
+        coarse = 2.0 * half_width_m / coarse_m + 1.0
+        if coarse > MAX_AIMS:
+            raise AimError(
+                f"{names['half_width_m']} {half_width_m:g} with {names['coarse_m']} "
+                f"{coarse_m:g}: {coarse:,.0f} aims per club; at most {MAX_AIMS:,} (2 x half "
+                "width / step + 1): narrow the region or widen the step"
+            )
+    clubs = len(scenario.points)
+    aims = aims_per_club(half_width_m, coarse_m, resolution_m, offsets_m)
+    size = memory_bytes(clubs, n, aims)
+    memory = available_memory() if memory is None else memory
+    if memory is not None and size >= memory:
+        raise AimError(
+            f"{names['n']} {n:,}: an aim search keeps every aim's score of every shot in "
+            f"memory, about {plan.size_text(size)} for {clubs} club(s) x up to {aims:,} aims, "
+            f"and {plan.size_text(memory)} is available: lower {names['n']}"
+        )
+    seconds = clubs * (aims + 1) * n / plan.SHOTS_PER_S
+    return SearchPlan(
+        n, centre_m, half_width_m, coarse_m, resolution_m, offsets_m, clubs, aims, seconds, size
+    )
 
 
 def _bearing(offset_m, distance_m):
@@ -114,10 +309,13 @@ def _bearing(offset_m, distance_m):
 
 
 def _scores(hole, inputs, azimuth, bearing, scenario_bearing, terrain, out, strokes):
-    """Per-shot expected strokes after the shot of ``inputs`` aimed on ``bearing``."""
+    """Per-shot expected strokes after the shot of ``inputs`` aimed on ``bearing``, and how many
+    of the shots left the hole's map."""
     inputs[:, AZIMUTH] = azimuth + (bearing - scenario_bearing)
     simulate_batch(inputs, out, terrain=terrain)
-    return on_hole.scores(hole, out, strokes)["expected_strokes_after"].to_numpy()
+    scored = on_hole.scores(hole, out, strokes)
+    off_map = int((scored["outcome"] == "off_map").sum())
+    return scored["expected_strokes_after"].to_numpy(), off_map
 
 
 def _summary(values, reference):
@@ -148,16 +346,16 @@ def search(
     The aims lie ``centre_m`` +/- ``half_width_m`` (m right of the line to the pin, at its
     distance; default centre: the scenario's aim), coarse to fine; ``offsets_m``: fly exactly
     these aims instead (no refinement). ``baseline``, ``lie_of_zone``: as
-    ``strokes.score_shots``. ``progress(text)``: called after each round.
+    ``strokes.score_shots``. ``progress(text)``: called after each round. AimError (one line):
+    arguments ``check`` refuses, before anything is flown; a search none of whose shots stayed
+    on the hole's map, or none of whose shots could be scored, after.
     """
+    checked = check(scenario, n, half_width_m, centre_m, coarse_m, resolution_m, offsets_m)
+    n, centre_m, offsets_m = checked.n, checked.centre_m, checked.offsets_m
+    half_width_m, coarse_m, resolution_m = (
+        checked.half_width_m, checked.coarse_m, checked.resolution_m
+    )  # fmt: skip
     hole = scenario.hole
-    if hole is None:
-        raise AimError(f"{scenario.path}: an aim search needs a hole ([hole] in the scenario)")
-    if not (0.0 < resolution_m <= coarse_m) or not half_width_m > 0.0:
-        raise AimError(
-            f"aims: need 0 < resolution ({resolution_m} m) <= coarse step ({coarse_m} m) and a "
-            f"half width > 0 ({half_width_m} m)"
-        )
     started = time.perf_counter()
     terrain = hole.terrain()
     pin_x, pin_y = hole.pin_xy
@@ -176,7 +374,7 @@ def search(
 
         def fly(offset, aims=aims, inputs=inputs, azimuth=azimuth, out=out):
             if offset not in aims.scores:
-                aims.scores[offset] = _scores(
+                aims.scores[offset], aims.off_map[offset] = _scores(
                     hole, inputs, azimuth, _bearing(offset, distance), scenario_bearing,
                     terrain, out, strokes,
                 )  # fmt: skip
@@ -207,6 +405,20 @@ def search(
             aims.difference_se.append(diff_se)
         flown += n * len(aims.scores)
         clubs.append(aims)
+    aimed = [o for c in clubs for o in c.scores]
+    if all(c.off_map[o] == n for c in clubs for o in c.scores):
+        t = terrain
+        reach = (t.y0_m, t.y0_m + (t.height_m.shape[0] - 1) * t.cell_m)
+        raise AimError(
+            f"every shot of every aim ({min(aimed):+.1f} to {max(aimed):+.1f} m right of the pin) "
+            f"left the hole's map, which spans {reach[0]:+.0f} to {reach[1]:+.0f} m right of "
+            "the line from the tee to the pin: aim where the map is"
+        )
+    if not any(np.isfinite(c.expected).any() for c in clubs):
+        raise AimError(
+            f"no shot of any aim ({min(aimed):+.1f} to {max(aimed):+.1f} m right of the pin) could "
+            "be scored (every shot failed): check the scenario's launch"
+        )
     lie, start_m = start_of(hole)
     expected_start = float(strokes["baseline"].expected(lie, start_m))
     return AimSearch(
