@@ -75,7 +75,8 @@ CASES = {
         ),
         {
             "carry": [172.0 * YD, 275.0 * YD, NAN],
-            "apex": [32.7 * YD, 31.8 * YD, NAN],
+            # Apex in feet (a real MLM2PRO export; read as yards it was 3x the flight's).
+            "apex": [98.0 * FT, 95.4 * FT, NAN],
             "carry_side": [3.1 * YD, -10.2 * YD, NAN],
             "descent_angle": [50.0 * DEG, 38.1 * DEG, NAN],
         },
@@ -212,11 +213,11 @@ def test_unknown_blank_and_header_only_files_are_one_line(tmp_path):
     bad_unit = tmp_path / "bad-unit.csv"
     bad_unit.write_text("\n".join([lines[0], lines[1].replace("[mph]", "[furlong/h]"), lines[2]]))
     bad_json = tmp_path / "bad.jsonl"
-    bad_json.write_text('{"BallData": {"Speed": 150, "VLA": 12}}\n{not json\n', encoding="utf-8")
+    bad_json.write_text('{not json\n{"BallData": \n', encoding="utf-8")
     cases = [
         (blank, "no shots: the file is empty"),
         (header_only, "no shots: the file has a header only"),
-        (bad_json, "line 2: not a JSON message"),
+        (bad_json, "no shots: line 1: not a JSON message"),
     ]
     for path, needle in cases:
         with pytest.raises(InputError) as info:
