@@ -307,6 +307,12 @@ def _is_messages(text, format):
 
 
 _DECODER = json.JSONDecoder()
+# The ball data's keys as the API spells them; connectors vary the case (``Backspin``).
+_BALL_KEYS = {
+    k.lower(): k
+    for k in ("Speed", "SpinAxis", "TotalSpin", "BackSpin", "SideSpin", "HLA", "VLA")
+    + ("CarryDistance",)
+}
 _LITERAL_MOST = 100_000  # characters of a logged Python dict read back at most
 
 
@@ -370,9 +376,15 @@ def _messages(path, text):
         pos = end
         if not isinstance(record, dict):
             continue
-        if _ball_data(record) is None:
+        ball = _ball_data(record)
+        if ball is None:
             skipped += 1
             continue
+        ball = {_BALL_KEYS.get(str(k).lower(), k): v for k, v in ball.items()}
+        record = dict(
+            ("BallData", ball) if str(k).lower() == "balldata" else (k, v)
+            for k, v in record.items()
+        )
         records.append(record)
         reasons.append("")
     if not any(reason == "" for reason in reasons):
@@ -383,10 +395,10 @@ def _messages(path, text):
             f"({skipped} without: heartbeats, replies)"
         )
     frame = pd.json_normalize(records)
-    frame.columns = [_flat_name(c) for c in frame.columns]
-    units = frame["Units"].astype(str).str.strip().str.lower() if "Units" in frame else None
-    if units is not None:
-        bad = ~units.isin(["yards", "meters", "metres", "nan"])
+    units = None
+    if "Units" in frame:
+        units = frame["Units"].fillna("").astype(str).str.strip().str.lower()
+        bad = ~units.isin(["yards", "meters", "metres", "", "nan"])
         if bad.any():
             k = int(np.flatnonzero(bad.to_numpy())[0])
             raise InputError(
@@ -398,13 +410,6 @@ def _messages(path, text):
     if skipped:
         notes = (f"{path}: {skipped} message(s) without ball data skipped (heartbeats, replies)",)
     return frame, units, np.array(reasons, dtype=object), notes
-
-
-def _flat_name(column):
-    """A flattened message key with ``BallData`` spelt as GSPro does, whatever the case a
-    connector wrote (``ballData.Speed``, ``BallData.Backspin``)."""
-    head, dot, rest = str(column).partition(".")
-    return f"BallData.{rest}" if dot and head.lower() == "balldata" else str(column)
 
 
 # --- the values ----------------------------------------------------------------------------
@@ -494,8 +499,9 @@ def _column_groups(frame):
 
 def _choose(source, quantity, candidates, default, notes):
     """The (column, unit, SI values, unreadable) read for ``quantity`` among the columns that
-    give it: the one in the app's default unit, else the first; InputError when two disagree
-    (a unit written wrong or missing), a note that the choice was made otherwise."""
+    give it: the one in the app's default unit, else the first, its empty cells filled from
+    the others; InputError when two disagree (a unit written wrong or missing), a note that
+    the choice was made otherwise."""
     if len(candidates) == 1:
         return candidates[0]
     chosen = next((c for c in candidates if c[1].lower() == default.lower()), candidates[0])
@@ -515,9 +521,15 @@ def _choose(source, quantity, candidates, default, notes):
     others = ", ".join(f"{c[0]!r} ({c[1]})" for c in candidates if c is not chosen)
     notes.append(
         f"{source}: {quantity} is in {len(candidates)} columns that agree; read "
-        f"{chosen[0]!r} ({chosen[1]}), not {others}"
+        f"{chosen[0]!r} ({chosen[1]}), and {others} where it is empty"
     )
-    return chosen
+    column, unit, si, bad = chosen
+    si = si.copy()
+    for other in candidates:
+        fill = ~np.isfinite(si) & np.isfinite(other[2])
+        si[fill] = other[2][fill]
+        bad = bad & ~fill
+    return column, unit, si, bad
 
 
 def _session(frame, source, name, detected, file_units, row_units, reasons=None, notes=()):
