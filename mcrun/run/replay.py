@@ -51,6 +51,9 @@ LAUNCH_COLUMNS = {
 }
 
 
+CHUNK = 65536
+"""Shots flown at a time by ``replay``."""
+
 # The device's results and the model's, by quantity: (device column, SI -> factor, model column).
 DEVICE_COLUMNS = {
     "carry": ("device_carry_m", 1.0, "carry_m"),
@@ -156,8 +159,7 @@ def replay(shots, source=None, format=None, **conditions):
         "spin_axis_rad": values["spin_axis"],
         "azimuth_rad": values["azimuth"],
     }
-    # An unusable row reaches the kernel as a NaN speed, which it answers with invalid_input.
-    out = simulate_batch(pack({**conditions_inputs(**conditions), **launch}, n, invalid=~valid))
+    encoded = _fly(conditions_inputs(**conditions), launch, valid)
 
     frame = {"row": np.arange(n, dtype=np.int64)}
     launch_names = [name for name, _ in LAUNCH_COLUMNS.values()]
@@ -169,7 +171,9 @@ def replay(shots, source=None, format=None, **conditions):
     taken |= {*device_names, *compared} | ({"club"} if add_club else set())
     for column in session.frame.columns:
         name = str(column)
-        frame[f"input_{name}" if name in taken else name] = session.frame[column].to_numpy()
+        frame[f"input_{name}" if name in taken else name] = session.frame[
+            column
+        ].array  # no copy (strings: 0.4 GB a million rows)
     if add_club:
         frame["club"] = session.club
     for quantity, (name, factor) in LAUNCH_COLUMNS.items():
@@ -177,7 +181,6 @@ def replay(shots, source=None, format=None, **conditions):
     for quantity, si in session.device.items():
         name, factor, _ = DEVICE_COLUMNS[quantity]
         frame[name] = si * factor
-    encoded = encode_outcomes(out)
     for name, (column, missing) in encoded.items():
         if name in frame:  # launch_angle_deg: the measured launch above
             continue
@@ -191,12 +194,36 @@ def replay(shots, source=None, format=None, **conditions):
     )
     if not valid.all():
         frame["invalid_reason"] = invalid_reasons(session, values, valid).astype(str)
-    result = pd.DataFrame(frame)
+    result = pd.DataFrame(frame, copy=False)  # the columns as made, not copied into blocks
     result.attrs["format"] = session.format
     result.attrs["format_title"] = session.title
     result.attrs["format_detected"] = session.detected
     result.attrs["notes"] = list(session.notes)
     return result
+
+
+def _fly(conditions, launch, valid):
+    """The outcomes of the launches, ``schema.encode_outcomes``'s columns, flown ``CHUNK``
+    shots at a time (each shot alone in the kernel: the same numbers however they are cut),
+    so that the kernel's inputs and outputs stay small beside the session."""
+    n = valid.size
+    encoded = {}
+    for start in range(0, max(n, 1), CHUNK):
+        rows = slice(start, min(start + CHUNK, n))
+        m = rows.stop - rows.start
+        part = {name: values[rows] for name, values in launch.items()}
+        # An unusable row reaches the kernel as a NaN speed, which it answers invalid_input.
+        out = simulate_batch(pack({**conditions, **part}, m, invalid=~valid[rows]))
+        for name, (column, missing) in encode_outcomes(out).items():
+            if name not in encoded:
+                encoded[name] = (
+                    np.empty(n, dtype=column.dtype),
+                    None if missing is None else np.empty(n, dtype=bool),
+                )
+            encoded[name][0][rows] = column
+            if missing is not None:
+                encoded[name][1][rows] = missing
+    return encoded
 
 
 def table_paths(destination, device=True):

@@ -21,8 +21,8 @@ twice in units that disagree.
 """
 
 import ast
+import codecs
 import csv
-import io
 import json
 import re
 from dataclasses import dataclass
@@ -95,34 +95,23 @@ def read_session(path, format=None):
         return session_of_frame(read_launch_table(path), source, format)
     if path.suffix.lower() in (".parquet", ".pq"):
         return session_of_frame(read_launch_table(path), source, format)
-    text = _decode(path)
-    if _is_messages(text, format):
-        if format not in (None, "gspro"):
-            raise InputError(f"{path}: JSON messages, not a {formats.BY_NAME[format].title} CSV")
-        frame, units, reasons, notes = _messages(path, text)
-        return _session(frame, source, "gspro", format is None, {}, units, reasons, notes)
-    header, units, sep, body, skip = _split(path, text)
+    head, encoding, lead = _decode(path, _HEAD)
+    if _is_messages(head, format):
+        return _session_of_messages(path, format)
+    header, units, sep, offset, skip = _split(path, head)
     names = [formats.split_name(c)[0] for c in header]
     fmt = formats.BY_NAME.get(format) if format else formats.detect(names)
     if fmt is None:
+        if format is None and _is_messages(_decode(path)[0], format):  # a long log's first lines
+            return _session_of_messages(path, format)
         # Neither an export's header nor mcrun's columns: say what was found and what is known.
         launch_columns(pd.DataFrame(columns=[c.strip() for c in header]), source, _KNOWN)
         return session_of_frame(read_launch_table(path), source, None)
-    lines = enumerate(io.StringIO(body))
-    check_field_counts(path, (text for k, text in lines if text.strip() and (k != 1 or not skip)))
     try:
-        frame = pd.read_csv(
-            io.StringIO(body),
-            sep=sep,
-            skipinitialspace=True,
-            index_col=False,
-            skiprows=skip,
-            low_memory=False,
-        )
-    except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
-        raise InputError(
-            f"{path}: cannot read it as a {fmt.title} export: {first_line(err)}"
-        ) from None
+        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt)
+    except UnicodeDecodeError:  # UTF-8 at its start only: the file is Latin-1
+        head, encoding, lead = _decode(path, _HEAD, "latin-1")
+        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt)
     if len(frame) == 0:
         raise InputError(f"{path}: no shots: the file has a header only")
     # Each column's unit by its place (a name given twice may have two units): the unit row,
@@ -134,10 +123,46 @@ def read_session(path, format=None):
         file_units[_tidy_name(column)] = unit or formats.split_name(name)[1]
     frame = _tidy(frame)
     reasons = np.full(len(frame), "", dtype=object)
-    cut = _cut_short(path, body, sep, len(header))
+    cut = _cut_short(path, encoding, sep, len(header))
     if cut:
         reasons[-1] = cut
     return _session(frame, source, fmt.name, format is None, file_units, None, reasons)
+
+
+def _session_of_messages(path, format):
+    if format not in (None, "gspro"):
+        raise InputError(f"{path}: JSON messages, not a {formats.BY_NAME[format].title} CSV")
+    frame, units, reasons, notes = _messages(path, _decode(path)[0])
+    return _session(frame, str(path), "gspro", format is None, {}, units, reasons, notes)
+
+
+def _read_table(path, encoding, start, sep, skip, fmt):
+    """The table of an export from the header on (``start`` characters into the file), read
+    by pandas from the file itself (a copy of its text in memory would cost several times
+    the file); the rows checked for extra fields first."""
+    with open(path, encoding=encoding, newline="") as file:
+        file.read(start)
+        lines = enumerate(file)
+        check_field_counts(
+            path, (text for k, text in lines if text.strip() and (k != 1 or not skip))
+        )
+    with open(path, encoding=encoding, newline="") as file:
+        file.read(start)
+        try:
+            return pd.read_csv(
+                file,
+                sep=sep,
+                skipinitialspace=True,
+                index_col=False,
+                skiprows=skip,
+                low_memory=False,
+            )
+        except UnicodeDecodeError:
+            raise
+        except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
+            raise InputError(
+                f"{path}: cannot read it as a {fmt.title} export: {first_line(err)}"
+            ) from None
 
 
 def session_of_frame(frame, source, format=None):
@@ -182,24 +207,31 @@ _SAMPLE = 65536  # characters looked at for binary bytes
 _CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]")
 
 
-def _decode(path):
-    """The file's text: UTF-16 with its byte-order mark, UTF-8 (without its mark, found
-    once or encoded twice), else Latin-1; InputError for binary bytes, one short line."""
-    data = path.read_bytes()
-    if not data.strip():
+_HEAD = 1 << 20  # bytes of a CSV export read to find its encoding, header and unit row
+
+
+def _decode(path, most=None, encoding=None):
+    """(text, encoding, marks) of the file, or of its first ``most`` bytes: UTF-16 with its
+    byte-order mark, UTF-8, else Latin-1 (or ``encoding``); the byte-order marks at its start
+    dropped from the text (``drop_marks``), ``marks`` their length in characters. InputError
+    for an empty file or binary bytes, one short line."""
+    with open(path, "rb") as file:
+        data = file.read() if most is None else file.read(most)
+        more = most is not None and file.read(1) != b""
+    if not data.strip() and not more:
         raise InputError(f"{path}: no shots: the file is empty")
-    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+    if encoding is None and data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        encoding = "utf-16"
+    candidates = [encoding] if encoding else ["utf-8", "latin-1"]
+    for encoding in candidates:
         try:
-            text = data.decode("utf-16")
+            text = codecs.getincrementaldecoder(encoding)().decode(data, final=not more)
+            break
         except UnicodeDecodeError:
-            raise InputError(f"{path}: not a text file: broken UTF-16") from None
-    else:
-        try:
-            text = data.decode("utf-8")
-        except UnicodeDecodeError:
-            text = data.decode("latin-1")
-    text = drop_marks(text)
-    sample = text[:_SAMPLE]
+            if encoding != "utf-8":
+                raise InputError(f"{path}: not a text file: broken {encoding.upper()}") from None
+    stripped = drop_marks(text)
+    sample = stripped[:_SAMPLE]
     control = len(_CONTROL.findall(sample))
     if "\x00" in sample or control > max(8, len(sample) // 100):
         raise InputError(
@@ -207,7 +239,7 @@ def _decode(path):
             "characters); expected a launch monitor's CSV export, its JSON messages, or a "
             "Parquet file"
         )
-    return text
+    return stripped, encoding, len(text) - len(stripped)
 
 
 def drop_marks(text):
@@ -228,13 +260,24 @@ def _fields(line, sep, path=""):
         raise InputError(f"{path}: cannot read it as CSV: {first_line(err)}") from None
 
 
-def _cut_short(path, body, sep, width):
-    """The reason the last row of ``body`` is not a shot when the file ends inside it: no line
-    end after it and fewer fields than the header and than the row before (an export cut
-    mid-row: its last value may be cut mid-number); else ""."""
-    if body.endswith(("\n", "\r")):
+_TAIL = 65536  # bytes read at a file's end to see whether its last row is whole
+
+
+def _cut_short(path, encoding, sep, width):
+    """The reason the last row of the export at ``path`` is not a shot when the file ends
+    inside it: no line end after it and fewer fields than the header and than the row before
+    (an export cut mid-row: its last value may be cut mid-number); else ""."""
+    with open(path, "rb") as file:
+        size = file.seek(0, 2)
+        if encoding == "utf-16" or size <= _TAIL:
+            file.seek(0)
+        else:
+            file.seek(size - _TAIL)
+        data = file.read()
+    text = data.decode(encoding, errors="replace")
+    if text.endswith(("\n", "\r")):
         return ""
-    lines = [line for line in body.splitlines()[-2:] if line.strip()]
+    lines = [line for line in text.splitlines()[-2:] if line.strip()]
     if len(lines) < 2:
         return ""
     last = len(_fields(lines[-1], sep, path))
@@ -245,8 +288,8 @@ def _cut_short(path, body, sep, width):
 
 
 def _split(path, text):
-    """(header fields, unit-row units or None, separator, the text from the header on, the
-    rows pandas skips after the header (the unit row)) of a CSV export."""
+    """(header fields, unit-row units or None, separator, where the header starts in
+    ``text``, the rows pandas skips after the header (the unit row)) of a CSV export."""
     sep = ","
     start = 0
     seen = 0
@@ -271,7 +314,7 @@ def _split(path, text):
         break
     if header is None:
         raise InputError(f"{path}: no shots: the file is empty")
-    body = text[start:]
+    body = text[start : start + _SAMPLE]
     second_end = body.find("\n", body.find("\n") + 1)
     lines = body[: second_end if second_end >= 0 else len(body)].splitlines()
     units = None
@@ -282,11 +325,11 @@ def _split(path, text):
         if filled and all(f.startswith("[") and f.endswith("]") for f in filled):
             units = [f.strip().strip("[]").strip() for f in row]
             skip = [1]
-    return header, units, sep, body, skip
+    return header, units, sep, start, skip
 
 
 def _tidy_name(column):
-    return " ".join(str(column).replace("\ufeff", "").split())
+    return " ".join(drop_marks(str(column)).replace("\ufeff", "").split())
 
 
 def _tidy(frame):
