@@ -81,14 +81,15 @@ def launches(session):
     return values, valid
 
 
-def invalid_reasons(session, values, valid):
+def invalid_reasons(session, values, valid, most=None):
     """Why each row is invalid ("" for the valid ones): the reader's reason, else the first
-    launch value missing (its cell empty or not a number) or outside its range."""
+    launch value missing (its cell empty or not a number) or outside its range; only for the
+    first ``most`` rows that need one when given."""
     n = len(session.frame)
     reasons = np.full(n, "", dtype=object)
     if session.reasons is not None:
         reasons[:] = session.reasons
-    rows = np.flatnonzero(~valid & (reasons == ""))
+    rows = np.flatnonzero(~valid & (reasons == ""))[:most]
     for quantity in LAUNCH_COLUMNS:
         if rows.size == 0:
             break
@@ -125,7 +126,7 @@ def check_some_valid(session, values, valid):
     row's reason."""
     if valid.any():
         return
-    reasons = invalid_reasons(session, values, valid)
+    reasons = invalid_reasons(session, values, valid, most=1)
     n = len(valid)
     raise InputError(
         f"{session.path}: no valid shot in its {n} row{'s' * (n != 1)}; row 1: {reasons[0]}"
