@@ -75,7 +75,8 @@ CASES = {
         ),
         {
             "carry": [172.0 * YD, 275.0 * YD, NAN],
-            "apex": [32.7 * YD, 31.8 * YD, NAN],
+            # Apex in feet (a real MLM2PRO export; read as yards it was 3x the flight's).
+            "apex": [98.0 * FT, 95.4 * FT, NAN],
             "carry_side": [3.1 * YD, -10.2 * YD, NAN],
             "descent_angle": [50.0 * DEG, 38.1 * DEG, NAN],
         },
@@ -212,11 +213,11 @@ def test_unknown_blank_and_header_only_files_are_one_line(tmp_path):
     bad_unit = tmp_path / "bad-unit.csv"
     bad_unit.write_text("\n".join([lines[0], lines[1].replace("[mph]", "[furlong/h]"), lines[2]]))
     bad_json = tmp_path / "bad.jsonl"
-    bad_json.write_text('{"BallData": {"Speed": 150, "VLA": 12}}\n{not json\n', encoding="utf-8")
+    bad_json.write_text('{not json\n{"BallData": \n', encoding="utf-8")
     cases = [
         (blank, "no shots: the file is empty"),
         (header_only, "no shots: the file has a header only"),
-        (bad_json, "line 2: not a JSON message"),
+        (bad_json, "no shots: line 1: not a JSON message"),
     ]
     for path, needle in cases:
         with pytest.raises(InputError) as info:
@@ -233,3 +234,173 @@ def test_unknown_blank_and_header_only_files_are_one_line(tmp_path):
     assert all(name in message for name in NAMES), message
     with pytest.raises(InputError, match="column 'Ball Speed': unit 'furlong/h' is not a speed"):
         read_session(bad_unit)
+
+
+# --- what real exports hold (issue 22) ------------------------------------------------------
+
+SKYTRAK_HEADER = (DATA / "skytrak.csv").read_text(encoding="utf-8-sig").splitlines()[0]
+SKYTRAK_IRON = (
+    "1,7 Iron,Iron,2025-05-03 18:00:01,120.0,-1.2,16.3,7090,310,7097,172.0,180.5,3.1,32.7,50.0"
+)
+
+
+def skytrak(tmp_path, *rows, end="\n", name="s.csv"):
+    """A SkyTrak export of the fixture's header and ``rows`` (each a line, or fields)."""
+    path = tmp_path / name
+    path.write_text("\n".join([SKYTRAK_HEADER, *rows]) + end, encoding="utf-8")
+    return path
+
+
+def test_a_cell_that_is_not_a_number_makes_its_shot_invalid_with_its_reason(tmp_path):
+    """``--`` in a speed cell, ``T7091`` in a spin cell, a second unit row, a multi-line cell,
+    a footer row: each row keeps its place with its reason; the good rows read as before."""
+    fields = SKYTRAK_IRON.split(",")
+
+    def row(k, value):
+        return ",".join(fields[:k] + [value] + fields[k + 1 :])
+
+    units = ",".join(
+        ["", "", "", "", "[mph]", "[deg]", "[deg]", "[rpm]", "[rpm]", "[rpm]"] + [""] * 5
+    )
+    path = skytrak(
+        tmp_path,
+        SKYTRAK_IRON,
+        row(4, "--"),
+        row(7, "T7091").replace(",7097,", ",,"),
+        units,
+        row(4, '"120.\n5"'),
+        "Average,,,,120.0,-1.2,16.3,7090,310,7097,172.0,180.5,3.1,32.7,50.0",
+        SKYTRAK_IRON,
+    )
+    session = read_session(path)
+    assert list(session.reasons) == [
+        "",
+        "Ball Speed (mph): '--' is not a number",
+        "Back Spin (rpm): 'T7091' is not a number",
+        "Ball Speed (mph): '[mph]' is not a number",
+        "Ball Speed (mph): '120.\\n5' is not a number",
+        "a summary row ('Average'), not a shot",
+        "",
+    ]
+    speed = session.launch["ball_speed"]
+    np.testing.assert_allclose(speed[[0, 6]], [120.0 * MPH] * 2, rtol=1e-12)
+    assert np.isnan(speed[[1, 3, 4]]).all()
+
+
+def test_square_golf_blank_and_prefixed_cells_read_as_the_vendor_means_them():
+    """R2.5 right (+), L4.2 left (-); the impact columns H0.0/T9.3 (heel, toe) kept as text;
+    the row with blank spin cells and a ``-`` spin axis has no spin (invalid when replayed),
+    no crash."""
+    session = read_session(DATA / "square-golf-blank-prefixed.csv")
+    assert session.format == "square-golf"
+    np.testing.assert_allclose(session.launch["azimuth"], [2.5 * DEG, -4.2 * DEG, 0.0], rtol=1e-12)
+    np.testing.assert_allclose(session.launch["spin_axis"][:2], [-4.2 * DEG, 2.5 * DEG], rtol=1e-12)
+    assert np.isnan(session.launch["spin"][2]) and np.isnan(session.launch["spin_axis"][2])
+    assert session.reasons[2] == "Spin Axis: '-' is not a number"
+    assert list(session.frame["ImpactHorizontal"][:2]) == ["H0.0", "T9.3"]
+    assert list(session.frame["ImpactVertical"][:2]) == ["T9.3", "H0.0"]
+
+
+def test_rapsodo_footer_rows_are_not_shots(tmp_path):
+    lines = (DATA / "rapsodo-mlm2pro.csv").read_text(encoding="utf-8").splitlines()[:3]
+    footer = '"Average","","","223.5","237.9","143.5","13.6","","97.1","","","","","4891",""'
+    spread = '"Std. Dev.","","","51.5","57.4","23.5","2.7","","1.3","","","","","2205",""'
+    path = tmp_path / "r.csv"
+    path.write_text("\n".join([*lines, footer, spread]) + "\n", encoding="utf-8")
+    session = read_session(path)
+    assert list(session.reasons) == [
+        "",
+        "",
+        "a summary row ('Average'), not a shot",
+        "a summary row ('Std. Dev.'), not a shot",
+    ]
+
+
+def test_a_duplicated_column_takes_its_own_unit_or_is_refused(tmp_path):
+    """Garmin's unit row under two Ball Speed columns, mph then km/h: each read in its own
+    unit (they agree), the one in the app's unit read and a note says so. Without a unit row
+    the km/h values under a second plain name disagree with the first: refused, one line."""
+    header, units, row = (DATA / "garmin-r10-imperial.csv").read_text("utf-8-sig").splitlines()
+    both = tmp_path / "both.csv"
+    both.write_text(
+        "\n".join([header + ",Ball Speed", units + ",[km/h]", row + ",193.1"]) + "\n", "utf-8"
+    )
+    session = read_session(both)
+    assert session.launch["ball_speed"][0] == pytest.approx(120.0 * MPH, rel=1e-12)
+    assert session.units["ball_speed"] == "mph" and session.sources["ball_speed"] == "Ball Speed"
+    assert "ball_speed is in 2 columns that agree; read 'Ball Speed' (mph)" in session.notes[0]
+    kmh_first = tmp_path / "kmh-first.csv"
+    kmh_header = header.replace("Ball Speed", "Ball Speed (km/h)") + ",Ball Speed"
+    kmh_units = units.replace("[mph],,[deg]", ",,[deg]", 1) + ",[mph]"  # the name says km/h
+    kmh_row = row.replace(",120.0,", ",193.1,") + ",120.0"
+    kmh_first.write_text("\n".join([kmh_header, kmh_units, kmh_row]) + "\n", "utf-8")
+    session = read_session(kmh_first)  # the mph column read, whichever comes first
+    assert session.sources["ball_speed"] == "Ball Speed"
+    assert session.launch["ball_speed"][0] == pytest.approx(120.0 * MPH, rel=1e-12)
+    plain = tmp_path / "plain.csv"
+    plain.write_text("\n".join([header + ",Ball Speed", units + ",", row + ",193.1"]) + "\n")
+    with pytest.raises(InputError) as info:
+        read_session(plain)
+    message = str(info.value)
+    assert message.startswith(f"{plain}: columns 'Ball Speed' (mph) and 'Ball Speed.1' (mph)")
+    assert "both give ball_speed and disagree (row 1: 53.6448 and 86.3234 in SI)" in message
+
+
+def test_a_last_row_cut_mid_number_is_not_a_shot(tmp_path):
+    """The file ends inside its last row (no line end, fewer fields than the rows before): a
+    spin of 70 rpm is not a measurement. A complete last row without a line end reads."""
+    cut = skytrak(tmp_path, SKYTRAK_IRON, SKYTRAK_IRON[: SKYTRAK_IRON.index("7090") + 2], end="")
+    session = read_session(cut)
+    assert list(session.reasons) == ["", "the last row is cut short (8 of 15 fields, no line end)"]
+    whole = skytrak(tmp_path, SKYTRAK_IRON, SKYTRAK_IRON, end="", name="whole.csv")
+    assert list(read_session(whole).reasons) == ["", ""]
+
+
+def test_a_byte_order_mark_encoded_twice_is_dropped():
+    session = read_session(DATA / "skytrak-double-bom.csv")
+    assert session.format == "skytrak" and session.detected
+    assert session.frame.columns[0] == "Shot Number"
+    np.testing.assert_array_equal(
+        session.launch["spin"], read_session(DATA / "skytrak.csv").launch["spin"]
+    )
+
+
+def test_binary_garbage_and_a_huge_header_are_one_short_line(tmp_path):
+    rng = np.random.default_rng(22)
+    nuls = tmp_path / "nuls.csv"
+    nuls.write_bytes(b"\x00" * 5400 + b"\n1,2\n")
+    noise = tmp_path / "noise.csv"
+    noise.write_bytes(rng.integers(0, 256, 20_000, dtype=np.uint8).tobytes().replace(b"\x00", b"x"))
+    wide = tmp_path / "wide.csv"
+    wide.write_text(",".join(f"c{k}" for k in range(20_000)) + "\n" + ",".join(["1"] * 20_000))
+    for path in (nuls, noise, wide):
+        with pytest.raises(InputError) as info:
+            read_session(path)
+        message = str(info.value)
+        assert message.startswith(f"{path}: ") and "\n" not in message, message[:300]
+        assert len(message) < 600 and "\x00" not in message, message[:300]
+    assert "not a text file" in str(pytest.raises(InputError, read_session, nuls).value)
+    with pytest.raises(InputError, match=r"found c0, c1, .*, c11 and 19988 more; or an export"):
+        read_session(wide)
+
+
+def test_gspro_messages_are_read_out_of_a_connectors_log():
+    """Prefixes and arrows before each message, other log lines between, heartbeats and
+    GSPro's replies skipped, a message logged with Python's repr (``Backspin``, TotalSpin 0:
+    from back and side spin), one spread over lines, and the last one cut short (its row kept,
+    with its reason)."""
+    session = read_session(DATA / "gspro-connector.log")
+    assert session.format == "gspro" and session.detected
+    assert list(session.frame["ShotNumber"][:3]) == [1, 2, 3]
+    launch = session.launch
+    np.testing.assert_allclose(
+        launch["ball_speed"][:3], [147.5 * MPH, 120.0 * MPH, 102.0 * MPH], rtol=1e-12
+    )
+    np.testing.assert_allclose(
+        [launch["spin"][1], launch["spin_axis"][1]], back_side(7090, 310), rtol=1e-12
+    )
+    np.testing.assert_allclose(launch["spin"][[0, 2]], [2250 * RPM, 9304 * RPM], rtol=1e-12)
+    np.testing.assert_allclose(session.device["carry"][:2], [256.5 * YD, 157.3], rtol=1e-12)
+    assert list(session.reasons[:3]) == ["", "", ""]
+    assert session.reasons[3].startswith("line 14: not a JSON message")
+    assert "4 message(s) without ball data skipped" in session.notes[0]

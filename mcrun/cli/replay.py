@@ -7,6 +7,8 @@ printed and written beside the output as CSV, and with ``--plot`` drawn
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from mcrun import status
 from mcrun.api import conditions_inputs
 from mcrun.cli import Interrupted
@@ -39,6 +41,8 @@ def _cmd_replay(args):
     except KeyboardInterrupt:
         raise Interrupted("nothing was written") from None
     bad = int((frame["status"] != status.OK).sum())
+    for note in frame.attrs.get("notes", ()):
+        print(f"mcrun: note: {note}", file=sys.stderr)
     how = "detected" if frame.attrs["format_detected"] else "as asked"
     print(f"read {args.shots}: {frame.attrs['format_title']} ({how})")
     print(f"replayed {len(frame)} shots from {args.shots}; wrote {args.output}")
@@ -52,9 +56,15 @@ def _cmd_replay(args):
             print()
             print(_comparison(comparison))
     if bad:
+        first = ""
+        if "invalid_reason" in frame:
+            reasons = frame["invalid_reason"].to_numpy(dtype=object)
+            k = int(np.flatnonzero(reasons != "")[0])
+            first = f"; row {k + 1}: {reasons[k]}"
         print(
-            f"mcrun: warning: {bad} shot(s) did not end ok (status_name says why; a missing or "
-            "out-of-range launch value gives invalid_input)",
+            f"mcrun: warning: {bad} shot(s) did not end ok (status_name says why; a missing, "
+            f"unreadable or out-of-range launch value gives invalid_input, invalid_reason "
+            f"says which){first}",
             file=sys.stderr,
         )
     return 0
@@ -117,8 +127,9 @@ def register(subparsers):
         "on the turf and in the weather given here, and write a Parquet of the inputs, the "
         "device's own results and the outcomes; print the session per club and the model "
         "minus the device. The file is a device's export (TrackMan, Garmin R10, Rapsodo "
-        "MLM2PRO, SkyTrak, FlightScope, Foresight, Square Golf, Awesome Golf, GSPro JSON "
-        "lines; detected from its header) or a CSV or Parquet with columns named with their "
+        "MLM2PRO, SkyTrak, FlightScope, Foresight, Square Golf, Awesome Golf, GSPro Open "
+        "Connect messages or a log of them; detected from its header) or a CSV or Parquet with "
+        "columns named with their "
         "unit (ball_speed_mph, launch_deg, spin_rpm, optional spin_axis_deg, azimuth_deg). "
         "Values take units as in 'mcrun shot'. Beside OUT.parquet: OUT-clubs.csv (the "
         "session per club) and, where the file has the device's results, OUT-device.csv (the "

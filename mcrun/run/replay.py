@@ -6,9 +6,13 @@ from its header or forced with ``format``, or mcrun's own columns ``ball_speed_m
 turf and in the weather given once for the whole session: what the session would have given on
 another course or another day. The rows run through the same batch kernel as a Monte Carlo run.
 
-A row with a missing value or a value outside ``mcrun.quantities.RANGES`` is not simulated: it keeps
-its place with status ``invalid_input`` (a session often holds a misread shot; one bad row
-should not stop the others). The output keeps the file's own columns (renamed ``input_<name>``
+A row with a missing value or a value outside ``mcrun.quantities.RANGES``, or one the reader
+could not use (``Session.reasons``: a cell that is not a number, a summary row, a row cut
+short), is not simulated: it keeps its place with status ``invalid_input`` and its reason in
+``invalid_reason`` (a column only where some row is invalid; a session often holds a misread
+shot, and one bad row should not stop the others). A session with no valid row is refused.
+
+The output keeps the file's own columns (renamed ``input_<name>``
 where a name is also an output column), then ``club`` (where the file names the club), the
 launch in SI-named columns, the device's own results where the file has them
 (``device_carry_m``...), the outcome of ``schema.OUTCOME_FIELDS``, ``descent_angle_deg`` (from
@@ -37,6 +41,8 @@ from mcrun.quantities import InputError, by_path, column_and_factor
 from mcrun.results import output
 from mcrun.run import clubs
 from mcrun.run.monitors import read_session, session_of_frame
+from mcrun.run.monitors.native import KIND
+from mcrun.units import UnitError, shown, to_unit
 
 # The launch columns of the output, by quantity (scenario.FILE_COLUMNS): (name, SI -> factor).
 LAUNCH_COLUMNS = {
@@ -44,6 +50,9 @@ LAUNCH_COLUMNS = {
     for q in ("ball_speed", "launch_angle", "spin", "spin_axis", "azimuth")
 }
 
+
+CHUNK = 65536
+"""Shots flown at a time by ``replay``."""
 
 # The device's results and the model's, by quantity: (device column, SI -> factor, model column).
 DEVICE_COLUMNS = {
@@ -59,9 +68,10 @@ DEVICE_COLUMNS = {
 def launches(session):
     """(SI arrays by quantity, valid row mask) of the measured launches of a ``Session``: a
     quantity the file does not give is 0 (spin axis, azimuth); a value missing or outside
-    its range (``mcrun.quantities``) makes its row invalid."""
+    its range (``mcrun.quantities``), or a reason the reader gave (``Session.reasons``), makes
+    its row invalid."""
     n = len(session.frame)
-    valid = np.ones(n, dtype=bool)
+    valid = np.ones(n, dtype=bool) if session.reasons is None else session.reasons == ""
     values = {}
     for quantity in LAUNCH_COLUMNS:
         si = session.launch.get(quantity, np.zeros(n))
@@ -69,6 +79,58 @@ def launches(session):
         valid &= np.isfinite(si) & (si >= lo) & (si <= hi)
         values[quantity] = si
     return values, valid
+
+
+def invalid_reasons(session, values, valid, most=None):
+    """Why each row is invalid ("" for the valid ones): the reader's reason, else the first
+    launch value missing (its cell empty or not a number) or outside its range; only for the
+    first ``most`` rows that need one when given."""
+    n = len(session.frame)
+    reasons = np.full(n, "", dtype=object)
+    if session.reasons is not None:
+        reasons[:] = session.reasons
+    rows = np.flatnonzero(~valid & (reasons == ""))[:most]
+    for quantity in LAUNCH_COLUMNS:
+        if rows.size == 0:
+            break
+        si = values[quantity][rows]
+        column = session.sources.get(quantity, quantity)
+        lo, hi = by_path(f"launch.{quantity}").limits
+        missing = ~np.isfinite(si)
+        outside = ~missing & ((si < lo) | (si > hi))
+        unit = session.units.get(quantity, "")
+        kind = KIND[quantity]
+        for row in rows[missing]:
+            cell = session.frame[column].iloc[row] if column in session.frame else None
+            reasons[row] = f"{column}: " + (
+                "empty" if cell is None or pd.isna(cell) else f"{shown(str(cell), 30)} not read"
+            )
+        for row, value in zip(rows[outside], si[outside], strict=True):
+            reasons[row] = f"{column}: {_in_unit(value, kind, unit)} is outside " + (
+                f"[{_in_unit(lo, kind, unit)}, {_in_unit(hi, kind, unit)}]"
+            )
+        rows = rows[~(missing | outside)]
+    return reasons
+
+
+def _in_unit(value_si, kind, unit):
+    """An SI value in the file's unit for a message ("250 mph"), in SI where it has none."""
+    try:
+        return f"{to_unit(value_si, kind, unit):.6g} {unit}"
+    except (UnitError, ValueError, KeyError):
+        return f"{value_si:.6g} (SI)"
+
+
+def check_some_valid(session, values, valid):
+    """InputError naming the file when no row of ``session`` can fly: the rows and the first
+    row's reason."""
+    if valid.any():
+        return
+    reasons = invalid_reasons(session, values, valid, most=1)
+    n = len(valid)
+    raise InputError(
+        f"{session.path}: no valid shot in its {n} row{'s' * (n != 1)}; row 1: {reasons[0]}"
+    )
 
 
 def replay(shots, source=None, format=None, **conditions):
@@ -89,6 +151,7 @@ def replay(shots, source=None, format=None, **conditions):
         shots = session_of_frame(shots, source, format)
     session = shots
     values, valid = launches(session)
+    check_some_valid(session, values, valid)
     n = len(session.frame)
     launch = {
         "ball_speed_mps": values["ball_speed"],
@@ -97,19 +160,21 @@ def replay(shots, source=None, format=None, **conditions):
         "spin_axis_rad": values["spin_axis"],
         "azimuth_rad": values["azimuth"],
     }
-    # An unusable row reaches the kernel as a NaN speed, which it answers with invalid_input.
-    out = simulate_batch(pack({**conditions_inputs(**conditions), **launch}, n, invalid=~valid))
+    encoded = _fly(conditions_inputs(**conditions), launch, valid)
 
     frame = {"row": np.arange(n, dtype=np.int64)}
     launch_names = [name for name, _ in LAUNCH_COLUMNS.values()]
     device_names = [DEVICE_COLUMNS[q][0] for q in session.device]
     compared = [f"model_minus_{DEVICE_COLUMNS[q][0]}" for q in session.device]
     add_club = session.club is not None and session.club_column != "club"
-    taken = {"row", "status_name", "descent_angle_deg", *launch_names, *OUTCOME_FIELDS}
+    taken = {"row", "status_name", "invalid_reason", "descent_angle_deg", *launch_names}
+    taken |= set(OUTCOME_FIELDS)
     taken |= {*device_names, *compared} | ({"club"} if add_club else set())
     for column in session.frame.columns:
         name = str(column)
-        frame[f"input_{name}" if name in taken else name] = session.frame[column].to_numpy()
+        frame[f"input_{name}" if name in taken else name] = session.frame[
+            column
+        ].array  # no copy (strings: 0.4 GB a million rows)
     if add_club:
         frame["club"] = session.club
     for quantity, (name, factor) in LAUNCH_COLUMNS.items():
@@ -117,7 +182,6 @@ def replay(shots, source=None, format=None, **conditions):
     for quantity, si in session.device.items():
         name, factor, _ = DEVICE_COLUMNS[quantity]
         frame[name] = si * factor
-    encoded = encode_outcomes(out)
     for name, (column, missing) in encoded.items():
         if name in frame:  # launch_angle_deg: the measured launch above
             continue
@@ -129,11 +193,38 @@ def replay(shots, source=None, format=None, **conditions):
     frame["status_name"] = pd.Categorical.from_codes(
         encoded["status"][0].astype(int), [status.NAMES[k] for k in sorted(status.NAMES)]
     )
-    result = pd.DataFrame(frame)
+    if not valid.all():
+        frame["invalid_reason"] = invalid_reasons(session, values, valid).astype(str)
+    result = pd.DataFrame(frame, copy=False)  # the columns as made, not copied into blocks
     result.attrs["format"] = session.format
     result.attrs["format_title"] = session.title
     result.attrs["format_detected"] = session.detected
+    result.attrs["notes"] = list(session.notes)
     return result
+
+
+def _fly(conditions, launch, valid):
+    """The outcomes of the launches, ``schema.encode_outcomes``'s columns, flown ``CHUNK``
+    shots at a time (each shot alone in the kernel: the same numbers however they are cut),
+    so that the kernel's inputs and outputs stay small beside the session."""
+    n = valid.size
+    encoded = {}
+    for start in range(0, max(n, 1), CHUNK):
+        rows = slice(start, min(start + CHUNK, n))
+        m = rows.stop - rows.start
+        part = {name: values[rows] for name, values in launch.items()}
+        # An unusable row reaches the kernel as a NaN speed, which it answers invalid_input.
+        out = simulate_batch(pack({**conditions, **part}, m, invalid=~valid[rows]))
+        for name, (column, missing) in encode_outcomes(out).items():
+            if name not in encoded:
+                encoded[name] = (
+                    np.empty(n, dtype=column.dtype),
+                    None if missing is None else np.empty(n, dtype=bool),
+                )
+            encoded[name][0][rows] = column
+            if missing is not None:
+                encoded[name][1][rows] = missing
+    return encoded
 
 
 def table_paths(destination, device=True):
@@ -154,6 +245,7 @@ def replay_file(source, destination, force=False, format=None, **conditions):
     start_time = datetime.now(UTC).isoformat(timespec="seconds")
     source = Path(source)
     session = read_session(source, format)
+    check_some_valid(session, *launches(session))  # before anything is written
     tables = table_paths(destination, device=bool(session.device))
     with ExitStack() as stack:
         target = stack.enter_context(output.AtomicFile(destination, force=force))

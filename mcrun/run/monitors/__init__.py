@@ -4,7 +4,8 @@
   the file checks every reader shares.
 - ``formats``: the exports known (TrackMan plain and Normalized, Garmin R10, Rapsodo MLM2PRO,
   SkyTrak, FlightScope Mevo and Mevo+, Foresight FSX, Square Golf, Awesome Golf, GSPro Open
-  Connect JSON lines): how each is recognised and where its quantities are.
+  Connect messages, one a line or in a connector's log): how each is recognised, where its
+  quantities are and the source of their units.
 - ``read``: a file into a ``Session`` (its own table, the launches and the device's results in
   SI, the club of each shot), the format detected from the header or forced.
 """

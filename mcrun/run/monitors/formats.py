@@ -33,7 +33,9 @@ class Format:
     normalised header names that all appear in it and together in no other format known
     before it), ``columns`` (quantity -> its possible normalised names, first found wins),
     ``units`` (quantity kind or quantity -> unit when the file does not say), ``club`` (the
-    names of its club column) and ``sentinels`` (values that mean "not measured")."""
+    names of its club column), ``sentinels`` (values that mean "not measured") and
+    ``source`` (where its units were checked: the vendor's documentation, a real export, an
+    open-source reader of it)."""
 
     name: str
     title: str
@@ -42,6 +44,7 @@ class Format:
     units: dict
     club: tuple = ()
     sentinels: tuple = field(default=())
+    source: str = ""
 
 
 IMPERIAL = {"speed": "mph", "angle": "deg", "spin": "rpm", "length": "yd"}
@@ -71,6 +74,10 @@ FORMATS = (
         _TRACKMAN_COLUMNS,
         {**IMPERIAL, "apex": "ft"},
         club=("club",),
+        source=(
+            "the unit row of every TrackMan Performance Studio / TPS export ([mph], [yds], [ft] for"
+            " heights)"
+        ),
     ),
     Format(
         "trackman",
@@ -79,6 +86,10 @@ FORMATS = (
         _TRACKMAN_COLUMNS,
         {**IMPERIAL, "apex": "ft"},
         club=("club",),
+        source=(
+            "the unit row of every TrackMan Performance Studio / TPS export ([mph], [yds], [ft] for"
+            " heights)"
+        ),
     ),
     Format(
         "garmin-r10",
@@ -100,6 +111,10 @@ FORMATS = (
         },
         IMPERIAL,
         club=("club type", "club name"),
+        source=(
+            "the unit row of the Garmin Golf app export ([km/h] and [m], or [mph] and [yd], as the "
+            "app is set)"
+        ),
     ),
     Format(
         "rapsodo-mlm2pro",
@@ -117,8 +132,12 @@ FORMATS = (
             "descent_angle": ("descent angle",),
             "carry_side": ("side carry",),
         },
-        IMPERIAL,
+        {**IMPERIAL, "apex": "ft"},
         club=("club type",),
+        source=(
+            "Rapsodo MLM2PRO app export: no unit row; yards, mph, degrees, rpm, and Apex in feet (a"
+            " real export: its apex read as yards was 3x the flight's)"
+        ),
     ),
     Format(
         "skytrak",
@@ -139,6 +158,7 @@ FORMATS = (
         },
         IMPERIAL,
         club=("club name", "club type"),
+        source="the units in the SkyTrak shot-history names (mph, yds, rpm; Peak Height in yds)",
     ),
     Format(
         "flightscope-mevo",
@@ -153,6 +173,7 @@ FORMATS = (
         },
         {**IMPERIAL, "apex": "ft"},
         club=("club",),
+        source="the units in the Mevo names (mph, yds, rpm, Height in ft)",
     ),
     Format(
         "flightscope-mevo-plus",
@@ -172,6 +193,9 @@ FORMATS = (
         },
         {**IMPERIAL, "apex": "ft"},
         club=("club",),
+        source=(
+            "FS Golf app default (imperial): mph, yds, rpm, Height in ft; a unit in a name governs"
+        ),
     ),
     Format(
         "foresight-fsx",
@@ -193,6 +217,7 @@ FORMATS = (
         METRIC,
         club=("club",),
         sentinels=(16777215.0,),
+        source="the units in the FSX LastShot names (m/s, m, rpm)",
     ),
     Format(
         "square-golf",
@@ -214,6 +239,10 @@ FORMATS = (
         },
         IMPERIAL,
         club=("club",),
+        source=(
+            "the units in the Square Golf names (Ball Speed(mph), Apex(yd), Carry(yd)); angles in "
+            "degrees, spin in rpm"
+        ),
     ),
     Format(
         "awesome-golf",
@@ -234,6 +263,7 @@ FORMATS = (
         },
         {**IMPERIAL, "apex": "ft"},
         club=("club type",),
+        source="the unit row of the Awesome Golf export ([mph], [yd], [ft] for Peak Height)",
     ),
     Format(
         "gspro",
@@ -250,6 +280,11 @@ FORMATS = (
             "carry": ("balldata.carrydistance",),
         },
         IMPERIAL,  # the distances: by each message's "Units"
+        source=(
+            "GSPro Open Connect API v1: Speed in mph, HLA/VLA/SpinAxis in degrees, spins in rpm, "
+            "CarryDistance in the message's Units (as connectors send it, e.g. the MLM2PRO-GSPro-"
+            "Connector's gspro_connect.py)"
+        ),
     ),
 )
 

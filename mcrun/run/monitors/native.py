@@ -9,7 +9,30 @@ from pathlib import Path
 import pandas as pd
 
 from mcrun.quantities import InputError
-from mcrun.units import from_column_name
+from mcrun.units import from_column_name, shown
+
+NAMES_SHOWN = 12
+"""Column names a message lists at most (a garbled or 20,000-column header stays one short
+line)."""
+
+
+def names_shown(columns, most=NAMES_SHOWN):
+    """The names of ``columns`` for a message: each cut to 40 characters with what cannot be
+    printed escaped, at most ``most`` of them, then how many more; "none" when empty."""
+    columns = list(columns)
+    if not columns:
+        return "none"
+    shown_names = [_name_shown(c) for c in columns[:most]]
+    more = len(columns) - most
+    return ", ".join(shown_names) + (f" and {more} more" if more > 0 else "")
+
+
+def _name_shown(name):
+    text = str(name)
+    if text.isprintable():
+        return text if len(text) <= 40 else text[:37] + "..."
+    return shown(text, 40)
+
 
 # Columns of a launch-monitor file: quantity -> accepted base names (the unit is the suffix).
 FILE_COLUMNS = {
@@ -58,7 +81,7 @@ def launch_columns(frame, source="the shots", known=""):
     found = _columns(frame, FILE_COLUMNS, source)
     missing = [q for q in REQUIRED if q not in found]
     if missing:
-        names = ", ".join(map(str, frame.columns)) or "none"
+        names = names_shown(frame.columns)
         raise InputError(
             f"{source}: no recognisable column for {', '.join(missing)}; expected columns named "
             "with their unit (ball_speed_mph or _mps, launch_deg, spin_rpm or _radps; optional "
@@ -120,14 +143,25 @@ def check_field_counts(path, lines=None):
     short row reads as missing values. ``lines``: the lines to check (default: the file's,
     comments dropped); the header first."""
     rows = csv.reader(_data_lines(path) if lines is None else lines, skipinitialspace=True)
-    header = next(rows, None)
-    if header is None:
-        return
-    for k, fields in enumerate(rows, start=1):
-        if len(fields) > len(header):
-            raise InputError(
-                f"{path}: row {k} has {len(fields)} fields, the header has {len(header)}"
-            )
+    try:
+        header = next(rows, None)
+        if header is None:
+            return
+        for k, fields in enumerate(rows, start=1):
+            if len(fields) > len(header):
+                raise InputError(
+                    f"{path}: row {k} has {len(fields)} fields, the header has {len(header)}"
+                )
+    except csv.Error as err:  # a NUL byte, a field over the csv module's limit
+        raise InputError(f"{path}: cannot read it as CSV: {first_line(err)}") from None
+
+
+def first_line(err, most=120):
+    """The first line of an exception's message, cut to ``most`` characters (a reader's
+    message may quote the file)."""
+    text = str(err).strip()
+    first = text.splitlines()[0] if text else type(err).__name__
+    return first if len(first) <= most else first[: most - 3] + "..."
 
 
 def read_launch_table(path):
@@ -148,8 +182,7 @@ def read_launch_table(path):
     except pd.errors.EmptyDataError:
         raise InputError(f"{path}: no shots: the file is empty") from None
     except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
-        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
-        raise InputError(f"{path}: cannot read it as CSV or Parquet: {first}") from None
+        raise InputError(f"{path}: cannot read it as CSV or Parquet: {first_line(err)}") from None
     if len(frame) == 0:
         what = "the file has no rows" if parquet else "the file has a header only"
         raise InputError(f"{path}: no shots: {what}")
