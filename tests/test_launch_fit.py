@@ -5,6 +5,7 @@ club filter, a resampled shot's ``source_row`` is its row in the file."""
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -218,3 +219,27 @@ def test_sample_is_only_allowed_with_a_file(tmp_path):
     )
     with pytest.raises(sc.ScenarioError, match=r"launch.sample: only allowed with launch.file"):
         sc.load(path)
+
+
+def test_an_exports_summary_rows_and_cut_last_row_are_not_resampled(tmp_path, capsys):
+    """A TrackMan export as it comes, with its Average and Std. Dev. rows and a last row the
+    file ends inside (the reader's reasons): a scenario's launch file skips them, so its
+    source rows are the shots' rows only; a shot with a cell that cannot be read is refused
+    with its reason in one line."""
+    trackman = (Path(__file__).parent / "data" / "monitors" / "trackman.csv").read_text("utf-8")
+    lines = trackman.splitlines()
+    shots = [line for line in lines[2:] if line.strip()]
+    average = "Average," + shots[0].split(",", 1)[1]
+    text = "\n".join([*lines[:2], *shots, average, shots[0][:40]])
+    (tmp_path / "export.csv").write_text(text, encoding="utf-8")
+    path = tmp_path / "s.toml"
+    path.write_text('[scenario]\nseed = 3\n[launch]\nfile = "export.csv"\n', encoding="utf-8")
+    scenario = sc.load(path)
+    _, sampled = sampling.sample(scenario, scenario.points[0], 0, 200)
+    assert set(sampled["source_row"]) <= set(range(len(shots)))
+    assert len(set(sampled["source_row"])) == len(shots)
+    bad = trackman.replace("120.0,1.38", "--,1.38", 1)
+    (tmp_path / "export.csv").write_text(bad, encoding="utf-8")
+    assert main(["validate", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "row 1" in err and "--" in err, err

@@ -283,7 +283,7 @@ def _cut_short(path, encoding, sep, width):
     last = len(_fields(lines[-1], sep, path))
     before = len(_fields(lines[-2], sep, path))
     if last < width and last < before:
-        return f"the last row is cut short ({last} of {width} fields, no line end)"
+        return f"{_NOT_A_SHOT[1]}{last} of {width} fields, no line end)"
     return ""
 
 
@@ -649,6 +649,19 @@ def _session(frame, source, name, detected, file_units, row_units, reasons=None,
     )
 
 
+# The reasons of the rows that are not shots at all (an export's summary rows, a last row the
+# file ends inside), as against shots with a cell that cannot be read.
+_NOT_A_SHOT = ("a summary row (", "the last row is cut short (")
+
+
+def not_a_shot(reasons):
+    """Which rows of ``reasons`` (``Session.reasons``) are not shots at all: an export's summary
+    rows and a last row cut short. A launch file skips them; it refuses a shot it cannot read."""
+    if reasons is None:
+        return None
+    return np.array([str(r).startswith(_NOT_A_SHOT) for r in reasons], dtype=bool)
+
+
 def _mark_summary_rows(frame, fmt, reasons):
     """Give the summary rows of an export (``Average``, ``Std. Dev.``... in its first column or
     its club column) their reason: they are not shots."""
@@ -664,7 +677,7 @@ def _mark_summary_rows(frame, fmt, reasons):
         text = cells.astype("string").str.strip().str.lower()
         summary = text.isin(_SUMMARY).fillna(False).to_numpy(dtype=bool) & (reasons == "")
         for row in np.flatnonzero(summary):
-            reasons[row] = f"a summary row ({shown(str(cells.iloc[row]), 30)}), not a shot"
+            reasons[row] = f"{_NOT_A_SHOT[0]}{shown(str(cells.iloc[row]), 30)}), not a shot"
 
 
 def _spin_from_components(values, sources, units):

@@ -9,6 +9,7 @@ import numpy as np
 from mcrun.quantities import InputError, column_and_factor
 from mcrun.run.monitors import FILE_COLUMNS, check_file, read_session
 from mcrun.run.monitors import NAMES as MONITOR_FORMATS
+from mcrun.run.monitors.read import not_a_shot
 from mcrun.run.scenario.correlation import semidefinite_cholesky
 from mcrun.run.scenario.specs import PARAMETERS
 from mcrun.run.scenario.values import as_table, fmt, key_name, read_value, short
@@ -163,10 +164,13 @@ def _read_shots(ctx, where, path, club=None, format=None):
     except InputError as err:
         raise ctx.error(where, str(err)) from None
     rows = np.arange(len(session.frame))
+    skipped = not_a_shot(session.reasons)
+    if skipped is not None:
+        rows = rows[~skipped]  # an export's summary rows, a last row cut short
     if club is not None:
         if session.club is None:
             raise ctx.error(where, f"{path}: a club is asked for but the file has no club column")
-        rows = np.flatnonzero([c.casefold() == club.casefold() for c in session.club])
+        rows = rows[[session.club[r].casefold() == club.casefold() for r in rows]]
         if rows.size == 0:
             clubs = ", ".join(sorted(set(session.club) - {""})) or "none"
             raise ctx.error(where, f"{path}: no shot of club {club!r}; its clubs: {clubs}")
@@ -179,10 +183,11 @@ def _read_shots(ctx, where, path, club=None, format=None):
         if bad.size:
             r = rows[bad[0]]
             raw = session.frame[column].iloc[r] if column in session.frame else float("nan")
+            why = session.reasons[r] if session.reasons is not None else ""
             raise ctx.error(
                 where,
                 f"{path}: column {column!r} row {r + 1}: not a number "
-                f"({short(raw)}); every row must be complete",
+                f"({short(why or raw)}); every row must be complete",
             )
         lo, hi = param.limits
         outside = np.flatnonzero((si < lo) | (si > hi))
