@@ -200,3 +200,22 @@ def test_conflicting_copies_of_an_elevation_point_are_refused(tmp_path):
     assert "is given 3 times with different heights (100.25, 500, 100.25 m, rows 7, 8, 14)" in (
         message
     )
+
+
+def test_a_ref_shared_by_two_courses_is_ambiguous_and_a_position_chooses(tmp_path):
+    # tests/data/maps/two-courses.geojson with South Park Golf's first hole tagged ref 1 too.
+    data = json.loads((MAPS / "two-courses.geojson").read_text())
+    lines = [f for f in data["features"] if f["properties"].get("golf") == "hole"]
+    lines[2]["properties"]["ref"] = "1"
+    (tmp_path / "country.geojson").write_text(json.dumps(data))
+    message = _error({"map": "country.geojson", "hole": 1}, tmp_path)
+    assert "hole 1: 2 holes have ref 1 (#1 on North Links, #3 on South Park Golf)" in message
+    assert "give the one you mean by its position in the file, as '#N'" in message
+    hole = hole_from_table({"map": "country.geojson", "hole": "#3"}, tmp_path, "h.toml")
+    assert hole.name == "South Park Golf, hole 1" and hole.index == 3
+    assert hole_from_table({"map": "country.geojson", "hole": 2}, tmp_path, "t").index == 2
+    message = _error({"map": "country.geojson", "hole": "#9"}, tmp_path)
+    assert "hole '#9' does not exist: the map has 5 golf=hole lines; give a position 1-5 or a " in (
+        message
+    )
+    assert "a ref (1, 2, 3)" in message

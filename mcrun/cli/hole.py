@@ -114,7 +114,9 @@ def register(subparsers):
     )
     p.add_argument("file", metavar="FILE", help="a hole TOML file or a GeoJSON course map")
     p.add_argument(
-        "--hole", metavar="N", help="the hole: its ref, or its 1-based position in the map"
+        "--hole",
+        metavar="N",
+        help="the hole: its ref, or its 1-based position in the map ('#N': the position N)",
     )
     p.add_argument("--plot", metavar="PNG", help="draw the hole's map into this file")
     p.set_defaults(func=_cmd_hole)

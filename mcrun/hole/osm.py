@@ -100,18 +100,30 @@ class Course:
 
     def hole(self, key):
         """The hole whose ``ref`` is ``key`` (a string), else whose position is ``key``
-        (1-based, in file order); HoleError saying how many there are."""
-        for line in self.holes:
-            if line.ref is not None and line.ref == str(key):
-                return line
-        try:
-            index = int(key)
-        except (TypeError, ValueError):
-            index = None
-        if index is not None and str(index) == str(key).strip() and 1 <= index <= len(self.holes):
-            return self.holes[index - 1]
-        refs = [h.ref for h in self.holes if h.ref is not None]
-        refs_text = f" or a ref ({', '.join(refs)})" if refs else " (the file has no ref tags)"
+        (1-based, in file order); "#N" is always the position N. HoleError saying how many
+        there are, or, when several holes share the ref (a map of many courses), which."""
+        text = str(key).strip()
+        if not text.startswith("#"):
+            matches = [line for line in self.holes if line.ref is not None and line.ref == text]
+            if len(matches) == 1:
+                return matches[0]
+            if matches:
+                shown = ", ".join(
+                    f"#{m.index} on {self.course_of(m) or 'no named course'}" for m in matches[:5]
+                )
+                more = f" and {len(matches) - 5} more" if len(matches) > 5 else ""
+                raise HoleError(
+                    f"{self.source}: hole {key!r}: {len(matches)} holes have ref {text} "
+                    f"({shown}{more}): "
+                    "give the one you mean by its position in the file, as '#N'"
+                )
+        position = text.removeprefix("#")
+        if position.isascii() and position.isdigit() and 1 <= int(position) <= len(self.holes):
+            return self.holes[int(position) - 1]
+        refs = list(dict.fromkeys(h.ref for h in self.holes if h.ref is not None))
+        refs_text = " (the file has no ref tags)"
+        if refs:
+            refs_text = f" or a ref ({', '.join(refs[:20])}{', ...' if len(refs) > 20 else ''})"
         raise HoleError(
             f"{self.source}: hole {key!r} does not exist: the map has {len(self.holes)} "
             f"golf=hole lines; give a position 1-{len(self.holes)}{refs_text}"
