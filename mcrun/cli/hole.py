@@ -16,15 +16,16 @@ def _list_holes(path):
     """Every hole of the map: its number, par, length and course; a hole that cannot be
     played as mapped is listed too, marked with why."""
     course = read_course(path)
-    names = {course.course_of(line) for line in course.holes}
+    courses = [course.course_of(line) for line in course.holes]
+    names = set(courses)
     on = f" on {len(names)} courses" if len(names) > 1 else ""
     title = course.name if course.name and len(names) == 1 else path
     print(f"{title}: {len(course.holes)} holes{on} (choose one with --hole N)")
     print(f"{'hole':>4}  {'ref':>4}  {'par':>3}  {'length_m':>8}  {'length_yd':>9}  title")
     bad = 0
-    for line in course.holes:
+    for line, course_name in zip(course.holes, courses, strict=True):
         head = f"{line.index:>4}  {line.ref or '-':>4}  {line.par or '-':>3}"
-        title = hole_title(course.course_of(line), line)
+        title = hole_title(course_name, line)
         try:
             tee, pin = tee_and_pin(course, line, str(path))
         except HoleError as err:

@@ -4,9 +4,10 @@ a grid (``Hole.terrain()``, a ``ground.Terrain``).
 The ``[hole]`` table of a scenario and a standalone hole TOML file have the same keys:
 
 - ``map``: a GeoJSON course (``osm``), relative to the TOML's folder; ``hole``: its ``ref``, or
-  its 1-based position among the file's ``golf=hole`` lines;
+  its 1-based position among the file's ``golf=hole`` lines ("#N": the position N);
 - ``tee``, ``pin``: [lon, lat] overrides (default: the hole line's first point; the
-  ``golf=pin`` in the hole's green, else the line's last point); the pin must be on a green;
+  ``golf=pin`` in the hole's green, else the line's last point); the pin must be on a green,
+  and a hole of a map without a green near its end is refused;
 - ``elevation`` (a file, relative to the TOML's folder; ``elevation_crs`` when the file does
   not say), or ``shape`` (an analytic ground: its kind, or a table with ``kind`` and its
   parameters); neither: flat;
@@ -307,9 +308,14 @@ def tee_and_pin(course, line, where, table=None):
                 greens, key=lambda g: 0 if contains(g, *end_xy) else _ring_distance_m(g, *end_xy)
             )
             pins_xy = np.column_stack(local.to_xy(course.pins[:, 0], course.pins[:, 1]))
-            inside = [k for k, p in enumerate(pins_xy) if contains(green, *p)]
-            near = sorted((_ring_distance_m(green, *p), k) for k, p in enumerate(pins_xy))
-            if inside:
+            inside = np.flatnonzero(contains(green, pins_xy[:, 0], pins_xy[:, 1]))
+            # Only pins within PIN_SEARCH_M of the green's box can count (a country's map has
+            # thousands).
+            lo = np.min([ring.min(axis=0) for ring in green], axis=0) - PIN_SEARCH_M
+            hi = np.max([ring.max(axis=0) for ring in green], axis=0) + PIN_SEARCH_M
+            close = np.flatnonzero(((pins_xy >= lo) & (pins_xy <= hi)).all(axis=1))
+            near = sorted((_ring_distance_m(green, *pins_xy[k]), k) for k in close)
+            if inside.size:
                 pin = tuple(course.pins[inside[0]])
             elif near and near[0][0] <= PIN_SEARCH_M:
                 pin = tuple(course.pins[near[0][1]])

@@ -68,6 +68,12 @@ class Course:
         boxes = [(*p[0].min(axis=0), *p[0].max(axis=0)) for p in self.greens]
         return np.array(boxes, dtype=float).reshape(-1, 4)
 
+    @cached_property
+    def _course_boxes(self):
+        """(n, 4) lon_min, lat_min, lon_max, lat_max of each course polygon's outer ring."""
+        boxes = [(*p[0].min(axis=0), *p[0].max(axis=0)) for _, p in self.courses]
+        return np.array(boxes, dtype=float).reshape(-1, 4)
+
     def greens_near(self, lonlat, radius_m):
         """The greens whose bounding box comes within about ``radius_m`` of any of the points
         ``lonlat`` ((n, 2) or (2,) lon/lat deg), in map order: a country's map has thousands."""
@@ -90,8 +96,17 @@ class Course:
         holding most of its points, the smallest of those when nested; None when it lies in
         none, or that course has no name."""
         best = None
-        for name, polygon in self.courses:
-            inside = int(contains(polygon, line.lonlat[:, 0], line.lonlat[:, 1]).sum())
+        lon, lat = line.lonlat[:, 0], line.lonlat[:, 1]
+        boxes = self._course_boxes
+        near = (
+            (boxes[:, 0] <= lon.max())
+            & (lon.min() <= boxes[:, 2])
+            & (boxes[:, 1] <= lat.max())
+            & (lat.min() <= boxes[:, 3])
+        )
+        for k in np.flatnonzero(near):  # a country's map has hundreds of courses
+            name, polygon = self.courses[k]
+            inside = int(contains(polygon, lon, lat).sum())
             if inside:
                 rank = (-inside, shoelace_area_m2(polygon))
                 if best is None or rank < best[0]:
