@@ -426,3 +426,51 @@ def test_a_compression_tifffile_cannot_decode_alone_names_imagecodecs(tmp_path):
     assert "its compression needs the imagecodecs package: pip install imagecodecs" in (
         one_line_error(path)
     )
+
+
+MAPS = Path(__file__).parent / "data" / "maps"
+
+
+@pytest.mark.parametrize(
+    "header",
+    ["lon,lat,alt", "longitude,latitude,elevation", "Longitude, Latitude, Altitude", "lng,lat,ele"],
+)
+def test_common_point_headers_are_read(tmp_path, header):
+    # tests/data/maps/points-lon-lat-alt.csv: a 4 x 4 lattice of a plane under lon,lat,alt.
+    text = (MAPS / "points-lon-lat-alt.csv").read_text().splitlines()
+    path = tmp_path / "points.csv"
+    path.write_text("\n".join([header, *text[1:]]) + "\n")
+    data = np.loadtxt(MAPS / "points-lon-lat-alt.csv", delimiter=",", skiprows=1)
+    dem = load_elevation(path)
+    assert "16 survey points on a lattice, 4 x 4 nodes" in str(dem)
+    np.testing.assert_allclose(dem.height_m(data[:, 0], data[:, 1]), data[:, 2], atol=1e-9)
+
+
+def test_conflicting_copies_of_a_point_are_refused_naming_its_rows():
+    # tests/data/maps/points-conflicting-copies.csv: lon 15.9002, lat 45.78015 at rows 7, 8
+    # and 14, once 500 m high among points of about 100 m (averaged, it was 233.5 m).
+    message = one_line_error(MAPS / "points-conflicting-copies.csv")
+    assert message == (
+        "points-conflicting-copies.csv: the point lon 15.9002, lat 45.78015 is given 3 times "
+        "with different heights (100.25, 500, 100.25 m, rows 7, 8, 14): allowed is one height "
+        "per point (copies within 0.01 m are merged): remove the wrong copies"
+    )
+
+
+def test_identical_copies_of_a_point_are_one_point(tmp_path):
+    lines = (MAPS / "points-lon-lat-alt.csv").read_text().splitlines()
+    path = tmp_path / "copies.csv"
+    path.write_text("\n".join([*lines, lines[6], lines[6], lines[2]]) + "\n")
+    dem = load_elevation(path)
+    assert "16 survey points on a lattice" in str(dem)
+    assert dem.height_m(15.9002, 45.78015) == pytest.approx(100.25, abs=1e-9)
+
+
+def test_conflicting_points_on_one_lattice_node_are_refused(tmp_path):
+    # Two points 1e-13 deg apart (the rounding of an export) are one node: 100.25 and 120 m.
+    lines = (MAPS / "points-lon-lat-alt.csv").read_text().splitlines()
+    path = tmp_path / "near.csv"
+    path.write_text("\n".join([*lines, "15.9002000000001,45.78015,120.0"]) + "\n")
+    message = one_line_error(path)
+    assert "is given 2 times (points within 1e-6 of a lattice step are one node)" in message
+    assert "different heights (100.25, 120 m, rows 7, 18)" in message

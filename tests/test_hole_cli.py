@@ -7,6 +7,7 @@ import pytest
 from mcrun.cli import main
 
 HOLES = Path(__file__).resolve().parent.parent / "scenarios" / "holes"
+MAPS = Path(__file__).resolve().parent / "data" / "maps"
 
 
 def test_a_course_map_lists_its_holes(capsys):
@@ -14,7 +15,8 @@ def test_a_course_map_lists_its_holes(capsys):
     out = capsys.readouterr().out.splitlines()
     rows = [line.split() for line in out[2:-1]]
     assert len(rows) == 18 and [int(r[0]) for r in rows] == list(range(1, 19))
-    assert rows[1][3:] == ["168.4", "184.2"]  # hole 2: m and yd
+    assert rows[1][3:5] == ["168.4", "184.2"]  # hole 2: m and yd
+    assert " ".join(rows[1][5:]) == "Riverside Golf Zagreb, Natjecateljsko igralište, hole 2"
     assert "OpenStreetMap contributors, ODbL" in out[-1]
 
 
@@ -47,3 +49,54 @@ def test_errors_are_one_line_and_exit_2(capsys):
     assert err.startswith("mcrun: error: ") and "the map has 18 golf=hole lines" in err
     code = main(["hole", str(HOLES / "riverside-zagreb.osm.geojson"), "--plot", "x.png"])
     assert code == 2 and "choose it with --hole N" in capsys.readouterr().err
+
+
+def test_a_country_extract_lists_every_hole_by_its_course_and_marks_the_bad_one(capsys):
+    # Two courses far apart (tests/data/maps/two-courses.geojson, hand-made like an Overpass
+    # country export); South Park Golf's hole 2 (4th in the file) ends 51 m past its green.
+    assert main(["hole", str(MAPS / "two-courses.geojson")]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].endswith("two-courses.geojson: 5 holes on 2 courses (choose one with --hole N)")
+    rows = out[2:7]
+    titles = [row[38:].split("  ! ")[0] for row in rows]
+    assert titles == [
+        "North Links, hole 1",
+        "North Links, hole 2",
+        "South Park Golf, hole 1",  # its name tag is "1"
+        "South Park Golf, hole 2",
+        "South Park Golf, hole 3: Island Green",  # ref 3, name "Island Green"
+    ]
+    assert [row.split()[3] for row in rows] == ["323.6", "153.3", "303.5", "-", "143.2"]
+    assert "!" not in "".join(rows[:3] + rows[4:])
+    assert "  ! the pin [" in rows[3] and "(51.1 m from the nearest)" in rows[3]
+    assert out[7].startswith("1 of 5 holes cannot be played as mapped (marked !)")
+    assert "OpenStreetMap contributors, ODbL" in out[-1]
+
+
+def test_a_hole_of_a_country_extract_is_titled_by_its_own_course(capsys):
+    assert main(["hole", str(MAPS / "two-courses.geojson"), "--hole", "5"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("South Park Golf, hole 3: Island Green\n") and "par: 3" in out
+    code = main(["hole", str(MAPS / "two-courses.geojson"), "--hole", "4"])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and "(51.1 m from the nearest)" in err
+
+
+def test_a_kml_given_as_a_map_or_a_hole_is_named_as_kml(capsys, tmp_path):
+    kml = tmp_path / "course.kml"
+    kml.write_text(
+        '<?xml version="1.0" encoding="UTF-8"?>\n<kml xmlns="http://www.opengis.net/kml/2.2">'
+        "<Document><Placemark><name>Hole 1</name><LineString><coordinates>15.89,45.77,0 "
+        "15.891,45.771,0</coordinates></LineString></Placemark></Document></kml>\n"
+    )
+    for args in (["hole", str(kml)], ["hole", str(kml), "--hole", "1"]):
+        assert main(args) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "not valid TOML" not in err
+        assert f"{kml}: is a KML file (Google Earth), not a hole" in err
+        assert "GeoJSON FeatureCollection (.geojson, .json)" in err and "ogr2ogr" in err
+    named_json = tmp_path / "course.geojson"
+    named_json.write_bytes(kml.read_bytes())
+    assert main(["hole", str(named_json)]) == 2
+    err = capsys.readouterr().err
+    assert "course.geojson: is a KML file (Google Earth), not a course map" in err

@@ -14,6 +14,7 @@ from mcrun.hole.errors import HoleError
 from mcrun.hole.hole import hole_from_table, load_hole
 
 HOLES = Path(__file__).resolve().parent.parent / "scenarios" / "holes"
+MAPS = Path(__file__).resolve().parent / "data" / "maps"
 MAP = "riverside-zagreb.osm.geojson"
 
 
@@ -128,3 +129,93 @@ def test_a_hole_file_that_is_not_toml(tmp_path):
     with pytest.raises(HoleError, match=r"h.toml: is not valid TOML") as info:
         load_hole(path)
     assert "\n" not in str(info.value)
+
+
+def test_a_hole_without_a_green_is_refused(tmp_path):
+    # tests/data/maps/no-green.geojson: a hole line, its tee and fairway, no green mapped.
+    shutil.copy(MAPS / "no-green.geojson", tmp_path)
+    message = _error({"map": "no-green.geojson", "hole": 1}, tmp_path)
+    assert "hole 1 has no green:" in message and "has no golf=green polygon" in message
+    assert "a hole is played to a pin on its green" in message
+    # A pin given by hand does not make a green.
+    message = _error({"map": "no-green.geojson", "hole": 1, "pin": [15.9, 45.7825]}, tmp_path)
+    assert "hole 1 has no green:" in message
+
+
+def test_a_green_only_far_away_is_not_the_holes(tmp_path):
+    # The half-mapped course with one green, 2 km north of the hole's end (0.018 deg).
+    data = json.loads((MAPS / "no-green.geojson").read_text())
+    lon, lat = data["features"][1]["geometry"]["coordinates"][-1]
+    ring = [[lon + dx, lat + 0.018 + dy] for dx, dy in ((0, 0), (2e-4, 0), (2e-4, 2e-4), (0, 0))]
+    green = {"type": "Polygon", "coordinates": [ring]}
+    data["features"].append({"type": "Feature", "properties": {"golf": "green"}, "geometry": green})
+    (tmp_path / "far.geojson").write_text(json.dumps(data))
+    message = _error({"map": "far.geojson", "hole": 1}, tmp_path)
+    assert "hole 1 has no green:" in message and "within 1000 m of the hole's end" in message
+
+
+@pytest.mark.parametrize(
+    ("coordinates", "shown"),
+    [([15.9, 145.78], "[15.9, 145.78]"), ([215.9, 45.78], "[215.9, 45.78]")],
+)
+def test_points_off_the_earth_are_refused(tmp_path, coordinates, shown):
+    data = json.loads((MAPS / "no-green.geojson").read_text())
+    data["features"][1]["geometry"]["coordinates"][1] = coordinates  # the hole line's middle
+    (tmp_path / "off.geojson").write_text(json.dumps(data))
+    message = _error({"map": "off.geojson", "hole": 1}, tmp_path)
+    feature = data["features"][1]["id"]
+    assert f"off.geojson: feature {feature}: point {shown} is off the Earth" in message
+    assert "longitude in [-180, 180], latitude in [-90, 90]" in message
+
+
+def test_web_mercator_metres_in_a_map_are_refused(tmp_path):
+    # tests/data/maps/web-mercator.geojson: EPSG:3857 metres where lon/lat belong.
+    shutil.copy(MAPS / "web-mercator.geojson", tmp_path)
+    message = _error({"map": "web-mercator.geojson", "hole": 1}, tmp_path)
+    assert "web-mercator.geojson: feature way/" in message and "is off the Earth" in message
+
+
+def test_a_kml_map_says_it_is_kml(tmp_path):
+    (tmp_path / "course.kml").write_text('<?xml version="1.0"?>\n<kml><Document/></kml>\n')
+    message = _error({"map": "course.kml", "hole": 1}, tmp_path)
+    assert "course.kml: is a KML file (Google Earth), not a course map" in message
+    assert "allowed is a GeoJSON FeatureCollection (.geojson, .json)" in message
+    (tmp_path / "h.toml").write_text('<?xml version="1.0"?>\n<gpx version="1.1"></gpx>\n')
+    with pytest.raises(HoleError, match=r"h.toml: is a GPX file \(GPS tracks\), not a hole"):
+        load_hole(tmp_path / "h.toml")
+    (tmp_path / "h.toml").write_text('{"type": "FeatureCollection", "features": []}\n')
+    with pytest.raises(HoleError, match=r"h.toml: is not a hole TOML file but looks like JSON"):
+        load_hole(tmp_path / "h.toml")
+
+
+def test_conflicting_copies_of_an_elevation_point_are_refused(tmp_path):
+    # tests/data/maps/points-conflicting-copies.csv: one point three times, once 500 m high.
+    shutil.copy(MAPS / "points-conflicting-copies.csv", tmp_path)
+    table = {"tee": [15.9001, 45.7801], "pin": [15.9005, 45.7803], "width_m": 10}
+    table |= {"margin_m": 0, "elevation": "points-conflicting-copies.csv"}
+    message = _error(table, tmp_path)
+    assert "'elevation': points-conflicting-copies.csv: the point lon 15.9002, lat 45.78015" in (
+        message
+    )
+    assert "is given 3 times with different heights (100.25, 500, 100.25 m, rows 7, 8, 14)" in (
+        message
+    )
+
+
+def test_a_ref_shared_by_two_courses_is_ambiguous_and_a_position_chooses(tmp_path):
+    # tests/data/maps/two-courses.geojson with South Park Golf's first hole tagged ref 1 too.
+    data = json.loads((MAPS / "two-courses.geojson").read_text())
+    lines = [f for f in data["features"] if f["properties"].get("golf") == "hole"]
+    lines[2]["properties"]["ref"] = "1"
+    (tmp_path / "country.geojson").write_text(json.dumps(data))
+    message = _error({"map": "country.geojson", "hole": 1}, tmp_path)
+    assert "hole 1: 2 holes have ref 1 (#1 on North Links, #3 on South Park Golf)" in message
+    assert "give the one you mean by its position in the file, as '#N'" in message
+    hole = hole_from_table({"map": "country.geojson", "hole": "#3"}, tmp_path, "h.toml")
+    assert hole.name == "South Park Golf, hole 1" and hole.index == 3
+    assert hole_from_table({"map": "country.geojson", "hole": 2}, tmp_path, "t").index == 2
+    message = _error({"map": "country.geojson", "hole": "#9"}, tmp_path)
+    assert "hole '#9' does not exist: the map has 5 golf=hole lines; give a position 1-5 or a " in (
+        message
+    )
+    assert "a ref (1, 2, 3)" in message

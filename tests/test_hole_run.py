@@ -3,7 +3,9 @@ summary's zone shares, the aim, and the mistakes a user can make in the table.""
 
 import math
 import re
+import shutil
 import textwrap
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -18,6 +20,7 @@ from mcrun.run import scenario as sc
 from mcrun.run.scenario import ScenarioError
 
 LIBRARY = sc.library_folder()
+MAPS = Path(__file__).resolve().parent / "data" / "maps"
 
 LAUNCH = """
 [launch]
@@ -172,6 +175,9 @@ ONE_HOLE = """{"type": "FeatureCollection", "features": [
         ('[hole]\nmap = "missing.geojson"\nhole = 1\n', "", "missing.geojson"),
         ('[hole]\nmap = "not-a-map.geojson"\nhole = 1\n', "", "not-a-map.geojson"),
         ('[hole]\nmap = "one-hole.geojson"\nhole = 5\n', "", "hole"),
+        ('[hole]\nfile = "course.kml"\n', "", "course.kml: is a KML file (Google Earth), not a"),
+        ('[hole]\nmap = "course.kml"\nhole = 1\n', "", "is a KML file (Google Earth), not a"),
+        ('[hole]\nmap = "no-green.geojson"\nhole = 1\n', "", "hole 1 has no green"),
     ],
 )
 def test_bad_hole_tables_give_one_line(tmp_path, capsys, hole, extra, message):
@@ -179,6 +185,8 @@ def test_bad_hole_tables_give_one_line(tmp_path, capsys, hole, extra, message):
     run writes nothing."""
     (tmp_path / "not-a-map.geojson").write_text('{"type": "Feature"}')
     (tmp_path / "one-hole.geojson").write_text(ONE_HOLE)
+    (tmp_path / "course.kml").write_text('<?xml version="1.0"?>\n<kml><Document/></kml>\n')
+    shutil.copy(MAPS / "no-green.geojson", tmp_path)  # a hole line, tee and fairway, no green
     path = scenario_file(tmp_path, hole, extra)
     with pytest.raises(ScenarioError, match=re.escape(message)):
         sc.load(path)

@@ -4,23 +4,43 @@ and draw its map; or list the holes of a course map."""
 from pathlib import Path
 
 from mcrun.cli import CommandError
-from mcrun.hole.hole import M_PER_YD, hole_from_table, load_hole
-from mcrun.hole.osm import read_course
+from mcrun.hole.errors import HoleError
+from mcrun.hole.geo import Frame
+from mcrun.hole.hole import M_PER_YD, hole_from_table, load_hole, read_hole_file, tee_and_pin
+from mcrun.hole.osm import ATTRIBUTION, hole_title, read_course
 
 GEOJSON_SUFFIXES = (".geojson", ".json")
 
 
 def _list_holes(path):
+    """Every hole of the map: its number, par, length and course; a hole that cannot be
+    played as mapped is listed too, marked with why."""
     course = read_course(path)
-    print(f"{course.name or path}: {len(course.holes)} holes (choose one with --hole N)")
-    print(f"{'hole':>4}  {'ref':>4}  {'par':>3}  {'length_m':>8}  {'length_yd':>9}")
-    for line in course.holes:
-        hole = hole_from_table({"map": path.name, "hole": line.index}, path.parent, str(path))
+    courses = [course.course_of(line) for line in course.holes]
+    names = set(courses)
+    on = f" on {len(names)} courses" if len(names) > 1 else ""
+    title = course.name if course.name and len(names) == 1 else path
+    print(f"{title}: {len(course.holes)} holes{on} (choose one with --hole N)")
+    print(f"{'hole':>4}  {'ref':>4}  {'par':>3}  {'length_m':>8}  {'length_yd':>9}  title")
+    bad = 0
+    for line, course_name in zip(course.holes, courses, strict=True):
+        head = f"{line.index:>4}  {line.ref or '-':>4}  {line.par or '-':>3}"
+        title = hole_title(course_name, line)
+        try:
+            tee, pin = tee_and_pin(course, line, str(path))
+        except HoleError as err:
+            bad += 1
+            why = str(err).removeprefix(f"{path}: ")
+            print(f"{head}  {'-':>8}  {'-':>9}  {title}  ! {why}")
+            continue
+        length_m = float(Frame.from_tee_pin(tee, pin).to_xy(*pin)[0])
+        print(f"{head}  {length_m:>8.1f}  {length_m / M_PER_YD:>9.1f}  {title}")
+    if bad:
         print(
-            f"{line.index:>4}  {line.ref or '-':>4}  {line.par or '-':>3}  "
-            f"{hole.length_m:>8.1f}  {hole.length_m / M_PER_YD:>9.1f}"
+            f"{bad} of {len(course.holes)} holes cannot be played as mapped (marked !): "
+            "give them a 'pin' on a green in a hole file, or mend the map"
         )
-    print(f"map: {course.source}, (c) OpenStreetMap contributors, ODbL")
+    print(f"map: {course.source}, {ATTRIBUTION}")
 
 
 def _describe(hole):
@@ -76,19 +96,7 @@ def _cmd_hole(args):
 
 def _with_hole(path, key):
     """The hole file at ``path`` with its 'hole' replaced by ``key``."""
-    import tomllib
-
-    from mcrun.hole.errors import HoleError
-
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as err:
-        raise HoleError(f"{path}: cannot read the hole file: {err}") from None
-    table, source = (
-        (data["hole"], f"{path} [hole]")
-        if isinstance(data.get("hole"), dict)
-        else (data, str(path))
-    )
+    table, source = read_hole_file(path)
     return hole_from_table({**table, "hole": key}, path.parent, source)
 
 
@@ -107,7 +115,9 @@ def register(subparsers):
     )
     p.add_argument("file", metavar="FILE", help="a hole TOML file or a GeoJSON course map")
     p.add_argument(
-        "--hole", metavar="N", help="the hole: its ref, or its 1-based position in the map"
+        "--hole",
+        metavar="N",
+        help="the hole: its ref, or its 1-based position in the map ('#N': the position N)",
     )
     p.add_argument("--plot", metavar="PNG", help="draw the hole's map into this file")
     p.set_defaults(func=_cmd_hole)

@@ -12,11 +12,15 @@ Three formats, told apart by the file's suffix:
 - ``.asc``: an ESRI ASCII grid (ncols, nrows, xllcorner/xllcenter, yllcorner/yllcenter, cellsize
   or dx and dy, NODATA_value). Its coordinate system is ``crs``, else the WKT of a ``.prj`` file
   beside it, else WGS84 lon/lat when its coordinates can be longitudes and latitudes.
-- ``.csv``: survey points, columns lon,lat,elevation (or lon_deg,lat_deg,elevation_m, or x,y,z in
-  the coordinate system ``crs``), gridded once here. Points on a regular lattice are that grid,
-  node for node (a missing node is filled linearly from its neighbours); scattered points are
-  interpolated linearly over their Delaunay triangulation onto a square grid whose spacing is the
-  points' mean spacing, sqrt(area of their convex hull / number of points), NaN outside the hull.
+- ``.csv``: survey points, columns lon,lat,elevation (or lon_deg,lat_deg,elevation_m,
+  lon,lat,alt and the other names of ``CSV_COLUMNS``, or x,y,z in the coordinate system
+  ``crs``), gridded once here. Copies of a point (rows with the same coordinates, or the same
+  node of a lattice) are one point when their heights agree to ``DUPLICATE_TOLERANCE_M``, and
+  refused, naming the point and its rows, when they do not. Points on a regular lattice are
+  that grid, node for node (a missing node is filled linearly from its neighbours); scattered
+  points are interpolated linearly over their Delaunay triangulation onto a square grid whose
+  spacing is the points' mean spacing, sqrt(area of their convex hull / number of points), NaN
+  outside the hull.
 
 The grid keeps its own coordinates; ``height_m(lon, lat)`` projects WGS84 lon/lat into them
 (``pyproj`` for any other system than WGS84 lon/lat) and interpolates bilinearly between the
@@ -57,12 +61,34 @@ PIXEL_IS_AREA = 1
 PIXEL_IS_POINT = 2
 VERTICAL_UNITS_M = {9001: 1.0, 9002: 0.3048, 9003: 1200.0 / 3937.0}  # metre, foot, US survey foot
 
-CSV_COLUMNS = "lon_deg,lat_deg,elevation_m or lon,lat,elevation or x,y,z with a crs"
-LON_NAMES = ("lon_deg", "lon", "longitude", "lng")
-LAT_NAMES = ("lat_deg", "lat", "latitude")
-X_NAMES = ("x_m", "x", "easting")
-Y_NAMES = ("y_m", "y", "northing")
-Z_NAMES = ("elevation_m", "elevation", "elev_m", "elev", "height_m", "height", "z_m", "z")
+CSV_COLUMNS = (
+    "lon_deg,lat_deg,elevation_m (or lon|longitude|lng|long, lat|latitude, and "
+    "elevation|elev|ele|alt|altitude|height|z, any with _m), or x,y,z with a crs"
+)
+LON_NAMES = ("lon_deg", "lon", "longitude", "lng", "long", "longitude_deg")
+LAT_NAMES = ("lat_deg", "lat", "latitude", "latitude_deg")
+X_NAMES = ("x_m", "x", "easting", "easting_m")
+Y_NAMES = ("y_m", "y", "northing", "northing_m")
+# Heights in metres under the names GPS, GIS and survey exports give them ("alt" and
+# "altitude": GPS loggers, Google Earth; "ele": GPX and OpenStreetMap). Feet are not read.
+Z_NAMES = (
+    "elevation_m",
+    "elevation",
+    "elev_m",
+    "elev",
+    "ele",
+    "height_m",
+    "height",
+    "alt_m",
+    "alt",
+    "altitude_m",
+    "altitude",
+    "z_m",
+    "z",
+)
+# Copies of a point whose heights differ by no more than this are one point (their mean);
+# survey heights are given to the millimetre or the centimetre.
+DUPLICATE_TOLERANCE_M = 0.01
 
 
 class ElevationError(ValueError):
@@ -562,6 +588,7 @@ def _load_points(path, crs):
         raise ElevationError(f"{name}: row {row} has no coordinates: allowed is a point per row")
     keep = np.isfinite(z)  # a point without a height is no point
     x, y, z = x[keep], y[keep], z[keep]
+    rows = np.flatnonzero(keep) + 2  # the header is row 1
     if place.geographic and len(x) and (np.abs(x).max() > 180 or np.abs(y).max() > 90):
         raise ElevationError(
             f"{name}: {cx}/{cy} reach {np.abs(x).max():g}/{np.abs(y).max():g}: allowed are "
@@ -569,18 +596,50 @@ def _load_points(path, crs):
         )
     if len(x) < 3:
         raise ElevationError(f"{name}: {len(x)} points with a height: allowed is at least 3 points")
-    # One height per place: repeated points are averaged.
-    xy, inverse = np.unique(np.stack([x, y], axis=1), axis=0, return_inverse=True)
+    # One height per place: copies of a point that agree are averaged, others refused.
+    xy, first, inverse = np.unique(
+        np.stack([x, y], axis=1), axis=0, return_index=True, return_inverse=True
+    )
     inverse = inverse.ravel()
+    _refuse_conflicts(name, inverse, z, rows, x, y, (cx, cy), "")
     z = np.bincount(inverse, weights=z) / np.bincount(inverse)
-    x, y = xy[:, 0], xy[:, 1]
+    x, y, rows = xy[:, 0], xy[:, 1], rows[first]
 
     lattice_x, lattice_y = _lattice_axis(x), _lattice_axis(y)
     if lattice_x and lattice_y:
         (x0, dx, kx, nx), (y0, dy, ky, ny) = lattice_x, lattice_y
         if len(x) >= 0.5 * nx * ny and nx >= 2 and ny >= 2:
+            # Points within 1e-6 of a step of each other are one node: copies too.
+            where = " (points within 1e-6 of a lattice step are one node)"
+            _refuse_conflicts(name, ky * nx + kx, z, rows, x, y, (cx, cy), where)
             return _lattice(name, place, x0, dx, kx, nx, y0, dy, ky, ny, z)
     return _scattered(name, place, x, y, z)
+
+
+def _refuse_conflicts(name, group, z, rows, x, y, columns, where):
+    """ElevationError naming the first point given more than once (``group``: one label per
+    point, the same for copies) with heights further apart than ``DUPLICATE_TOLERANCE_M``,
+    its rows and its heights; nothing when every copy agrees."""
+    group = np.unique(group, return_inverse=True)[1].ravel()
+    lo = np.full(group.max() + 1, np.inf)
+    hi = np.full(group.max() + 1, -np.inf)
+    np.minimum.at(lo, group, z)
+    np.maximum.at(hi, group, z)
+    bad = np.flatnonzero(hi - lo > DUPLICATE_TOLERANCE_M)
+    if not bad.size:
+        return
+    copies = np.flatnonzero(group == bad[0])
+    shown = copies[:5]
+    heights = ", ".join(f"{v:g}" for v in z[shown]) + (", ..." if len(copies) > 5 else "")
+    at = ", ".join(str(int(r)) for r in rows[shown]) + (", ..." if len(copies) > 5 else "")
+    more = f"; {bad.size - 1} more points like it" if bad.size > 1 else ""
+    point = f"{columns[0]} {float(x[copies[0]])!r}, {columns[1]} {float(y[copies[0]])!r}"
+    raise ElevationError(
+        f"{name}: the point {point} is given "
+        f"{len(copies)} times{where} with different heights ({heights} m, rows {at}){more}: "
+        f"allowed is one height per point (copies within {DUPLICATE_TOLERANCE_M:g} m are "
+        "merged): remove the wrong copies"
+    )
 
 
 def _lattice_axis(v):
@@ -605,7 +664,8 @@ def _lattice_axis(v):
 
 
 def _lattice(name, place, x0, dx, kx, nx, y0, dy, ky, ny, z):
-    # Points within 1e-6 of a step of each other are one node: their mean height.
+    # Points within 1e-6 of a step of each other are one node: their mean height (they agree:
+    # ``_refuse_conflicts``).
     node = ky * nx + kx
     count = np.bincount(node, minlength=nx * ny)
     total = np.bincount(node, weights=z, minlength=nx * ny)

@@ -4,9 +4,10 @@ a grid (``Hole.terrain()``, a ``ground.Terrain``).
 The ``[hole]`` table of a scenario and a standalone hole TOML file have the same keys:
 
 - ``map``: a GeoJSON course (``osm``), relative to the TOML's folder; ``hole``: its ``ref``, or
-  its 1-based position among the file's ``golf=hole`` lines;
+  its 1-based position among the file's ``golf=hole`` lines ("#N": the position N);
 - ``tee``, ``pin``: [lon, lat] overrides (default: the hole line's first point; the
-  ``golf=pin`` in the hole's green, else the line's last point); the pin must be on a green;
+  ``golf=pin`` in the hole's green, else the line's last point); the pin must be on a green,
+  and a hole of a map without a green near its end is refused;
 - ``elevation`` (a file, relative to the TOML's folder; ``elevation_crs`` when the file does
   not say), or ``shape`` (an analytic ground: its kind, or a table with ``kind`` and its
   parameters); neither: flat;
@@ -29,7 +30,7 @@ import numpy as np
 from mcrun.ground import Terrain, make_terrain
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
-from mcrun.hole.osm import ATTRIBUTION, read_course
+from mcrun.hole.osm import ACCEPTED, ATTRIBUTION, hole_title, read_course, sniff
 from mcrun.hole.zones import (
     ZONE_INDEX,
     ZONE_KINDS,
@@ -48,6 +49,9 @@ MARGIN_RANGE_M = (0.0, 1000.0)
 SIZE_RANGE_M = (1.0, 2000.0)
 # A golf=pin further than this from the hole's green is another green's.
 PIN_SEARCH_M = 10.0
+# A green further than this from the end of a hole line is another hole's (a map may hold a
+# country's courses: only the greens near the line's end are looked at).
+GREEN_SEARCH_M = 1000.0
 
 KEYS = (
     "map",
@@ -170,16 +174,41 @@ class Hole:
 def load_hole(path):
     """The Hole of a standalone hole TOML file (its top-level keys, or a ``[hole]`` table)."""
     path = Path(path)
+    table, source = read_hole_file(path)
+    return hole_from_table(table, path.parent, source)
+
+
+def read_hole_file(path):
+    """(table, source) of a hole TOML file: its ``[hole]`` table (source "FILE [hole]"), else
+    its top-level keys (source "FILE"); HoleError saying what the file is when it is no TOML
+    (a KML, a GPX, a GeoJSON under another name ...)."""
+    path = Path(path)
+    what = sniff(path)
+    if what is not None:
+        raise HoleError(
+            f"{path}: is {what}, not a hole: allowed is a hole TOML file or {ACCEPTED}; "
+            "convert it, e.g. ogr2ogr -f GeoJSON course.geojson FILE"
+        )
     try:
         with path.open("rb") as f:
             data = tomllib.load(f)
     except OSError as err:
         raise HoleError(f"{path}: cannot read the hole file: {err.strerror or err}") from None
-    except tomllib.TOMLDecodeError as err:
-        raise HoleError(f"{path}: is not valid TOML: {err}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
+        with path.open("rb") as f:
+            json_like = f.read(64).lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"{")
+        if json_like:
+            raise HoleError(
+                f"{path}: is not a hole TOML file but looks like JSON: a GeoJSON course map "
+                "is read when its name ends in .geojson or .json"
+            ) from None
+        message = " ".join(str(err).split())
+        raise HoleError(
+            f"{path}: is not valid TOML ({message}): allowed is a hole TOML file or {ACCEPTED}"
+        ) from None
     if isinstance(data.get("hole"), dict):
-        return hole_from_table(data["hole"], path.parent, f"{path} [hole]")
-    return hole_from_table(data, path.parent, str(path))
+        return data["hole"], f"{path} [hole]"
+    return data, str(path)
 
 
 def _number(table, key, where, lo, hi, default=None):
@@ -257,6 +286,62 @@ def _in_frame(frame, polygon):
     return [np.column_stack(frame.to_xy(ring[:, 0], ring[:, 1])) for ring in polygon]
 
 
+def tee_and_pin(course, line, where, table=None):
+    """The tee and the pin ((lon, lat) deg) of ``line``, a hole of ``course`` (an
+    ``osm.Course``): the table's 'tee' and 'pin' when given, else the line's first point and
+    the ``golf=pin`` on the hole's green (the green holding the line's end, else the nearest
+    within ``GREEN_SEARCH_M``), else the line's last point. HoleError (one line, from
+    ``where``) when the hole has no green or its pin is not on one."""
+    table = {} if table is None else table
+    map_path = course.source
+    tee = _lonlat(table, "tee", where) or tuple(line.lonlat[0])
+    # Find the green and the pin in a provisional frame at the tee (east-north, metres).
+    local = Frame(*tee, 0.0)
+    pin = _lonlat(table, "pin", where)
+    ends = [line.lonlat[-1]] + ([] if pin is None else [pin])
+    greens = [_in_frame(local, p) for p in course.greens_near(ends, GREEN_SEARCH_M)]
+    end_xy = local.to_xy(*line.lonlat[-1])
+    if pin is None:
+        pin = tuple(line.lonlat[-1])
+        if greens:
+            green = min(
+                greens, key=lambda g: 0 if contains(g, *end_xy) else _ring_distance_m(g, *end_xy)
+            )
+            pins_xy = np.column_stack(local.to_xy(course.pins[:, 0], course.pins[:, 1]))
+            inside = np.flatnonzero(contains(green, pins_xy[:, 0], pins_xy[:, 1]))
+            # Only pins within PIN_SEARCH_M of the green's box can count (a country's map has
+            # thousands).
+            lo = np.min([ring.min(axis=0) for ring in green], axis=0) - PIN_SEARCH_M
+            hi = np.max([ring.max(axis=0) for ring in green], axis=0) + PIN_SEARCH_M
+            close = np.flatnonzero(((pins_xy >= lo) & (pins_xy <= hi)).all(axis=1))
+            near = sorted((_ring_distance_m(green, *pins_xy[k]), k) for k in close)
+            if inside.size:
+                pin = tuple(course.pins[inside[0]])
+            elif near and near[0][0] <= PIN_SEARCH_M:
+                pin = tuple(course.pins[near[0][1]])
+    if not greens:
+        anywhere = (
+            " has no golf=green polygon"
+            if not course.greens
+            else (f" has no golf=green polygon within {GREEN_SEARCH_M:g} m of the hole's end")
+        )
+        raise HoleError(
+            f"{where}: hole {line.index} has no green: {map_path}{anywhere}, and a hole is "
+            "played to a pin on its green; allowed is a map with its greens (or a hole without "
+            "a 'map': 'length_m', 'width_m' and a 'surface')"
+        )
+    pin_xy = local.to_xy(*pin)
+    if not any(contains(g, *pin_xy) for g in greens):
+        nearest = min(_ring_distance_m(g, *pin_xy) for g in greens)
+        raise HoleError(
+            f"{where}: the pin [{pin[0]:.6f}, {pin[1]:.6f}] of hole {line.index} is outside "
+            f"every green of {map_path} ({nearest:.1f} m from the nearest): give a 'pin' on a green"
+        )
+    if math.dist(local.to_xy(*pin), (0.0, 0.0)) < 1.0:
+        raise HoleError(f"{where}: the tee and the pin of hole {line.index} are the same point")
+    return tee, pin
+
+
 def _map_hole(table, folder, where):
     """Frame, tee/pin, zones and boundary of a hole of a map."""
     map_path = folder / str(table["map"])
@@ -272,34 +357,7 @@ def _map_hole(table, folder, where):
         if str(err).startswith(where):
             raise
         raise HoleError(f"{where}: 'map': {err}") from None
-    tee = _lonlat(table, "tee", where) or tuple(line.lonlat[0])
-    # Find the green and the pin in a provisional frame at the tee (east-north, metres).
-    local = Frame(*tee, 0.0)
-    greens = [_in_frame(local, p) for kind, p in course.zones if kind == "green"]
-    end_xy = local.to_xy(*line.lonlat[-1])
-    pin = _lonlat(table, "pin", where)
-    if pin is None:
-        pin = tuple(line.lonlat[-1])
-        if greens:
-            green = min(
-                greens, key=lambda g: 0 if contains(g, *end_xy) else _ring_distance_m(g, *end_xy)
-            )
-            pins_xy = np.column_stack(local.to_xy(course.pins[:, 0], course.pins[:, 1]))
-            inside = [k for k, p in enumerate(pins_xy) if contains(green, *p)]
-            near = sorted((_ring_distance_m(green, *p), k) for k, p in enumerate(pins_xy))
-            if inside:
-                pin = tuple(course.pins[inside[0]])
-            elif near and near[0][0] <= PIN_SEARCH_M:
-                pin = tuple(course.pins[near[0][1]])
-    pin_xy = local.to_xy(*pin)
-    if greens and not any(contains(g, *pin_xy) for g in greens):
-        nearest = min(_ring_distance_m(g, *pin_xy) for g in greens)
-        raise HoleError(
-            f"{where}: the pin [{pin[0]:.6f}, {pin[1]:.6f}] of hole {line.index} is outside "
-            f"every green of {map_path} ({nearest:.1f} m from the nearest): give a 'pin' on a green"
-        )
-    if math.dist(local.to_xy(*pin), (0.0, 0.0)) < 1.0:
-        raise HoleError(f"{where}: the tee and the pin of hole {line.index} are the same point")
+    tee, pin = tee_and_pin(course, line, where, table)
     frame = Frame.from_tee_pin(tee, pin)
     line_xy = np.column_stack(frame.to_xy(line.lonlat[:, 0], line.lonlat[:, 1]))
     zones = [(kind, _in_frame(frame, p)) for kind, p in course.zones]
@@ -313,7 +371,7 @@ def _map_hole(table, folder, where):
         index=line.index,
         ref=line.ref,
         par=line.par,
-        name=line.name or (course.name and f"{course.name}, hole {line.index}"),
+        name=hole_title(course.course_of(line), line),
         map_source=str(map_path),
         attribution=ATTRIBUTION,
     )

@@ -5,17 +5,28 @@ What is read: ``golf=hole`` LineStrings (tee to green; ``ref``, ``par``, ``name`
 present), the zone polygons and multipolygons (``golf=tee|fairway|green|fringe|bunker|rough|
 water_hazard|lateral_water_hazard``, ``natural=water``), ``golf=pin`` points and the
 ``leisure=golf_course`` boundary. Everything else (cart paths, buildings) is left out.
-Coordinates stay WGS84 lon/lat here; ``hole.Hole`` puts them in the hole's frame.
+Coordinates stay WGS84 lon/lat here (checked: longitudes in [-180, 180], latitudes in
+[-90, 90]); ``hole.Hole`` puts them in the hole's frame.
+
+An extract may hold many courses (a country's, as Overpass or Geofabrik cut it): a hole belongs
+to the ``leisure=golf_course`` polygon that holds most of its line (the smallest, when they are
+nested), and is titled by that course's name and its own number (``hole_title``).
+
+Other formats are told apart from their first bytes (``sniff``), so that a KML, a GPX or an
+OpenStreetMap XML file given as a map is named as what it is, with the formats accepted.
 """
 
 import json
+import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
 
 from mcrun.hole.errors import HoleError
-from mcrun.hole.zones import zone_of_tags
+from mcrun.hole.geo import MEAN_RADIUS_M
+from mcrun.hole.zones import contains, shoelace_area_m2, zone_of_tags
 
 ATTRIBUTION = "(c) OpenStreetMap contributors, ODbL"
 
@@ -44,21 +55,90 @@ class Course:
     zones: list = field(default_factory=list)
     pins: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     boundary: list = field(default_factory=list)
+    courses: list = field(default_factory=list)  # (name or None, polygon): each golf_course
+
+    @cached_property
+    def greens(self):
+        """The green polygons, in map order."""
+        return [polygon for kind, polygon in self.zones if kind == "green"]
+
+    @cached_property
+    def _green_boxes(self):
+        """(n, 4) lon_min, lat_min, lon_max, lat_max of each green's outer ring."""
+        boxes = [(*p[0].min(axis=0), *p[0].max(axis=0)) for p in self.greens]
+        return np.array(boxes, dtype=float).reshape(-1, 4)
+
+    @cached_property
+    def _course_boxes(self):
+        """(n, 4) lon_min, lat_min, lon_max, lat_max of each course polygon's outer ring."""
+        boxes = [(*p[0].min(axis=0), *p[0].max(axis=0)) for _, p in self.courses]
+        return np.array(boxes, dtype=float).reshape(-1, 4)
+
+    def greens_near(self, lonlat, radius_m):
+        """The greens whose bounding box comes within about ``radius_m`` of any of the points
+        ``lonlat`` ((n, 2) or (2,) lon/lat deg), in map order: a country's map has thousands."""
+        points = np.asarray(lonlat, dtype=float).reshape(-1, 2)
+        boxes = self._green_boxes
+        near = np.zeros(len(boxes), dtype=bool)
+        for lon, lat in points:
+            dlat = math.degrees(radius_m / MEAN_RADIUS_M)
+            dlon = dlat / max(math.cos(math.radians(lat)), 1e-6)
+            near |= (
+                (boxes[:, 0] - dlon <= lon)
+                & (lon <= boxes[:, 2] + dlon)
+                & (boxes[:, 1] - dlat <= lat)
+                & (lat <= boxes[:, 3] + dlat)
+            )
+        return [g for g, keep in zip(self.greens, near, strict=True) if keep]
+
+    def course_of(self, line):
+        """The name of the ``leisure=golf_course`` polygon ``line`` (a HoleLine) lies in: the one
+        holding most of its points, the smallest of those when nested; None when it lies in
+        none, or that course has no name."""
+        best = None
+        lon, lat = line.lonlat[:, 0], line.lonlat[:, 1]
+        boxes = self._course_boxes
+        near = (
+            (boxes[:, 0] <= lon.max())
+            & (lon.min() <= boxes[:, 2])
+            & (boxes[:, 1] <= lat.max())
+            & (lat.min() <= boxes[:, 3])
+        )
+        for k in np.flatnonzero(near):  # a country's map has hundreds of courses
+            name, polygon = self.courses[k]
+            inside = int(contains(polygon, lon, lat).sum())
+            if inside:
+                rank = (-inside, shoelace_area_m2(polygon))
+                if best is None or rank < best[0]:
+                    best = (rank, name)
+        return None if best is None else best[1]
 
     def hole(self, key):
         """The hole whose ``ref`` is ``key`` (a string), else whose position is ``key``
-        (1-based, in file order); HoleError saying how many there are."""
-        for line in self.holes:
-            if line.ref is not None and line.ref == str(key):
-                return line
-        try:
-            index = int(key)
-        except (TypeError, ValueError):
-            index = None
-        if index is not None and str(index) == str(key).strip() and 1 <= index <= len(self.holes):
-            return self.holes[index - 1]
-        refs = [h.ref for h in self.holes if h.ref is not None]
-        refs_text = f" or a ref ({', '.join(refs)})" if refs else " (the file has no ref tags)"
+        (1-based, in file order); "#N" is always the position N. HoleError saying how many
+        there are, or, when several holes share the ref (a map of many courses), which."""
+        text = str(key).strip()
+        if not text.startswith("#"):
+            matches = [line for line in self.holes if line.ref is not None and line.ref == text]
+            if len(matches) == 1:
+                return matches[0]
+            if matches:
+                shown = ", ".join(
+                    f"#{m.index} on {self.course_of(m) or 'no named course'}" for m in matches[:5]
+                )
+                more = f" and {len(matches) - 5} more" if len(matches) > 5 else ""
+                raise HoleError(
+                    f"{self.source}: hole {key!r}: {len(matches)} holes have ref {text} "
+                    f"({shown}{more}): "
+                    "give the one you mean by its position in the file, as '#N'"
+                )
+        position = text.removeprefix("#")
+        if position.isascii() and position.isdigit() and 1 <= int(position) <= len(self.holes):
+            return self.holes[int(position) - 1]
+        refs = list(dict.fromkeys(h.ref for h in self.holes if h.ref is not None))
+        refs_text = " (the file has no ref tags)"
+        if refs:
+            refs_text = f" or a ref ({', '.join(refs[:20])}{', ...' if len(refs) > 20 else ''})"
         raise HoleError(
             f"{self.source}: hole {key!r} does not exist: the map has {len(self.holes)} "
             f"golf=hole lines; give a position 1-{len(self.holes)}{refs_text}"
@@ -66,16 +146,28 @@ class Course:
 
 
 def _points(coords, where, depth):
-    """``coords`` as float arrays nested ``depth`` deep (0: one (n, 2) array)."""
+    """``coords`` as float arrays nested ``depth`` deep (0: one (n, 2) array), each point a
+    longitude in [-180, 180] and a latitude in [-90, 90]."""
     try:
-        if depth == 0:
+        if depth > 0:
+            coords = list(coords)
+        else:
             a = np.asarray(coords, dtype=float)
             if a.ndim != 2 or a.shape[0] < 2 or a.shape[1] < 2 or not np.isfinite(a).all():
                 raise ValueError
-            return a[:, :2]
-        return [_points(c, where, depth - 1) for c in coords]
+            a = a[:, :2]
     except (TypeError, ValueError):
         raise HoleError(f"{where}: its coordinates are not lists of [lon, lat] points") from None
+    if depth > 0:
+        return [_points(c, where, depth - 1) for c in coords]
+    bad = (np.abs(a[:, 0]) > 180.0) | (np.abs(a[:, 1]) > 90.0)
+    if bad.any():
+        lon, lat = a[np.flatnonzero(bad)[0]]
+        raise HoleError(
+            f"{where}: point [{lon:g}, {lat:g}] is off the Earth: allowed are [lon, lat] in "
+            "degrees (WGS84), longitude in [-180, 180], latitude in [-90, 90]"
+        )
+    return a
 
 
 def _polygons(geometry, where):
@@ -95,11 +187,75 @@ def _int_or_none(value):
         return None
 
 
+def _is_number(text):
+    return isinstance(text, str) and text.strip().isdigit()
+
+
+def hole_title(course_name, line):
+    """A hole's title: its course's name and its number (its ``ref``, else a ``name`` that is
+    a bare number, else its position in the file), then its own name when it has a real one:
+    "Riverside, hole 3", "Links, hole 12: Amen Corner", "hole 3" without a course."""
+    name = None if line.name is None else str(line.name).strip() or None
+    number = line.ref or (name if _is_number(name) else None) or str(line.index)
+    title = f"hole {number}" if course_name is None else f"{course_name}, hole {number}"
+    if name is not None and not _is_number(name) and name != line.ref:
+        title += f": {name}"
+    return title
+
+
+# What a file that is not a GeoJSON course map is, by its first bytes: (prefix, what it is).
+_FORMATS = (
+    (b"PK\x03\x04", "a ZIP archive (a KMZ or a zipped shapefile?)"),
+    (b"SQLite format 3\x00", "a GeoPackage or SQLite database"),
+    (b"%PDF", "a PDF document"),
+    (b"\x89PNG", "a PNG image"),
+    (b"\xff\xd8\xff", "a JPEG image"),
+    (b"\x00\x00\x27\x0a", "an ESRI shapefile (.shp)"),
+    (b"\x1f\x8b", "a gzip archive"),
+)
+_XML_ROOTS = (
+    ("<kml", "a KML file (Google Earth)"),
+    ("<gpx", "a GPX file (GPS tracks)"),
+    ("<osm", "an OpenStreetMap XML file (.osm)"),
+    ("<gml", "a GML file"),
+    ("<wfs:", "a GML file"),
+    ("<svg", "an SVG image"),
+    ("<html", "an HTML page"),
+    ("<!doctype html", "an HTML page"),
+)
+ACCEPTED = "a GeoJSON FeatureCollection (.geojson, .json) with OpenStreetMap golf tags"
+CONVERT = "convert it, e.g. ogr2ogr -f GeoJSON course.geojson FILE, or export GeoJSON from Overpass"
+
+
+def sniff(path):
+    """What the file at ``path`` is when its first bytes say it is a map format mcrun does not
+    read (KML, GPX, OSM XML, a KMZ or shapefile ...): a phrase such as "a KML file (Google
+    Earth)"; None when they do not (it may be GeoJSON, TOML or anything else)."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096)
+    except OSError:
+        return None
+    for prefix, what in _FORMATS:
+        if head.startswith(prefix):
+            return what
+    text = head.lstrip(b"\xef\xbb\xbf \t\r\n").decode("utf-8", "replace").lower()
+    if text.startswith("<"):
+        for root, what in _XML_ROOTS:
+            if root in text:
+                return what
+        return "an XML file"
+    return None
+
+
 def read_course(path):
     """The Course of the GeoJSON FeatureCollection at ``path``; HoleError (one line naming the
     file) when it is not one or a feature that is read is malformed."""
     path = Path(path)
     source = str(path)
+    what = sniff(path)
+    if what is not None:
+        raise HoleError(f"{source}: is {what}, not a course map: allowed is {ACCEPTED}; {CONVERT}")
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as err:
@@ -119,7 +275,7 @@ def read_course(path):
     features = data.get("features")
     if not isinstance(features, list):
         raise HoleError(f"{source}: its 'features' is not a list")
-    holes, zones, pins, boundary, name = [], [], [], [], None
+    holes, zones, pins, boundary, courses, name = [], [], [], [], [], None
     for k, feature in enumerate(features, 1):
         if not isinstance(feature, dict) or not isinstance(feature.get("geometry"), dict):
             continue
@@ -147,8 +303,10 @@ def read_course(path):
         elif tags.get("leisure") == "golf_course":
             polygons = _polygons(geometry, where)
             boundary.extend(polygons)
+            course_name = None if tags.get("name") is None else str(tags["name"])
+            courses.extend((course_name, polygon) for polygon in polygons)
             if polygons and name is None:
-                name = tags.get("name")
+                name = course_name
         else:
             kind = zone_of_tags(tags)
             if kind is not None:
@@ -162,4 +320,5 @@ def read_course(path):
         zones=zones,
         pins=np.array(pins, dtype=float).reshape(-1, 2),
         boundary=boundary,
+        courses=courses,
     )

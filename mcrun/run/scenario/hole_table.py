@@ -2,10 +2,9 @@
 
 import math
 import numbers
-import tomllib
 
 from mcrun.hole.errors import HoleError
-from mcrun.hole.hole import hole_from_table
+from mcrun.hole.hole import hole_from_table, read_hole_file
 from mcrun.run.scenario.specs import ScenarioError
 from mcrun.run.scenario.values import as_table
 
@@ -21,11 +20,12 @@ def read_hole(ctx, data, path):
         # A hole file, its keys (paths relative to its folder) under those given here.
         hole_path = folder / str(table.pop("file"))
         try:
-            with hole_path.open("rb") as f:
-                given = tomllib.load(f)
-        except (OSError, tomllib.TOMLDecodeError) as err:
-            raise ctx.error("hole.file", f"cannot read {hole_path}: {err}") from None
-        given = given["hole"] if isinstance(given.get("hole"), dict) else given
+            given, _ = read_hole_file(hole_path)
+        except HoleError as err:
+            why = (
+                str(err).removeprefix(f"{hole_path}: ").removeprefix("cannot read the hole file: ")
+            )
+            raise ctx.error("hole.file", f"cannot read {hole_path}: {why}") from None
         table = {**given, **table}
         folder = hole_path.parent
     places = ["turf"] if "turf" in data else []
