@@ -5,54 +5,73 @@ Zone kinds, in the order that resolves overlaps (a later kind wins where polygon
 rough < fairway < tee < fringe < green < bunker < water; outside the course boundary,
 out_of_bounds wins over all. Rough is everything inside the course that no polygon covers, so
 a bunker drawn inside the rough (or a fairway) is a bunker, and a pond in a fairway is water.
-A kind's position in ``ZONE_KINDS`` is its index in ``ground.Terrain.zone``.
+A kind's position in ``ZONES`` (``ZONE_KINDS``) is its index in ``ground.Terrain.zone``.
 """
+
+from dataclasses import dataclass
 
 import numpy as np
 
 from mcrun.ground import IN_PLAY, OUT_OF_BOUNDS, PENALTY_AREA
 
-ZONE_KINDS = ("rough", "fairway", "tee", "fringe", "green", "bunker", "water", "out_of_bounds")
+
+@dataclass(frozen=True)
+class ZoneKind:
+    """A kind of zone, everything a hole, its scores and its map need of it: its ``name``; its
+    ``turf`` (a preset of ``physics.turf.PRESETS``; water and out of bounds hold the rough's,
+    so that every row of a terrain is a valid Turf, though the ball is not played there); its
+    ``state`` under the Rules (``ground.IN_PLAY``, ``PENALTY_AREA``, ``OUT_OF_BOUNDS``); the
+    OpenStreetMap tags that draw it (``"golf=green"``); the ``lie`` of the next shot from it
+    (``strokes.baseline.LIES``; None where the ball is not played as it lies); whether it is
+    ``mown`` (a water ball whose reference point lies there is dropped on the fairway); and its
+    ``colour`` on a map, one golfers read."""
+
+    name: str
+    turf: str
+    state: int
+    tags: tuple[str, ...]
+    lie: str | None
+    mown: bool
+    colour: str
+
+
+# Every kind, in the order that resolves overlaps (a later kind wins). A new kind of zone is a
+# row here (and, if its turf is new, a preset in ``physics.turf``).
+ZONES = (
+    ZoneKind("rough", "rough", IN_PLAY, ("golf=rough",), "rough", False, "#4f7d3a"),
+    ZoneKind("fairway", "fairway", IN_PLAY, ("golf=fairway",), "fairway", True, "#9ed36a"),
+    # A ball at rest on a teeing area is played as it lies, off mown grass.
+    ZoneKind("tee", "tee", IN_PLAY, ("golf=tee",), "fairway", True, "#7fbf50"),
+    # The Tour counts the fringe off the green (around the green, not putting).
+    ZoneKind("fringe", "fringe", IN_PLAY, ("golf=fringe",), "fairway", True, "#6fcf4f"),
+    ZoneKind("green", "green", IN_PLAY, ("golf=green",), "green", True, "#3fd13a"),
+    ZoneKind("bunker", "bunker", IN_PLAY, ("golf=bunker",), "sand", False, "#ecd9a0"),
+    ZoneKind("water", "rough", PENALTY_AREA,
+             ("golf=water_hazard", "golf=lateral_water_hazard", "natural=water"), None, False,
+             "#4a90d9"),
+    ZoneKind("out_of_bounds", "rough", OUT_OF_BOUNDS, (), None, False, "#b0b0b0"),
+)  # fmt: skip
+
+ZONE_KINDS = tuple(z.name for z in ZONES)
 ZONE_INDEX = {kind: k for k, kind in enumerate(ZONE_KINDS)}
 ROUGH, FAIRWAY, TEE, FRINGE, GREEN, BUNKER, WATER, OUT = range(len(ZONE_KINDS))
-
-# The turf preset (physics.turf.PRESETS) of each kind. The ball is not played from water or
-# out of bounds; their rows hold the rough's turf so that every row is a valid Turf.
-ZONE_TURF = {
-    "rough": "rough",
-    "fairway": "fairway",
-    "tee": "tee",
-    "fringe": "fringe",
-    "green": "green",
-    "bunker": "bunker",
-    "water": "rough",
-    "out_of_bounds": "rough",
-}
-
-ZONE_PENALTY = {kind: IN_PLAY for kind in ZONE_KINDS} | {
-    "water": PENALTY_AREA,
-    "out_of_bounds": OUT_OF_BOUNDS,
-}
-
-# OpenStreetMap tags of each kind (golf=*, and natural=water).
-_GOLF_TAGS = {
-    "rough": "rough",
-    "fairway": "fairway",
-    "tee": "tee",
-    "fringe": "fringe",
-    "green": "green",
-    "bunker": "bunker",
-    "water_hazard": "water",
-    "lateral_water_hazard": "water",
-}
+# The columns of the table, by kind.
+ZONE_TURF = {z.name: z.turf for z in ZONES}
+ZONE_PENALTY = {z.name: z.state for z in ZONES}
+LIE_OF_ZONE = {z.name: z.lie for z in ZONES if z.lie is not None}
+MOWN_ZONES = tuple(z.name for z in ZONES if z.mown)
+ZONE_COLOURS = {z.name: z.colour for z in ZONES}
+_TAGS = {tag: z.name for z in ZONES for tag in z.tags}
 
 
 def zone_of_tags(tags):
-    """The zone kind of an OpenStreetMap feature's tags, or None when it is not a zone."""
-    kind = _GOLF_TAGS.get(tags.get("golf"))
-    if kind is None and tags.get("natural") == "water":
-        kind = "water"
-    return kind
+    """The zone kind of an OpenStreetMap feature's tags (its golf=* first, then natural=*), or
+    None when it is not a zone."""
+    for key in ("golf", "natural"):
+        kind = _TAGS.get(f"{key}={tags.get(key)}")
+        if kind is not None:
+            return kind
+    return None
 
 
 def _edges(polygon):

@@ -10,19 +10,10 @@ matplotlib is optional (``mcrun[plot]``).
 
 import numpy as np
 
+from mcrun.hole.zones import ZONE_COLOURS
 from mcrun.report.style import require_matplotlib
 from mcrun.results.geometry import HoleMap, hole_map_of
 
-ZONE_COLOURS = {
-    "rough": "#4f7d3a",
-    "fairway": "#9ed36a",
-    "tee": "#7fbf50",
-    "fringe": "#6fcf4f",
-    "green": "#3fd13a",
-    "bunker": "#ecd9a0",
-    "water": "#4a90d9",
-    "out_of_bounds": "#b0b0b0",
-}
 HOLE_FIGURE_SIZE_IN = (6.0, 9.0)
 
 

@@ -24,7 +24,7 @@ import numpy as np
 import pandas as pd
 
 from mcrun import status
-from mcrun.hole.zones import ZONE_KINDS
+from mcrun.hole.zones import LIE_OF_ZONE, MOWN_ZONES, ZONE_KINDS
 from mcrun.strokes.baseline import LIES, tour_baseline
 
 __all__ = [
@@ -37,18 +37,10 @@ __all__ = [
     "start_of",
 ]
 
-# The lie of the next shot from each zone the ball can stay in.
-LIE_OF_ZONE = {
-    "rough": "rough",
-    "fairway": "fairway",
-    "tee": "fairway",  # a ball at rest on a teeing area is played as it lies, off mown grass
-    "fringe": "fairway",  # the Tour counts it off the green (around the green, not putting)
-    "green": "green",
-    "bunker": "sand",
-}
+# The lie of the next shot from each zone the ball can stay in (``hole.zones.ZONES``).
 IN_PLAY_ZONES = tuple(LIE_OF_ZONE)
 # Where a water ball's reference point lies on mown grass, it is dropped on the fairway.
-_MOWN = ("fairway", "tee", "fringe", "green")
+_MOWN = MOWN_ZONES
 OUTCOMES = (*IN_PLAY_ZONES, "water", "out_of_bounds", "off_map")
 FAILED = "failed"
 
