@@ -100,3 +100,25 @@ def test_a_kml_given_as_a_map_or_a_hole_is_named_as_kml(capsys, tmp_path):
     assert main(["hole", str(named_json)]) == 2
     err = capsys.readouterr().err
     assert "course.geojson: is a KML file (Google Earth), not a course map" in err
+
+
+def test_an_interrupted_hole_plot_leaves_no_picture(capsys, tmp_path, monkeypatch):
+    """Ctrl-C while the map is drawn to its file: no picture under its final name (a 0-byte
+    one would stand for a map that is not there), nor a temporary one; the next run writes it."""
+    pytest.importorskip("matplotlib")
+    from matplotlib.figure import Figure
+
+    savefig = Figure.savefig
+
+    def interrupted(self, fname, *args, **kwargs):
+        Path(fname).write_bytes(b"\x89PNG")  # Ctrl-C half way through the file
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(Figure, "savefig", interrupted)
+    target = tmp_path / "hole2.png"
+    assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(target)]) == 130
+    assert list(tmp_path.iterdir()) == []
+    monkeypatch.setattr(Figure, "savefig", savefig)
+    assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(target)]) == 0
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    capsys.readouterr()

@@ -159,3 +159,28 @@ def test_replay_plot_without_matplotlib_is_one_line_and_writes_nothing(
     code = main(["replay", str(source), "-o", str(tmp_path / "r.parquet"), "--plot"])
     one_line_error(capsys, code, "needs matplotlib", "pip install 'mcrun[plot]'")
     assert os.listdir(tmp_path) == ["session.csv"]
+
+
+def test_an_interrupted_replay_plot_leaves_no_picture(tmp_path, monkeypatch):
+    """Ctrl-C while the second picture is drawn: neither picture is left, under its final name
+    or a temporary one (all or nothing, as a run's files)."""
+    pytest.importorskip("matplotlib")
+    from mcrun.report import style
+
+    source = tmp_path / "session.csv"  # a TrackMan export: with the device's results
+    source.write_bytes((Path(__file__).parent / "data" / "monitors" / "trackman.csv").read_bytes())
+    frame = replay.replay(source)
+    assert len(replay_plots.figures(frame, "r")) == 2  # the clubs and the device
+    drawn = []
+    png_bytes = style.png_bytes
+
+    def second_interrupted(fig, dpi):
+        drawn.append(fig)
+        if len(drawn) == 2:
+            raise KeyboardInterrupt
+        return png_bytes(fig, dpi)
+
+    monkeypatch.setattr(style, "png_bytes", second_interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        replay_plots.write_replay_plots(frame, tmp_path / "r.parquet", dpi=40)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["session.csv"]

@@ -8,10 +8,14 @@ so that shot clouds can be drawn over it; ``write_hole_map`` writes a figure of 
 matplotlib is optional (``mcrun[plot]``).
 """
 
+from pathlib import Path
+
 import numpy as np
 
+from mcrun import exits
 from mcrun.hole.zones import ZONE_COLOURS
 from mcrun.report.style import require_matplotlib
+from mcrun.results import output
 from mcrun.results.geometry import HoleMap, hole_map_of
 
 HOLE_FIGURE_SIZE_IN = (6.0, 9.0)
@@ -108,7 +112,12 @@ def _contour_step_m(span_m):
 
 
 def write_hole_map(hole_map, path, dpi=150):
-    """Draw ``hole_map`` and write the figure to ``path`` (PNG, or what its suffix names)."""
+    """Draw ``hole_map`` and write the figure to ``path`` (PNG, or what its suffix names), as a
+    run's files are written: under a temporary name, renamed into place with interrupts
+    deferred, so that an interrupted command leaves no picture under its final name."""
     ax = draw_hole(hole_map)
-    ax.figure.savefig(path, dpi=dpi)
+    with output.AtomicFile(path, force=True) as target:
+        ax.figure.savefig(target.tmp, dpi=dpi, format=Path(path).suffix[1:] or "png")
+        with exits.interrupts_deferred():
+            target.commit()
     return path

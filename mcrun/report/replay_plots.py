@@ -27,8 +27,8 @@ from mcrun.report.style import (
     FLIGHT_COLOUR,
     RUN_COLOUR,
     YARD_M,
+    Pictures,
     fmt,
-    png_bytes,
     require_matplotlib,
 )
 from mcrun.results import output, reader
@@ -225,15 +225,14 @@ def write_replay_plots(frame, destination, name=None, dpi=150):
     paths written."""
     name = name or Path(destination).stem
     paths = plot_paths(destination)
-    written = []
-    for kind, fig in figures(frame, name):
-        path = paths[kind]
-        try:
-            path.write_bytes(png_bytes(fig, dpi))
-        except OSError as err:
-            raise PlotError(f"cannot write {path}: {reader.reason_of(err)}") from None
-        written.append(path)
-    return written
+    try:
+        with Pictures() as pictures:  # all or nothing, as a run's files
+            for kind, fig in figures(frame, name):
+                pictures.add(paths[kind], fig, dpi)
+            pictures.commit()
+    except OSError as err:
+        raise PlotError(f"cannot write {err.filename}: {reader.reason_of(err)}") from None
+    return pictures.paths
 
 
 def is_replay(path):
