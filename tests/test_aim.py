@@ -354,9 +354,13 @@ def test_the_terrain_kernels_compile_is_said_apart_from_the_search(tmp_path, cap
     from mcrun.engine import warmup
 
     events = []
-    monkeypatch.setattr(cli, "_kernel_cached", lambda ground: events.append(ground) or False)
 
-    def warm_up(grounds):
+    def not_cached(ground, kernels=("batch",)):
+        return events.append(ground) or False
+
+    monkeypatch.setattr(cli, "_kernel_cached", not_cached)
+
+    def warm_up(grounds, kernels=("batch",)):
         events.append(("compile", grounds))
         return (warmup.WarmUp("terrain", 61.6, False),)
 

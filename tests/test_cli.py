@@ -350,7 +350,7 @@ def test_installed_console_script_exits_2_without_traceback():
 def test_run_says_the_compile_apart_from_its_rate(tmp_path, capsys, monkeypatch):
     """When the kernel is not in numba's cache, the command line compiles it before the run,
     says so and how long it took on stderr; the run's line gives its own time and rate."""
-    monkeypatch.setattr(cli, "_kernel_cached", lambda kind: False)
+    monkeypatch.setattr(cli, "_kernel_cached", lambda kind, kernels=("batch",): False)
     scenario = Path(__file__).parents[1] / "scenarios" / "pga-driver.toml"
     code, out, err = run(
         capsys, "run", str(scenario), "-n", "200", "-o", str(tmp_path / "run"), "--quiet"
@@ -372,9 +372,13 @@ def test_run_on_a_hole_says_the_terrain_kernels_compile(tmp_path, capsys, monkey
     from mcrun.engine import warmup
 
     events = []
-    monkeypatch.setattr(cli, "_kernel_cached", lambda ground: events.append(ground) or False)
 
-    def warm_up(grounds):
+    def not_cached(ground, kernels=("batch",)):
+        return events.append(ground) or False
+
+    monkeypatch.setattr(cli, "_kernel_cached", not_cached)
+
+    def warm_up(grounds, kernels=("batch",)):
         events.append(("compile", grounds))
         return (warmup.WarmUp(grounds[0], 61.6, False),)
 
@@ -405,7 +409,11 @@ def test_run_on_a_hole_says_the_terrain_kernels_compile(tmp_path, capsys, monkey
 
 def test_a_run_on_the_plane_compiles_no_terrain_kernel(tmp_path, capsys, monkeypatch):
     asked = []
-    monkeypatch.setattr(cli, "_kernel_cached", lambda ground: asked.append(ground) or True)
+
+    def cached(ground, kernels=("batch",)):
+        return asked.append(ground) or True
+
+    monkeypatch.setattr(cli, "_kernel_cached", cached)
     code, _, err = run(
         capsys, "run", "pga-driver", "-n", "100", "-o", str(tmp_path / "run"), "--quiet"
     )
@@ -413,7 +421,7 @@ def test_a_run_on_the_plane_compiles_no_terrain_kernel(tmp_path, capsys, monkeyp
 
 
 def test_compile_of_the_single_shot_kernel(capsys, monkeypatch):
-    monkeypatch.setattr(cli, "_kernel_cached", lambda kind: False)
+    monkeypatch.setattr(cli, "_kernel_cached", lambda kind, kernels=("batch",): False)
     code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--json")
     assert code == 0 and json.loads(out)["status_name"] == "ok"
     assert re.fullmatch(
@@ -506,3 +514,29 @@ def test_only_the_command_line_reads_arguments_and_prints_errors():
                 assert module != "argparse", name
                 assert module != "mcrun.cli" and not module.startswith("mcrun.cli."), name
     assert writers == {"cli/__init__.py"}
+
+
+@pytest.mark.parametrize(
+    "argv, kernels",
+    [
+        (["shot", "--ball-speed", "60", "--launch", "12", "--spin", "600"], ("batch",)),
+        (["shot", "--ball-speed", "60", "--launch", "12", "--spin", "600", "--trajectory",
+          "PATH"], ("batch", "traced")),
+        (["run", "pga-driver", "-n", "100", "--trajectories", "10", "-o", "PATH"],
+         ("batch", "traced")),
+    ],
+)  # fmt: skip
+def test_a_command_compiles_the_kernels_it_runs(argv, kernels, tmp_path, capsys, monkeypatch):
+    """A shot that records its path and a run that writes trajectories run the traced kernel
+    too, which a fresh install compiles: it is asked for (and said) before the command's work,
+    not compiled silently within it."""
+    asked = []
+
+    def cached(ground, kernels=("batch",)):
+        return asked.append((ground, kernels)) or True
+
+    monkeypatch.setattr(cli, "_kernel_cached", cached)
+    argv = [str(tmp_path / "out.csv") if a == "PATH" else a for a in argv]
+    assert cli.main([*argv, "--quiet"] if argv[0] == "run" else argv) == 0
+    capsys.readouterr()
+    assert asked[0] == ("plane", kernels)

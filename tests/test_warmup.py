@@ -78,3 +78,17 @@ def test_an_unknown_ground_is_refused():
         warmup.kernel_cached("green")
     with pytest.raises(ValueError, match="unknown ground 'green'"):
         warmup.warm_up(("plane", "green"))
+
+
+def test_every_kernel_is_cached_after_its_warm_up():
+    """The traced batch (a recorded path) and the run from a landing (the paper's figures) are
+    kernels of their own, which a command that uses them compiles, and says so, before its
+    work: the signature the check builds for each is the one its warm-up, which runs it as the
+    backend does, compiled."""
+    warmed = warmup.warm_up(kernels=warmup.KERNELS)
+    assert [w.ground for w in warmed] == list(warmup.GROUNDS)
+    for kernel in warmup.KERNELS:
+        for ground in warmup.GROUNDS:
+            assert warmup.kernel_cached(ground, (kernel,)) is True, (kernel, ground)
+    with pytest.raises(ValueError, match="unknown kernel 'fast'"):
+        warmup.warm_up(("plane",), ("fast",))

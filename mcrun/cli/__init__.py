@@ -132,20 +132,30 @@ KERNEL_NAMES = {
 }
 
 
-def _kernel_cached(ground):
-    """Whether the kernel for ``ground`` is compiled or in numba's on-disk cache (None when it
-    cannot be told)."""
+def _kernel_cached(ground, kernels=("batch",)):
+    """Whether the ``kernels`` for ``ground`` are compiled or in numba's on-disk cache (None
+    when it cannot be told)."""
     from mcrun.engine.warmup import kernel_cached
 
-    return kernel_cached(ground)
+    return kernel_cached(ground, kernels)
 
 
-def compile_if_needed(ground):
-    """When the kernel for ``ground`` ("plane" or "terrain") is not in numba's on-disk cache
-    yet (the first run after an install or an upgrade compiles it, which takes a while),
-    compile it now, saying so on stderr with the time it took: a command's time and rate that
+def kernels_of(args):
+    """The kernels (``engine.warmup.KERNELS``) a command runs with ``args``: the batch, and the
+    traced batch where it records a path, and the run from a landing for the paper's figures."""
+    if args.command == "paper":
+        return ("batch", "traced", "landed")
+    if getattr(args, "trajectory", None) or getattr(args, "trajectories", None):
+        return ("batch", "traced")
+    return ("batch",)
+
+
+def compile_if_needed(ground, kernels=("batch",)):
+    """When the ``kernels`` for ``ground`` ("plane" or "terrain") are not in numba's on-disk
+    cache yet (the first run after an install or an upgrade compiles them, which takes a while),
+    compile them now, saying so on stderr with the time it took: a command's time and rate that
     follow are then its own. Returns the seconds the compile took (0.0 when none was needed)."""
-    if _kernel_cached(ground) is not False:
+    if _kernel_cached(ground, kernels) is not False:
         return 0.0
     from mcrun.engine.warmup import warm_up
 
@@ -153,7 +163,7 @@ def compile_if_needed(ground):
     print(
         f"mcrun: compiling {what} ({when}; cached for the next runs)", file=sys.stderr, flush=True
     )
-    seconds = sum(done.seconds for done in warm_up((ground,)))
+    seconds = sum(done.seconds for done in warm_up((ground,), kernels))
     print(f"mcrun: compiled {what} in {seconds:.0f} s", file=sys.stderr, flush=True)
     return seconds
 
@@ -181,7 +191,7 @@ def _run_command(args):
     """``args.func(args)``, with every error a user can cause as one line and exit code 2."""
     try:
         if args.command in SIMULATING_COMMANDS:
-            compile_if_needed(SIMULATING_COMMANDS[args.command])
+            compile_if_needed(SIMULATING_COMMANDS[args.command], kernels_of(args))
         return args.func(args)
     except (InputError, UnitError, CommandError, HoleError) as err:
         return _error(" ".join(str(err).split()))

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.cli import Interrupted, compile_if_needed
+from mcrun.cli import Interrupted, compile_if_needed, kernels_of
 from mcrun.quantities import InputError
 from mcrun.results import stats
 from mcrun.run import local, plan, sampling
@@ -200,7 +200,7 @@ def _cmd_run(args):
     try:
         args.scenario = scenario_module.load(args.scenario)
         if args.scenario.hole is not None:
-            compile_if_needed("terrain")  # said apart from the run's own time
+            compile_if_needed("terrain", kernels_of(args))  # said apart from the run's time
         if _dask_backend(args):
             result = _run_on_dask(args)
         else:

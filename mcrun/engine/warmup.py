@@ -16,8 +16,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mcrun.engine.backend import simulate_batch
+from mcrun.engine.backend import simulate_batch, simulate_landed, simulate_traced
 from mcrun.engine.schema import N_INPUT, N_OUTCOME
+from mcrun.engine.tables import N_LANDING
 from mcrun.ground import IN_PLAY, make_terrain
 from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
 from mcrun.physics.turf import PRESETS
@@ -53,55 +54,94 @@ def _terrain(ground):
     return sample_terrain() if ground == "terrain" else None
 
 
-def _kernel():
-    """The batch kernel's Numba dispatcher: the one place that names it."""
-    from mcrun.engine.batch import _simulate_batch
+# The kernels, each compiled on its own for each kind of ground: the batch (every run, and a
+# single shot), the traced batch (a shot whose path is recorded: ``mcrun shot --trajectory``,
+# a run's ``--trajectories``) and the run from a landing (``mcrun paper``'s bounce studies).
+KERNELS = ("batch", "traced", "landed")
 
-    return _simulate_batch
+
+def _kernel(kernel="batch"):
+    """A kernel's Numba dispatcher: the one place that names them."""
+    from mcrun.engine import batch
+
+    return {
+        "batch": batch._simulate_batch,
+        "traced": batch._simulate_traced,
+        "landed": batch._simulate_landed,
+    }[kernel]
 
 
-def _kernel_arguments(ground):
-    """Arguments of the types the batch kernel gets from ``backend.simulate_batch`` on
-    ``ground``: inputs and outcomes float64 in Fortran order (at least two rows), the
-    quadratic models' table and the terrain (None on the plane)."""
+def _kernel_arguments(ground, kernel="batch"):
+    """Arguments of the types a kernel gets from ``backend`` on ``ground``: inputs and outcomes
+    float64 in Fortran order (at least two rows: ``batch._as_kernel_layout``), the quadratic
+    models' table, a path's buffer and the terrain (None on the plane)."""
     inputs = np.zeros((2, N_INPUT), order="F")
     out = np.empty((2, N_OUTCOME), order="F")
-    return inputs, QUADRATIC_COEFFICIENTS, out, _terrain(ground)
+    traj = np.empty((1, 5))
+    terrain = _terrain(ground)
+    if kernel == "traced":
+        return inputs, 0, QUADRATIC_COEFFICIENTS, out, traj, terrain
+    if kernel == "landed":
+        return inputs, np.zeros((2, N_LANDING)), out, traj, np.zeros(4), terrain
+    return inputs, QUADRATIC_COEFFICIENTS, out, terrain
 
 
-def kernel_cached(ground="plane"):
-    """Whether the batch kernel for ``ground`` (``"plane"`` or ``"terrain"``) is compiled: in
-    this process, or in Numba's on-disk cache for this source, this Numba and this CPU, so that
-    running it compiles nothing. None when it cannot be told (Numba's cache internals have
-    moved, or the JIT is disabled: ``NUMBA_DISABLE_JIT=1``)."""
+def _compiled(ground, kernel):
+    """Whether ``kernel`` for ``ground`` is compiled, in this process or on disk (None: cannot
+    be told)."""
+    dispatcher = _kernel(kernel)
+    signature = tuple(dispatcher.typeof_pyval(a) for a in _kernel_arguments(ground, kernel))
+    if signature in dispatcher.overloads:
+        return True
+    # What the dispatcher looks up on disk before it compiles (numba.core.caching.Cache): the
+    # index of the kernel's cache, for its source stamp, by signature, CPU and bytecode.
+    cache = dispatcher._cache
+    key = cache._index_key(signature, dispatcher.targetctx.codegen())
+    files = cache._cache_file
+    name = files._load_index().get(key)
+    return name is not None and os.path.exists(os.path.join(files._cache_path, name))
+
+
+def kernel_cached(ground="plane", kernels=("batch",)):
+    """Whether the ``kernels`` (of ``KERNELS``; the batch kernel by default) for ``ground``
+    (``"plane"`` or ``"terrain"``) are compiled: in this process, or in Numba's on-disk cache
+    for this source, this Numba and this CPU, so that running them compiles nothing. None when
+    it cannot be told (Numba's cache internals have moved, or the JIT is disabled:
+    ``NUMBA_DISABLE_JIT=1``)."""
     _check(ground)
-    kernel = _kernel()
     try:
-        signature = tuple(kernel.typeof_pyval(a) for a in _kernel_arguments(ground))
-        if signature in kernel.overloads:
-            return True
-        # What the dispatcher looks up on disk before it compiles (numba.core.caching.Cache):
-        # the index of the kernel's cache, for its source stamp, by signature, CPU and bytecode.
-        cache = kernel._cache
-        key = cache._index_key(signature, kernel.targetctx.codegen())
-        files = cache._cache_file
-        name = files._load_index().get(key)
-        return name is not None and os.path.exists(os.path.join(files._cache_path, name))
+        return all(_compiled(ground, kernel) for kernel in kernels)
     except AttributeError:
         return None
 
 
-def warm_up(grounds=GROUNDS):
-    """Compile the batch kernel for each kind of ground in ``grounds``, or load it from Numba's
-    cache: a batch of two shots that end at once (speed 0, ``invalid_input``) on the plane,
-    and on ``sample_terrain``. Returns a ``WarmUp`` for each, in order: whether it was
-    cached before, and how long it took."""
+def _run(ground, kernel):
+    """Run ``kernel`` once on ``ground``: a shot that ends at once (speed 0, invalid_input)."""
+    terrain = _terrain(ground)
+    inputs = np.zeros((1, N_INPUT))
+    if kernel == "traced":
+        simulate_traced(inputs, terrain=terrain)
+    elif kernel == "landed":
+        simulate_landed(inputs, np.zeros((1, N_LANDING)), terrain=terrain)
+    else:
+        simulate_batch(inputs[:0], terrain=terrain)
+
+
+def warm_up(grounds=GROUNDS, kernels=("batch",)):
+    """Compile the ``kernels`` (the batch kernel by default) for each kind of ground in
+    ``grounds``, or load them from Numba's cache, by running each on a shot that ends at once
+    (speed 0, ``invalid_input``) on the plane and on ``sample_terrain``. Returns a ``WarmUp``
+    for each ground, in order: whether its kernels were cached before, and how long they took."""
     for ground in grounds:
         _check(ground)
+    for kernel in kernels:
+        if kernel not in KERNELS:
+            raise ValueError(f"unknown kernel '{kernel}': choose of {', '.join(KERNELS)}")
     done = []
     for ground in grounds:
-        was_cached = kernel_cached(ground)
+        was_cached = kernel_cached(ground, kernels)
         started = time.perf_counter()
-        simulate_batch(np.zeros((0, N_INPUT)), terrain=_terrain(ground))
+        for kernel in kernels:
+            _run(ground, kernel)
         done.append(WarmUp(ground, time.perf_counter() - started, was_cached))
     return tuple(done)
