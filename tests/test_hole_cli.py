@@ -122,3 +122,13 @@ def test_an_interrupted_hole_plot_leaves_no_picture(capsys, tmp_path, monkeypatc
     assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(target)]) == 0
     assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     capsys.readouterr()
+
+
+def test_a_plot_of_an_unknown_picture_format_is_one_line(capsys, tmp_path):
+    """--plot map.xyz: matplotlib knows no such format; one line naming the option and the
+    formats allowed, exit 2, nothing written (it was a traceback)."""
+    target = tmp_path / "map.xyz"
+    assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(target)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--plot" in err and ".png" in err, err
+    assert list(tmp_path.iterdir()) == []

@@ -238,6 +238,10 @@ def test_an_exports_summary_rows_and_cut_last_row_are_not_resampled(tmp_path, ca
     _, sampled = sampling.sample(scenario, scenario.points[0], 0, 200)
     assert set(sampled["source_row"]) <= set(range(len(shots)))
     assert len(set(sampled["source_row"])) == len(shots)
+    (tmp_path / "export.csv").write_text("\n".join([*lines[:2], average]), encoding="utf-8")
+    assert main(["validate", str(path)]) == 2  # no shot: its summary row alone
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "no shot" in err and "summary" in err, err
     bad = trackman.replace("120.0,1.38", "--,1.38", 1)
     (tmp_path / "export.csv").write_text(bad, encoding="utf-8")
     assert main(["validate", str(path)]) == 2

@@ -184,3 +184,22 @@ def test_an_interrupted_replay_plot_leaves_no_picture(tmp_path, monkeypatch):
     with pytest.raises(KeyboardInterrupt):
         replay_plots.write_replay_plots(frame, tmp_path / "r.parquet", dpi=40)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["session.csv"]
+
+
+def test_replay_plot_interrupted_says_what_was_written(tmp_path, monkeypatch, capsys):
+    """Ctrl-C while `mcrun replay --plot` draws: the replay's files are in place (written
+    before the pictures), and the one line says so, not "nothing was written"."""
+    pytest.importorskip("matplotlib")
+    from mcrun.report import style
+
+    source = session(tmp_path / "session.csv")
+
+    def interrupted(fig, dpi):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(style, "png_bytes", interrupted)
+    out = tmp_path / "r.parquet"
+    assert main(["replay", str(source), "-o", str(out), "--plot"]) == 130
+    err = capsys.readouterr().err
+    assert err.startswith(f"mcrun: interrupted: wrote {out}") and "pictures were not" in err, err
+    assert out.exists() and not list(tmp_path.glob("*.png"))

@@ -12,12 +12,16 @@ from mcrun.hole.osm import ATTRIBUTION, hole_title, read_course
 GEOJSON_SUFFIXES = (".geojson", ".json")
 
 
+# The pictures ``--plot`` writes, by the suffix of its file.
+PICTURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
 def _list_holes(path):
     """Every hole of the map: its number, par, length and course; a hole that cannot be
     played as mapped is listed too, marked with why."""
     course = read_course(path)
     courses = [course.course_of(line) for line in course.holes]
-    names = set(courses)
+    names = {name for name in courses if name}
     on = f" on {len(names)} courses" if len(names) > 1 else ""
     title = course.name if course.name and len(names) == 1 else path
     print(f"{title}: {len(course.holes)} holes{on} (choose one with --hole N)")
@@ -86,6 +90,12 @@ def _cmd_hole(args):
     if args.plot:
         from mcrun.report.hole_map import write_hole_map
 
+        suffix = Path(args.plot).suffix.lower()
+        if suffix not in PICTURE_SUFFIXES:
+            raise CommandError(
+                f"--plot {args.plot}: a picture is {', '.join(PICTURE_SUFFIXES)}, got "
+                f"{suffix or 'no suffix'}"
+            )
         try:
             write_hole_map(hole, args.plot)
         except OSError as err:

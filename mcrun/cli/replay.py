@@ -21,6 +21,7 @@ from mcrun.run.monitors import NAMES
 
 
 def _cmd_replay(args):
+    frame = None
     try:
         conditions = conditions_kwargs(args)
         conditions_inputs(**conditions)  # every option checked before reading the file
@@ -38,8 +39,14 @@ def _cmd_replay(args):
         written = frame.attrs["written"][1:]
         if args.plot:
             written += replay_plots.write_replay_plots(frame, destination, dpi=args.dpi)
-    except KeyboardInterrupt:
-        raise Interrupted("nothing was written") from None
+    except KeyboardInterrupt as err:
+        if frame is None:
+            raise Interrupted("nothing was written") from None
+        # The replay's files are in place; the pictures are all there or none is.
+        pictures = getattr(err, "paths", None)  # style.WrittenThenInterrupted: all written
+        kept = ", ".join(str(p) for p in [*frame.attrs["written"], *(pictures or [])])
+        rest = "" if pictures else "; the pictures were not written"
+        raise Interrupted(f"wrote {kept}{rest}") from None
     bad = int((frame["status"] != status.OK).sum())
     for note in frame.attrs.get("notes", ()):
         print(f"mcrun: note: {note}", file=sys.stderr)

@@ -136,7 +136,7 @@ def warm_up(grounds=GROUNDS, kernels=("batch",)):
         _check(ground)
     for kernel in kernels:
         if kernel not in KERNELS:
-            raise ValueError(f"unknown kernel '{kernel}': choose of {', '.join(KERNELS)}")
+            raise ValueError(f"unknown kernel '{kernel}': choose one of {', '.join(KERNELS)}")
     done = []
     for ground in grounds:
         was_cached = kernel_cached(ground, kernels)

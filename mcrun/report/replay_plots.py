@@ -231,7 +231,8 @@ def write_replay_plots(frame, destination, name=None, dpi=150):
                 pictures.add(paths[kind], fig, dpi)
             pictures.commit()
     except OSError as err:
-        raise PlotError(f"cannot write {err.filename}: {reader.reason_of(err)}") from None
+        where = err.filename or Path(destination).parent
+        raise PlotError(f"cannot write {where}: {reader.reason_of(err)}") from None
     return pictures.paths
 
 

@@ -154,11 +154,6 @@ def check_output(path, force=False, option="-o", suffixes=TABLE_SUFFIXES, what="
     return destination
 
 
-def check_table_path(path, force=False, option="-o"):
-    """``path`` as a Path where ``write_table`` may write (``check_output``)."""
-    return check_output(path, force, option)
-
-
 def _finite(value, name, positive=False):
     """``value`` as a float: finite (and > 0 when ``positive``), else AimError naming it."""
     try:
@@ -414,11 +409,12 @@ def search(
             f"left the hole's map, which spans {reach[0]:+.0f} to {reach[1]:+.0f} m right of "
             "the line from the tee to the pin: aim where the map is"
         )
-    if not any(np.isfinite(c.expected).any() for c in clubs):
-        raise AimError(
-            f"no shot of any aim ({min(aimed):+.1f} to {max(aimed):+.1f} m right of the pin) could "
-            "be scored (every shot failed): check the scenario's launch"
-        )
+    for c in clubs:
+        if not np.isfinite(c.expected).any():
+            raise AimError(
+                f"{c.club}: no shot of any aim ({min(aimed):+.1f} to {max(aimed):+.1f} m right of "
+                "the pin) could be scored (every shot failed): check the scenario's launch"
+            )
     lie, start_m = start_of(hole)
     expected_start = float(strokes["baseline"].expected(lie, start_m))
     return AimSearch(

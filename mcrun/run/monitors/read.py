@@ -159,7 +159,7 @@ def _read_table(path, encoding, start, sep, skip, fmt):
             )
         except UnicodeDecodeError:
             raise
-        except Exception as err:  # noqa: BLE001 - any reader failure is a bad file for the user
+        except (pd.errors.ParserError, ValueError, csv.Error, OverflowError) as err:
             raise InputError(
                 f"{path}: cannot read it as a {fmt.title} export: {first_line(err)}"
             ) from None

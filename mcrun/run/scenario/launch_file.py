@@ -167,6 +167,8 @@ def _read_shots(ctx, where, path, club=None, format=None):
     skipped = not_a_shot(session.reasons)
     if skipped is not None:
         rows = rows[~skipped]  # an export's summary rows, a last row cut short
+        if rows.size == 0:
+            raise ctx.error(where, f"{path}: no shot: {session.reasons[0]}")
     if club is not None:
         if session.club is None:
             raise ctx.error(where, f"{path}: a club is asked for but the file has no club column")
