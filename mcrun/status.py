@@ -8,9 +8,13 @@ NOT_STOPPED = (
     4  # still rolling after the roll time or distance bound (e.g. a slope steeper than atan(rho_g))
 )
 
-# On a hole (``mcrun.ground.Terrain``): where the ball touched the ground, the shot ends.
+# On a hole (``mcrun.ground.Terrain``). A ball that touches a penalty area or leaves the grid
+# ends there at once, with (penalty_x_m, penalty_y_m) where its ground track crossed into it;
+# out of bounds is decided where the ball comes to rest (Rule 18.2: a ball that hops or rolls
+# over the boundary and back in is in bounds), and (penalty_x_m, penalty_y_m) is that rest
+# position, the final one (scoring plays it again from its start: stroke and distance).
 IN_PENALTY_AREA = 5  # it landed or rolled into a penalty area (water)
-OUT_OF_BOUNDS_STATUS = 6  # it touched the ground out of bounds
+OUT_OF_BOUNDS_STATUS = 6  # it came to rest out of bounds
 OFF_MAP = 7  # it left the hole's grid, where the ground is not known
 
 HOLE_STATUSES = (IN_PENALTY_AREA, OUT_OF_BOUNDS_STATUS, OFF_MAP)

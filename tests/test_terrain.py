@@ -441,16 +441,18 @@ def test_a_ball_rolling_into_water_ends_at_its_edge():
 
 
 def test_out_of_bounds_and_off_the_grid():
-    """A ball rolling across y = 10 m into out of bounds: out_of_bounds, on the line within
-    1 cm. One rolling off the grid's end, and a shot landing beyond it: off_map, no crash."""
+    """A ball rolling across y = 10 m into out of bounds, where it stops in the rough of the
+    out of bounds: out_of_bounds where it rests (Rule 18.2), on its straight track (level
+    ground) within 1 cm. One rolling off the grid's end, and a shot landing beyond it: off_map,
+    no crash."""
     terrain = grid(0.0, 60.0, -20.0, 20.0, 0.5, lambda X, Y: 0.0 * X,
                    zone=lambda X, Y: Y > 10.0, turfs=("green", "rough"),
                    penalty=(ground.IN_PLAY, ground.OUT_OF_BOUNDS))  # fmt: skip
     got = landed(terrain, 20.0, 4.0, 3.0, 4.0, -0.3)
-    edge = 10.25  # half a cell past the last node in bounds
     assert got[STATUS] == OUT_OF_BOUNDS_STATUS
-    assert abs(got[PENALTY_Y] - edge) < 0.01
-    assert abs(got[PENALTY_X] - (20.0 + (edge - 4.0) * 3.0 / 4.0)) < 0.01
+    assert 10.25 < got[FINAL_Y] < 20.0
+    assert abs(got[FINAL_X] - (20.0 + (got[FINAL_Y] - 4.0) * 3.0 / 4.0)) < 0.01
+    assert (got[PENALTY_X], got[PENALTY_Y]) == (got[FINAL_X], got[FINAL_Y])
     got = landed(terrain, 52.0, 0.0, 9.0, 0.0, -0.3)
     assert got[STATUS] == OFF_MAP and got[FINAL_X] == pytest.approx(60.0, abs=0.2)
     inputs, _ = api.shot_inputs(**CLUBS["driver"], turf="green")

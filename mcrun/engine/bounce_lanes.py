@@ -404,6 +404,12 @@ def _file_rolls(start, landings, r, count, out, traj, tracer, terrain):
                 tracer[TRACER.ROW] = n
             if status > NOT_STOPPED:
                 ref_x, ref_y = ground.crossing(terrain, qx, qy, x, y)
+            elif status == OK:
+                # Out of bounds where it rests (Rule 18.2), not where it went over the line;
+                # its reference point is its rest.
+                status = ground.rest_state(terrain, x, y)
+                if status != OK:
+                    ref_x, ref_y = x, y
         landing_x = landings[i - start, LANDING.X]
         write_run(out, i, landing_x, x, y, z, t, status, s[BOUNCE.BOUNCES], s[BOUNCE.FIRST_HEIGHT],
                   s[BOUNCE.FIRST_LENGTH], ref_x, ref_y)  # fmt: skip

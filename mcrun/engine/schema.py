@@ -147,8 +147,9 @@ OUTCOME_FIELDS = (
 ) = range(len(OUTCOME_FIELDS))
 N_OUTCOME = len(OUTCOME_FIELDS)
 # The outcomes that only a hole gives (``ground.Terrain``): the height where the ball ends,
-# relative to the tee, and where it crossed into a penalty area or out of bounds. A run on a
-# Plane leaves them out of what it writes (``plane_fields``).
+# relative to the tee, and the Rules' reference point of a shot its status ended: where it
+# crossed into a penalty area or off the map, or, out of bounds, where it rests
+# (``mcrun.status``). A run on a Plane leaves them out of what it writes (``plane_fields``).
 HOLE_FIELDS = ("final_z_m", "penalty_x_m", "penalty_y_m")
 PLANE_FIELDS = tuple(name for name in OUTCOME_FIELDS if name not in HOLE_FIELDS)
 

@@ -142,7 +142,8 @@ def write_landing(out, i, x, y, t, apex, speed, angle_deg, w):
 def write_run(out, i, landing_x, x, y, z, t, status, bounces, first_height, first_length, ref_x,
               ref_y):  # fmt: skip
     """Write the run fields of shot i, which landed at x = landing_x and rests (or ended) at
-    (x, y, z); (ref_x, ref_y) is where it crossed into a penalty area or out of bounds."""
+    (x, y, z); (ref_x, ref_y) is where it crossed into a penalty area or off the map, or, out of
+    bounds, where it rests (``mcrun.status``)."""
     if status == TOO_MANY_BOUNCES:
         fail(out, i, TOO_MANY_BOUNCES, BOUNCES)  # the flight's fields stand
         return

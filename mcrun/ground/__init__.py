@@ -6,15 +6,18 @@ where it goes below; ``flight_check`` with the state under it, at each flight st
 and turf (``normal_at``, ``turf_at``; ``contact`` with the state and the ``calm_reach``, where a
 ball comes down for its next impact), where a hop comes down on it (``hop_landing``), what the
 roll needs at each step (``surface``: height, normal, turf, state, the longest step), the state
-there under the Rules (``state_at``: in play, or a penalty area, out of bounds, off the map) and
-where the ball crossed into such a place (``crossing``). The questions a loop asks at every
-step are answered in one look-up of the grid each. Two kinds of ground answer:
+there under the Rules for a moving ball (``state_at``: in play, or a penalty area or off the map,
+where the shot ends at once), where the ball crossed into such a place (``crossing``), and the
+status of a ball at rest (``rest_state``: out of bounds or not). Out of bounds is ground like
+any other while the ball moves, with its zone's turf: a ball is out only where it comes to rest
+on it (Rule 18.2), so one that hops over the boundary and back in is in bounds. The questions
+a loop asks at every step are answered in one look-up of the grid each. Two kinds of ground answer:
 
 - a shot's own ``Plane`` (``terrain`` None): the slope model. The flight comes down to z = 0 and
   the landing area is the plane of the shot's slope through the landing point, of one turf,
   built from the shot's input row;
 - a hole's ``Terrain`` (``make_terrain``): heights on a grid, bilinear between nodes, and a zone
-  per node with its turf and its status.
+  per node with its turf and what it is for the Rules (in play, penalty area, out of bounds).
 
 Each question is a Numba ``overload`` on the type of ``terrain`` (``questions.question``), so
 the loop is compiled once for each kind, and the Plane's loop is the same code, with the same
@@ -38,6 +41,7 @@ from mcrun.ground.questions import (
     hop_landing,
     normal_at,
     normal_or,
+    rest_state,
     state_at,
     step_length,
     surface,
@@ -81,6 +85,7 @@ __all__ = [
     "normal_or",
     "plane",
     "read_turf",
+    "rest_state",
     "state_at",
     "step_length",
     "surface",

@@ -97,13 +97,12 @@ def _grid_zone(terrain, x, y):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _state_of(inside, kind):
-    """The state (``state_at``) of a point on the grid or not (``inside``) in a zone of this
-    ``penalty`` kind."""
+    """The state (``state_at``) of a moving ball over a point on the grid or not (``inside``)
+    in a zone of this ``penalty`` kind: out of bounds is played on as any ground while the ball
+    moves (Rule 18.2 decides it where the ball rests: ``_grid_rest_state``)."""
     if not inside:
         return OFF_MAP
-    if kind == PENALTY_AREA:
-        return IN_PENALTY_AREA
-    return OUT_OF_BOUNDS_STATUS if kind == OUT_OF_BOUNDS else OK
+    return IN_PENALTY_AREA if kind == PENALTY_AREA else OK
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -132,6 +131,14 @@ def _grid_turf(terrain, x, y):
 def _grid_state(terrain, x, y):
     _, _, _, _, inside = _locate(terrain, x, y)
     return _state_of(inside, terrain.penalty[_grid_zone(terrain, x, y)])
+
+
+@njit(cache=True, error_model="numpy")
+def _grid_rest_state(terrain, x, y):
+    """``rest_state`` on the grid: OUT_OF_BOUNDS_STATUS where the zone of the node nearest
+    (x, y) is out of bounds, OK elsewhere."""
+    kind = terrain.penalty[_grid_zone(terrain, x, y)]
+    return OUT_OF_BOUNDS_STATUS if kind == OUT_OF_BOUNDS else OK
 
 
 @njit(cache=True, error_model="numpy", inline="always")

@@ -21,6 +21,7 @@ from mcrun.ground.grid import (
     _grid_gradient,
     _grid_height,
     _grid_normal,
+    _grid_rest_state,
     _grid_state,
     _grid_surface,
     _grid_turf,
@@ -118,14 +119,28 @@ def turf_at(terrain, plane, x, y):
 
 
 # Where the ball touches the ground, for the Rules (``state_at``): in play, or a place where the
-# shot ends there (its status, ``mcrun.status``).
+# shot ends there (its status, ``mcrun.status``); and where it rests (``rest_state``).
 @question
 def state_at(terrain, x, y):
-    """OK where the ball is in play at (x, y); IN_PENALTY_AREA, OUT_OF_BOUNDS_STATUS or OFF_MAP
-    (``mcrun.status``) where its shot ends there. Always OK on a Plane."""
+    """OK where a moving ball plays on at (x, y); IN_PENALTY_AREA or OFF_MAP (``mcrun.status``)
+    where its shot ends there (Rule 17: a ball that touches a penalty area is in it). Out of
+    bounds is OK here: the ball is played on over it like any ground (its zone's turf), and only
+    where it comes to rest does ``rest_state`` say it is out (Rule 18.2). Always OK on a
+    Plane."""
     if _flat(terrain):
         return lambda terrain, x, y: OK
     return lambda terrain, x, y: _grid_state(terrain, x, y)
+
+
+@question
+def rest_state(terrain, x, y):
+    """The status of a ball that comes to rest at (x, y), in play: OUT_OF_BOUNDS_STATUS where
+    the zone there is out of bounds (Rule 18.2: a ball is out of bounds only when it lies
+    outside the boundary at rest; the zone is that of the node nearest the ball's centre), OK
+    elsewhere. Always OK on a Plane."""
+    if _flat(terrain):
+        return lambda terrain, x, y: OK
+    return lambda terrain, x, y: _grid_rest_state(terrain, x, y)
 
 
 @question
@@ -209,8 +224,9 @@ def hop_landing(terrain, x, y, z, vx, vy, vz, hop_time):
 @question
 def crossing(terrain, xa, ya, xb, yb):
     """Where the ground track from (xa, ya), in play, to (xb, yb), not, crosses into what ends
-    the shot there (``state_at``): the Rules' reference point, to a millimetre. On a Plane
-    (always in play), (xb, yb)."""
+    the shot there (``state_at``: a penalty area, or off the map; out of bounds counts as in
+    play): the Rules' reference point, to a millimetre. On a Plane (always in play), (xb,
+    yb)."""
     if _flat(terrain):
         return lambda terrain, xa, ya, xb, yb: (xb, yb)
     return lambda terrain, xa, ya, xb, yb: _grid_crossing(terrain, xa, ya, xb, yb)

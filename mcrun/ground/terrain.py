@@ -11,7 +11,7 @@ from mcrun.physics.turf import Turf
 # What a zone of a Terrain is for the Rules (``Terrain.penalty``).
 IN_PLAY = 0
 PENALTY_AREA = 1  # water: the ball is not played from there
-OUT_OF_BOUNDS = 2
+OUT_OF_BOUNDS = 2  # played on as any ground (its turf); a ball at rest there is out (Rule 18.2)
 
 
 class Terrain(NamedTuple):
