@@ -33,7 +33,7 @@ def test_a_hole_file_is_described_and_drawn(capsys, tmp_path):
     }
     grid = out.split("grid: ")[1].split()
     assert sum(areas.values()) == pytest.approx(int(grid[0]) * int(grid[2]) * 0.25, abs=8)
-    assert areas["water"] > 2000 and areas["green"] > 500
+    assert areas["water_yellow"] > 2000 and areas["green"] > 500
     assert png.stat().st_size > 20_000 and png.read_bytes()[:4] == b"\x89PNG"
 
 

@@ -12,7 +12,7 @@ from pyproj import Geod
 from mcrun.ground import IN_PLAY, OUT_OF_BOUNDS, PENALTY_AREA
 from mcrun.hole.hole import hole_from_table, load_hole
 from mcrun.hole.osm import read_course
-from mcrun.hole.zones import GREEN, TEE, WATER, ZONE_KINDS
+from mcrun.hole.zones import GREEN, TEE, WATER, WATER_YELLOW, ZONE_KINDS
 from mcrun.physics.turf import PRESETS, Turf
 
 HOLES = Path(__file__).resolve().parent.parent / "scenarios" / "holes"
@@ -45,7 +45,7 @@ def test_hole_2_length_is_the_geodesic_from_its_tee_to_its_pin():
 def test_the_library_holes_are_what_their_names_say():
     par3 = load_hole(HOLES / "riverside-2.toml")
     x = np.linspace(0.0, par3.length_m, 2000)
-    crossed = x[par3.zone_at(x, 0 * x) == WATER]
+    crossed = x[par3.zone_at(x, 0 * x) == WATER_YELLOW]  # golf=water_hazard: yellow
     assert par3.par == 3 and crossed.min() == pytest.approx(93, abs=2)
     assert crossed.max() == pytest.approx(128, abs=2)
     wedge = load_hole(HOLES / "riverside-18-wedge.toml")
@@ -66,7 +66,10 @@ def test_terrain_tables_follow_the_zones_and_the_overrides():
     green = Turf(*t.turf[GREEN])
     assert green == PRESETS["firm_green"]._replace(rho_g=0.1)
     assert Turf(*t.turf[ZONE_KINDS.index("bunker")]) == PRESETS["bunker"]
-    assert t.penalty[WATER] == PENALTY_AREA and t.penalty[-1] == OUT_OF_BOUNDS
+    assert (
+        t.penalty[WATER] == t.penalty[WATER_YELLOW] == PENALTY_AREA
+        and t.penalty[-1] == OUT_OF_BOUNDS
+    )
     assert t.penalty[GREEN] == IN_PLAY
     assert t.zone.dtype == np.int8 and t.height_m.shape == t.zone.shape
     assert np.all(t.height_m == 0.0)

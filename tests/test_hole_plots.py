@@ -131,7 +131,7 @@ def test_the_hole_figure_draws_the_shots_the_ellipses_and_the_shares(runs, point
     # the clouds: every shot of the point (N < the dot limit), the ended ones as crosses
     assert len(sample["status"]) == N == int(np.isfinite(shots["carry_m"]).sum())
     ended = shots["status"].isin(status_codes.HOLE_STATUSES)
-    assert ended.sum() == round(row["p_finish_water"] * N) > 0
+    assert ended.sum() == round(row["p_finish_water_yellow"] * N) > 0  # golf=water_hazard
     clouds = [c for c in ax.collections if isinstance(c, PathCollection)]
     assert [len(c.get_offsets()) for c in clouds] == [N, N - ended.sum(), ended.sum()]
     np.testing.assert_allclose(
@@ -164,10 +164,10 @@ def test_the_hole_figure_draws_the_shots_the_ellipses_and_the_shares(runs, point
     for (r, c), cell in table.get_celld().items():
         cells.setdefault(r, {})[c] = cell.get_text().get_text()
     rows = {cells[r][0]: [cells[r][c] for c in range(1, 5)] for r in cells if r > 0}
-    for zone in ("green", "water", "rough"):
+    for zone in ("green", "water_yellow", "rough"):
         p = f"p_finish_{zone}"
         q = f"p_landing_{zone}"
-        assert rows[zone] == [
+        assert rows[zone.replace("_", " ")] == [
             f"{100 * row[p]:.1f}",
             f"{100 * row[p + '_lo95']:.1f}-{100 * row[p + '_hi95']:.1f}",
             f"{100 * row[q]:.1f}",

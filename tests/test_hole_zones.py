@@ -13,11 +13,13 @@ from mcrun.hole.zones import (
     OUT,
     ROUGH,
     WATER,
+    WATER_YELLOW,
     ZONE_KINDS,
     contains,
     polygon_mask,
     rasterize,
     shoelace_area_m2,
+    zone_of_tags,
 )
 from mcrun.physics.turf import ESTIMATED_PRESETS, PRESETS, check_turf
 
@@ -69,6 +71,7 @@ def test_overlaps_resolve_in_the_stated_order():
     # fairway, a course boundary that leaves the right strip out; listed in the wrong order.
     zones = [
         ("water", [_square(14.0, 4.0, 4.0)]),
+        ("water_yellow", [_square(16.0, 6.0, 3.0)]),  # over the red pond's corner: wins
         ("bunker", [_square(12.0, 2.0, 4.0)]),
         ("fairway", [_square(0.0, 0.0, 20.0)]),
         ("green", [_square(2.0, 2.0, 4.0)]),
@@ -85,6 +88,7 @@ def test_overlaps_resolve_in_the_stated_order():
     assert at(3, 3) == GREEN
     assert at(13, 3) == BUNKER  # fairway < bunker
     assert at(15, 5) == WATER  # bunker < water
+    assert at(17, 7) == WATER_YELLOW  # water < water_yellow
     assert at(25, 10) == OUT  # outside the boundary
     assert ZONE_KINDS.index("out_of_bounds") == OUT
 
@@ -96,3 +100,37 @@ def test_every_zone_preset_is_a_valid_turf_and_the_new_ones_are_estimates():
     # Sand holds the ball: a 2 m/s roll stops within 0.3 m (v^2 / (2 (5/7) rho_g g)).
     assert 2.0**2 / (2 * 5 / 7 * PRESETS["bunker"].rho_g * 9.80665) < 0.3
     assert PRESETS["green"].rho_g < PRESETS["fringe"].rho_g < PRESETS["fairway"].rho_g
+
+
+@pytest.mark.parametrize(
+    "tags, kind",
+    [
+        ({"golf": "water_hazard"}, "water_yellow"),  # yellow stakes
+        ({"golf": "lateral_water_hazard"}, "water"),  # red stakes
+        ({"natural": "water"}, "water"),  # unmarked: red (Rule 17.1)
+        ({"golf": "water_hazard", "natural": "water"}, "water_yellow"),  # golf=* first
+        ({"golf": "lateral_water_hazard", "natural": "water"}, "water"),
+    ],
+)
+def test_openstreetmap_tags_name_the_colour_of_a_penalty_area(tags, kind):
+    assert zone_of_tags(tags) == kind
+
+
+def _riverside_2(**keys):
+    table = {"map": "riverside-zagreb.osm.geojson", "hole": 2, "cell_m": 1.0, "margin_m": 40.0}
+    return hole_from_table({**table, **keys}, HOLES, "t")
+
+
+def test_a_hole_file_sets_the_colour_of_every_penalty_area():
+    """Riverside 2's pond is a golf=water_hazard: yellow as mapped; 'penalty_areas' turns it
+    red (or yellow), the same nodes; any other value is refused, naming the key."""
+    mapped = _riverside_2().zone_areas_m2()
+    red = _riverside_2(penalty_areas="red").zone_areas_m2()
+    yellow = _riverside_2(penalty_areas="yellow").zone_areas_m2()
+    assert mapped["water_yellow"] > 2000 and mapped["water"] == 0
+    assert red["water_yellow"] == 0 and red["water"] == mapped["water_yellow"]
+    assert yellow == mapped
+    from mcrun.hole.errors import HoleError
+
+    with pytest.raises(HoleError, match="'penalty_areas' = 'blue': choose red, yellow"):
+        _riverside_2(penalty_areas="blue")

@@ -377,3 +377,87 @@ def test_point_means_standard_errors_and_parts():
     assert row["lie_cost_part_out_of_bounds"] == pytest.approx(0.25 * 1.28, abs=1e-12)
     assert row["lie_cost_part_green"] == pytest.approx(0.0, abs=1e-12)
     assert row["lie_cost_mean"] == pytest.approx((0.19 + 1.28) / 4, abs=1e-12)
+
+
+# --- red and yellow penalty areas (Rule 17.1d) --------------------------------------------------
+
+
+def _hole_with(zones, extent_m=(-10.0, 250.0, -60.0, 60.0)):
+    """A hole without a map: the pin at (200, 0), ``zones`` ((kind, [ring]) in its frame),
+    rough elsewhere on the grid over ``extent_m``."""
+    from mcrun.hole.hole import Hole, _turfs
+
+    return Hole(source="t", frame=None, pin_xy=(200.0, 0.0), zones=zones, boundary=[],
+                extent_m=extent_m, cell_m=0.5, turf=_turfs({}, "t"))  # fmt: skip
+
+
+def _box(x0, x1, y0, y1):
+    return [np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], float)]
+
+
+def _score_on(hole, kind, ref_xy):
+    shots = _shots([(WATER, kind, 30.0, *ref_xy)])
+    return score_shots(shots, hole, start_lie="tee", start_distance_m=200.0).iloc[0]
+
+
+@pytest.mark.parametrize("pond_to_the_grid_edge", [True, False])
+def test_a_yellow_area_gives_no_lateral_drop(pond_to_the_grid_edge):
+    """A pond along the right of the fairway, the ball crossing into it at the fairway's edge
+    21.5 m from the pin: red drops there, on the fairway (Rule 17.1d(3)); yellow may not, and
+    the line back from the pin through the crossing runs through the pond, then off the grid
+    (stroke and distance: the shot again from the tee) or into rough beyond it."""
+    y_far = 60.0 if pond_to_the_grid_edge else 45.0
+    zones = [("fairway", _box(-10.0, 250.0, -20.0, 20.0))]
+    ref = (190.0, 19.0)
+    red = _score_on(_hole_with([*zones, ("water", _box(0.0, 220.0, 20.0, y_far))]), "water", ref)
+    yellow_hole = _hole_with([*zones, ("water_yellow", _box(0.0, 220.0, 20.0, y_far))])
+    yellow = _score_on(yellow_hole, "water_yellow", ref)
+    assert red["lie_after"] == "fairway"
+    assert red["expected_strokes_after"] == pytest.approx(1 + e("fairway", math.hypot(10, 19)))
+    assert yellow["outcome"] == "water_yellow" and yellow["penalty_strokes"] == 1.0
+    assert yellow["expected_strokes_after"] > red["expected_strokes_after"] + 0.4
+    if pond_to_the_grid_edge:
+        assert yellow["expected_strokes_after"] == pytest.approx(1 + e("tee", 200.0), abs=1e-12)
+        assert yellow["distance_after_m"] == 200.0 and yellow["lie_after"] == "tee"
+    else:
+        # Beyond the pond, on the line: its first point in play, 45 / sin(62.2 deg) from the pin.
+        assert yellow["lie_after"] == "rough"
+        assert yellow["distance_after_m"] == pytest.approx(45.0 * math.hypot(10, 19) / 19, abs=1.0)
+        d = yellow["distance_after_m"]
+        assert yellow["expected_strokes_after"] == pytest.approx(1 + e("rough", d), abs=1e-12)
+
+
+def test_back_on_the_line_picks_the_best_point_behind_the_crossing():
+    """A pond across the fairway from 150 m to 170 m, with 10 m of rough in front of it (140 m
+    to 150 m, the fairway before that): a ball crossing into it at 149.5 m drops back on the
+    line; the first fairway point behind (60.5 m to 61 m from the pin) beats the rough nearer
+    the pond (51.5 m: 2.90 against 2.71 from the fairway, Broadie's table)."""
+    zones = [
+        ("fairway", _box(-10.0, 140.0, -20.0, 20.0)),
+        ("fairway", _box(170.0, 250.0, -20.0, 20.0)),
+        ("water_yellow", _box(150.0, 170.0, -30.0, 30.0)),
+    ]
+    got = _score_on(_hole_with(zones), "water_yellow", (149.5, 0.0))
+    assert got["lie_after"] == "fairway"
+    assert 60.0 <= got["distance_after_m"] <= 61.5
+    d = got["distance_after_m"]
+    assert got["expected_strokes_after"] == pytest.approx(1 + e("fairway", d), abs=1e-12)
+    assert e("fairway", d) < e("rough", 51.5)
+    # Red may drop laterally at the crossing, in the rough there, or go back on the line too.
+    zones[2] = ("water", zones[2][1])
+    red = _score_on(_hole_with(zones), "water", (149.5, 0.0))
+    assert red["expected_strokes_after"] == pytest.approx(got["expected_strokes_after"])
+
+
+def test_a_penalty_area_ball_is_scored_by_the_kind_it_finished_in():
+    """The status says penalty area, the finish zone which one; a finish zone that names none
+    is a red area (Rule 17.1: one the committee has not marked is red)."""
+    assert {"water", "water_yellow"} <= set(OUTCOMES)
+    shots = _shots(
+        [(WATER, "water_yellow", 35.0, 100.0, 0.0), (WATER, "fairway", 35.0, 100.0, 0.0)]
+    )
+    got = score_shots(shots, pin_xy_m=PIN, start_lie="tee", start_distance_m=180 * YD)
+    assert list(got["outcome"]) == ["water_yellow", "water"]
+    # Without a hole: yellow has only stroke and distance, red its drop in the rough.
+    assert got["expected_strokes_after"].iloc[0] == pytest.approx(1 + e("tee", 180 * YD))
+    assert got["expected_strokes_after"].iloc[1] == pytest.approx(1 + e("rough", 50.0))

@@ -16,6 +16,9 @@ The ``[hole]`` table of a scenario and a standalone hole TOML file have the same
 - ``cell_m`` (grid spacing, default 0.5), ``margin_m`` (default 50: how far the grid reaches
   beyond the hole line, the tee and the pin; beyond the rectangle's ends without a map);
 - ``par``, ``name`` (when the map has none);
+- ``penalty_areas``: "red" or "yellow", the colour of every penalty area of the hole (its
+  relief under Rule 17.1d: red lateral, yellow not); default as mapped (``golf=water_hazard``
+  yellow, ``golf=lateral_water_hazard`` and ``natural=water`` red);
 - ``[hole.turf.KIND]``: turf values of a zone kind (``preset`` = a turf preset, and any
   ``physics.turf.Turf`` field), checked against ``turf.LIMITS``.
 """
@@ -27,11 +30,13 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.ground import Terrain, make_terrain
+from mcrun.ground import PENALTY_AREA, Terrain, make_terrain
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
 from mcrun.hole.osm import ACCEPTED, ATTRIBUTION, hole_title, read_course, sniff
 from mcrun.hole.zones import (
+    PENALTY_COLOURS,
+    PENALTY_ZONES,
     ZONE_INDEX,
     ZONE_KINDS,
     ZONE_PENALTY,
@@ -68,6 +73,7 @@ KEYS = (
     "margin_m",
     "par",
     "name",
+    "penalty_areas",
     "turf",
 )
 
@@ -161,6 +167,22 @@ class Hole:
         out = np.full(on.shape, -1, dtype=np.int8)
         out[on] = t.zone[iy[on].astype(np.int64), ix[on].astype(np.int64)]
         return out
+
+    def penalty_area_at(self, x_m, y_m):
+        """Zone index of the penalty area (``zones.PENALTY_ZONES``) a ball that ended at
+        (x_m, y_m) is in: that of the nearest node when it is one, else of a node next to it
+        (the later kind of ``ZONE_KINDS`` where two touch); -1 where none is. Vectorised."""
+        penalty = np.array([ZONE_PENALTY[k] for k in ZONE_KINDS] + [0]) == PENALTY_AREA
+        t = self.terrain()
+        x, y = np.asarray(x_m, float), np.asarray(y_m, float)
+        at = self.zone_at(x, y)
+        found = np.where(penalty[at], at, -1)
+        near = np.full(found.shape, -1, dtype=np.int8)
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                code = self.zone_at(x + dx * t.cell_m, y + dy * t.cell_m)
+                near = np.maximum(near, np.where(penalty[code], code, -1))
+        return np.where(found >= 0, found, near).astype(np.int8)
 
     def zone_areas_m2(self):
         """{zone kind: area (m^2) on the hole's grid} (node count x cell^2)."""
@@ -534,6 +556,14 @@ def hole_from_table(table, folder, source):
     if par is not None and (isinstance(par, bool) or par not in range(2, 8)):
         raise HoleError(f"{where}: 'par' = {par!r} must be a whole number 2-7")
     name = table.get("name", parts.get("name"))
+    colour = table.get("penalty_areas")
+    if colour is not None:
+        if colour not in PENALTY_COLOURS:
+            raise HoleError(
+                f"{where}: 'penalty_areas' = {colour!r}: choose {', '.join(PENALTY_COLOURS)}"
+            )
+        kind = PENALTY_COLOURS[colour]
+        parts["zones"] = [(kind if k in PENALTY_ZONES else k, p) for k, p in parts["zones"]]
     hole = Hole(
         source=where,
         frame=parts["frame"],

@@ -4,9 +4,11 @@ tools and QGIS export it).
 What is read: ``golf=hole`` LineStrings (tee to green; ``ref``, ``par``, ``name`` when
 present), the zone polygons and multipolygons (``golf=tee|fairway|green|fringe|bunker|rough|
 water_hazard|lateral_water_hazard``, ``natural=water``), ``golf=pin`` points and the
-``leisure=golf_course`` boundary. Everything else (cart paths, buildings) is left out.
-Coordinates stay WGS84 lon/lat here (checked: longitudes in [-180, 180], latitudes in
-[-90, 90]); ``hole.Hole`` puts them in the hole's frame.
+``leisure=golf_course`` boundary. A ``golf=water_hazard`` is a yellow penalty area, a
+``golf=lateral_water_hazard`` or ``natural=water`` a red one (``zones.ZONES``). Everything
+else (cart paths, buildings) is left out. Coordinates stay WGS84 lon/lat here (checked:
+longitudes in [-180, 180], latitudes in [-90, 90]); ``hole.Hole`` puts them in the hole's
+frame.
 
 An extract may hold many courses (a country's, as Overpass or Geofabrik cut it): a hole belongs
 to the ``leisure=golf_course`` polygon that holds most of its line (the smallest, when they are

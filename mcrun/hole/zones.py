@@ -2,9 +2,14 @@
 resolves overlaps, and their polygons put onto the ground's grid.
 
 Zone kinds, in the order that resolves overlaps (a later kind wins where polygons overlap):
-rough < fairway < tee < fringe < green < bunker < water; outside the course boundary,
-out_of_bounds wins over all. Rough is everything inside the course that no polygon covers, so
-a bunker drawn inside the rough (or a fairway) is a bunker, and a pond in a fairway is water.
+rough < fairway < tee < fringe < green < bunker < water < water_yellow; outside the course
+boundary, out_of_bounds wins over all. Rough is everything inside the course that no polygon
+covers, so a bunker drawn inside the rough (or a fairway) is a bunker, and a pond in a fairway
+is water. The two penalty areas of the Rules (Rule 17) are two kinds: ``water``, red (lateral
+relief; OpenStreetMap's ``golf=lateral_water_hazard``, and ``natural=water``, as a penalty area
+the committee has not marked is red, Rule 17.1), and ``water_yellow`` (``golf=water_hazard``:
+stroke and distance or back on the line, no lateral drop). To the kernel both are
+``PENALTY_AREA``; their relief is scored in ``strokes.expected``.
 A kind's position in ``ZONES`` (``ZONE_KINDS``) is its index in ``ground.Terrain.zone``.
 """
 
@@ -46,18 +51,24 @@ ZONES = (
     ZoneKind("fringe", "fringe", IN_PLAY, ("golf=fringe",), "fairway", True, "#6fcf4f"),
     ZoneKind("green", "green", IN_PLAY, ("golf=green",), "green", True, "#3fd13a"),
     ZoneKind("bunker", "bunker", IN_PLAY, ("golf=bunker",), "sand", False, "#ecd9a0"),
-    ZoneKind("water", "rough", PENALTY_AREA,
-             ("golf=water_hazard", "golf=lateral_water_hazard", "natural=water"), None, False,
-             "#4a90d9"),
+    # A red penalty area (Rule 17.1: one the committee has not marked is red).
+    ZoneKind("water", "rough", PENALTY_AREA, ("golf=lateral_water_hazard", "natural=water"),
+             None, False, "#4a90d9"),
+    # A yellow penalty area: no lateral relief (Rule 17.1d).
+    ZoneKind("water_yellow", "rough", PENALTY_AREA, ("golf=water_hazard",), None, False,
+             "#2f6fb8"),
     ZoneKind("out_of_bounds", "rough", OUT_OF_BOUNDS, (), None, False, "#b0b0b0"),
 )  # fmt: skip
 
 ZONE_KINDS = tuple(z.name for z in ZONES)
 ZONE_INDEX = {kind: k for k, kind in enumerate(ZONE_KINDS)}
-ROUGH, FAIRWAY, TEE, FRINGE, GREEN, BUNKER, WATER, OUT = range(len(ZONE_KINDS))
+ROUGH, FAIRWAY, TEE, FRINGE, GREEN, BUNKER, WATER, WATER_YELLOW, OUT = range(len(ZONE_KINDS))
 # The columns of the table, by kind.
 ZONE_TURF = {z.name: z.turf for z in ZONES}
 ZONE_PENALTY = {z.name: z.state for z in ZONES}
+PENALTY_ZONES = tuple(z.name for z in ZONES if z.state == PENALTY_AREA)
+# The colour of each penalty area kind, as a hole file names it ('penalty_areas').
+PENALTY_COLOURS = {"red": "water", "yellow": "water_yellow"}
 LIE_OF_ZONE = {z.name: z.lie for z in ZONES if z.lie is not None}
 MOWN_ZONES = tuple(z.name for z in ZONES if z.mown)
 ZONE_COLOURS = {z.name: z.colour for z in ZONES}

@@ -19,7 +19,7 @@ import pyarrow as pa
 
 from mcrun import status as status_codes
 from mcrun.engine.schema import OUTCOME_FIELDS
-from mcrun.hole.zones import ZONE_KINDS
+from mcrun.hole.zones import PENALTY_ZONES, ZONE_KINDS
 from mcrun.strokes import OUTCOMES, point_strokes, score_shots
 
 OFF_MAP = "off_map"
@@ -47,7 +47,9 @@ Z95 = 1.959963984540054
 
 # The zone a shot finishes in where its status ended it (the kernel's word, not the nearest
 # node of where it stopped, which for a ball that left the grid or crossed into a penalty area
-# can be the fairway it crossed from).
+# can be the fairway it crossed from). A ball in a penalty area finishes in the kind of area
+# it ended in (red or yellow, ``Hole.penalty_area_at``), ``water`` (red, Rule 17.1) where
+# none is found there.
 _ZONE_OF_STATUS = {
     status_codes.IN_PENALTY_AREA: ZONE_NAMES.index("water"),
     status_codes.OUT_OF_BOUNDS_STATUS: ZONE_NAMES.index("out_of_bounds"),
@@ -66,6 +68,10 @@ def _zones(hole, x, y, status=None):
             ended = status == code
             codes[ended] = zone
             known = known | ended
+        in_area = (status == status_codes.IN_PENALTY_AREA) & np.isfinite(x) & np.isfinite(y)
+        if in_area.any():
+            area = hole.penalty_area_at(x[in_area], y[in_area]).astype(np.int32)
+            codes[in_area] = np.where(area >= 0, area, codes[in_area])
     return pa.DictionaryArray.from_arrays(pa.array(codes, mask=~known), _ZONE_DICTIONARY)
 
 
@@ -201,7 +207,10 @@ def _outcome_of(shots):
         (status_codes.OUT_OF_BOUNDS_STATUS, "out_of_bounds"),
         (status_codes.OFF_MAP, "off_map"),
     ):
-        outcome[status == code] = name
+        ended = status == code
+        if code == status_codes.IN_PENALTY_AREA:
+            ended = ended & ~np.isin(outcome, PENALTY_ZONES)  # the area's kind, when named
+        outcome[ended] = name
     scored = np.isfinite(shots["expected_strokes_after"].to_numpy(float))
     outcome[~scored] = "failed"
     return outcome

@@ -6,11 +6,21 @@ The rules (README, Decisions, "Expected strokes and strokes gained"):
 - the next shot's lie is that of the zone the ball finished in (``LIE_OF_ZONE``: fringe and a
   tee other than the start are played as fairway, a bunker as sand), which ``lie_of_zone``
   overrides (e.g. ``{"rough": "recovery"}`` under trees); its distance the ball's to the pin;
-- water (a penalty area, Rule 17): one penalty stroke, then the better of a lateral drop at the
-  point where the ball crossed into it (penalty_x_m, penalty_y_m; its distance to the pin, as
-  the drop is within two club lengths no nearer the hole), from the fairway when that point is
-  on fairway, tee, fringe or green and from the rough otherwise, and stroke and distance (the
-  shot again from its start);
+- a penalty area (Rule 17.1d; its kind is the finish zone: ``water`` red, ``water_yellow``
+  yellow; a ball whose finish zone names neither is in a red one): one penalty stroke, then the
+  best of the relief its colour allows, from the point where the ball last crossed into it (the
+  reference point, penalty_x_m, penalty_y_m):
+  - stroke and distance (both colours): the shot again from its start;
+  - back on the line (both colours, with a hole): a drop on the line from the pin through the
+    reference point, as far behind it as the player likes; the distance chosen is the one of
+    least expected strokes among the points every ``BACK_STEP_M`` from ``BACK_STEP_M`` to
+    ``BACK_MAX_M`` behind it that are in play on the hole (not a penalty area, out of bounds or
+    off the grid), each valued with the lie of its zone (``LIE_OF_ZONE``, overrides applied)
+    and its distance to the pin;
+  - lateral (red only): a drop at the reference point (its distance to the pin, as the drop is
+    within two club lengths no nearer the hole), from the fairway when that point is on mown
+    grass (fairway, tee, fringe or green) and from the rough otherwise (without a hole: the
+    rough);
 - out of bounds (Rule 18.2) and off the hole's map: stroke and distance, 1 + E(start);
 - other statuses (the kernel's bounds: invalid_input, not_landed, too_many_bounces,
   not_stopped) are left out of the means and counted (``n_failed``).
@@ -24,7 +34,7 @@ import numpy as np
 import pandas as pd
 
 from mcrun import status
-from mcrun.hole.zones import LIE_OF_ZONE, MOWN_ZONES, ZONE_KINDS
+from mcrun.hole.zones import LIE_OF_ZONE, MOWN_ZONES, PENALTY_ZONES, ZONE_KINDS
 from mcrun.strokes.baseline import LIES, tour_baseline
 
 __all__ = [
@@ -41,7 +51,14 @@ __all__ = [
 IN_PLAY_ZONES = tuple(LIE_OF_ZONE)
 # Where a water ball's reference point lies on mown grass, it is dropped on the fairway.
 _MOWN = MOWN_ZONES
-OUTCOMES = (*IN_PLAY_ZONES, "water", "out_of_bounds", "off_map")
+OUTCOMES = (*IN_PLAY_ZONES, *PENALTY_ZONES, "out_of_bounds", "off_map")
+# The penalty areas with a lateral drop (Rule 17.1d(3)): red ones.
+LATERAL_ZONES = ("water",)
+# Back on the line: the drops looked at, every BACK_STEP_M up to BACK_MAX_M behind the
+# reference point (m), and how many water balls are valued at a time.
+BACK_STEP_M = 1.0
+BACK_MAX_M = 100.0
+_BACK_CHUNK = 8192
 FAILED = "failed"
 
 SHOT_COLUMNS = (
@@ -114,9 +131,13 @@ def _outcome_codes(shots):
     code_of = {name: code for code, name in status.NAMES.items()}
     ok = state == code_of[status.NAMES[status.OK]]
     outcome = np.full(len(zone), -1, dtype=np.int64)
-    for z in (*IN_PLAY_ZONES, "water", "out_of_bounds"):
+    for z in (*IN_PLAY_ZONES, *PENALTY_ZONES, "out_of_bounds"):
         outcome[ok & (zone == ZONES.index(z))] = OUTCOMES.index(z)
-    outcome[state == code_of[status.NAMES[status.IN_PENALTY_AREA]]] = OUTCOMES.index("water")
+    # A ball in a penalty area: the kind its finish zone names, else red (Rule 17.1).
+    in_area = state == code_of[status.NAMES[status.IN_PENALTY_AREA]]
+    outcome[in_area] = OUTCOMES.index("water")
+    for z in PENALTY_ZONES:
+        outcome[in_area & (zone == ZONES.index(z))] = OUTCOMES.index(z)
     outcome[state == code_of[status.NAMES[status.OUT_OF_BOUNDS_STATUS]]] = OUTCOMES.index(
         "out_of_bounds"
     )
@@ -128,6 +149,37 @@ def _outcome_codes(shots):
 def _outcomes(shots):
     """The outcome of each shot (OUTCOMES or FAILED) from its status and finish zone."""
     return np.array([*OUTCOMES, FAILED], dtype=object)[_outcome_codes(shots)]
+
+
+def _back_on_the_line(hole, base, lies, rx, ry, pin_x, pin_y):
+    """Back-on-the-line relief (Rule 17.1d(2)) of balls that crossed into a penalty area at
+    (rx, ry): (expected strokes, lie code in LIES, distance to the pin (m)) of the best drop on
+    the line from the pin through (rx, ry), BACK_STEP_M to BACK_MAX_M behind (rx, ry) every
+    BACK_STEP_M, among the points in play on ``hole`` (each with the lie of its zone, ``lies``,
+    and its distance to the pin); inf (and the lie -1) where no point of the line is in play."""
+    behind = np.arange(BACK_STEP_M, BACK_MAX_M + 0.5 * BACK_STEP_M, BACK_STEP_M)
+    lie_of_code = np.array(
+        [LIES.index(lies[k]) if k in lies else -1 for k in ZONE_KINDS] + [-1], dtype=np.int64
+    )  # the last entry: off the grid (zone_at's -1)
+    e = np.full(len(rx), np.inf)
+    lie = np.full(len(rx), -1, dtype=np.int64)
+    distance = np.full(len(rx), np.nan)
+    for start in range(0, len(rx), _BACK_CHUNK):
+        part = slice(start, start + _BACK_CHUNK)
+        dx, dy = rx[part] - pin_x, ry[part] - pin_y
+        d0 = np.hypot(dx, dy)
+        ux, uy = dx / np.maximum(d0, 1e-9), dy / np.maximum(d0, 1e-9)
+        d = d0[:, None] + behind[None, :]  # to the pin, along the line
+        codes = lie_of_code[hole.zone_at(pin_x + ux[:, None] * d, pin_y + uy[:, None] * d)]
+        valued = base.expected_by_code(np.maximum(codes, 0), d)
+        valued[(codes < 0) | ~np.isfinite(valued)] = np.inf
+        k = np.argmin(valued, axis=1)
+        rows = np.arange(len(k))
+        e[part] = valued[rows, k]
+        found = np.isfinite(e[part])
+        lie[part] = np.where(found, codes[rows, k], -1)
+        distance[part] = np.where(found, d[rows, k], np.nan)
+    return e, lie, distance
 
 
 def score_shots(
@@ -193,13 +245,23 @@ def score_shots(
     penalty[again] = 1.0
     expected_after[again] = 1.0 + e_start
 
-    water = outcome == OUTCOMES.index("water")
+    water = np.isin(outcome, [OUTCOMES.index(z) for z in PENALTY_ZONES])
     if water.any():
         rx = _floats(shots, "penalty_x_m", n)[water]
         ry = _floats(shots, "penalty_y_m", n)[water]
         unknown = ~(np.isfinite(rx) & np.isfinite(ry))
         rx = np.where(unknown, _floats(shots, "final_x_m", n)[water], rx)
         ry = np.where(unknown, _floats(shots, "final_y_m", n)[water], ry)
+        # Stroke and distance, then each relief the area's colour allows where it is better.
+        best_e = np.full(len(rx), e_start)
+        best_lie = np.full(len(rx), start_code, dtype=np.int64)
+        best_m = np.full(len(rx), float(start_distance_m))
+        if hole is not None:
+            e_back, lie_back, back_m = _back_on_the_line(hole, base, lies, rx, ry, pin_x, pin_y)
+            better = e_back < best_e
+            best_e = np.where(better, e_back, best_e)
+            best_lie = np.where(better, lie_back, best_lie)
+            best_m = np.where(better, back_m, best_m)
         drop_lie = np.full(len(rx), LIES.index("rough"), dtype=np.int64)
         if hole is not None:
             codes = hole.zone_at(rx, ry)
@@ -207,11 +269,12 @@ def score_shots(
             drop_lie[mown] = LIES.index("fairway")
         drop_m = np.hypot(rx - pin_x, ry - pin_y)
         e_drop = base.expected_by_code(drop_lie, drop_m)
-        lateral = e_drop <= e_start
-        lie_after[water] = np.where(lateral, drop_lie, start_code)
-        distance_after[water] = np.where(lateral, drop_m, start_distance_m)
+        red = np.isin(outcome[water], [OUTCOMES.index(z) for z in LATERAL_ZONES])
+        lateral = red & (e_drop <= best_e)
+        lie_after[water] = np.where(lateral, drop_lie, best_lie)
+        distance_after[water] = np.where(lateral, drop_m, best_m)
         penalty[water] = 1.0
-        expected_after[water] = 1.0 + np.minimum(e_drop, e_start)
+        expected_after[water] = 1.0 + np.where(lateral, e_drop, best_e)
 
     scored = outcome >= 0
     penalty[~scored] = np.nan
