@@ -6,9 +6,10 @@ The kernel gives the positions in the hole's frame (x from the tee towards the p
 right): the landing at (carry_m, carry_lateral_m), the finish at (final_x_m, final_y_m) and,
 for a ball that ended in a penalty area, where it crossed into it (penalty_x_m, penalty_y_m;
 for a ball out of bounds, where it rests). The zone of a point is that of the terrain's
-nearest node, as the kernel reads it (``Hole.zone_at``); ``off_map`` beyond the hole's grid. A shot that its status
-ended (a penalty area, out of bounds, off the map) finishes in the zone its status names: one
-source of truth for where a shot ended, which the zones' shares and the scores both read.
+nearest node, as the kernel reads it (``Hole.zone_at``); ``off_map`` beyond the hole's grid.
+A shot that its status ended (a penalty area, out of bounds, off the map) finishes in the zone
+its status names: one source of truth for where a shot ended, which the zones' shares and the
+scores both read.
 """
 
 import math
