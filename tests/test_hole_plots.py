@@ -173,7 +173,7 @@ def test_the_hole_figure_draws_the_shots_the_ellipses_and_the_shares(runs, point
             f"{100 * row[q]:.1f}",
             f"{100 * row[q + '_lo95']:.1f}-{100 * row[q + '_hi95']:.1f}",
         ]
-    assert set(rows) == {z.replace("_", " ") for z in hole_plots.ZONES}
+    assert set(rows) == {z.replace("_", " ") for z in hole_plots.ZONE_NAMES}
 
 
 def test_a_hole_run_that_records_no_map_is_drawn_without_it(runs):
@@ -215,8 +215,8 @@ def test_the_report_lists_the_zone_shares_and_the_attribution(runs, pages, name)
         if len(summary) > 1:
             caption = f"point {point} ({row['label']}): {caption}"
         rows = zone_rows(page, caption)
-        assert set(rows) == {z.replace("_", " ") for z in hole_plots.ZONES}
-        for zone in hole_plots.ZONES:
+        assert set(rows) == {z.replace("_", " ") for z in hole_plots.ZONE_NAMES}
+        for zone in hole_plots.ZONE_NAMES:
             p, q = f"p_finish_{zone}", f"p_landing_{zone}"
             assert rows[zone.replace("_", " ")] == [
                 f"{100 * row[p]:.1f}",

@@ -2,7 +2,7 @@
 
 Each question is one function of (terrain, ...): with ``terrain`` None the shot's own Plane
 (``ground.plane``) answers and the flight comes down to z = 0, exactly as the slope model
-always has; with a Terrain its grid answers (``ground.grid``, ``ground.hop``). Numba compiles
+always has; with a Terrain its grid answers (``ground.grid``, ``ground.hop_search``). Numba compiles
 the loop once for each (``question``: an ``overload`` picks the answer by the type of
 ``terrain``), so the plane's loop is the same code, and the same numbers, as before there were
 terrains; run as Python (``NUMBA_DISABLE_JIT=1``), the same answer is picked by the value.

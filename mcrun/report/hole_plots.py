@@ -30,17 +30,16 @@ import numpy as np
 
 from mcrun import status as status_codes
 from mcrun.hole.osm import ATTRIBUTION
-from mcrun.hole.zones import ZONE_KINDS
 from mcrun.report import style
 from mcrun.report.run_view import BATCH_ROWS, SCATTER_MAX_SHOTS, ellipse_extent, span
 from mcrun.results import stats
+from mcrun.results.on_hole import ZONE_NAMES
 
 HOLE_DOTS_PER_POINT = SCATTER_MAX_SHOTS
 HOLE_ELLIPSE_LEVELS = (50, 95)
 ZOOM_PAD = 0.15  # share of the shots' and the green's span added on each side
 ZOOM_MIN_PAD_M = 8.0
 # The zones a shot can finish or land in, as summary.parquet names them.
-ZONES = (*ZONE_KINDS, "off_map")
 _HOLE_SHOT_COLUMNS = (
     "point",
     "status",
@@ -90,9 +89,9 @@ def attribution_of(run):
 
 def zone_shares(row, where):
     """[(zone, share, lo95, hi95)] of ``where`` ("finish" or "landing") for every zone of the
-    summary row, in ``ZONES`` order."""
+    summary row, in ``ZONE_NAMES`` order."""
     out = []
-    for zone in ZONES:
+    for zone in ZONE_NAMES:
         key = f"p_{where}_{zone}"
         if key in row:
             out.append((zone, row[key], row[f"{key}_lo95"], row[f"{key}_hi95"]))
@@ -384,7 +383,7 @@ def _shares_table(ax, row):
     finish = {z: (p, lo, hi) for z, p, lo, hi in zone_shares(row, "finish")}
     landing = {z: (p, lo, hi) for z, p, lo, hi in zone_shares(row, "landing")}
     cells = []
-    for zone in ZONES:
+    for zone in ZONE_NAMES:
         if zone not in finish and zone not in landing:
             continue
         f = finish.get(zone, (math.nan,) * 3)

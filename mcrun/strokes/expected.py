@@ -93,7 +93,7 @@ def start_of(hole):
     return lie, float(math.hypot(*hole.pin_xy))
 
 
-ZONES = (*ZONE_KINDS, "off_map")  # the finish zones a shot can have (``results.on_hole``)
+FINISH_ZONES = (*ZONE_KINDS, "off_map")  # the finish zones a shot can have (``results.on_hole``)
 
 
 def _codes(values, names):
@@ -122,7 +122,7 @@ def _floats(shots, name, n):
 def _outcome_codes(shots):
     """The outcome of each shot as its index in OUTCOMES (-1: FAILED), from its status and
     finish zone."""
-    zone = _codes(shots["finish_zone"], ZONES)
+    zone = _codes(shots["finish_zone"], FINISH_ZONES)
     if "status" in shots:
         state = np.asarray(shots["status"], dtype=np.int64)  # the codes themselves
     else:
@@ -132,16 +132,17 @@ def _outcome_codes(shots):
     ok = state == code_of[status.NAMES[status.OK]]
     outcome = np.full(len(zone), -1, dtype=np.int64)
     for z in (*IN_PLAY_ZONES, *PENALTY_ZONES, "out_of_bounds"):
-        outcome[ok & (zone == ZONES.index(z))] = OUTCOMES.index(z)
+        outcome[ok & (zone == FINISH_ZONES.index(z))] = OUTCOMES.index(z)
     # A ball in a penalty area: the kind its finish zone names, else red (Rule 17.1).
     in_area = state == code_of[status.NAMES[status.IN_PENALTY_AREA]]
     outcome[in_area] = OUTCOMES.index("water")
     for z in PENALTY_ZONES:
-        outcome[in_area & (zone == ZONES.index(z))] = OUTCOMES.index(z)
+        outcome[in_area & (zone == FINISH_ZONES.index(z))] = OUTCOMES.index(z)
     outcome[state == code_of[status.NAMES[status.OUT_OF_BOUNDS_STATUS]]] = OUTCOMES.index(
         "out_of_bounds"
     )
-    off = (state == code_of[status.NAMES[status.OFF_MAP]]) | (ok & (zone == ZONES.index("off_map")))
+    off_map = zone == FINISH_ZONES.index("off_map")
+    off = (state == code_of[status.NAMES[status.OFF_MAP]]) | (ok & off_map)
     outcome[off] = OUTCOMES.index("off_map")
     return outcome
 
