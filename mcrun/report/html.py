@@ -122,7 +122,7 @@ def zone_tables(run):
         finish = {z: (p, lo, hi) for z, p, lo, hi in hole_plots.zone_shares(row, "finish")}
         landing = {z: (p, lo, hi) for z, p, lo, hi in hole_plots.zone_shares(row, "landing")}
         rows = []
-        for zone in hole_plots.ZONES:
+        for zone in hole_plots.ZONE_NAMES:
             if zone not in finish and zone not in landing:
                 continue
             f = finish.get(zone, (math.nan,) * 3)
