@@ -23,11 +23,12 @@ import numba
 import numpy as np
 from numba import njit, prange
 
+from mcrun import ground
 from mcrun.engine.bounce_lanes import bounce_all
 from mcrun.engine.flight_lanes import GENERAL, QUADRATIC, flight_kind, fly_general, fly_quadratic
 from mcrun.engine.schema import N_INPUT, N_OUTCOME
-from mcrun.engine.shot import TRAJECTORY_DT_S
-from mcrun.engine.tables import LANDING, LANES, N_LANDING, TRACER
+from mcrun.engine.shot import TRAJECTORY_DT_S, from_start
+from mcrun.engine.tables import IN, LANDING, LANES, N_LANDING, TRACER
 from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
 
 __all__ = [
@@ -45,7 +46,7 @@ __all__ = [
 def _lockstep(inputs, start, stop, table, out, traj, tracer, terrain):
     """Simulate shots start..stop-1 of ``inputs`` into ``out``: check them, fly each kind
     LANES at a time and land them LANES at a time, then bounce and roll them out LANES at a
-    time."""
+    time, and measure their distances from where each was struck."""
     kinds = np.empty(stop - start, dtype=np.int8)
     general = False
     for i in range(start, stop):
@@ -63,6 +64,10 @@ def _lockstep(inputs, start, stop, table, out, traj, tracer, terrain):
             tracer, terrain,
         )  # fmt: skip
     bounce_all(inputs, start, landings, pending[:n_landed], out, traj, tracer, terrain)
+    for i in range(start, stop):
+        x0 = inputs[i, IN.start_x_m]
+        y0 = inputs[i, IN.start_y_m]
+        from_start(out, i, x0, y0, ground.height_at(terrain, x0, -y0))
 
 
 # Shots per parallel task: enough to keep the lanes full, few enough to balance two threads.

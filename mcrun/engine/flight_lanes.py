@@ -526,9 +526,10 @@ def _make_flight(derivative, stage, step, constants, context):
         return n_landed
 
     @njit(cache=True, error_model="numpy")
-    def load_lane(inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj, tracer):
-        """Put the next shot of this ``kind`` into lane k. Returns the index of the shot after
-        it; shot[k] = -1 when none was left."""
+    def load_lane(inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj, tracer,
+                  terrain):  # fmt: skip
+        """Put the next shot of this ``kind`` into lane k, on the ground at its start. Returns
+        the index of the shot after it; shot[k] = -1 when none was left."""
         while next_i < stop:
             i = next_i
             next_i += 1
@@ -543,10 +544,13 @@ def _make_flight(derivative, stage, step, constants, context):
                 c[IN.spin_radps],
                 c[IN.spin_axis_rad],
             )
+            x0 = c[IN.start_x_m]
+            y0 = -c[IN.start_y_m]  # the core's frame: y to the left
+            z0 = ground.height_at(terrain, x0, y0)
             for row, value in (
-                (LANE.X, 0.0),
-                (LANE.Y, 0.0),
-                (LANE.Z, 0.0),
+                (LANE.X, x0),
+                (LANE.Y, y0),
+                (LANE.Z, z0),
                 (LANE.VX, vx),
                 (LANE.VY, vy),
                 (LANE.VZ, vz),
@@ -556,16 +560,16 @@ def _make_flight(derivative, stage, step, constants, context):
                 (LANE.AXIS_Z, az),
                 (LANE.DT, c[IN.dt_s]),
                 (LANE.T, 0.0),
-                (LANE.APEX, 0.0),
-                (LANE.PLAY_X, 0.0),
-                (LANE.PLAY_Y, 0.0),
+                (LANE.APEX, z0),
+                (LANE.PLAY_X, x0),
+                (LANE.PLAY_Y, y0),
                 (LANE.LEFT_PLAY, 0.0),
             ):
                 lanes[row * LANES + k] = value
             constants(lanes, k, p, table)
             shot[k] = i
             if i == tracer[TRACER.TRACED]:
-                tracer[TRACER.ROW] = record(traj, 0, 0.0, 0.0, 0.0, 0.0, FLIGHT)
+                tracer[TRACER.ROW] = record(traj, 0, 0.0, x0, y0, z0, FLIGHT)
             return next_i
         shot[k] = -1
         return next_i
@@ -583,8 +587,9 @@ def _make_flight(derivative, stage, step, constants, context):
         next_i = start
         for k in range(LANES):
             next_i = load_lane(
-                inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj, tracer
-            )
+                inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj, tracer,
+                terrain,
+            )  # fmt: skip
         while any_lane_busy(shot):
             if step_lanes(lanes, shot, table, traj, tracer, terrain) == 0:
                 continue
@@ -626,13 +631,13 @@ def _make_flight(derivative, stage, step, constants, context):
                         waiting = 0
                     next_i = load_lane(
                         inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj,
-                        tracer,
+                        tracer, terrain,
                     )  # fmt: skip
                 elif lanes[LANE.T * LANES + k] > MAX_FLIGHT_TIME_S:
                     fail(out, i, NOT_LANDED)
                     next_i = load_lane(
                         inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj,
-                        tracer,
+                        tracer, terrain,
                     )  # fmt: skip
         if waiting > 0:
             n_landed = file_landings(

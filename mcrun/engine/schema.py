@@ -1,7 +1,9 @@
 """The kernel's schemas: the columns of its inputs and of its outcomes.
 
 Inputs: an (n, N_INPUT) float64 array, one row a shot, its columns ``INPUT_FIELDS`` (SI, the
-user's frame: y and every angle positive to the right), built by ``pack``. Outcomes: an
+user's frame: y and every angle positive to the right), built by ``pack``. A shot is struck from
+(start_x_m, start_y_m), on the ground there (on a hole: its height; on a Plane: z = 0), the tee
+(0, 0) by default; its azimuth is from the frame's x axis. Outcomes: an
 (n, N_OUTCOME) float64 array whose columns are ``OUTCOME_FIELDS``, NaN where a shot did not get
 that far, with the status code (``mcrun.status``) in the last; ``encode_outcomes`` types them.
 """
@@ -41,6 +43,8 @@ INPUT_FIELDS = (
     "slope_rad",
     "fall_line_rad",
     "dt_s",
+    "start_x_m",
+    "start_y_m",
 )
 N_INPUT = len(INPUT_FIELDS)
 COLUMN = {name: k for k, name in enumerate(INPUT_FIELDS)}
@@ -60,6 +64,8 @@ INPUT_DEFAULTS = {
     "wind_profile_parameter": 0.0,
     "slope_rad": 0.0,
     "fall_line_rad": 0.0,
+    "start_x_m": 0.0,
+    "start_y_m": 0.0,
 }
 
 
@@ -97,6 +103,10 @@ def pack(columns, n, out=None, invalid=None):
     return out
 
 
+# The outcomes. Distances along the frame's axes from where the shot was struck: carry_m,
+# carry_lateral_m and total_m (x and y of the landing, x at rest, less the start's), apex_m (the
+# height above the ground at the start); run_m from the landing. Positions in the frame:
+# final_x_m, final_y_m, final_z_m and penalty_x_m, penalty_y_m.
 OUTCOME_FIELDS = (
     "launch_speed_mps",
     "launch_angle_deg",

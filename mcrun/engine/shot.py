@@ -139,6 +139,18 @@ def write_landing(out, i, x, y, t, apex, speed, angle_deg, w):
 
 
 @njit(cache=True)
+def from_start(out, i, x0, y0, z0):
+    """Measure the distances of shot i from where it was struck, (x0, y0, z0) in the user's
+    frame: its carry, lateral carry and total along the frame's axes, its apex above the ground
+    there (``schema.OUTCOME_FIELDS``). From the tee (0, 0, 0) every field stays as it was, to
+    the bit."""
+    out[i, CARRY] -= x0
+    out[i, CARRY_LATERAL] -= y0
+    out[i, TOTAL] -= x0
+    out[i, APEX] -= z0
+
+
+@njit(cache=True)
 def write_run(out, i, landing_x, x, y, z, t, status, bounces, first_height, first_length, ref_x,
               ref_y):  # fmt: skip
     """Write the run fields of shot i, which landed at x = landing_x and rests (or ended) at
