@@ -32,8 +32,15 @@ from mcrun.engine.schema import (
 from mcrun.physics.turf import PRESETS
 from mcrun.status import OK
 
-DRIVE = dict(ball_speed_mps=74.7, launch_angle_deg=10.9, spin_radps=2686.0 * math.pi / 30.0, spin_axis_deg=4.0)
-WEDGE = dict(ball_speed_mps=46.0, launch_angle_deg=24.0, spin_radps=8500.0 * math.pi / 30.0, azimuth_deg=-2.0)
+DRIVE = dict(
+    ball_speed_mps=74.7,
+    launch_angle_deg=10.9,
+    spin_radps=2686.0 * math.pi / 30.0,
+    spin_axis_deg=4.0,
+)
+WEDGE = dict(
+    ball_speed_mps=46.0, launch_angle_deg=24.0, spin_radps=8500.0 * math.pi / 30.0, azimuth_deg=-2.0
+)
 STARTS = [(0.0, 0.0), (153.25, -12.5), (-40.0, 31.0)]
 SAME = (CARRY, CARRY_LATERAL, TOTAL, APEX, RUN)
 
