@@ -404,7 +404,7 @@ ERRORS = [
         "group unknown key",
         BALL + '[[group]]\nname = "a"\nlanch.spin = 5\n',
         "group[0].lanch",
-        "allowed: name, target, launch, club",
+        "allowed: name, target, hole, launch, club",
     ),
     (
         "group override out of range",

@@ -111,6 +111,10 @@ def _off_map_warnings(result):
     return lines
 
 
+def _xy(xy):
+    return f"({xy[0]:.1f}, {xy[1]:+.1f}) m"
+
+
 def _report(result):
     hole = result.scenario.hole
     at_pin = abs(result.clubs[0].reference_m) < 1e-9
@@ -119,7 +123,9 @@ def _report(result):
     lines = [
         f"aim search on {hole.name or hole.source}: {len(result.clubs)} club(s), {aims} aims x "
         f"{result.n:,} shots each, the same shots at every aim ({result.shots_flown:,} shots in "
-        f"{result.seconds:.1f} s); expected strokes from the tee {result.expected_start:.3f}",
+        f"{result.seconds:.1f} s); expected strokes from the "
+        f"{'tee' if result.from_tee else 'start ' + _xy(result.start_xy_m)} "
+        f"{result.expected_start:.3f}",
         f"aims are metres right (+) of the line to the pin at its distance, "
         f"{result.pin_distance_m:.1f} m; differences are to {reference} "
         f"({result.clubs[0].reference_m:+.1f} m), paired shot by shot",
@@ -128,7 +134,7 @@ def _report(result):
     rows = []
     for c in result.clubs:
         k = c.best
-        bearing = math.degrees(math.atan2(c.offsets_m[k], result.pin_distance_m))
+        bearing = math.degrees(result.bearing_rad(c.offsets_m[k]))
         rows.append([
             c.club, str(len(c.offsets_m)), f"{c.offsets_m[k]:+.1f} m ({bearing:+.1f} deg)",
             f"{c.expected[k]:.3f}", f"{c.expected_se[k]:.3f}",

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.ground import PENALTY_AREA, Terrain, make_terrain
+from mcrun.ground import IN_PLAY, PENALTY_AREA, Terrain, make_terrain
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
 from mcrun.hole.osm import ACCEPTED, ATTRIBUTION, hole_title, read_course, sniff
@@ -167,6 +167,19 @@ class Hole:
         out = np.full(on.shape, -1, dtype=np.int8)
         out[on] = t.zone[iy[on].astype(np.int64), ix[on].astype(np.int64)]
         return out
+
+    def why_not_playable(self, x_m, y_m):
+        """Why a shot cannot be struck from (x_m, y_m) as the ball lies ("off the hole's map",
+        "in a penalty area (water)", "out of bounds (out_of_bounds)"), None where it can."""
+        code = int(self.zone_at(np.array([float(x_m)]), np.array([float(y_m)]))[0])
+        if code < 0:
+            return "off the hole's map"
+        kind = ZONE_KINDS[code]
+        if ZONE_PENALTY[kind] == PENALTY_AREA:
+            return f"in a penalty area ({kind})"
+        if ZONE_PENALTY[kind] != IN_PLAY:
+            return f"out of bounds ({kind})"
+        return None
 
     def penalty_area_at(self, x_m, y_m):
         """Zone index of the penalty area (``zones.PENALTY_ZONES``) a ball that ended at

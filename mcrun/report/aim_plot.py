@@ -48,10 +48,11 @@ def aim_figure(result, patterns):
     right.scatter(y0[dots], x0[dots], s=3, color="crimson", alpha=0.6,
                   label=f"best aim ({best:+.1f} m)")  # fmt: skip
     d = result.pin_distance_m
+    sx, sy = result.start_xy_m
     for offset, colour in ((club.reference_m, "0.2"), (best, "crimson")):
-        b = math.atan2(offset, d)
-        right.plot([0.0, 1.15 * d * math.sin(b)], [0.0, 1.15 * d * math.cos(b)], color=colour,
-                   lw=1.0, ls="--")  # fmt: skip
+        b = result.bearing_rad(offset)
+        right.plot([sy, sy + 1.15 * d * math.sin(b)], [sx, sx + 1.15 * d * math.cos(b)],
+                   color=colour, lw=1.0, ls="--")  # fmt: skip
     px, py = hole.pin_xy
     finite = np.isfinite(x0) & np.isfinite(y0)
     xs = np.r_[x0[finite], xr[np.isfinite(xr)], px]

@@ -74,6 +74,13 @@ def aim_of(run, point):
     return None if geometry is None else geometry.aim_rad(point)
 
 
+def start_of(run, point):
+    """Where ``point``'s shots were struck ((x, y) m in the hole's frame), as the run recorded
+    it: the tee unless the point started elsewhere (and for a run that records no geometry)."""
+    geometry = run.geometry
+    return (0.0, 0.0) if geometry is None else geometry.start_xy(point)
+
+
 def attribution_of(run):
     """The attribution of the run's map: the recorded hole's, else the OSM one when the
     scenario names a map (the zones come from it), else None."""
@@ -119,10 +126,12 @@ def read_hole_shots(run, point, limit=HOLE_DOTS_PER_POINT):
     none) and ``status``."""
     parts = {"landing": [], "final": [], "status": []}
     taken = 0
+    x0, y0 = start_of(run, point)  # carry is measured from there
     for batch in run.folder.shot_batches(point, _HOLE_SHOT_COLUMNS, BATCH_ROWS):
         landed = np.isfinite(batch["carry_m"]) & np.isfinite(batch["carry_lateral_m"])
         keep = np.flatnonzero(landed)[: limit - taken]
-        parts["landing"].append(np.column_stack([batch["carry_m"], batch["carry_lateral_m"]])[keep])
+        landing = np.column_stack([batch["carry_m"] + x0, batch["carry_lateral_m"] + y0])
+        parts["landing"].append(landing[keep])
         parts["final"].append(np.column_stack([batch["final_x_m"], batch["final_y_m"]])[keep])
         parts["status"].append(batch["status"][keep])
         taken += len(keep)
@@ -188,6 +197,7 @@ def hole_figure(run, row, shots):
     ellipses of the finish, the pin, the aim line and the zone shares."""
     hole, reason = hole_of(run)
     aim_rad = aim_of(run, int(row["point"]))
+    x0, y0 = start_of(run, int(row["point"]))
     fig = style.new_figure("hole", run, "where the balls land and finish on the hole", row)
     ax, side = fig.subplots(1, 2, width_ratios=(2.1, 1.0))
     if hole is not None:
@@ -256,8 +266,8 @@ def hole_figure(run, row, shots):
     if aim_rad is not None:
         reach = 2.0 * max(abs(xhi), abs(xlo), abs(yhi), abs(ylo), 1.0)
         ax.plot(
-            [0.0, reach * math.sin(aim_rad)],
-            [0.0, reach * math.cos(aim_rad)],
+            [y0, y0 + reach * math.sin(aim_rad)],
+            [x0, x0 + reach * math.cos(aim_rad)],
             color=AIM_COLOUR,
             lw=1.2,
             ls="-.",
@@ -281,7 +291,10 @@ def hole_figure(run, row, shots):
     ax.set_xlim(ylo, yhi)
     ax.set_ylim(xlo, xhi)
     ax.set_title(_map_title(run, row, hole, shots), fontsize=9)
-    _legend(fig, ax, hole, shots, ended, (xlo, xhi, ylo, yhi), target_drawn=target_drawn)
+    if (x0, y0) != (0.0, 0.0):
+        ax.plot(y0, x0, "o", color="white", mec="black", ms=7, zorder=8)
+    _legend(fig, ax, hole, shots, ended, (xlo, xhi, ylo, yhi), target_drawn=target_drawn,
+            from_tee=(x0, y0) == (0.0, 0.0))  # fmt: skip
     _shares_table(side, row)
     style.fit_equal(fig, [ax])
     return fig
@@ -307,7 +320,7 @@ def _target_is_pin(row, hole):
     )
 
 
-def _legend(fig, ax, hole, shots, ended, view, target_drawn):
+def _legend(fig, ax, hole, shots, ended, view, target_drawn, from_tee=True):
     from matplotlib.colors import to_rgb
     from matplotlib.patches import Patch
 
@@ -348,7 +361,12 @@ def _legend(fig, ax, hole, shots, ended, view, target_drawn):
     if hole is not None:
         handles += [
             line(marker="^", color="red", mec="black", ms=9, ls="none", label="pin"),
-            line(color=AIM_COLOUR, ls="-.", lw=1.2, label="aim line from the tee"),
+            line(
+                color=AIM_COLOUR,
+                ls="-.",
+                lw=1.2,
+                label="aim line from the tee" if from_tee else "aim line from the start",
+            ),
         ]
         if hole.facts.line_xy is not None:
             from matplotlib.patheffects import withStroke

@@ -16,7 +16,10 @@ have moved. Two keys:
     line), y to its right seen from the tee, metres in the plane tangent to the WGS84
     ellipsoid at the tee (``mcrun.hole.geo.Frame``), heights relative to the tee's ground;
   - ``tee_xy_m`` ([0, 0]) and ``pin_xy_m`` (null on a plane), in the frame;
-  - ``aim_deg``: per point, the bearing of its aim line from the tee, degrees, + to the right
+  - ``starts_xy_m``: per point, where its shots were struck, in the frame (the tee, [0, 0],
+    unless the point starts elsewhere on the hole; a run written before points could start
+    elsewhere has no such key: the tee);
+  - ``aim_deg``: per point, the bearing of its aim line from its start, degrees, + to the right
     of +x (clockwise seen from above); a shot's start line in the frame is its sampled
     ``azimuth_deg`` (the shots' column, about the aim line) plus its point's aim;
     ``aim_sense`` says so in words;
@@ -62,7 +65,8 @@ AXES = (
     "relative to the tee's ground"
 )
 AIM_SENSE = (
-    "bearing of the aim line from the tee, degrees, + right of +x (clockwise seen from above); "
+    "bearing of the aim line from the point's start (the tee unless starts_xy_m says), degrees, "
+    "+ right of +x (clockwise seen from above); "
     "a shot's start line in the frame is its azimuth_deg plus its point's aim"
 )
 
@@ -93,12 +97,14 @@ def green_box(hole):
     return None if best is None else tuple(float(v) for v in best[1])
 
 
-def record(hole, aim_rad, targets_m):
+def record(hole, aims_rad, targets_m, starts_m=None):
     """The ``geometry`` record of a run on ``hole`` (a ``mcrun.hole.hole.Hole``, None on a
-    plane) aimed ``aim_rad`` (rad, + right; None: along +x) whose points have the targets
-    ``targets_m`` ((x, y) m or None, one per point)."""
+    plane) whose points are aimed ``aims_rad`` (rad, + right; None: along +x), have the
+    targets ``targets_m`` ((x, y) m or None) and are struck from ``starts_m`` ((x, y) m;
+    default the tee), one of each per point."""
     targets = [_pair(t) for t in targets_m]
-    aim_deg = 0.0 if aim_rad is None else math.degrees(float(aim_rad))
+    aims_deg = [0.0 if a is None else math.degrees(float(a)) for a in aims_rad]
+    starts = [[0.0, 0.0]] * len(targets) if starts_m is None else [_pair(s) for s in starts_m]
     frame = {
         "origin": "tee" if hole is not None else "where the ball is struck",
         "origin_lon_deg": None,
@@ -113,7 +119,8 @@ def record(hole, aim_rad, targets_m):
         "frame": frame,
         "tee_xy_m": [0.0, 0.0],
         "pin_xy_m": None,
-        "aim_deg": [aim_deg] * len(targets),
+        "starts_xy_m": starts,
+        "aim_deg": aims_deg,
         "aim_sense": AIM_SENSE,
         "targets_xy_m": targets,
         "hole": None,
@@ -231,6 +238,11 @@ class RunGeometry:
     aim_deg: tuple
     targets_xy_m: tuple
     hole: HoleFacts | None
+    starts_xy_m: tuple = ()
+
+    def start_xy(self, point):
+        """Where ``point``'s shots were struck (m, in the frame): the tee unless it says."""
+        return self.starts_xy_m[point] if point < len(self.starts_xy_m) else self.tee_xy_m
 
     @property
     def on_hole(self):
@@ -299,6 +311,7 @@ def read_geometry(provenance):
         aim_deg=tuple(float(a) for a in given["aim_deg"]),
         targets_xy_m=tuple(_tuple(t) for t in given["targets_xy_m"]),
         hole=facts,
+        starts_xy_m=tuple(_tuple(xy) for xy in given.get("starts_xy_m") or ()),
     )
 
 
@@ -327,4 +340,4 @@ def read_hole_map(provenance):
 def hole_map_of(hole):
     """The ``HoleMap`` of a ``mcrun.hole.hole.Hole`` in memory, as a run on it records it
     (for a picture of a hole that no run folder holds, such as an aim search's)."""
-    return read_hole_map({GEOMETRY_KEY: record(hole, None, []), MAP_KEY: record_map(hole)})
+    return read_hole_map({GEOMETRY_KEY: record(hole, [], []), MAP_KEY: record_map(hole)})

@@ -3,7 +3,8 @@ finished on the hole, as zones and lon/lat, how far from the pin) and, per point
 shots in each zone with its 95 % interval.
 
 The kernel gives the positions in the hole's frame (x from the tee towards the pin, y to the
-right): the landing at (carry_m, carry_lateral_m), the finish at (final_x_m, final_y_m) and,
+right): the landing at (carry_m, carry_lateral_m) from where the shot was struck (the tee, or
+its point's start: ``landing_xy``), the finish at (final_x_m, final_y_m) and,
 for a ball that ended in a penalty area, where it crossed into it (penalty_x_m, penalty_y_m;
 for a ball out of bounds, where it rests). The zone of a point is that of the terrain's
 nearest node, as the kernel reads it (``Hole.zone_at``); ``off_map`` beyond the hole's grid.
@@ -21,12 +22,15 @@ import pyarrow as pa
 from mcrun import status as status_codes
 from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.hole.zones import PENALTY_ZONES, ZONE_KINDS
-from mcrun.strokes import OUTCOMES, point_strokes, score_shots
+from mcrun.strokes import OUTCOMES, point_strokes, score_shots, start_of
 
 OFF_MAP = "off_map"
 ZONE_NAMES = (*ZONE_KINDS, OFF_MAP)
 _ZONE_DICTIONARY = pa.array(ZONE_NAMES, pa.string())
 _COLUMN = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
+
+# Where a hole's shots are struck unless a point says otherwise: the tee, the frame's origin.
+TEE = (0.0, 0.0)
 
 # The columns, after the kernel's outcomes, of a shot on a hole.
 COLUMNS = {
@@ -76,14 +80,18 @@ def _zones(hole, x, y, status=None):
     return pa.DictionaryArray.from_arrays(pa.array(codes, mask=~known), _ZONE_DICTIONARY)
 
 
-def scores(hole, outcomes, strokes=None, finish=None):
-    """``strokes.score_shots`` of the kernel's ``outcomes`` (n, N_OUTCOME) on ``hole``
-    (``strokes``: its keyword arguments, the baseline and lies; ``finish``: the finish zones,
-    when already known)."""
+def scores(hole, outcomes, strokes=None, finish=None, start_xy_m=TEE):
+    """``strokes.score_shots`` of the kernel's ``outcomes`` (n, N_OUTCOME) on ``hole``, struck
+    from ``start_xy_m`` (hole frame, m: one (x, y), or an x and a y array with one start a
+    shot; default the tee) (``strokes``: its keyword arguments, the baseline and lies;
+    ``finish``: the finish zones, when already known)."""
     column = {name: outcomes[:, k] for name, k in _COLUMN.items()}
     fx, fy = column["final_x_m"], column["final_y_m"]
     if finish is None:
         finish = _zones(hole, fx, fy, column["status"])
+    strokes = dict(strokes or {})
+    if not _at_tee(start_xy_m):
+        strokes["start_lie"], strokes["start_distance_m"] = start_of(hole, start_xy_m)
     return score_shots(
         {
             "finish_zone": finish,
@@ -95,22 +103,24 @@ def scores(hole, outcomes, strokes=None, finish=None):
             "penalty_y_m": column["penalty_y_m"],
         },
         hole,
-        **(strokes or {}),
+        **strokes,
     )
 
 
-def shot_columns(hole, outcomes, strokes=None):
-    """{name: Arrow array} of COLUMNS for the kernel's ``outcomes`` (n, N_OUTCOME);
-    ``strokes``: keyword arguments of ``strokes.score_shots`` (the baseline, lies)."""
+def shot_columns(hole, outcomes, strokes=None, start_xy_m=TEE):
+    """{name: Arrow array} of COLUMNS for the kernel's ``outcomes`` (n, N_OUTCOME) of shots
+    struck from ``start_xy_m`` (as ``scores``); ``strokes``: keyword arguments of
+    ``strokes.score_shots`` (the baseline, lies)."""
     column = {name: outcomes[:, k] for name, k in _COLUMN.items()}
     fx, fy = column["final_x_m"], column["final_y_m"]
     px, py = hole.pin_xy
     lon, lat = hole.to_lonlat(fx, fy)
     plon, plat = hole.to_lonlat(column["penalty_x_m"], column["penalty_y_m"])
     finish = _zones(hole, fx, fy, column["status"])
-    scored = scores(hole, outcomes, strokes, finish)
+    scored = scores(hole, outcomes, strokes, finish, start_xy_m)
+    landing_x, landing_y = landing_xy(outcomes, start_xy_m)
     return {
-        "landing_zone": _zones(hole, column["carry_m"], column["carry_lateral_m"]),
+        "landing_zone": _zones(hole, landing_x, landing_y),
         "finish_zone": finish,
         "pin_distance_m": pa.array(np.hypot(fx - px, fy - py)),
         "final_lon_deg": pa.array(np.asarray(lon, float)),
@@ -122,6 +132,19 @@ def shot_columns(hole, outcomes, strokes=None):
             for name in ("penalty_strokes", "expected_strokes_after", "strokes_gained")
         },
     }
+
+
+def _at_tee(start_xy_m):
+    """Whether shots struck from ``start_xy_m`` are all struck from the tee."""
+    x0, y0 = (np.asarray(v, dtype=float) for v in start_xy_m)
+    return bool((x0 == 0.0).all() and (y0 == 0.0).all())
+
+
+def landing_xy(outcomes, start_xy_m=TEE):
+    """Where shots struck from ``start_xy_m`` landed, in the hole's frame: their carry and
+    lateral carry (measured from the start) moved by it."""
+    x0, y0 = start_xy_m
+    return outcomes[:, _COLUMN["carry_m"]] + x0, outcomes[:, _COLUMN["carry_lateral_m"]] + y0
 
 
 def wilson(k, n, z=Z95):

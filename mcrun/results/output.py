@@ -227,14 +227,19 @@ class ShotsWriter(_ParquetWriter):
     ``input_names``: the sampled columns (a point that lacks one gets NaN); ``input_types``:
     their Arrow types (default float64). With ``path`` None nothing is opened: ``table`` then
     builds the chunks' tables for a writer elsewhere (the parts of ``mcrun.run.distributed``).
-    ``hole``: the ``Hole`` the shots were played on (None: a plane), for its columns.
+    ``hole``: the ``Hole`` the shots were played on (None: a plane), for its columns;
+    ``starts_xy_m``: where each point's shots were struck on it ((x, y) m; default the tee).
     """
 
-    def __init__(self, path, input_names, groups, labels, metadata, input_types=None, hole=None):
+    def __init__(self, path, input_names, groups, labels, metadata, input_types=None, hole=None,
+                 starts_xy_m=None):  # fmt: skip
         self.path = None if path is None else Path(path)
         self.input_names = tuple(input_names)
         self.input_types = {n: (input_types or {}).get(n, pa.float64()) for n in input_names}
         self.hole = hole
+        self.starts_xy_m = [on_hole_columns.TEE] * len(groups) if starts_xy_m is None else [
+            tuple(xy) for xy in starts_xy_m
+        ]  # fmt: skip
         self._outcomes = outcome_columns(self.input_types, hole is not None)
         group_index = {g: k for k, g in enumerate(dict.fromkeys(groups))}
         self._group_dictionary = pa.array(list(group_index), pa.string())
@@ -317,7 +322,9 @@ class ShotsWriter(_ParquetWriter):
             pa.DictionaryArray.from_arrays(pa.array(codes.astype(np.int32)), _STATUS_DICTIONARY)
         )
         if self.hole is not None:
-            columns += on_hole_columns.shot_columns(self.hole, outcomes).values()
+            columns += on_hole_columns.shot_columns(
+                self.hole, outcomes, start_xy_m=self.starts_xy_m[point]
+            ).values()
         return pa.Table.from_arrays(columns, schema=self.schema)
 
 

@@ -1,8 +1,9 @@
 """The best aim: where to aim each club of a scenario on its hole to leave the fewest expected
 strokes (``mcrun.strokes``), found with common random numbers.
 
-An aim is a start line: the bearing from the tee of an aim point, given as its offset (m, + to
-the right) at the pin's distance from the line to the pin; how far the ball goes is the club's
+An aim is a start line: the bearing from where the clubs are hit (the tee, or the scenario's
+start on the hole) of an aim point, given as its offset (m, + to the right) at the pin's
+distance from the line to the pin; how far the ball goes is the club's
 (a scenario's groups are its clubs). Every aim of a club is flown with the same sampled shots,
 the same swing turned by the aim (``sampling.sample``, its azimuths plus the bearing), so that
 the difference between two aims is measured shot by shot: its standard error is that of the
@@ -108,10 +109,24 @@ class AimSearch:
     scenario: object
     clubs: list
     n: int
-    pin_distance_m: float
-    expected_start: float  # expected strokes from the hole's start (the tee)
+    pin_distance_m: float  # from the start
+    expected_start: float  # expected strokes from the start
     seconds: float
     shots_flown: int
+    start_xy_m: tuple = (0.0, 0.0)  # where the clubs are hit from (the tee unless it says)
+
+    @property
+    def line_rad(self):
+        """The bearing (rad, + right of +x) of the line from the start to the pin."""
+        return _line_rad(self.scenario.hole, self.start_xy_m)
+
+    def bearing_rad(self, offset_m):
+        """The bearing (rad, + right of +x) of the aim ``offset_m`` right of the pin."""
+        return self.line_rad + _bearing(offset_m, self.pin_distance_m)
+
+    @property
+    def from_tee(self):
+        return self.start_xy_m == (0.0, 0.0)
 
     def best(self):
         """(club, index) of the aim with the fewest expected strokes of all the clubs."""
@@ -246,6 +261,12 @@ def check(
     names = {**ARGUMENT_NAMES, **(names or {})}
     if scenario.hole is None:
         raise AimError(f"{scenario.path}: an aim search needs a hole ([hole] in the scenario)")
+    starts = dict.fromkeys(p.play.start_m for p in scenario.points)
+    if len(starts) > 1:
+        raise AimError(
+            f"{scenario.path}: an aim search compares its clubs from one place, but its groups "
+            f"start at {', '.join(str(list(s)) for s in starts)}: search each start apart"
+        )
     n = plan.positive_int(n, names["n"], minimum=2)
     if centre_m is not None:
         centre_m = _finite(centre_m, names["centre_m"])
@@ -297,18 +318,27 @@ def check(
     )
 
 
+def _line_rad(hole, start_xy_m):
+    """The bearing (rad, + right of +x) of the line from ``start_xy_m`` to the pin: from the
+    tee, +x itself (the frame's axis is that line)."""
+    if start_xy_m == (0.0, 0.0):
+        return 0.0
+    px, py = hole.pin_xy
+    return math.atan2(py - start_xy_m[1], px - start_xy_m[0])
+
+
 def _bearing(offset_m, distance_m):
     """The bearing (rad, + right) of the aim point ``offset_m`` right of the line to the pin at
     ``distance_m`` from the tee."""
     return math.atan2(offset_m, distance_m)
 
 
-def _scores(hole, inputs, azimuth, bearing, scenario_bearing, terrain, out, strokes):
-    """Per-shot expected strokes after the shot of ``inputs`` aimed on ``bearing``, and how many
-    of the shots left the hole's map."""
-    inputs[:, AZIMUTH] = azimuth + (bearing - scenario_bearing)
+def _scores(hole, inputs, azimuth, bearing, play, terrain, out, strokes):
+    """Per-shot expected strokes after the shot of ``inputs`` (sampled about ``play``'s aim)
+    aimed on ``bearing``, and how many of the shots left the hole's map."""
+    inputs[:, AZIMUTH] = azimuth + (bearing - play.aim_rad)
     simulate_batch(inputs, out, terrain=terrain)
-    scored = on_hole.scores(hole, out, strokes)
+    scored = on_hole.scores(hole, out, strokes, start_xy_m=play.start_m)
     off_map = int((scored["outcome"] == "off_map").sum())
     return scored["expected_strokes_after"].to_numpy(), off_map
 
@@ -353,11 +383,12 @@ def search(
     hole = scenario.hole
     started = time.perf_counter()
     terrain = hole.terrain()
+    start = scenario.points[0].play.start_m
     pin_x, pin_y = hole.pin_xy
-    distance = math.hypot(pin_x, pin_y)
-    scenario_bearing = scenario.aim_rad
+    distance = math.hypot(pin_x - start[0], pin_y - start[1])
+    line = _line_rad(hole, start)
     if centre_m is None:
-        centre_m = distance * math.tan(scenario_bearing)
+        centre_m = distance * math.tan(scenario.points[0].play.aim_rad - line)
     strokes = {"baseline": baseline or tour_baseline(), "lie_of_zone": lie_of_zone}
     clubs = []
     flown = 0
@@ -367,10 +398,10 @@ def search(
         out = np.empty((n, N_OUTCOME), order="F")
         aims = ClubAims(point.label or point.group or "shot", reference_m=centre_m)
 
-        def fly(offset, aims=aims, inputs=inputs, azimuth=azimuth, out=out):
+        def fly(offset, aims=aims, inputs=inputs, azimuth=azimuth, out=out, play=point.play):
             if offset not in aims.scores:
                 aims.scores[offset], aims.off_map[offset] = _scores(
-                    hole, inputs, azimuth, _bearing(offset, distance), scenario_bearing,
+                    hole, inputs, azimuth, line + _bearing(offset, distance), play,
                     terrain, out, strokes,
                 )  # fmt: skip
             return aims.scores[offset]
@@ -415,10 +446,10 @@ def search(
                 f"{c.club}: no shot of any aim ({min(aimed):+.1f} to {max(aimed):+.1f} m right of "
                 "the pin) could be scored (every shot failed): check the scenario's launch"
             )
-    lie, start_m = start_of(hole)
+    lie, start_m = start_of(hole, start)
     expected_start = float(strokes["baseline"].expected(lie, start_m))
     return AimSearch(
-        scenario, clubs, n, distance, expected_start, time.perf_counter() - started, flown
+        scenario, clubs, n, distance, expected_start, time.perf_counter() - started, flown, start
     )
 
 
@@ -432,7 +463,7 @@ def table(result):
         for k, offset in enumerate(club.offsets_m):
             rows["club"].append(club.club)
             rows["aim_offset_m"].append(offset)
-            rows["aim_bearing_deg"].append(math.degrees(_bearing(offset, result.pin_distance_m)))
+            rows["aim_bearing_deg"].append(math.degrees(result.bearing_rad(offset)))
             rows["expected_strokes_after"].append(club.expected[k])
             rows["expected_strokes_after_se"].append(club.expected_se[k])
             rows["difference_strokes"].append(club.difference[k])
@@ -482,7 +513,6 @@ def finishes(result, club, offset_m):
     scenario = result.scenario
     point = scenario.points[club]
     inputs, _ = sampling.sample(scenario, point, 0, result.n)
-    bearing = _bearing(offset_m, result.pin_distance_m)
-    inputs[:, AZIMUTH] += bearing - scenario.aim_rad
+    inputs[:, AZIMUTH] += result.bearing_rad(offset_m) - point.play.aim_rad
     out = simulate_batch(inputs, terrain=scenario.hole.terrain())
     return out[:, FINAL_X], out[:, FINAL_Y]

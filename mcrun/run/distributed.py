@@ -268,6 +268,7 @@ def _shots_builder(job):
     builder = _BUILDERS.get(job["id"])
     if builder is None:
         _BUILDERS.clear()
+        scenario = _scenario(job["scenario_text"], job["scenario_path"], job["seed"])
         builder = _BUILDERS[job["id"]] = output.ShotsWriter(
             None,
             job["input_names"],
@@ -275,7 +276,8 @@ def _shots_builder(job):
             job["labels"],
             job["shots_metadata"],
             {name: pa.type_for_alias(kind) for name, kind in job["input_types"].items()},
-            hole=_scenario(job["scenario_text"], job["scenario_path"], job["seed"]).hole,
+            hole=scenario.hole,
+            starts_xy_m=plan.starts_of(scenario.points),
         )
     return builder
 

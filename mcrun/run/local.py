@@ -122,6 +122,7 @@ def run_scenario(
                 plan.file_metadata(provenance, "shots"),
                 dict.fromkeys(the_plan.integer_columns, pa.int64()),
                 hole=the_plan.scenario.hole,
+                starts_xy_m=plan.starts_of(points),
             )
             traj_writer = None
             if the_plan.trajectories_every is not None:

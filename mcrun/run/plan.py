@@ -163,6 +163,12 @@ class Chunk(NamedTuple):
     stop: int
 
 
+def starts_of(points):
+    """Where each of ``points`` is struck ((x, y) m in the hole's frame): its start on a hole,
+    the tee (the frame's origin) on a plane."""
+    return [on_hole_results.TEE if p.play is None else p.play.start_m for p in points]
+
+
 def terrain_of(scenario):
     """The ground the kernel plays the scenario's shots on: its hole's Terrain, or None (each
     shot's own plane)."""
@@ -337,7 +343,10 @@ def provenance(the_plan, backend, versions, threads, **facts):
     scenario, points = the_plan.scenario, the_plan.points
     recorded = {
         geometry.GEOMETRY_KEY: geometry.record(
-            scenario.hole, scenario.aim_rad, [p.target_m for p in points]
+            scenario.hole,
+            [None if p.play is None else p.play.aim_rad for p in points],
+            [p.target_m for p in points],
+            starts_of(points),
         )
     }
     if scenario.hole is not None:

@@ -257,9 +257,10 @@ def _convert(scenario, point, raw, columns, inputs=None):
     names = {key: spec for key, spec in point.params.items() if isinstance(spec, str)}
     everything = kernel_columns({**raw, **names})
     kernel = kernel_part(everything)
-    if scenario.aim_rad is not None:
-        # On a hole, about the line from the tee to its aim point.
-        kernel["azimuth_rad"] = everything["azimuth_rad"] + scenario.aim_rad
+    if point.play is not None:
+        # On a hole: struck from the point's start, about the line from there to its aim.
+        kernel["azimuth_rad"] = everything["azimuth_rad"] + point.play.aim_rad
+        kernel["start_x_m"], kernel["start_y_m"] = point.play.start_m
 
     # Drawn values outside their documented range: the kernel must refuse the shot.
     bad = np.zeros(n, dtype=bool)

@@ -85,12 +85,22 @@ def check_lie_of_zone(overrides, where="lie_of_zone"):
     return lies
 
 
-def start_of(hole):
-    """(lie, distance_m) of a shot from the hole's start, (0, 0) of its frame: "tee" on a tee,
-    else the lie of the zone there; the distance to the pin."""
-    zone = ZONE_KINDS[int(hole.zone_at(np.array([0.0]), np.array([0.0]))[0])]
-    lie = "tee" if zone == "tee" else LIE_OF_ZONE.get(zone, "rough")
-    return lie, float(math.hypot(*hole.pin_xy))
+def start_of(hole, start_xy_m=(0.0, 0.0)):
+    """(lie, distance_m) of a shot from ``start_xy_m`` on the hole (its frame; default the
+    tee, (0, 0)): "tee" on a tee, else the lie of the zone there; the distance to the pin.
+    With arrays of x and y (one start a shot), arrays of lies and distances."""
+    x, y = (np.asarray(v, dtype=float) for v in start_xy_m)
+    codes = hole.zone_at(np.atleast_1d(x), np.atleast_1d(y))
+    lie_of_code = np.array([_start_lie(zone) for zone in ZONE_KINDS] + ["rough"], dtype=object)
+    lies = lie_of_code[codes]  # (zone_at's -1, off the grid: the rough)
+    distance = np.hypot(x - hole.pin_xy[0], y - hole.pin_xy[1])
+    if x.ndim == 0:
+        return str(lies[0]), float(distance)
+    return lies.astype(str), distance
+
+
+def _start_lie(zone):
+    return "tee" if zone == "tee" else LIE_OF_ZONE.get(zone, "rough")
 
 
 FINISH_ZONES = (*ZONE_KINDS, "off_map")  # the finish zones a shot can have (``results.on_hole``)
@@ -200,8 +210,10 @@ def score_shots(
     ``penalty_y_m`` (hole frame, m). ``hole``: a ``mcrun.hole.Hole``, for the pin, the start
     (``start_of``) and the zone of a water ball's reference point; without one, give
     ``pin_xy_m`` and the start, and water balls drop in the rough. ``start_lie`` (``LIES``) and
-    ``start_distance_m`` override the hole's start. ``baseline``: a ``Baseline``, the Tour's by
-    default. ``lie_of_zone``: {zone: lie} overrides of ``LIE_OF_ZONE``.
+    ``start_distance_m`` override the hole's start; each may be one value or one per shot
+    (shots struck from different places: ``start_of`` gives both). ``baseline``: a
+    ``Baseline``, the Tour's by default. ``lie_of_zone``: {zone: lie} overrides of
+    ``LIE_OF_ZONE``.
     """
     base = baseline or tour_baseline()
     lies = check_lie_of_zone(lie_of_zone)
@@ -212,15 +224,20 @@ def score_shots(
         start_distance_m = distance0 if start_distance_m is None else start_distance_m
     if pin_xy_m is None or start_lie is None:
         raise ValueError("score_shots: give a hole, or pin_xy_m and start_lie")
-    if start_lie not in LIES:
-        raise ValueError(f"start_lie {start_lie!r}: allowed: {', '.join(LIES)}")
-    if start_distance_m is None:
-        start_distance_m = math.hypot(*pin_xy_m)
-    e_start = float(base.expected(start_lie, start_distance_m))
-    start_code = LIES.index(start_lie)
-
     outcome = _outcome_codes(shots)
     n = len(outcome)
+    start_lies = np.asarray(start_lie).astype(str)
+    unknown = sorted(set(np.unique(start_lies).tolist()) - set(LIES))
+    if unknown:
+        raise ValueError(f"start_lie {unknown[0]!r}: allowed: {', '.join(LIES)}")
+    start_code = np.zeros(start_lies.shape, dtype=np.int64)
+    for k, name in enumerate(LIES):
+        start_code[start_lies == name] = k
+    start_code = np.broadcast_to(start_code, (n,))
+    if start_distance_m is None:
+        start_distance_m = math.hypot(*pin_xy_m)
+    start_distance_m = np.broadcast_to(np.asarray(start_distance_m, dtype=float), (n,))
+    e_start = base.expected_by_code(start_code, start_distance_m)
     pin_x, pin_y = pin_xy_m
     d_final = _floats(shots, "pin_distance_m", n)
     missing = ~np.isfinite(d_final)
@@ -241,10 +258,10 @@ def score_shots(
 
     # Stroke and distance: one penalty stroke, the shot again from its start.
     again = (outcome == OUTCOMES.index("out_of_bounds")) | (outcome == OUTCOMES.index("off_map"))
-    lie_after[again] = start_code
-    distance_after[again] = start_distance_m
+    lie_after[again] = start_code[again]
+    distance_after[again] = start_distance_m[again]
     penalty[again] = 1.0
-    expected_after[again] = 1.0 + e_start
+    expected_after[again] = 1.0 + e_start[again]
 
     water = np.isin(outcome, [OUTCOMES.index(z) for z in PENALTY_ZONES])
     if water.any():
@@ -254,9 +271,9 @@ def score_shots(
         rx = np.where(unknown, _floats(shots, "final_x_m", n)[water], rx)
         ry = np.where(unknown, _floats(shots, "final_y_m", n)[water], ry)
         # Stroke and distance, then each relief the area's colour allows where it is better.
-        best_e = np.full(len(rx), e_start)
-        best_lie = np.full(len(rx), start_code, dtype=np.int64)
-        best_m = np.full(len(rx), float(start_distance_m))
+        best_e = e_start[water]
+        best_lie = start_code[water]
+        best_m = start_distance_m[water]
         if hole is not None:
             e_back, lie_back, back_m = _back_on_the_line(hole, base, lies, rx, ry, pin_x, pin_y)
             better = e_back < best_e

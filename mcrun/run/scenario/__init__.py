@@ -19,7 +19,10 @@ launch); ``[turf]`` preset, mu, softness, restitution, rho_g or stimp, critical_
 fall_line; ``[weather]`` wind_speed, wind_direction (towards which it blows: 0 tailwind, 90 deg
 left to right), wind_profile, wind_reference_height, wind_profile_parameter, temperature,
 altitude or pressure, humidity; ``[models]`` aero, bounce, cd_scale, cl_scale, dt;
-``[[group]]`` name, target and dotted overrides (``launch.spin = ...``); ``[sweep]``
+``[hole]`` the hole (``hole.hole``'s keys), ``start`` ([x, y] m in its frame; default the tee)
+and ``aim`` (default the pin); ``[[group]]`` name, target, ``hole.start`` and ``hole.aim`` (a
+group struck from elsewhere on the hole, aimed at the pin unless it says) and dotted overrides
+(``launch.spin = ...``); ``[sweep]``
 "section.key" = [values]. Defaults are those of ``mcrun.quantities`` (as for
 ``mcrun.api.simulate``), and the turf preset's.
 

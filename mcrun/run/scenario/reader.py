@@ -7,7 +7,7 @@ from pathlib import Path
 
 from mcrun.quantities import default_of
 from mcrun.run.scenario.correlation import read_correlation
-from mcrun.run.scenario.hole_table import read_hole
+from mcrun.run.scenario.hole_table import GROUP_KEYS, read_hole, read_play
 from mcrun.run.scenario.launch_file import read_launch_file
 from mcrun.run.scenario.library import find, question_of
 from mcrun.run.scenario.specs import (
@@ -34,7 +34,7 @@ from mcrun.run.scenario.values import (
 
 _TOP_KEYS = ("scenario", *SECTION_NAMES, "group", "sweep", "hole")
 _SCENARIO_KEYS = ("name", "question", "description", "shots", "seed", "target", "block_size")
-_GROUP_KEYS = ("name", "target", *SECTION_NAMES)
+_GROUP_KEYS = ("name", "target", "hole", *SECTION_NAMES)
 _BALL = ("ball_speed", "launch_angle", "spin")
 _CLUB = ("speed", "loft")
 _OPTIONAL_LAUNCH = ("azimuth", "spin_axis")
@@ -270,7 +270,7 @@ def loads(text, path):
         ctx, "scenario.block_size", head.get("block_size", DEFAULT_BLOCK_SIZE), 1, MAX_BLOCK_SIZE
     )
     target = read_target(ctx, "scenario.target", head["target"]) if "target" in head else None
-    hole, aim_rad = read_hole(ctx, data, path) if "hole" in data else (None, None)
+    hole, play = read_hole(ctx, data, path) if "hole" in data else (None, None)
     if hole is not None and target is None:
         target = tuple(float(v) for v in hole.pin_xy)
 
@@ -279,7 +279,7 @@ def loads(text, path):
     groups = data.get("group")
     if groups is None:
         groups = []
-        group_list = [("", {}, target, "")]
+        group_list = [("", {}, target, play)]
     else:
         if not isinstance(groups, list) or not all(isinstance(g, dict) for g in groups):
             raise ctx.error("group", "must be an array of tables ([[group]] with a name each)")
@@ -304,17 +304,20 @@ def loads(text, path):
                 for s in SECTION_NAMES
                 if s in table
             }
+            gplay = play
+            if "hole" in table:
+                gplay = _group_play(ctx, f"{where}.hole", table["hole"], hole, play)
             gtarget = target
             if "target" in table:
                 gtarget = read_target(ctx, f"{where}.target", table["target"])
-            group_list.append((gname, overrides, gtarget, where))
+            group_list.append((gname, overrides, gtarget, gplay))
 
     sweep = sweep_leaves(ctx, data["sweep"]) if "sweep" in data else []
     combos = list(itertools.product(*(leaves for _, _, _, leaves in sweep))) if sweep else [()]
 
     points = []
     single = len(group_list) * len(combos) == 1
-    for gname, overrides, gtarget, _ in group_list:
+    for gname, overrides, gtarget, gplay in group_list:
         for combo in combos:
             sections = {s: dict(base.get(s, {})) for s in SECTION_NAMES}
             for s, leaves in overrides.items():
@@ -328,5 +331,16 @@ def loads(text, path):
             context = "" if single else f" (point {label!r})"
             sections = {s: v for s, v in sections.items() if v}
             params = _resolve(ctx, sections, path.parent, context)
-            points.append(Point(len(points), label, gname, values, params, gtarget))
-    return Scenario(path, text, name, question, shots, seed, block_size, points, hole, aim_rad)
+            points.append(Point(len(points), label, gname, values, params, gtarget, gplay))
+    return Scenario(path, text, name, question, shots, seed, block_size, points, hole, play)
+
+
+def _group_play(ctx, where, given, hole, play):
+    """A group's ``hole`` table: where its shots start and their aim (``hole_table.Play``)."""
+    if hole is None:
+        raise ctx.error(where, "a group's start and aim are on a hole: the scenario has no [hole]")
+    given = as_table(ctx, where, given)
+    for key in given:
+        if key not in GROUP_KEYS:
+            raise ctx.error(f"{where}.{key}", f"unknown key; allowed: {', '.join(GROUP_KEYS)}")
+    return read_play(ctx, where, given, hole, play)

@@ -163,6 +163,8 @@ class Point:
     sweep: dict
     params: dict
     target_m: tuple[float, float] | None
+    # On a hole, where its shots are struck and aimed (``hole_table.Play``); None on a plane.
+    play: object = None
 
     @property
     def mode(self):
@@ -184,7 +186,13 @@ class Scenario:
     seed: int
     block_size: int
     points: list
-    # The hole the shots are played on (``mcrun.hole.hole.Hole``), None on a plane, and the
-    # azimuth (rad, + right) of its aim point from the tee: the shots' azimuths are about it.
+    # The hole the shots are played on (``mcrun.hole.hole.Hole``), None on a plane, and its
+    # ``[hole]`` table's start and aim (``hole_table.Play``; each point has its own).
     hole: object = None
-    aim_rad: float | None = None
+    play: object = None
+
+    @property
+    def aim_rad(self):
+        """The bearing (rad, + right) of the ``[hole]`` table's aim from its start, None on a
+        plane."""
+        return None if self.play is None else self.play.aim_rad
