@@ -74,11 +74,8 @@ def test_a_group_is_scored_from_its_start(approach_run):
     rectangle's one zone, the tee's too) at 300 m for the tee shot and 180 m for the approach."""
     shots, summary, _ = approach_run
     base = tour_baseline()
-    for group, lie, distance in (
-        ("from the tee", "fairway", 300.0),
-        ("approach", "fairway", 180.0),
-    ):
-        e_start = float(base.expected(lie, distance))
+    for group, distance in (("from the tee", 300.0), ("approach", 180.0)):
+        e_start = float(base.expected("fairway", distance))
         one = shots[shots["group"] == group]
         gained = e_start - 1.0 - one["expected_strokes_after"].to_numpy()
         assert np.allclose(one["strokes_gained"], gained, rtol=0.0, atol=1e-12), group
