@@ -417,3 +417,21 @@ def test_cli_errors_exit_2_with_one_line_and_write_nothing(
     err = capsys.readouterr().err
     assert err.startswith("mcrun: error: ") and err.count("\n") == 1 and message in err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_shots_from_many_starts_on_dask_are_the_local_ones_bit_for_bit(client):
+    """``run.starts.play_from`` with its chunks of starts as Dask tasks: every per-start number
+    and every shot's outcome as the local batch gives them, bit for bit."""
+    from mcrun.run import scenario as sc
+    from mcrun.run import starts
+
+    scenario = sc.load(sc.library_folder() / "par3-over-water.toml")
+    points = starts.starts_grid(scenario.hole, 8.0, within_m=(120.0, 170.0))[:12]
+    here = starts.play_from(scenario, points, n=30, keep_shots=True, chunk_starts=5)
+    there = starts.play_from(scenario, points, n=30, keep_shots=True, chunk_starts=5,
+                             client=client)  # fmt: skip
+    assert np.array_equal(here.outcomes, there.outcomes, equal_nan=True)
+    a, b = here.frame(), there.frame()
+    assert a.columns.tolist() == b.columns.tolist()
+    for column in a.columns:
+        assert np.array_equal(a[column].to_numpy(), b[column].to_numpy(), equal_nan=column != "lie")

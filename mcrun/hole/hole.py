@@ -168,6 +168,12 @@ class Hole:
         out[on] = t.zone[iy[on].astype(np.int64), ix[on].astype(np.int64)]
         return out
 
+    def in_play_at(self, x_m, y_m):
+        """Whether a ball at (x_m, y_m) is in play (on the map, not in a penalty area or out
+        of bounds): where a shot can be struck as it lies. Vectorised."""
+        state = np.array([ZONE_PENALTY[k] for k in ZONE_KINDS] + [-1])  # -1: off the grid
+        return state[self.zone_at(x_m, y_m)] == IN_PLAY
+
     def why_not_playable(self, x_m, y_m):
         """Why a shot cannot be struck from (x_m, y_m) as the ball lies ("off the hole's map",
         "in a penalty area (water)", "out of bounds (out_of_bounds)"), None where it can."""

@@ -91,7 +91,7 @@ def scores(hole, outcomes, strokes=None, finish=None, start_xy_m=TEE):
         finish = _zones(hole, fx, fy, column["status"])
     strokes = dict(strokes or {})
     if not _at_tee(start_xy_m):
-        strokes["start_lie"], strokes["start_distance_m"] = start_of(hole, start_xy_m)
+        strokes["start_lie"], strokes["start_distance_m"] = start_of(hole, start_xy_m, True)
     return score_shots(
         {
             "finish_zone": finish,

@@ -260,6 +260,12 @@ def _scenario(text, path, seed):
     return plan.with_seed(scenario_module.loads(text, path), seed)
 
 
+def scenario_on_worker(text, path, seed):
+    """The scenario of ``text`` (read from ``path``) with ``seed``, read once per worker
+    process: how a task of another kind (``run.starts``) gets its scenario."""
+    return _scenario(text, path, seed)
+
+
 _BUILDERS = {}
 
 

@@ -85,22 +85,26 @@ def check_lie_of_zone(overrides, where="lie_of_zone"):
     return lies
 
 
-def start_of(hole, start_xy_m=(0.0, 0.0)):
+def start_of(hole, start_xy_m=(0.0, 0.0), codes=False):
     """(lie, distance_m) of a shot from ``start_xy_m`` on the hole (its frame; default the
     tee, (0, 0)): "tee" on a tee, else the lie of the zone there; the distance to the pin.
-    With arrays of x and y (one start a shot), arrays of lies and distances."""
+    With arrays of x and y (one start a shot), arrays of lies and distances; with ``codes``,
+    the lies as their index in ``LIES`` (what ``score_shots`` takes fastest)."""
     x, y = (np.asarray(v, dtype=float) for v in start_xy_m)
-    codes = hole.zone_at(np.atleast_1d(x), np.atleast_1d(y))
-    lie_of_code = np.array([_start_lie(zone) for zone in ZONE_KINDS] + ["rough"], dtype=object)
-    lies = lie_of_code[codes]  # (zone_at's -1, off the grid: the rough)
+    lies = _START_LIE_CODE[hole.zone_at(np.atleast_1d(x), np.atleast_1d(y))]
     distance = np.hypot(x - hole.pin_xy[0], y - hole.pin_xy[1])
+    if not codes:
+        lies = np.array(LIES)[lies]
     if x.ndim == 0:
-        return str(lies[0]), float(distance)
-    return lies.astype(str), distance
+        return (int(lies[0]) if codes else str(lies[0])), float(distance)
+    return lies, distance
 
 
-def _start_lie(zone):
-    return "tee" if zone == "tee" else LIE_OF_ZONE.get(zone, "rough")
+# The lie of a shot struck from each zone (by code; the last: off the grid, the rough).
+_START_LIE_CODE = np.array(
+    [LIES.index("tee" if zone == "tee" else LIE_OF_ZONE.get(zone, "rough")) for zone in ZONE_KINDS]
+    + [LIES.index("rough")]
+)
 
 
 FINISH_ZONES = (*ZONE_KINDS, "off_map")  # the finish zones a shot can have (``results.on_hole``)
@@ -193,6 +197,20 @@ def _back_on_the_line(hole, base, lies, rx, ry, pin_x, pin_y):
     return e, lie, distance
 
 
+def _lie_codes(lies):
+    """The index in LIES of ``lies`` (a name, names, or their indices already)."""
+    lies = np.asarray(lies)
+    if np.issubdtype(lies.dtype, np.integer):
+        if lies.size and not ((lies >= 0) & (lies < len(LIES))).all():
+            raise ValueError(f"start_lie codes must be within [0, {len(LIES) - 1}]")
+        return lies.astype(np.int64)
+    names, inverse = np.unique(lies.astype(str), return_inverse=True)
+    unknown = [name for name in names if name not in LIES]
+    if unknown:
+        raise ValueError(f"start_lie {unknown[0]!r}: allowed: {', '.join(LIES)}")
+    return np.array([LIES.index(name) for name in names], dtype=np.int64)[inverse]
+
+
 def score_shots(
     shots,
     hole=None,
@@ -211,7 +229,8 @@ def score_shots(
     (``start_of``) and the zone of a water ball's reference point; without one, give
     ``pin_xy_m`` and the start, and water balls drop in the rough. ``start_lie`` (``LIES``) and
     ``start_distance_m`` override the hole's start; each may be one value or one per shot
-    (shots struck from different places: ``start_of`` gives both). ``baseline``: a
+    (shots struck from different places: ``start_of`` gives both; the lies may be their
+    indices in ``LIES``). ``baseline``: a
     ``Baseline``, the Tour's by default. ``lie_of_zone``: {zone: lie} overrides of
     ``LIE_OF_ZONE``.
     """
@@ -220,20 +239,13 @@ def score_shots(
     if hole is not None:
         pin_xy_m = hole.pin_xy if pin_xy_m is None else pin_xy_m
         lie0, distance0 = start_of(hole)
-        start_lie = start_lie or lie0
+        start_lie = lie0 if start_lie is None else start_lie
         start_distance_m = distance0 if start_distance_m is None else start_distance_m
     if pin_xy_m is None or start_lie is None:
         raise ValueError("score_shots: give a hole, or pin_xy_m and start_lie")
     outcome = _outcome_codes(shots)
     n = len(outcome)
-    start_lies = np.asarray(start_lie).astype(str)
-    unknown = sorted(set(np.unique(start_lies).tolist()) - set(LIES))
-    if unknown:
-        raise ValueError(f"start_lie {unknown[0]!r}: allowed: {', '.join(LIES)}")
-    start_code = np.zeros(start_lies.shape, dtype=np.int64)
-    for k, name in enumerate(LIES):
-        start_code[start_lies == name] = k
-    start_code = np.broadcast_to(start_code, (n,))
+    start_code = np.broadcast_to(_lie_codes(start_lie), (n,))
     if start_distance_m is None:
         start_distance_m = math.hypot(*pin_xy_m)
     start_distance_m = np.broadcast_to(np.asarray(start_distance_m, dtype=float), (n,))

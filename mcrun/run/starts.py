@@ -1,0 +1,266 @@
+"""Shots from many start points of a hole in one batch, at the kernel's rate.
+
+``play_from`` flies one point of a scenario (a club: its sampled launch, spin and weather) from
+each of many places on its hole: the same ``n`` sampled shots from every start (common random
+numbers, as the aim search uses, so that two starts differ by where they are, not by their
+draws), each struck on the ground there and aimed from there at the pin (or at an aim point
+given). The kernel reads every shot's start from its inputs (``start_x_m``, ``start_y_m``), so
+a batch mixes starts freely: there is no per-start call, plan or scoring pass. The starts are
+cut into chunks of ``chunk_starts`` (the shots of a chunk are one kernel batch, start-major),
+which bounds the memory whatever the number of starts; each chunk is scored in one pass
+(``results.on_hole.scores`` with one start per shot: its lie and distance to the pin) and
+reduced to per-start means.
+
+The result (``StartsResult``) holds, per start: its lie and expected strokes (the Tour's
+table), the mean expected strokes after the shot and the strokes gained with their standard
+errors, and the shares that finished on the green, in a penalty area, out of bounds or off the
+map and that failed; with ``keep_shots``, every shot's outcomes too (start-major: the shots of
+start k are rows k n .. (k + 1) n - 1), for a solver that looks up where each shot stopped.
+
+The same on Dask (``client``): the chunks of starts are the tasks, each samples the same shots
+(they depend only on the scenario, its seed and the shot index) and scores its starts, and
+the client puts the chunks back in start order: bit for bit the local result, whatever the
+number of workers.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.schema import COLUMN
+from mcrun.hole.zones import PENALTY_ZONES, ZONE_KINDS
+from mcrun.quantities import InputError
+from mcrun.results import on_hole
+from mcrun.run import sampling
+from mcrun.strokes import start_of, tour_baseline
+from mcrun.strokes.expected import FAILED
+
+AZIMUTH = COLUMN["azimuth_rad"]
+START_X = COLUMN["start_x_m"]
+START_Y = COLUMN["start_y_m"]
+# Starts per batch of the kernel: 256 starts of 200 shots are 51,200 shots, a batch as long
+# as a run's chunk, whose inputs and outcomes take 20 MB.
+DEFAULT_CHUNK_STARTS = 256
+# The per-start columns of ``StartsResult.frame``, after x_m, y_m and lie.
+SHARES = ("green", "penalty_area", "out_of_bounds", "off_map", "failed")
+
+
+@dataclass
+class StartsResult:
+    """Shots of one club from many starts: per start (arrays of m), and with ``keep_shots``
+    every shot's outcomes ((m n, N_OUTCOME), start-major)."""
+
+    starts_xy_m: np.ndarray  # (m, 2), the hole's frame
+    n: int  # shots per start
+    lie: np.ndarray  # the start's lie (``strokes.LIES``)
+    expected_strokes_start: np.ndarray
+    expected_strokes_after_mean: np.ndarray
+    expected_strokes_after_se: np.ndarray
+    strokes_gained_mean: np.ndarray
+    strokes_gained_se: np.ndarray
+    shares: dict  # SHARES -> (m,) share of the start's shots
+    outcomes: np.ndarray | None = None
+
+    def frame(self):
+        """One row per start: x_m, y_m, lie, the expected strokes and the shares."""
+        columns = {
+            "x_m": self.starts_xy_m[:, 0],
+            "y_m": self.starts_xy_m[:, 1],
+            "lie": pd.Categorical(self.lie),
+            "expected_strokes_start": self.expected_strokes_start,
+            "expected_strokes_after_mean": self.expected_strokes_after_mean,
+            "expected_strokes_after_se": self.expected_strokes_after_se,
+            "strokes_gained_mean": self.strokes_gained_mean,
+            "strokes_gained_se": self.strokes_gained_se,
+        }
+        columns.update({f"p_{name}": self.shares[name] for name in SHARES})
+        return pd.DataFrame(columns)
+
+
+def check_starts(hole, starts_xy_m, where="starts_xy_m"):
+    """``starts_xy_m`` as an (m, 2) float array of places in play on ``hole``; InputError (one
+    line: the first bad start, its index and why) otherwise."""
+    starts = np.asarray(starts_xy_m, dtype=float)
+    if starts.ndim != 2 or starts.shape[1] != 2 or len(starts) == 0:
+        raise InputError(f"{where}: must be (m, 2) points [x_m, y_m], got shape {starts.shape}")
+    bad = ~np.isfinite(starts).all(axis=1)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise InputError(f"{where}[{k}]: {starts[k].tolist()} is not a finite point")
+    playable = hole.in_play_at(starts[:, 0], starts[:, 1])
+    if not playable.all():
+        k = int(np.flatnonzero(~playable)[0])
+        why = hole.why_not_playable(*starts[k])
+        raise InputError(f"{where}[{k}]: {starts[k].tolist()} is {why}: a shot starts in play")
+    return starts
+
+
+def tile(inputs, play, starts_xy_m, aim_xy_m):
+    """The kernel's inputs of ``inputs`` (n shots sampled about ``play``'s aim) struck from
+    each of ``starts_xy_m`` (m, 2), start-major ((m n, N_INPUT), Fortran order), each aimed
+    from its start at ``aim_xy_m`` (its sampled azimuth about that line)."""
+    n = inputs.shape[0]
+    m = starts_xy_m.shape[0]
+    out = np.empty((m * n, inputs.shape[1]), order="F")
+    x0 = starts_xy_m[:, 0]
+    y0 = starts_xy_m[:, 1]
+    bearing = np.arctan2(aim_xy_m[1] - y0, aim_xy_m[0] - x0)
+    for column in range(inputs.shape[1]):
+        out[:, column].reshape(m, n)[:] = inputs[:, column]
+    out[:, AZIMUTH].reshape(m, n)[:] += (bearing - play.aim_rad)[:, None]
+    out[:, START_X].reshape(m, n)[:] = x0[:, None]
+    out[:, START_Y].reshape(m, n)[:] = y0[:, None]
+    return out
+
+
+def _mean_se(values):
+    """Per row of (m, n) values: the mean and standard error of the finite ones."""
+    ok = np.isfinite(values)
+    count = ok.sum(axis=1)
+    v = np.where(ok, values, 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = v.sum(axis=1) / count
+        squares = np.where(ok, (values - mean[:, None]) ** 2, 0.0).sum(axis=1)
+        se = np.sqrt(squares / (count - 1)) / np.sqrt(count)
+    return np.where(count > 0, mean, np.nan), np.where(count > 1, se, np.nan)
+
+
+def play_chunk(scenario, point_index, n, starts_xy_m, aim_xy_m, strokes, keep_shots=False):
+    """The per-start results (a dict of arrays of len(starts_xy_m)) of one chunk of starts, and
+    its shots' outcomes when ``keep_shots``: one kernel batch and one scoring pass."""
+    point = scenario.points[point_index]
+    hole = scenario.hole
+    inputs, _ = sampling.sample(scenario, point, 0, n)
+    batch = tile(inputs, point.play, starts_xy_m, aim_xy_m)
+    out = simulate_batch(batch, terrain=hole.terrain())
+    m = len(starts_xy_m)
+    x0 = np.repeat(starts_xy_m[:, 0], n)
+    y0 = np.repeat(starts_xy_m[:, 1], n)
+    scored = on_hole.scores(hole, out, strokes, start_xy_m=(x0, y0))
+    after = scored["expected_strokes_after"].to_numpy().reshape(m, n)
+    gained = scored["strokes_gained"].to_numpy().reshape(m, n)
+    outcome = scored["outcome"].cat.codes.to_numpy().reshape(m, n)
+    code = {name: k for k, name in enumerate(scored["outcome"].cat.categories)}
+    part = {}
+    part["expected_strokes_after_mean"], part["expected_strokes_after_se"] = _mean_se(after)
+    part["strokes_gained_mean"], part["strokes_gained_se"] = _mean_se(gained)
+    for name, where in (
+        ("green", outcome == code["green"]),
+        ("penalty_area", np.isin(outcome, [code[z] for z in PENALTY_ZONES])),
+        ("out_of_bounds", outcome == code["out_of_bounds"]),
+        ("off_map", outcome == code["off_map"]),
+        ("failed", outcome == code[FAILED]),
+    ):
+        part[f"p_{name}"] = where.mean(axis=1)
+    return part, (out if keep_shots else None)
+
+
+def play_from(
+    scenario,
+    starts_xy_m,
+    n=200,
+    point=0,
+    aim_xy_m=None,
+    baseline=None,
+    lie_of_zone=None,
+    chunk_starts=DEFAULT_CHUNK_STARTS,
+    keep_shots=False,
+    client=None,
+    progress=None,
+):
+    """Fly the first ``n`` shots of ``point`` (an index of ``scenario.points``) from each of
+    ``starts_xy_m`` ((m, 2) m in the hole's frame, places in play), each aimed at ``aim_xy_m``
+    (default the pin); a ``StartsResult``. ``baseline``, ``lie_of_zone``: as
+    ``strokes.score_shots``. ``client``: a ``dask.distributed.Client`` to run the chunks of
+    ``chunk_starts`` starts on (bit for bit the local result). ``progress(done, total)``:
+    called after each chunk, in starts."""
+    hole = scenario.hole
+    if hole is None:
+        raise InputError(f"{scenario.path}: shots from start points need a hole ([hole])")
+    if not 0 <= point < len(scenario.points):
+        raise InputError(f"point must be within [0, {len(scenario.points) - 1}], got {point}")
+    n = int(n)
+    if n < 2:
+        raise InputError(f"n must be an integer >= 2 (a standard error needs two), got {n}")
+    starts = check_starts(hole, starts_xy_m)
+    aim = tuple(float(v) for v in (hole.pin_xy if aim_xy_m is None else aim_xy_m))
+    strokes = {"baseline": baseline or tour_baseline(), "lie_of_zone": lie_of_zone}
+    cuts = list(range(0, len(starts), max(int(chunk_starts), 1)))
+    chunks = [starts[c : c + chunk_starts] for c in cuts]
+    if client is None:
+        parts = []
+        for chunk in chunks:
+            parts.append(play_chunk(scenario, point, n, chunk, aim, strokes, keep_shots))
+            if progress is not None:
+                progress(sum(len(c) for c in chunks[: len(parts)]), len(starts))
+    else:
+        parts = _on_dask(client, scenario, point, n, chunks, aim, strokes, keep_shots)
+    lie, distance = start_of(hole, (starts[:, 0], starts[:, 1]))
+    base = strokes["baseline"]
+    merged = {key: np.concatenate([p[0][key] for p in parts]) for key in parts[0][0]}
+    return StartsResult(
+        starts_xy_m=starts,
+        n=n,
+        lie=lie,
+        expected_strokes_start=base.expected(lie, distance),
+        expected_strokes_after_mean=merged["expected_strokes_after_mean"],
+        expected_strokes_after_se=merged["expected_strokes_after_se"],
+        strokes_gained_mean=merged["strokes_gained_mean"],
+        strokes_gained_se=merged["strokes_gained_se"],
+        shares={name: merged[f"p_{name}"] for name in SHARES},
+        outcomes=np.concatenate([p[1] for p in parts]) if keep_shots else None,
+    )
+
+
+def _on_dask(client, scenario, point, n, chunks, aim, strokes, keep_shots):
+    """``play_chunk`` of every chunk as a Dask task (the scenario travels as its text and is
+    read once per worker), gathered in chunk order."""
+    text, path, seed = scenario.text, str(scenario.path), scenario.seed
+    futures = [
+        client.submit(
+            _chunk_task,
+            text,
+            path,
+            seed,
+            point,
+            n,
+            chunk,
+            aim,
+            strokes,
+            keep_shots,
+            pure=False,
+        )  # fmt: skip
+        for chunk in chunks
+    ]
+    return client.gather(futures)
+
+
+def _chunk_task(text, path, seed, point, n, chunk, aim, strokes, keep_shots):
+    """A Dask task: ``play_chunk`` on the scenario rebuilt from its text, one Numba thread."""
+    import numba
+
+    from mcrun.run.distributed import NUMBA_THREADS_PER_TASK, scenario_on_worker
+
+    numba.set_num_threads(NUMBA_THREADS_PER_TASK)
+    scenario = scenario_on_worker(text, path, seed)
+    return play_chunk(scenario, point, n, chunk, aim, strokes, keep_shots)
+
+
+def starts_grid(hole, spacing_m, within_m=None, zones=None):
+    """Places in play on ``hole`` every ``spacing_m`` (a square grid in its frame), optionally
+    only those ``within_m`` (min, max) m of the pin and in ``zones`` (zone kinds): (m, 2)."""
+    t = hole.terrain()
+    ny, nx = t.zone.shape
+    xs = np.arange(t.x0_m, t.x0_m + (nx - 1) * t.cell_m + 1e-9, spacing_m)
+    ys = np.arange(t.y0_m, t.y0_m + (ny - 1) * t.cell_m + 1e-9, spacing_m)
+    X, Y = (a.ravel() for a in np.meshgrid(xs, ys))
+    keep = hole.in_play_at(X, Y)
+    if within_m is not None:
+        d = np.hypot(X - hole.pin_xy[0], Y - hole.pin_xy[1])
+        keep &= (d >= within_m[0]) & (d <= within_m[1])
+    if zones is not None:
+        codes = [ZONE_KINDS.index(z) for z in zones]
+        keep &= np.isin(hole.zone_at(X, Y), codes)
+    return np.column_stack([X[keep], Y[keep]])
