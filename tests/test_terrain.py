@@ -142,7 +142,8 @@ def test_a_tilted_plane_terrain_is_the_slope_model(club, slope, fall, turf):
     the landing point: that plane, as a terrain, gives the same carry, total, finish and
     bounces within 1 mm. (Behind the landing area the terrain drops away, so that the flight,
     which starts at z = 0 below a plane that rises towards the tee, meets it where the slope
-    model lands.)"""
+    model lands; the tee itself stands on a pad at z = 0, the ground the shot is struck
+    from.)"""
     inputs, _ = api.shot_inputs(**CLUBS[club], turf=turf, slope_deg=slope, fall_line_deg=fall)
     want = simulate_batch(inputs)[0]
     assert want[STATUS] == OK
@@ -152,11 +153,11 @@ def test_a_tilted_plane_terrain_is_the_slope_model(club, slope, fall, turf):
 
     def height(X, Y):
         h = -t * ((X - xl) * math.cos(a) + (Y - yl) * math.sin(a))
-        return np.where(X < xl - back, -1000.0, h)
+        return np.where(np.hypot(X, Y) < 1.5, 0.0, np.where(X < xl - back, -1000.0, h))
 
     ys = (yl, want[FINAL_Y], 0.0)
-    terrain = grid(xl - back - 2.0, max(xl, want[FINAL_X]) + 20.0, min(ys) - 20.0,
-                   max(ys) + 20.0, 1.0, height, turfs=(turf,))  # fmt: skip
+    terrain = grid(-2.0, max(xl, want[FINAL_X]) + 20.0, min(ys) - 20.0, max(ys) + 20.0, 1.0,
+                   height, turfs=(turf,))  # fmt: skip
     assert want[FINAL_X] > xl - back + 1.0  # the run stays on the plane
     got = simulate_batch(inputs, terrain=terrain)[0]
     assert got[STATUS] == OK
