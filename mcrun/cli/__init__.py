@@ -113,15 +113,14 @@ def build_parser(command=None):
 # --- compiling the kernels ---------------------------------------------------------------------
 
 
-# The ground of the kernel each simulating command runs before it has read its scenario: the
-# batch kernel on the plane, which a single shot runs too. A command that plays on a hole
-# compiles the terrain's kernel too, once it has read that it does (``compile_if_needed``
-# with "terrain": ``mcrun run`` of a scenario with a hole, ``mcrun aim``), before its timed work.
+# The ground of the kernel each simulating command runs before it has read its input: the
+# batch kernel on the plane, which a single shot runs too. A command whose ground depends on
+# its scenario compiles the kernel of that ground alone once it has read it (``mcrun run``:
+# the plane's or a hole's; ``mcrun aim``: a hole's), before its timed work.
 SIMULATING_COMMANDS = {
     "shot": "plane",
     "calibrate": "plane",
     "paper": "plane",
-    "run": "plane",
     "replay": "plane",
 }
 

@@ -199,8 +199,10 @@ def _run_options(args):
 def _cmd_run(args):
     try:
         args.scenario = scenario_module.load(args.scenario)
-        if args.scenario.hole is not None:
-            compile_if_needed("terrain", kernels_of(args))  # said apart from the run's time
+        # The kernel of the scenario's ground alone (a hole's runs nothing on the plane), said
+        # apart from the run's time.
+        ground = "plane" if args.scenario.hole is None else "terrain"
+        compile_if_needed(ground, kernels_of(args))
         if _dask_backend(args):
             result = _run_on_dask(args)
         else:
