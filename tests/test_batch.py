@@ -56,6 +56,8 @@ def mixed_inputs(n, seed=3):
     col["slope_rad"][:] = np.radians(rng.choice([0.0, 0.0, 1.5, 4.0], n))
     col["fall_line_rad"][:] = np.radians(rng.uniform(-180, 180, n))
     col["dt_s"][:] = [default_dt_s("uniform" if p == 0 else "log") for p in profiles]
+    col["start_x_m"][:] = np.where(rng.random(n) < 0.5, 0.0, rng.uniform(-50, 200, n))
+    col["start_y_m"][:] = np.where(col["start_x_m"] == 0.0, 0.0, rng.uniform(-30, 30, n))
     col["ball_speed_mps"][::37] = np.nan  # invalid rows
     col["spin_radps"][5::41] = -1.0
     return x
@@ -153,7 +155,7 @@ def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):
     """Numba types an array of fewer than two rows as C-contiguous: a batch of 0 or 1 rows
     (the warm-up before a run's clock starts, a point's last chunk of one shot) must not
     compile the kernel a second time during the run, and gives each shot's results alone."""
-    from mcrun.engine.batch import _simulate_batch
+    from mcrun.engine.batch import _batch_task
 
     for n in (0, 1, 2, 50):
         assert same(simulate_batch(inputs[:n]), alone[:n]), n
@@ -161,8 +163,8 @@ def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):
     assert simulate_batch(inputs[3:4], out) is out and same(out, alone[3:4])
     # One compiled layout of the rows per kind of ground (a plane, and a hole's Terrain when
     # another test ran one).
-    plane = [sig for sig in _simulate_batch.signatures if str(sig[-1]) == "none"]
-    assert len(plane) == 1, _simulate_batch.signatures
+    plane = [sig for sig in _batch_task.signatures if str(sig[-1]) == "none"]
+    assert len(plane) == 1, _batch_task.signatures
 
 
 def test_every_row_of_a_table_is_its_own():

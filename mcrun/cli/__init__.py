@@ -139,14 +139,36 @@ def _kernel_cached(ground, kernels=("batch",)):
     return kernel_cached(ground, kernels)
 
 
-def kernels_of(args):
+def kernels_of(args, general=None):
     """The kernels (``engine.warmup.KERNELS``) a command runs with ``args``: the batch, and the
-    traced batch where it records a path, and the run from a landing for the paper's figures."""
+    traced batch where it records a path, and the run from a landing for the paper's figures;
+    their general kinds where its shots fly in the general lanes (``general``, or, when None,
+    the aerodynamic model and wind profile its options name)."""
     if args.command == "paper":
-        return ("batch", "traced", "landed")
-    if getattr(args, "trajectory", None) or getattr(args, "trajectories", None):
-        return ("batch", "traced")
-    return ("batch",)
+        kernels = ("batch", "traced", "landed")
+    elif getattr(args, "trajectory", None) or getattr(args, "trajectories", None):
+        kernels = ("batch", "traced")
+    else:
+        kernels = ("batch",)
+    if general is None:
+        aero, profile = getattr(args, "aero", None), getattr(args, "wind_profile", None)
+        general = aero is not None and profile is not None and _general_flight(aero, profile)
+    if general:
+        from mcrun.engine.warmup import general as general_kinds
+
+        kernels = general_kinds(kernels)
+    return kernels
+
+
+def _general_flight(aero, profile):
+    """Whether shots of the model and profile named fly in the general lanes (False for a name
+    that is not one: the command refuses it itself, in one line)."""
+    from mcrun.engine.batch import general_flight
+
+    try:
+        return general_flight(aero, profile)
+    except ValueError:
+        return False
 
 
 def compile_if_needed(ground, kernels=("batch",)):

@@ -202,7 +202,7 @@ def _cmd_run(args):
         # The kernel of the scenario's ground alone (a hole's runs nothing on the plane), said
         # apart from the run's time.
         ground = "plane" if args.scenario.hole is None else "terrain"
-        compile_if_needed(ground, kernels_of(args))
+        compile_if_needed(ground, kernels_of(args, plan.general_flight(args.scenario)))
         if _dask_backend(args):
             result = _run_on_dask(args)
         else:

@@ -1,10 +1,13 @@
 """The shot loop: every shot, from launch to rest, in lockstep lanes.
 
 ``simulate_batch`` simulates the rows of ``inputs``, an (n, N_INPUT) float64 array in Fortran
-order (each column contiguous, named by ``schema.INPUT_FIELDS``, SI, user frame), in ``prange``
-over tasks of TASK_SHOTS shots, and writes ``out``, an (n, N_OUTCOME) float64 array in Fortran
-order whose columns are ``schema.OUTCOME_FIELDS``. A single shot, with its trajectory or
-without, is the same loop on one row (``simulate_traced``): there is no other.
+order (each column contiguous, named by ``schema.INPUT_FIELDS``, SI, user frame), in tasks of
+TASK_SHOTS shots on a pool of threads, and writes ``out``, an (n, N_OUTCOME) float64 array in
+Fortran order whose columns are ``schema.OUTCOME_FIELDS``. A single shot, with its trajectory
+or without, is the same loop on one row (``simulate_traced``): there is no other. Each kernel
+comes in two kinds, compiled apart on first use: for shots of the quadratic flight kind (the
+usual models in uniform wind) and for batches that also hold shots of the general kind
+(``needs_general``).
 
 A task's shots go through the phases of a shot in lanes, LANES shots at a time, each phase
 written once: they fly (RK4 steps, ``physics.flight``) and land (the root inside the last step,
@@ -19,9 +22,12 @@ rows.
 Frames as in ``engine.shot``: user frame in and out, the core's (y to the LEFT) inside.
 """
 
+import concurrent.futures
+import threading
+
 import numba
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from mcrun import ground
 from mcrun.engine.bounce_lanes import bounce_all
@@ -29,7 +35,9 @@ from mcrun.engine.flight_lanes import GENERAL, QUADRATIC, flight_kind, fly_gener
 from mcrun.engine.schema import N_INPUT, N_OUTCOME
 from mcrun.engine.shot import TRAJECTORY_DT_S, from_start
 from mcrun.engine.tables import IN, LANDING, LANES, N_LANDING, TRACER
-from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
+from mcrun.physics import aero
+from mcrun.physics.aero import LANE_MODELS, QUADRATIC_COEFFICIENTS
+from mcrun.physics.flight import WIND_UNIFORM
 
 __all__ = [
     "LANES",
@@ -43,48 +51,98 @@ __all__ = [
 
 
 @njit(cache=True, error_model="numpy")
-def _lockstep(inputs, start, stop, table, out, traj, tracer, terrain):
-    """Simulate shots start..stop-1 of ``inputs`` into ``out``: check them, fly each kind
-    LANES at a time and land them LANES at a time, then bounce and roll them out LANES at a
-    time, and measure their distances from where each was struck."""
+def _kinds(inputs, start, stop, out):
+    """Check shots start..stop-1 and write their launch fields: their flight kinds."""
     kinds = np.empty(stop - start, dtype=np.int8)
-    general = False
     for i in range(start, stop):
         kinds[i - start] = flight_kind(inputs, i, out)
-        general |= kinds[i - start] == GENERAL
-    landings = np.empty((stop - start, N_LANDING))
-    pending = np.empty(stop - start, dtype=np.int64)
-    n_landed = fly_quadratic(
-        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, 0, traj, tracer,
-        terrain,
-    )  # fmt: skip
-    if general:
-        n_landed = fly_general(
-            inputs, kinds, GENERAL, start, stop, table, out, landings, pending, n_landed, traj,
-            tracer, terrain,
-        )  # fmt: skip
-    bounce_all(inputs, start, landings, pending[:n_landed], out, traj, tracer, terrain)
+    return kinds
+
+
+@njit(cache=True, error_model="numpy")
+def _run_out(inputs, start, stop, landings, pending, out, traj, tracer, terrain):
+    """Bounce and roll out the landed shots ``pending`` LANES at a time, then measure the
+    distances of shots start..stop-1 from where each was struck."""
+    bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain)
     for i in range(start, stop):
         x0 = inputs[i, IN.start_x_m]
         y0 = inputs[i, IN.start_y_m]
         from_start(out, i, x0, y0, ground.height_at(terrain, x0, -y0))
 
 
-# Shots per parallel task: enough to keep the lanes full, few enough to balance two threads.
+@njit(cache=True, error_model="numpy")
+def _lockstep(inputs, start, stop, table, out, traj, tracer, terrain):
+    """Simulate shots start..stop-1 of ``inputs`` into ``out``, every one of the quadratic
+    flight kind (or invalid): check them, fly them LANES at a time and land them LANES at a
+    time, then bounce and roll them out LANES at a time (``_run_out``)."""
+    kinds = _kinds(inputs, start, stop, out)
+    landings = np.empty((stop - start, N_LANDING))
+    pending = np.empty(stop - start, dtype=np.int64)
+    n_landed = fly_quadratic(
+        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, 0, traj, tracer,
+        terrain,
+    )  # fmt: skip
+    _run_out(inputs, start, stop, landings, pending[:n_landed], out, traj, tracer, terrain)
+
+
+@njit(cache=True, error_model="numpy")
+def _lockstep_general(inputs, start, stop, table, out, traj, tracer, terrain):
+    """``_lockstep`` for shots of both flight kinds: the quadratic ones, then the others."""
+    kinds = _kinds(inputs, start, stop, out)
+    landings = np.empty((stop - start, N_LANDING))
+    pending = np.empty(stop - start, dtype=np.int64)
+    n_landed = fly_quadratic(
+        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, 0, traj, tracer,
+        terrain,
+    )  # fmt: skip
+    n_landed = fly_general(
+        inputs, kinds, GENERAL, start, stop, table, out, landings, pending, n_landed, traj,
+        tracer, terrain,
+    )  # fmt: skip
+    _run_out(inputs, start, stop, landings, pending[:n_landed], out, traj, tracer, terrain)
+
+
+def needs_general(inputs):
+    """Whether a shot of ``inputs`` may fly in the general lanes (``flight_lanes.flight_kind``:
+    an aerodynamic model not of ``aero.LANE_MODELS``, or a wind profile), so that the batch
+    needs the kernels that fly them. Each kind of kernel is compiled on its first use: a run
+    of the usual models in uniform wind never compiles the general lanes."""
+    lanes = np.isin(inputs[:, IN.aero_model], LANE_MODELS) & (
+        inputs[:, IN.wind_profile] == WIND_UNIFORM
+    )
+    return not lanes.all()
+
+
+def general_flight(aero_model, wind_profile):
+    """``needs_general`` of shots of the aerodynamic model and the wind profile given by name
+    (what a command or a scenario names, before any shot is drawn)."""
+    return aero.model_id(aero_model) not in LANE_MODELS or wind_profile != "uniform"
+
+
+# Shots per task: enough to keep the lanes full, few enough to balance two threads.
 TASK_SHOTS = 2048
 
 
-@njit(parallel=True, cache=True, error_model="numpy", nogil=True)
-def _simulate_batch(inputs, table, out, terrain):
+@njit(cache=True, error_model="numpy", nogil=True)
+def _batch_task(inputs, task, table, out, terrain):
+    """Task ``task`` of a batch: its TASK_SHOTS shots, of the quadratic flight kind."""
     n = inputs.shape[0]
-    tasks = (n + TASK_SHOTS - 1) // TASK_SHOTS
-    no_trajectory = np.empty((0, 5))
-    for task in prange(tasks):
-        untraced = np.full(4, -1.0)
-        _lockstep(
-            inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out,
-            no_trajectory, untraced, terrain,
-        )  # fmt: skip
+    untraced = np.full(4, -1.0)
+    _lockstep(
+        inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out, np.empty((0, 5)),
+        untraced, terrain,
+    )  # fmt: skip
+
+
+@njit(cache=True, error_model="numpy", nogil=True)
+def _batch_task_general(inputs, task, table, out, terrain):
+    """``_batch_task`` for shots of both flight kinds."""
+    n = inputs.shape[0]
+    untraced = np.full(4, -1.0)
+    _lockstep_general(
+        inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out, np.empty((0, 5)),
+        untraced, terrain,
+    )  # fmt: skip
 
 
 def _as_kernel_layout(inputs):
@@ -117,24 +175,66 @@ def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS, terrain=None)
 
 
 def _run(inputs, table, out, terrain):
-    """``_simulate_batch``, on this thread alone when the batch is one task: waking the other
-    threads gains nothing, and their barrier can wait a whole time slice when the cores are
-    busy (a sweep's small chunks took 4 ms each, for 20 us of work)."""
-    threads = numba.get_num_threads()
-    if inputs.shape[0] <= TASK_SHOTS and threads > 1:
-        numba.set_num_threads(1)
-        try:
-            _simulate_batch(inputs, table, out, terrain)
-        finally:
-            numba.set_num_threads(threads)
-    else:
-        _simulate_batch(inputs, table, out, terrain)
+    """The batch's tasks on ``numba.get_num_threads()`` threads (of the pool ``_threads``),
+    each thread taking the next task until none is left; on this thread alone when the batch
+    is one task. The kernel releases the GIL, so the threads run at once; each task's shots
+    are its own, so neither the thread count nor the order of the tasks changes a bit. (A
+    ``prange`` loop would do the same, at the price of Numba's parallel pipeline at every
+    compile: 8 s of the plane's cold start.)"""
+    task = _batch_task_general if needs_general(inputs) else _batch_task
+    tasks = (inputs.shape[0] + TASK_SHOTS - 1) // TASK_SHOTS
+    threads = min(numba.get_num_threads(), tasks)
+    if threads <= 1:
+        for k in range(tasks):
+            task(inputs, k, table, out, terrain)
+        return
+    todo = iter(range(tasks))
+    lock = threading.Lock()
+    stopped = threading.Event()
+
+    def work():
+        while not stopped.is_set():
+            with lock:
+                k = next(todo, None)
+            if k is None:
+                return
+            task(inputs, k, table, out, terrain)
+
+    pool = _threads()
+    running = [pool.submit(work) for _ in range(threads)]
+    try:
+        for each in running:
+            each.result()
+    finally:  # (Ctrl-C: the threads finish the task they hold, and take no other)
+        stopped.set()
+        concurrent.futures.wait(running)
+
+
+_POOL = []
+
+
+def _threads():
+    """The pool of threads the batches run on, as many as Numba may use (made once)."""
+    if not _POOL:
+        _POOL.append(
+            concurrent.futures.ThreadPoolExecutor(
+                max_workers=numba.config.NUMBA_NUM_THREADS, thread_name_prefix="mcrun-kernel"
+            )
+        )
+    return _POOL[0]
 
 
 @njit(cache=True, error_model="numpy")
 def _simulate_traced(inputs, shot, table, out, traj, terrain):
     tracer = np.array([float(shot), 0.0, 0.0, TRAJECTORY_DT_S])
     _lockstep(inputs, 0, inputs.shape[0], table, out, traj, tracer, terrain)
+    return int(tracer[TRACER.ROW])
+
+
+@njit(cache=True, error_model="numpy")
+def _simulate_traced_general(inputs, shot, table, out, traj, terrain):
+    tracer = np.array([float(shot), 0.0, 0.0, TRAJECTORY_DT_S])
+    _lockstep_general(inputs, 0, inputs.shape[0], table, out, traj, tracer, terrain)
     return int(tracer[TRACER.ROW])
 
 
@@ -146,9 +246,8 @@ def simulate_traced(inputs, shot, table=QUADRATIC_COEFFICIENTS, trajectory_rows=
     n = inputs.shape[0]
     rows = _as_kernel_layout(inputs)
     out = np.empty((rows.shape[0], N_OUTCOME), order="F")
-    path = _recorded(
-        lambda traj: _simulate_traced(rows, shot, table, out, traj, terrain), trajectory_rows
-    )
+    kernel = _simulate_traced_general if needs_general(rows) else _simulate_traced
+    path = _recorded(lambda traj: kernel(rows, shot, table, out, traj, terrain), trajectory_rows)
     return out[:n], path
 
 

@@ -436,7 +436,8 @@ def bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain):
             for k in range(LANES):
                 if shot[k] == tracer[TRACER.TRACED]:
                     traced = k
-                    before[:] = b[k::LANES]
+                    for row in range(BOUNCE.N):  # (a slice copy compiles a shape check)
+                        before[row] = b[row * LANES + k]
         ended = _impact_lanes(b, e, terrain, rb)
         if traced >= 0 and (b[BOUNCE.THEN * LANES + traced] == HOPS) | (
             b[BOUNCE.THEN * LANES + traced] == ENDS

@@ -28,6 +28,7 @@ from mcrun.engine.shot import (
 from mcrun.engine.tables import (
     GENERAL_ROWS,
     IN,
+    LANDING,
     LANE,
     LANES,
     QUADRATIC_ROWS,
@@ -507,20 +508,20 @@ def _make_flight(derivative, stage, step, constants, context):
             nx, ny, nz = ground.normal_or(
                 terrain, s[LANE.NX], s[LANE.NY], s[LANE.NZ], s[LANE.X1], s[LANE.Y1]
             )
-            landings[i - start] = (
-                s[LANE.X1],
-                s[LANE.Y1],
-                s[LANE.VX1],
-                s[LANE.VY1],
-                s[LANE.VZ1],
-                w1 * s[LANE.AXIS_X],
-                w1 * s[LANE.AXIS_Y],
-                w1 * s[LANE.AXIS_Z],
-                s[LANE.T_LANDING],
-                nx,
-                ny,
-                nz,
-            )
+            # (Field by field: a row assigned a tuple compiles a shape check and its message.)
+            row = landings[i - start]
+            row[LANDING.X] = s[LANE.X1]
+            row[LANDING.Y] = s[LANE.Y1]
+            row[LANDING.VX] = s[LANE.VX1]
+            row[LANDING.VY] = s[LANE.VY1]
+            row[LANDING.VZ] = s[LANE.VZ1]
+            row[LANDING.WX] = w1 * s[LANE.AXIS_X]
+            row[LANDING.WY] = w1 * s[LANE.AXIS_Y]
+            row[LANDING.WZ] = w1 * s[LANE.AXIS_Z]
+            row[LANDING.T] = s[LANE.T_LANDING]
+            row[LANDING.NX] = nx
+            row[LANDING.NY] = ny
+            row[LANDING.NZ] = nz
             pending[n_landed] = i
             n_landed += 1
         return n_landed

@@ -17,9 +17,10 @@ from typing import NamedTuple
 import numpy as np
 
 from mcrun.engine.backend import simulate_batch, simulate_landed, simulate_traced
-from mcrun.engine.schema import N_INPUT, N_OUTCOME
+from mcrun.engine.schema import COLUMN, N_INPUT, N_OUTCOME
 from mcrun.engine.tables import N_LANDING
 from mcrun.ground import IN_PLAY, make_terrain
+from mcrun.physics import aero
 from mcrun.physics.aero import QUADRATIC_COEFFICIENTS
 from mcrun.physics.turf import PRESETS
 
@@ -56,8 +57,16 @@ def _terrain(ground):
 
 # The kernels, each compiled on its own for each kind of ground: the batch (every run, and a
 # single shot), the traced batch (a shot whose path is recorded: ``mcrun shot --trajectory``,
-# a run's ``--trajectories``) and the run from a landing (``mcrun paper``'s bounce studies).
-KERNELS = ("batch", "traced", "landed")
+# a run's ``--trajectories``), each for shots of the quadratic flight kind and, apart, for
+# batches that hold shots of the general kind too (``batch.needs_general``: a model that
+# does not fly in the vectorised lanes, or a wind profile), and the run from a landing
+# (``mcrun paper``'s bounce studies).
+KERNELS = ("batch", "traced", "landed", "batch_general", "traced_general")
+
+
+def general(kernels):
+    """``kernels`` for shots of the general flight kind: each batch kernel's general kind."""
+    return tuple(f"{k}_general" if f"{k}_general" in KERNELS else k for k in kernels)
 
 
 def _kernel(kernel="batch"):
@@ -65,25 +74,28 @@ def _kernel(kernel="batch"):
     from mcrun.engine import batch
 
     return {
-        "batch": batch._simulate_batch,
+        "batch": batch._batch_task,
+        "batch_general": batch._batch_task_general,
         "traced": batch._simulate_traced,
+        "traced_general": batch._simulate_traced_general,
         "landed": batch._simulate_landed,
     }[kernel]
 
 
 def _kernel_arguments(ground, kernel="batch"):
     """Arguments of the types a kernel gets from ``backend`` on ``ground``: inputs and outcomes
-    float64 in Fortran order (at least two rows: ``batch._as_kernel_layout``), the quadratic
-    models' table, a path's buffer and the terrain (None on the plane)."""
+    float64 in Fortran order (at least two rows: ``batch._as_kernel_layout``), the task's
+    number, the quadratic models' table, a path's buffer and the terrain (None on the
+    plane)."""
     inputs = np.zeros((2, N_INPUT), order="F")
     out = np.empty((2, N_OUTCOME), order="F")
     traj = np.empty((1, 5))
     terrain = _terrain(ground)
-    if kernel == "traced":
+    if kernel.startswith("traced"):
         return inputs, 0, QUADRATIC_COEFFICIENTS, out, traj, terrain
     if kernel == "landed":
         return inputs, np.zeros((2, N_LANDING)), out, traj, np.zeros(4), terrain
-    return inputs, QUADRATIC_COEFFICIENTS, out, terrain
+    return inputs, 0, QUADRATIC_COEFFICIENTS, out, terrain
 
 
 def _compiled(ground, kernel):
@@ -116,15 +128,18 @@ def kernel_cached(ground="plane", kernels=("batch",)):
 
 
 def _run(ground, kernel):
-    """Run ``kernel`` once on ``ground``: a shot that ends at once (speed 0, invalid_input)."""
+    """Run ``kernel`` once on ``ground``: a shot that ends at once (speed 0, invalid_input),
+    of a model of the general flight kind for a general kernel."""
     terrain = _terrain(ground)
     inputs = np.zeros((1, N_INPUT))
-    if kernel == "traced":
+    if kernel.endswith("_general"):
+        inputs[:, COLUMN["aero_model"]] = aero.SMITS_SMITH1994
+    if kernel.startswith("traced"):
         simulate_traced(inputs, terrain=terrain)
     elif kernel == "landed":
         simulate_landed(inputs, np.zeros((1, N_LANDING)), terrain=terrain)
     else:
-        simulate_batch(inputs[:0], terrain=terrain)
+        simulate_batch(inputs, terrain=terrain)
 
 
 def warm_up(grounds=GROUNDS, kernels=("batch",)):

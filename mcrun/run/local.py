@@ -26,7 +26,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from mcrun.engine.backend import simulate_batch
-from mcrun.engine.schema import N_INPUT, N_OUTCOME
+from mcrun.engine.schema import N_OUTCOME
 from mcrun.quantities import InputError
 from mcrun.results import output, stats
 from mcrun.run import plan, sampling
@@ -107,7 +107,7 @@ def run_scenario(
     if threads is not None:
         numba.set_num_threads(threads)
     # Compile (or load from the cache) before the clock starts: the rate is the run's.
-    simulate_batch(np.empty((0, N_INPUT), order="F"), terrain=plan.terrain_of(the_plan.scenario))
+    plan.compile_kernel(the_plan.scenario)
     started = time.perf_counter()
     provenance = plan.provenance(the_plan, "local", output.versions(), numba.get_num_threads())
     try:

@@ -33,7 +33,9 @@ import numpy as np
 import pandas as pd
 
 from mcrun.engine.backend import simulate_traced
+from mcrun.engine.batch import general_flight as general_flight_of
 from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
+from mcrun.engine.warmup import warm_up
 from mcrun.quantities import DRIVER_COLUMNS, InputError
 from mcrun.results import geometry, output, reader, stats
 from mcrun.results import on_hole as on_hole_results
@@ -167,6 +169,22 @@ def starts_of(points):
     """Where each of ``points`` is struck ((x, y) m in the hole's frame): its start on a hole,
     the tee (the frame's origin) on a plane."""
     return [on_hole_results.TEE if p.play is None else p.play.start_m for p in points]
+
+
+def general_flight(scenario):
+    """Whether a point of ``scenario`` flies in the general lanes (``batch.general_flight``: an
+    aerodynamic model that does not fly in the vectorised lanes, or a wind profile)."""
+    return any(
+        general_flight_of(p.params["models.aero"], p.params["weather.wind_profile"])
+        for p in scenario.points
+    )
+
+
+def compile_kernel(scenario):
+    """Compile the batch kernel the scenario's shots run (or load it from the cache), so that
+    a run's clock starts after it: on its ground, of its flight kinds."""
+    ground = "plane" if scenario.hole is None else "terrain"
+    warm_up((ground,), ("batch_general",) if general_flight(scenario) else ("batch",))
 
 
 def terrain_of(scenario):
