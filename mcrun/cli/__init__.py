@@ -91,6 +91,7 @@ COMMAND_MODULES = {
     "report": "mcrun.cli.report",
     "hole": "mcrun.cli.hole",
     "aim": "mcrun.cli.aim",
+    "putt": "mcrun.cli.putt",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 
