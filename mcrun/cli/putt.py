@@ -17,13 +17,14 @@ def _slope_tan(text):
 
 
 def _whole(text, name, least):
+    """A whole number of at least ``least``: ``2000``, ``1e4``."""
     try:
-        value = int(text)
+        value = float(text)
     except ValueError:
-        raise InputError(f"{name} {text!r}: allowed: a whole number of at least {least}") from None
-    if value < least:
+        value = math.nan
+    if not math.isfinite(value) or value != int(value) or value < least:
         raise InputError(f"{name} {text!r}: allowed: a whole number of at least {least}")
-    return value
+    return int(value)
 
 
 def _cmd_putt(args):
@@ -37,14 +38,15 @@ def _cmd_putt(args):
         seed=_whole(args.seed, "--seed", 0),
     )
     r = result.read
-    side = "left" if r.aim_deg > 0 else "right"
+    if abs(r.aim_deg) < 0.005:
+        line = "at the hole"
+    else:
+        line = f"{abs(r.aim_deg):.2f} deg {'left' if r.aim_deg > 0 else 'right'} of the hole"
     print(
         f"putt: {args.distance} on a plane green, Stimp {args.stimp}, slope {args.slope} "
         f"falling at {args.direction} deg; putter {args.putter}; n {result.n}, seed {args.seed}"
     )
-    print(
-        f"read: start line {abs(r.aim_deg):.2f} deg {side} of the hole, pace {r.pace_m:.2f} m past"
-    )
+    print(f"read: start line {line}, pace {r.pace_m:.2f} m past")
     print(f"make rate:       {100 * result.make_rate:5.1f} % +- {100 * result.make_rate_se:.1f}")
     print(
         f"three-putt rate: {100 * result.three_putt_rate:5.1f} % "
@@ -75,6 +77,6 @@ def register(subparsers):
         "--direction", default="0", help="the fall line, degrees from the putt's line (0)"
     )
     p.add_argument("--putter", default="tour", choices=list(PUTTERS), help="(tour)")
-    p.add_argument("-n", default="2000", metavar="N", help="holings-out (2000)")
+    p.add_argument("-n", default="2000", metavar="N", help="holings-out (2000); 1e4 works")
     p.add_argument("--seed", default="0", metavar="S", help="random seed (0)")
     p.set_defaults(func=_cmd_putt)
