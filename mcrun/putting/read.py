@@ -6,6 +6,11 @@ candidates', not the samples'. First the paces ``PACES_M`` past the hole, each o
 that rolls the error-free putt over the hole's centre at that pace; then, at the best pace, start
 lines ``AIM_STEPS_DEG`` either side of it. Later putts of a holing-out are read as the putter
 reads any putt (``mcrun.putting.holeout``).
+
+The strategy is that of Broadie's putting simulations: an aim line and a speed chosen for the
+least expected putts under the golfer's errors (M. Broadie, "A simulation model of putting",
+2007; M. Broadie and D. Shin, "Golf analytics: a random putting model and its applications to
+optimal targeting strategy and attribution analysis", 2014).
 """
 
 import math
