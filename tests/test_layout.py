@@ -17,7 +17,7 @@ LAYERS = (
     ("mcrun.strokes",),
     ("mcrun.engine",),
     ("mcrun.quantities",),
-    ("mcrun.api",),
+    ("mcrun.api", "mcrun.putting"),
     ("mcrun.results",),
     ("mcrun.run",),
     ("mcrun.report", "mcrun.paper", "mcrun.calibrate"),

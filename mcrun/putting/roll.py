@@ -1,0 +1,156 @@
+"""The roll of a putt on a plane green, until it stops, drops or runs past a cap.
+
+A putt starts in pure rolling (no skid phase: the ball is taken to leave the putter face rolling
+without slipping, which is what a putter's loft and the first few centimetres of turf bring about;
+the skid is left out). A ball rolling without slipping on a plane of slope angle ``beta``
+accelerates down the fall line at (5/7) g sin(beta) and is slowed along its motion by the turf's
+rolling resistance (5/7) rho_g g cos(beta) (A. R. Penner, "The physics of putting", Can. J. Phys.
+80, 83-96 (2002); "The run of a golf ball", Can. J. Phys. 80, 931-940 (2002), eq. 9):
+
+    a = (5/7) g (sin(beta) f_hat - rho_g cos(beta) v_hat),
+
+``f_hat`` the fall line's direction, ``v_hat`` the ball's. rho_g comes from the green's Stimp
+reading (``mcrun.physics.turf.rho_g_from_stimp``). A ball at rest stays so only where
+tan(beta) <= rho_g (the stopping slope); on a steeper plane it never rests.
+
+Coordinates: x, y (m) in the plane of the green (distances along its surface, so that the
+equations above hold exactly), x from the ball's start towards the hole, y to the left. The slope
+is asked of ``slope_at(x, y, ...)``: a plane gives the same everywhere; a green from an elevation
+grid would answer per point through the same call.
+
+Integration: classical Runge-Kutta (RK4) in time steps ``dt_s``; the last step before the ball
+stops is solved in closed form (deceleration taken constant over it).
+"""
+
+import math
+
+from numba import njit
+
+from mcrun.physics.constants import G_MPS2
+from mcrun.putting.cup import HOLE_RADIUS_M, capture_speed_mps
+
+__all__ = [
+    "DT_S",
+    "MAX_TIME_S",
+    "ROLL_STATUS",
+    "STATUS_CAP",
+    "STATUS_HOLED",
+    "STATUS_NO_REST",
+    "STATUS_STOPPED",
+    "roll",
+    "slope_at",
+]
+
+ROLLING_FACTOR = 5.0 / 7.0  # a uniform sphere rolling without slipping, I = (2/5) m r^2
+DT_S = 0.004
+MAX_TIME_S = 60.0
+
+STATUS_STOPPED = 0  # at rest on the green
+STATUS_HOLED = 1  # dropped in the cup
+STATUS_NO_REST = 2  # still moving at the cap on a plane steeper than the stopping slope
+STATUS_CAP = 3  # still moving at the cap
+ROLL_STATUS = ("stopped", "holed", "no rest", "cap")
+
+
+@njit(cache=True)
+def slope_at(x_m, y_m, slope_tan, fall_x, fall_y):
+    """The slope at (x_m, y_m): (tan(beta), fall direction x, y). A plane: the same everywhere."""
+    return slope_tan, fall_x, fall_y
+
+
+@njit(cache=True)
+def _accel(vx, vy, slope_tan, fall_x, fall_y, rho_g):
+    """The acceleration (m/s^2) of a ball rolling at (vx, vy) on a slope (Penner 2002)."""
+    cos_b = 1.0 / math.sqrt(1.0 + slope_tan * slope_tan)
+    sin_b = slope_tan * cos_b
+    k = ROLLING_FACTOR * G_MPS2
+    speed = math.sqrt(vx * vx + vy * vy)
+    if speed > 1e-9:
+        ux, uy = vx / speed, vy / speed
+    else:  # a ball at rest starts down the fall line
+        ux, uy = fall_x, fall_y
+    return k * (sin_b * fall_x - rho_g * cos_b * ux), k * (sin_b * fall_y - rho_g * cos_b * uy)
+
+
+@njit(cache=True)
+def _entry(x0, y0, x1, y1, hx, hy):
+    """Where the segment (x0, y0) -> (x1, y1), starting outside the cup's circle, enters it: the
+    fraction along the segment (-1 if it does not) and the offset of its line from the centre."""
+    dx, dy = x1 - x0, y1 - y0
+    ex, ey = x0 - hx, y0 - hy
+    a = dx * dx + dy * dy
+    if a <= 0.0:
+        return -1.0, 0.0
+    b = ex * dx + ey * dy
+    c = ex * ex + ey * ey - HOLE_RADIUS_M * HOLE_RADIUS_M
+    disc = b * b - a * c
+    if disc < 0.0:
+        return -1.0, 0.0
+    s = (-b - math.sqrt(disc)) / a
+    if s < 0.0 or s > 1.0:
+        return -1.0, 0.0
+    offset = abs(ex * dy - ey * dx) / math.sqrt(a)
+    return s, offset
+
+
+@njit(cache=True)
+def roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, hole_y_m,
+         cup, dt_s, max_time_s):  # fmt: skip
+    """Roll a ball from (x_m, y_m) at (vx_mps, vy_mps) until it stops, drops (with ``cup``) or
+    runs past ``max_time_s``.
+
+    Returns (status, x_m, y_m, time_s, closest_m, closest_x_m, closest_y_m): the ``STATUS_*``,
+    where it ended, when, and the point of its path closest to the hole's centre.
+    """
+    x, y, vx, vy, t = x_m, y_m, vx_mps, vy_mps, 0.0
+    best = math.hypot(x - hole_x_m, y - hole_y_m)
+    bx, by = x, y
+    while t < max_time_s:
+        s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+        speed = math.sqrt(vx * vx + vy * vy)
+        ax, ay = _accel(vx, vy, s_tan, fx, fy, rho_g)
+        # The step in which the ball stops: along its motion it slows at -a.v_hat.
+        decel = -(ax * vx + ay * vy) / speed if speed > 1e-9 else 0.0
+        if speed > 1e-9 and decel > 0.0 and speed <= decel * dt_s:
+            t_stop = speed / decel
+            x1 = x + vx * t_stop / 2.0
+            y1 = y + vy * t_stop / 2.0
+            v1x, v1y = 0.0, 0.0
+            h = t_stop
+        else:
+            h = dt_s
+            k1x, k1y = ax, ay
+            k2x, k2y = _accel(vx + h / 2 * k1x, vy + h / 2 * k1y, s_tan, fx, fy, rho_g)
+            k3x, k3y = _accel(vx + h / 2 * k2x, vy + h / 2 * k2y, s_tan, fx, fy, rho_g)
+            k4x, k4y = _accel(vx + h * k3x, vy + h * k3y, s_tan, fx, fy, rho_g)
+            v1x = vx + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x)
+            v1y = vy + h / 6 * (k1y + 2 * k2y + 2 * k3y + k4y)
+            # position: RK4 of dx/dt = v with the stages' velocities
+            x1 = x + h / 6 * (vx + 2 * (vx + h / 2 * k1x) + 2 * (vx + h / 2 * k2x) + vx + h * k3x)
+            y1 = y + h / 6 * (vy + 2 * (vy + h / 2 * k1y) + 2 * (vy + h / 2 * k2y) + vy + h * k3y)
+        # The cup: the centre's path enters the rim's circle in this step.
+        outside = (x - hole_x_m) ** 2 + (y - hole_y_m) ** 2 > HOLE_RADIUS_M**2
+        if outside:
+            s, offset = _entry(x, y, x1, y1, hole_x_m, hole_y_m)
+            if s >= 0.0:
+                speed1 = math.sqrt(v1x * v1x + v1y * v1y)
+                at_rim = speed + s * (speed1 - speed)
+                if cup and at_rim < capture_speed_mps(offset):
+                    return 1, hole_x_m, hole_y_m, t + s * h, 0.0, hole_x_m, hole_y_m
+        # The closest approach to the hole's centre along this step.
+        dx, dy = x1 - x, y1 - y
+        seg2 = dx * dx + dy * dy
+        f = 0.0
+        if seg2 > 0.0:
+            f = min(1.0, max(0.0, ((hole_x_m - x) * dx + (hole_y_m - y) * dy) / seg2))
+        px, py = x + f * dx, y + f * dy
+        dist = math.hypot(px - hole_x_m, py - hole_y_m)
+        if dist < best:
+            best, bx, by = dist, px, py
+        x, y, vx, vy, t = x1, y1, v1x, v1y, t + h
+        if vx == 0.0 and vy == 0.0:
+            s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+            if s_tan <= rho_g:
+                return 0, x, y, t, best, bx, by
+    s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+    return (2 if s_tan > rho_g else 3), x, y, t, best, bx, by

@@ -1,0 +1,187 @@
+"""Putting on a plane green (mcrun.putting): the roll against an independent integration and the
+closed forms of a rolling sphere (Penner, "The physics of putting", Can. J. Phys. 80, 83 (2002)),
+the Stimpmeter, the stopping slope, the cup's capture limit, the read, the Tour putter's
+calibration against the PGA Tour's make rates and average putts, and ``mcrun putt``."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from mcrun.cli import main
+from mcrun.physics.constants import G_MPS2
+from mcrun.physics.turf import STIMP_LAUNCH_SPEED_MPS, rho_g_from_stimp
+from mcrun.putting import putt
+from mcrun.putting.calibration import (
+    MAKE_TOLERANCE_PCT,
+    PUTTS_TOLERANCE,
+    calibration_table,
+)
+from mcrun.putting.cup import HOLE_RADIUS_M, V_CAPTURE_CENTRE_MPS
+from mcrun.putting.greens import plane_green
+from mcrun.putting.holeout import pace_speed_mps
+from mcrun.putting.putter import PUTTERS
+from mcrun.putting.read import centre_line_rad
+from mcrun.putting.roll import (
+    DT_S,
+    MAX_TIME_S,
+    STATUS_HOLED,
+    STATUS_NO_REST,
+    STATUS_STOPPED,
+    roll,
+)
+from mcrun.quantities import InputError
+from mcrun.strokes.baseline import FOOT_M
+
+K = 5.0 / 7.0 * G_MPS2
+FAR = 1000.0  # a hole far away: the cup plays no part
+
+
+def _roll(v, heading_rad, slope_tan, fall_rad, rho_g, hole=(FAR, 0.0), cup=False):
+    return roll(0.0, 0.0, v * math.cos(heading_rad), v * math.sin(heading_rad), slope_tan,
+                math.cos(fall_rad), math.sin(fall_rad), rho_g, hole[0], hole[1], cup, DT_S,
+                MAX_TIME_S)  # fmt: skip
+
+
+def test_a_putt_across_a_tilted_plane_breaks_as_an_independent_integration_says():
+    """1.5 m/s across a 2 % plane falling to the left, Stimp 11 ft: the stopping point of the
+    RK4 roll against scipy's solve_ivp (DOP853, rtol 1e-10) of a = (5/7) g (sin b f - rho_g cos b
+    v_hat), within 3 mm; the ball breaks left by decimetres."""
+    rho_g, s = float(rho_g_from_stimp(11 * FOOT_M)), 0.02
+    cos_b = 1.0 / math.sqrt(1.0 + s * s)
+    sin_b = s * cos_b
+
+    def rhs(t, u):
+        speed = math.hypot(u[2], u[3])
+        return [u[2], u[3], -K * rho_g * cos_b * u[2] / speed,
+                K * (sin_b - rho_g * cos_b * u[3] / speed)]  # fmt: skip
+
+    def slow(t, u):
+        return math.hypot(u[2], u[3]) - 1e-5
+
+    slow.terminal = True
+    ref = solve_ivp(rhs, (0, 30), [0, 0, 1.5, 0], method="DOP853", rtol=1e-10, atol=1e-12,
+                    events=slow)  # fmt: skip
+    x_ref, y_ref = ref.y[0, -1], ref.y[1, -1]
+    status, x, y, *_ = _roll(1.5, 0.0, s, math.pi / 2, rho_g)
+    assert status == STATUS_STOPPED
+    assert y_ref > 0.2  # breaks left, by decimetres
+    assert math.hypot(x - x_ref, y - y_ref) < 0.003
+
+
+@pytest.mark.parametrize("stimp_ft", [8.0, 11.0, 13.0])
+def test_the_simulated_stimpmeter_rolls_the_green_s_stimp_reading(stimp_ft):
+    """1.83 m/s on the level rolls the Stimp reading (USGA Stimpmeter), within 1 mm."""
+    stimp_m = stimp_ft * FOOT_M
+    status, x, y, *_ = _roll(STIMP_LAUNCH_SPEED_MPS, 0.0, 0.0, 0.0, rho_g_from_stimp(stimp_m))
+    assert status == STATUS_STOPPED
+    assert abs(x - stimp_m) < 0.001 and y == 0.0
+
+
+def test_on_a_slope_steeper_than_the_stopping_slope_the_ball_never_rests():
+    """Stimp 14 ft: the stopping slope atan(rho_g) is about 3 deg (Penner 2002, with the 5/7);
+    a putt on a plane 0.1 % steeper never rests, 1 % less steep it stops."""
+    rho_g = float(rho_g_from_stimp(14 * FOOT_M))
+    assert 3.0 < math.degrees(math.atan(rho_g)) < 3.3
+    assert _roll(1.0, 0.0, rho_g + 0.001, math.pi / 2, rho_g)[0] == STATUS_NO_REST
+    assert _roll(1.0, 0.0, rho_g - 0.01, math.pi / 2, rho_g)[0] == STATUS_STOPPED
+
+
+def test_uphill_and_downhill_paces_follow_the_closed_form_on_the_fall_line():
+    """On the fall line a rolling ball slows at (5/7) g (rho_g cos b +- sin b): the speed to roll
+    3 m + 0.43 m up a 2 % slope and down it, from v^2 = 2 a d; the roll stops there within 2 mm,
+    and the uphill putt needs the larger speed."""
+    rho_g, s, d = float(rho_g_from_stimp(11 * FOOT_M)), 0.02, 3.43
+    cos_b, sin_b = 1 / math.sqrt(1 + s * s), s / math.sqrt(1 + s * s)
+    v_up = math.sqrt(2 * K * (rho_g * cos_b + sin_b) * d)
+    v_down = math.sqrt(2 * K * (rho_g * cos_b - sin_b) * d)
+    assert v_up > 1.3 * v_down
+    for v, fall in ((v_up, math.pi), (v_down, 0.0)):
+        status, x, y, *_ = _roll(v, 0.0, s, fall, rho_g)
+        assert status == STATUS_STOPPED and abs(x - d) < 0.002
+    # the putter's pace speed is the same closed form
+    assert pace_speed_mps(3.0, 0.43, -1.0, s, rho_g) == pytest.approx(v_up, rel=1e-12)
+    assert pace_speed_mps(3.0, 0.43, 1.0, s, rho_g) == pytest.approx(v_down, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "offset_frac, speed_mps, holed",
+    [(0.0, 1.62, True), (0.0, 1.645, False), (0.5, 1.40, True), (0.5, 1.425, False)],
+)
+def test_capture_just_under_and_just_over_the_limit(offset_frac, speed_mps, holed):
+    """The cup holds a ball crossing dead centre below about 1.63 m/s (Penner 2002), and one
+    at offset b below that times the chord's fraction sqrt(1 - (b/R)^2) (Holmes 1991): at b =
+    R/2, 1.41 m/s. The ball starts 1 mm short of the rim on the level (it loses < 0.001 m/s)."""
+    rho_g = float(rho_g_from_stimp(11 * FOOT_M))
+    b = offset_frac * HOLE_RADIUS_M
+    hole = (math.sqrt(HOLE_RADIUS_M**2 - b * b) + 0.001, b)
+    assert V_CAPTURE_CENTRE_MPS * math.sqrt(1 - offset_frac**2) == pytest.approx(
+        {0.0: 1.63, 0.5: 1.412}[offset_frac], abs=0.001
+    )
+    status = _roll(speed_mps, 0.0, 0.0, 0.0, rho_g, hole=hole, cup=True)[0]
+    assert (status == STATUS_HOLED) == holed
+
+
+def test_the_read_aims_against_the_break():
+    """On a green falling to the left (90 deg) the putt breaks left, so the line through the
+    hole's centre starts right of it (negative), and the mirror image left; straight up or down
+    the fall line it is the line to the hole."""
+    d, stimp = 10 * FOOT_M, 11 * FOOT_M
+    left = centre_line_rad(d, plane_green(0.02, math.pi / 2, stimp), 0.43)
+    right = centre_line_rad(d, plane_green(0.02, -math.pi / 2, stimp), 0.43)
+    assert math.degrees(left) < -1.0 and right == pytest.approx(-left, abs=1e-4)
+    assert abs(centre_line_rad(d, plane_green(0.02, math.pi, stimp), 0.43)) < 1e-4
+
+
+def test_the_read_is_the_best_of_its_candidates_on_common_random_numbers():
+    """The read's start line and pace give the least mean putts of every candidate it tried, on
+    the same errors, and the result reproduces with its seed."""
+    a = putt(10 * FOOT_M, 11 * FOOT_M, 0.02, 90.0, n=300, seed=3)
+    b = putt(10 * FOOT_M, 11 * FOOT_M, 0.02, 90.0, n=300, seed=3)
+    assert a.read == b.read and np.array_equal(a.putts, b.putts)
+    assert a.read.mean_putts == min(m for _, _, m in a.read.tried)
+    assert a.average_putts == pytest.approx(a.read.mean_putts)
+    assert a.read.aim_deg < 0
+
+
+def test_the_tour_putter_reproduces_the_tour_s_make_rates_and_average_putts():
+    """On 3000 seeded Tour-like greens (Stimp 11-12 ft, slope 1-3 %, any direction): the make
+    rate within 3 points of the Tour's at 3, 5, 10, 20 ft (standard error under 0.9 points) and
+    the average putts within 0.03 at 5, 10, 20, 30, 40 ft (standard error under 0.012)."""
+    for ft, make, make_se, tour_make, putts, putts_se, tour_putts in calibration_table(
+        PUTTERS["tour"], 3000
+    ):
+        if tour_make is not None:
+            assert make_se < 0.9 and abs(make - tour_make) <= MAKE_TOLERANCE_PCT, ft
+        if tour_putts is not None:
+            assert putts_se < 0.012 and abs(putts - tour_putts) <= PUTTS_TOLERANCE, ft
+
+
+def test_mcrun_putt_prints_the_make_rate_and_the_read(capsys):
+    argv = ["putt", "--distance", "10ft", "--stimp", "11ft", "--slope", "2%",
+            "--direction", "90", "-n", "200"]  # fmt: skip
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "make rate:" in out and "average putts:" in out and "deg right of the hole" in out
+
+
+@pytest.mark.parametrize(
+    "options, says",
+    [
+        (["--distance", "10ft", "--slope", "9%"], "stopping slope"),
+        (["--distance", "ten"], "--distance"),
+        (["--distance", "1cm"], "distance"),
+        (["--distance", "10ft", "-n", "1"], "-n"),
+        (["--distance", "10ft", "--stimp", "-3ft"], "Stimp"),
+    ],
+)
+def test_mcrun_putt_refuses_bad_input_in_one_line(options, says, capsys):
+    assert main(["putt", *options]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("mcrun: error:") and says in err
+
+
+def test_putt_refuses_an_unknown_putter():
+    with pytest.raises(InputError, match="allowed: tour, scratch, 15-handicap"):
+        putt(3.0, 3.3, 0.01, 0.0, putter="pro")
