@@ -11,6 +11,7 @@ Each family of commands lives in its own module, which adds its subcommands to t
 - ``mcrun.cli.paper``: ``paper``
 - ``mcrun.cli.calibrate``: ``calibrate``
 - ``mcrun.cli.hole``: ``hole``
+- ``mcrun.cli.warmup``: ``warm-up``
 
 A mistake the user can make (``InputError`` and its kinds, ``OutputError`` among them,
 ``UnitError``, ``CommandError``, ``hole.errors.HoleError``) ends with one line,
@@ -91,6 +92,7 @@ COMMAND_MODULES = {
     "report": "mcrun.cli.report",
     "hole": "mcrun.cli.hole",
     "aim": "mcrun.cli.aim",
+    "warm-up": "mcrun.cli.warmup",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 
