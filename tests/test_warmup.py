@@ -223,3 +223,16 @@ def test_processes_compiling_one_function_at_once_keep_every_signature(tmp_path)
         check=True,
     )
     assert done.stdout.split() == ["2", "0"]
+
+
+def test_cli_warm_up_reports_a_failed_job_in_one_line(monkeypatch, capsys):
+    from mcrun.cli import main
+
+    def failing(*args):
+        raise warmup.WarmUpError("warming up the batch kernel(s) on the terrain failed: boom")
+
+    monkeypatch.setattr(warmup, "warm_up_all", failing)
+    assert main(["warm-up"]) == 2
+    assert capsys.readouterr().err == (
+        "mcrun: error: warming up the batch kernel(s) on the terrain failed: boom\n"
+    )
