@@ -435,3 +435,51 @@ def test_shots_from_many_starts_on_dask_are_the_local_ones_bit_for_bit(client):
     assert a.columns.tolist() == b.columns.tolist()
     for column in a.columns:
         assert np.array_equal(a[column].to_numpy(), b[column].to_numpy(), equal_nan=column != "lie")
+
+
+# --- the kernels on the workers ----------------------------------------------------------------
+
+
+class _FakeClient:
+    """A cluster of three workers, the first two without the kernels in their cache."""
+
+    def __init__(self, fail=False):
+        self.fail = fail
+        self.calls = []
+
+    def run(self, function, *args):
+        self.calls.append((function.__name__, args))
+        if function is distributed._worker_kernels_cached:
+            return {"tcp://b:2": False, "tcp://a:1": None, "tcp://c:3": True}
+        if self.fail:
+            raise RuntimeError("no space left\non device")
+        return {"tcp://a:1": 61.2, "tcp://b:2": 58.7, "tcp://c:3": 0.8}
+
+
+def test_workers_that_lack_the_kernels_compile_them_at_the_start_and_say_so():
+    said = []
+    seconds = distributed.warm_workers(_FakeClient(), "terrain", ("batch",), said.append)
+    assert seconds == {"tcp://a:1": 61.2, "tcp://b:2": 58.7, "tcp://c:3": 0.8}
+    assert said == [
+        "mcrun: compiling the kernels on 2 of 3 Dask workers (their cache lacks them; cached "
+        "for the next runs)",
+        "mcrun: Dask worker tcp://a:1 compiled the kernels in 61 s",
+        "mcrun: Dask worker tcp://b:2 compiled the kernels in 59 s",
+    ]
+
+
+def test_a_worker_that_cannot_compile_fails_the_run_in_one_line():
+    client = _FakeClient(fail=True)
+    with pytest.raises(distributed.RunFailed) as err:
+        distributed.warm_workers(client, "plane", ("batch",), lambda line: None)
+    assert str(err.value) == (
+        "a Dask worker could not compile the kernels: RuntimeError: no space left on device"
+    )
+
+
+def test_workers_of_a_warm_cache_load_the_kernels_and_say_nothing(client):
+    said = []
+    seconds = distributed.warm_workers(client, "plane", ("batch",), said.append)
+    assert said == []
+    assert sorted(seconds) == sorted(client.scheduler_info(n_workers=-1)["workers"])
+    assert distributed._is_local(client)

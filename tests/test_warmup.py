@@ -92,3 +92,147 @@ def test_every_kernel_is_cached_after_its_warm_up():
             assert warmup.kernel_cached(ground, (kernel,)) is True, (kernel, ground)
     with pytest.raises(ValueError, match="unknown kernel 'fast'"):
         warmup.warm_up(("plane",), ("fast",))
+
+
+# --- every kernel at once: `mcrun warm-up` and warmup.warm_up_all ------------------------------
+
+TINY = """\
+from numba import njit
+
+
+@njit(cache=True)
+def add_one(x):
+    return x + 1
+"""
+
+COMPILE_TINY = """\
+import sys
+sys.path.insert(0, sys.argv[1])
+from mcrun.engine import cache_lock
+with cache_lock.locked_saves():
+    import tiny
+    tiny.add_one(1 if sys.argv[2] == "int" else 1.0)
+"""
+
+LOAD_TINY = """\
+import sys
+sys.path.insert(0, sys.argv[1])
+import tiny
+tiny.add_one(1)
+tiny.add_one(1.0)
+print(tiny.add_one.stats.cache_hits and sum(tiny.add_one.stats.cache_hits.values()),
+      sum(tiny.add_one.stats.cache_misses.values()))
+"""
+
+
+def test_warm_up_all_over_a_warm_cache_finds_every_kernel_cached(warmed):
+    """Both grounds at once in two spawned processes (the suite's cache is warm: they load)."""
+    report = warmup.warm_up_all(kernels=("batch",), processes=2)
+    assert report.processes == 2
+    assert [(k.ground, k.kernel) for k in report.kernels] == [
+        ("plane", "batch"),
+        ("terrain", "batch"),
+    ]
+    assert all(k.was_cached is True and k.seconds >= 0.0 for k in report.kernels)
+    assert report.wall_s > 0.0
+
+
+def test_jobs_run_in_processes_and_a_failure_is_one_line():
+    import operator
+
+    assert warmup.run_jobs(operator.add, [(1, 2), (3, 4)], 2) == [3, 7]
+    assert warmup.run_jobs(operator.add, [(1, 2), (3, 4)], 1) == [3, 7]
+    for processes in (1, 2):
+        with pytest.raises(warmup.WarmUpError) as err:
+            warmup.run_jobs(operator.truediv, [(1, 1), (1, 0)], processes)
+        assert str(err.value) == "warm-up job (1, 0) failed: ZeroDivisionError: division by zero"
+
+
+def test_warm_up_all_refuses_unknown_grounds_kernels_and_processes():
+    with pytest.raises(ValueError, match="unknown ground 'green'"):
+        warmup.warm_up_all(("green",))
+    with pytest.raises(ValueError, match="unknown kernel 'fast'"):
+        warmup.warm_up_all(kernels=("fast",))
+    with pytest.raises(ValueError, match="processes"):
+        warmup.warm_up_all(processes=0)
+
+
+def test_cli_warm_up_says_what_it_found_cached(warmed, capsys):
+    from mcrun.cli import main
+
+    assert main(["warm-up", "--kernel", "batch", "--processes", "1"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].split() == ["ground", "kernel", "state", "time"]
+    assert [line.split()[:3] for line in out[1:3]] == [
+        ["plane", "batch", "cached"],
+        ["terrain", "batch", "cached"],
+    ]
+    assert out[3].startswith("2 kernels (0 compiled, 2 cached) in ")
+    assert out[3].endswith(" s wall time on 1 process")
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["--ground", "green"], "argument --ground: invalid choice: 'green'"),
+        (["--kernel", "fast"], "argument --kernel: invalid choice: 'fast'"),
+        (["--processes", "two"], "argument --processes: invalid int value: 'two'"),
+        (["--processes", "0"], "--processes 0: give a whole number >= 1"),
+    ],
+)
+def test_cli_warm_up_refuses_a_bad_option_in_one_line(argv, message, capsys):
+    from mcrun.cli import main
+
+    assert main(["warm-up", *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mcrun: error: ") and message in err
+    assert err.count("\n") == 1
+
+
+def test_locked_saves_restores_numba(tmp_path):
+    from numba.core.caching import IndexDataCacheFile
+
+    from mcrun.engine import cache_lock
+
+    save = IndexDataCacheFile.save
+    with cache_lock.locked_saves() as locked:
+        assert locked is cache_lock.available()
+        if locked:
+            assert IndexDataCacheFile.save is not save
+            with cache_lock.locked_saves():  # nested: the same lock
+                pass
+    assert IndexDataCacheFile.save is save
+
+
+@pytest.mark.skipif(os.name != "posix", reason="the cache lock is POSIX flock")
+def test_processes_compiling_one_function_at_once_keep_every_signature(tmp_path):
+    """Two processes compile one cached function for two signatures at once, each saving to
+    the one index file under the lock: a third process then loads both from the cache."""
+    (tmp_path / "tiny.py").write_text(TINY)
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    children = [
+        subprocess.Popen([sys.executable, "-c", COMPILE_TINY, str(tmp_path), kind], env=env)
+        for kind in ("int", "float")
+    ]
+    assert [child.wait() for child in children] == [0, 0]
+    done = subprocess.run(
+        [sys.executable, "-c", LOAD_TINY, str(tmp_path)],
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert done.stdout.split() == ["2", "0"]
+
+
+def test_cli_warm_up_reports_a_failed_job_in_one_line(monkeypatch, capsys):
+    from mcrun.cli import main
+
+    def failing(*args):
+        raise warmup.WarmUpError("warming up the batch kernel(s) on the terrain failed: boom")
+
+    monkeypatch.setattr(warmup, "warm_up_all", failing)
+    assert main(["warm-up"]) == 2
+    assert capsys.readouterr().err == (
+        "mcrun: error: warming up the batch kernel(s) on the terrain failed: boom\n"
+    )

@@ -1,9 +1,14 @@
 """Start-up: the wall time of ``mcrun shot`` and of a 1,000-shot ``mcrun run`` as child
 processes, cold (``NUMBA_CACHE_DIR`` an empty folder: every kernel compiles, and the command
-must say so) and warm (the cache that cold run filled)."""
+must say so) and warm (the cache that cold run filled); and the time to the result of a
+1,000-shot run on a local Dask cluster of two workers, one chunk each
+(``distributed.run_scenario``), cold with the kernels compiled once by the client before the
+chunks (``prepare_kernels``, the default) and without (each worker compiles in its first
+task), and warm."""
 
 import os
 import shutil
+import sys
 import tempfile
 from pathlib import Path
 
@@ -14,6 +19,21 @@ SHOT_ARGS = ("shot", "--ball-speed", "167mph", "--launch", "10.9", "--spin", "26
 # The issue's targets (recorded, never asserted).
 TARGET_WARM_SHOT_S = 1.5
 TARGET_COLD_SHOT_S = 30.0
+
+
+# A small run on a local Dask cluster, as a child process: its arguments are the scenario, the
+# output folder and whether the client prepares the kernels. One chunk per worker, so that
+# without the client's compile every worker compiles in its first task.
+DASK_RUN = """
+import sys
+from mcrun.run import distributed
+distributed.run_scenario(
+    sys.argv[1], n=1000, seed=1, out_dir=sys.argv[2], scheduler="local", workers=DASK_WORKERS,
+    chunk_size=-(-1000 // DASK_WORKERS), progress=False, force=True,
+    prepare_kernels=sys.argv[3] == "1",
+)
+"""
+DASK_WORKERS = 2
 
 
 def _cache_files(folder):
@@ -49,6 +69,40 @@ def _startup(label, argv, cold, warm_repeats, scratch):
     return result
 
 
+def _dask_startup(config, scratch):
+    """Wall time of a 1,000-shot run on a local Dask cluster (interpreter, cluster and kernels
+    included): cold with and without the client's compile, then warm."""
+    script = DASK_RUN.replace("DASK_WORKERS", str(DASK_WORKERS))
+    out = scratch / "dask-run"
+    result = {"command": f"1,000 shots on a local Dask cluster of {DASK_WORKERS} workers"}
+
+    def argv(prepare):
+        return [sys.executable, "-c", script, str(SCENARIO), str(out), "1" if prepare else "0"]
+
+    env = None
+    if config.cold_start:
+        for prepare, key in ((False, "cold_workers_compile_s"), (True, "cold_s")):
+            cache = Path(tempfile.mkdtemp(prefix="numba-cache-", dir=scratch))
+            env = {**os.environ, "NUMBA_CACHE_DIR": str(cache)}
+            child = run_child(argv(prepare), env=env)
+            if child.returncode != 0:
+                raise RuntimeError(f"{result['command']}: {failed(child)}")
+            result[key] = child.wall_s
+            if prepare:
+                result["cold_says_compiling"] = "compil" in child.stderr.lower()
+    else:
+        run_child(argv(True))
+    times = []
+    for _ in range(config.warm_repeats):
+        child = run_child(argv(True), env=env)
+        if child.returncode != 0:
+            raise RuntimeError(f"{result['command']}: {failed(child)}")
+        times.append(child.wall_s)
+    result["warm_s"] = min(times)
+    result["warm_times_s"] = times
+    return result
+
+
 def measure(config, inputs):
     """Wall time of ``mcrun shot`` and of a 1,000-shot ``mcrun run``, cold and warm."""
     scratch = Path(tempfile.mkdtemp(prefix="mcrun-bench-"))
@@ -69,9 +123,10 @@ def measure(config, inputs):
             config.warm_repeats,
             scratch,
         )
+        dask = _dask_startup(config, scratch)
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
-    return {"shot": shot, "run_1000": run, "cold_measured": config.cold_start}
+    return {"shot": shot, "run_1000": run, "dask_1000": dask, "cold_measured": config.cold_start}
 
 
 def targets(r):
@@ -115,6 +170,23 @@ def markdown(r):
         s = r[key]
         cold = f"{s['cold_s']:.1f}" if "cold_s" in s else "not measured (--quick)"
         lines.append(f"| `{s['command']}` | {cold} | {s['warm_s']:.2f} |")
+    dask = r.get("dask_1000")
+    if dask is not None:
+        lines += [
+            "",
+            f"{dask['command'][0].upper()}{dask['command'][1:]} (`distributed.run_scenario`, "
+            "time to its result):",
+            "",
+            "| kernels | cold (s) | warm (s) |",
+            "|---|---|---|",
+        ]
+        cold = f"{dask['cold_s']:.1f}" if "cold_s" in dask else "not measured (--quick)"
+        lines.append(f"| compiled once by the client (default) | {cold} | {dask['warm_s']:.2f} |")
+        if "cold_workers_compile_s" in dask:
+            lines.append(
+                f"| compiled by each worker in its first task | "
+                f"{dask['cold_workers_compile_s']:.1f} | |"
+            )
     shot = r["shot"]
     if "cold_s" in shot:
         lines += [

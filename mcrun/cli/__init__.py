@@ -12,6 +12,7 @@ Each family of commands lives in its own module, which adds its subcommands to t
 - ``mcrun.cli.calibrate``: ``calibrate``
 - ``mcrun.cli.hole``: ``hole``
 - ``mcrun.cli.putt``: ``putt``
+- ``mcrun.cli.warmup``: ``warm-up``
 
 A mistake the user can make (``InputError`` and its kinds, ``OutputError`` among them,
 ``UnitError``, ``CommandError``, ``hole.errors.HoleError``) ends with one line,
@@ -93,6 +94,7 @@ COMMAND_MODULES = {
     "hole": "mcrun.cli.hole",
     "aim": "mcrun.cli.aim",
     "putt": "mcrun.cli.putt",
+    "warm-up": "mcrun.cli.warmup",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")
 

@@ -8,6 +8,10 @@ install or a change of the kernel's source; it is then cached on disk (``__pycac
 before a command (the plane's), and again once a command has read that it plays on a hole
 (the terrain's: ``mcrun run`` of a hole, ``mcrun aim``); when the answer is no, it runs
 ``warm_up`` and says how long it took, so that the command's own time and rate are its own.
+
+``warm_up_all`` (``mcrun warm-up``) compiles every kernel on every kind of ground ahead, one
+spawned process per kind of ground where there are cores, their cache saves locked against
+each other (``cache_lock``).
 """
 
 import os
@@ -160,3 +164,144 @@ def warm_up(grounds=GROUNDS, kernels=("batch",)):
             _run(ground, kernel)
         done.append(WarmUp(ground, time.perf_counter() - started, was_cached))
     return tuple(done)
+
+
+# --- every kernel, in parallel processes -------------------------------------------------------
+
+
+class KernelWarmUp(NamedTuple):
+    """What ``warm_up_all`` did for one kernel on one kind of ground."""
+
+    ground: str  # of GROUNDS
+    kernel: str  # of KERNELS
+    seconds: float  # wall time of its compilation, or of loading it from the cache
+    was_cached: bool | None  # ``kernel_cached`` before: False, it compiled; True, it loaded
+
+
+class WarmUpReport(NamedTuple):
+    """What ``warm_up_all`` did: each kernel in order, the processes and the wall time."""
+
+    kernels: tuple  # of KernelWarmUp, by ground then kernel
+    processes: int  # 1: in this process, one after the other
+    wall_s: float
+
+
+class WarmUpError(RuntimeError):
+    """A warm-up job failed (in a child process or here); its message is one line."""
+
+
+def _choose(values, allowed, what):
+    values = tuple(dict.fromkeys(values))
+    for value in values:
+        if value not in allowed:
+            raise ValueError(f"unknown {what} '{value}': choose one of {', '.join(allowed)}")
+    if not values:
+        raise ValueError(f"no {what} to warm up: choose among {', '.join(allowed)}")
+    return values
+
+
+def warm_up_job(ground, kernels):
+    """One job of ``warm_up_all``: compile (or load) each of ``kernels`` on ``ground`` in this
+    process, in order, each timed on its own; its cache saves are locked against the other
+    jobs' (``cache_lock``). Returns a list of ``KernelWarmUp``."""
+    from mcrun.engine import cache_lock
+
+    done = []
+    with cache_lock.locked_saves():
+        for kernel in kernels:
+            was_cached = kernel_cached(ground, (kernel,))
+            started = time.perf_counter()
+            _run(ground, kernel)
+            done.append(KernelWarmUp(ground, kernel, time.perf_counter() - started, was_cached))
+    return done
+
+
+def _one_line(err):
+    return " ".join(f"{type(err).__name__}: {err}".split()) or type(err).__name__
+
+
+def default_processes(jobs):
+    """The processes for ``jobs`` jobs: one each, at most the cores this process may use."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(jobs, cores))
+
+
+def run_jobs(job, arguments, processes):
+    """``[job(*a) for a in arguments]``: here, one after the other, when ``processes`` is 1;
+    otherwise in ``processes`` new (spawned) processes at once. A job that raises, or a process
+    that dies, raises ``WarmUpError`` with one line naming the job's arguments."""
+    if processes <= 1 or len(arguments) <= 1:
+        results = []
+        for args in arguments:
+            try:
+                results.append(job(*args))
+            except Exception as err:
+                raise WarmUpError(f"{_describe(args)}: {_one_line(err)}") from err
+        return results
+    import concurrent.futures
+    import multiprocessing
+
+    context = multiprocessing.get_context("spawn")
+    with concurrent.futures.ProcessPoolExecutor(processes, mp_context=context) as pool:
+        futures = [pool.submit(job, *args) for args in arguments]
+        results = []
+        try:
+            for args, future in zip(arguments, futures, strict=True):
+                try:
+                    results.append(future.result())
+                except Exception as err:
+                    raise WarmUpError(f"{_describe(args)}: {_one_line(err)}") from None
+        except BaseException:
+            for future in futures:
+                future.cancel()
+            raise
+    return results
+
+
+def _describe(args):
+    ground, kernels = (args + (None, None))[:2]
+    if isinstance(ground, str) and isinstance(kernels, tuple):
+        return f"warming up the {', '.join(kernels)} kernel(s) on the {ground} failed"
+    return f"warm-up job {args!r} failed"
+
+
+def warm_up_all(grounds=GROUNDS, kernels=KERNELS, processes=None):
+    """Compile every kernel of ``kernels`` for every kind of ground of ``grounds`` (all of
+    them by default), or load it from Numba's on-disk cache, as ``warm_up`` does: one job per
+    ground (its kernels in order, which share their callees), the jobs in ``processes`` spawned
+    processes at once (default: one per job, at most the cores; 1: in this process, one after
+    the other). The jobs' saves to the cache are locked against each other (``cache_lock``:
+    concurrent saves could otherwise lose index entries); where that lock is not available the
+    jobs run one after the other. Returns a ``WarmUpReport``; raises ``WarmUpError`` (one line)
+    when a job fails, ``ValueError`` for an unknown ground or kernel."""
+    from mcrun.engine import cache_lock
+
+    grounds = _choose(grounds, GROUNDS, "ground")
+    kernels = _choose(kernels, KERNELS, "kernel")
+    if processes is None:
+        processes = default_processes(len(grounds))
+    elif isinstance(processes, bool) or not isinstance(processes, int) or processes < 1:
+        raise ValueError(f"processes must be a whole number >= 1, got {processes!r}")
+    processes = min(processes, len(grounds))
+    if not cache_lock.available():
+        processes = 1
+    started = time.perf_counter()
+    results = run_jobs(warm_up_job, [(g, kernels) for g in grounds], processes)
+    done = tuple(k for job in results for k in job)
+    return WarmUpReport(done, processes, time.perf_counter() - started)
+
+
+def compile_announced(ground, kernels=("batch",), say=print):
+    """When the ``kernels`` for ``ground`` are not in Numba's on-disk cache, compile them here,
+    saying so (``say``, a function of one line) before and after, with the time it took.
+    Returns the seconds of the compilation (0.0 when none was needed)."""
+    if kernel_cached(ground, kernels) is not False:
+        return 0.0
+    what = "the kernels" if ground == "plane" else "the kernels for a hole's ground"
+    say(f"mcrun: compiling {what} (first run after install; cached for the next runs)")
+    seconds = sum(done.seconds for done in warm_up((ground,), kernels))
+    say(f"mcrun: compiled {what} in {seconds:.0f} s")
+    return seconds

@@ -70,11 +70,26 @@ removed when the new one starts.
 Workers. A local cluster has worker processes of one Dask thread each, started with
 ``NUMBA_NUM_THREADS=1``; on any cluster a task sets one Numba thread for itself
 (``numba.set_num_threads`` is per calling thread), so the machine runs one Numba thread per
-Dask thread and is not oversubscribed. The kernels are compiled once per worker process, or
-loaded from Numba's on-disk cache (``cache=True``) when it is there. The client and every
-worker must reach the output (the client merges the statistics and computes the percentiles).
-The run's elapsed time starts once the cluster is up; starting a local cluster (about a
-second) is recorded apart, as ``cluster_start_s`` in the provenance.
+Dask thread and is not oversubscribed.
+
+Kernels. Before it submits the chunks, the run makes sure that every worker has the kernels it
+needs (``prepare_kernels``): on a local cluster the client compiles them once, in its own
+process, into Numba's on-disk cache when they are not there (saying so on stderr, with the
+time it took), and the workers, which share its cache folder (``__pycache__`` beside the
+sources, or ``NUMBA_CACHE_DIR``, which they inherit), load them. Then each worker of any
+cluster loads them or, when its cache lacks them (a remote cluster whose workers have no
+shared cache folder, or another kind of CPU), compiles them at once, each worker saying on
+stderr how long it took, instead of compiling silently in its first task. A remote cluster
+compiles once for all its workers when ``NUMBA_CACHE_DIR`` points at a folder on storage that
+all of them mount (Numba keys the cache by the source file's path and modification time, and
+the CPU; workers that compile at once lock the cache's index files against each other:
+``engine.cache_lock``). A worker that joins after the start compiles or loads in its first
+task.
+
+The client and every worker must reach the output (the client merges the statistics and
+computes the percentiles). The run's elapsed time starts once the cluster is up and has its
+kernels: starting a local cluster (about a second) is recorded apart, as ``cluster_start_s``
+in the provenance, and making sure of the kernels as ``kernels_prepare_s``.
 """
 
 import contextlib
@@ -98,6 +113,7 @@ import pyarrow.parquet as pq
 
 from mcrun import exits
 from mcrun import status as status_codes
+from mcrun.engine import warmup
 from mcrun.engine.backend import simulate_batch
 from mcrun.quantities import InputError
 from mcrun.results import location, output, stats
@@ -121,6 +137,7 @@ __all__ = [
     "read_shots",
     "run_chunk",
     "run_scenario",
+    "warm_workers",
 ]
 
 
@@ -422,6 +439,54 @@ def _cluster_size(client):
     return info["address"], len(threads), threads
 
 
+# --- the kernels on the workers ----------------------------------------------------------------
+
+
+def _say(line):
+    print(line, file=sys.stderr, flush=True)
+
+
+def _is_local(client):
+    """Whether the client's cluster is a local one (its workers share this machine's cache)."""
+    cluster = getattr(client, "cluster", None)
+    return cluster is not None and isinstance(cluster, _dask().LocalCluster)
+
+
+def _worker_kernels_cached(ground, kernels):
+    """On a worker: ``warmup.kernel_cached`` there (None: cannot be told)."""
+    return warmup.kernel_cached(ground, kernels)
+
+
+def _worker_warm_up(ground, kernels):
+    """On a worker: compile or load the kernels (cache saves locked against the other
+    workers'); the seconds it took."""
+    return sum(done.seconds for done in warmup.warm_up_job(ground, kernels))
+
+
+def warm_workers(client, ground, kernels, say=_say):
+    """Have every worker of the client's cluster load the ``kernels`` for ``ground`` or, where
+    its cache lacks them, compile them, all at once: a line (``say``, default stderr) before,
+    when any worker compiles, and one for each worker that compiled, with the time it took.
+    Returns {worker address: seconds}; raises ``RunFailed`` (one line) when a worker fails."""
+    cached = client.run(_worker_kernels_cached, ground, kernels)
+    cold = sorted(address for address, is_cached in cached.items() if is_cached is not True)
+    if cold:
+        say(
+            f"mcrun: compiling the kernels on {len(cold)} of {len(cached)} Dask workers (their "
+            "cache lacks them; cached for the next runs)"
+        )
+    try:
+        seconds = client.run(_worker_warm_up, ground, kernels)
+    except Exception as err:
+        raise RunFailed(
+            f"a Dask worker could not compile the kernels: {_error_text(err)}"
+        ) from None
+    for address in cold:
+        if address in seconds:
+            say(f"mcrun: Dask worker {address} compiled the kernels in {seconds[address]:.0f} s")
+    return seconds
+
+
 # --- the run -----------------------------------------------------------------------------------
 
 
@@ -457,6 +522,7 @@ def run_scenario(
     chunk_task=run_chunk,
     ignore_disk_space=False,
     announce=None,
+    prepare_kernels=True,
 ):
     """Run a scenario on a Dask cluster and write its folder; return a DaskRunResult.
 
@@ -485,6 +551,9 @@ def run_scenario(
         Retries of a task that raises.
     chunk_task : callable
         The function a task runs, with ``run_chunk``'s signature (tests wrap it).
+    prepare_kernels : bool
+        Compile the kernels the run needs before its chunks (see Kernels in the module's
+        notes); False: each worker compiles or loads them in its first task.
 
     Raises
     ------
@@ -511,6 +580,14 @@ def run_scenario(
     connecting = time.perf_counter()
     with destination, _connect(client, scheduler, scheduler_file, workers) as dask_client:
         address, n_workers, threads = _cluster_size(dask_client)
+        ground = "plane" if scenario.hole is None else "terrain"
+        kernels = ("batch",) if the_plan.trajectories_every is None else ("batch", "traced")
+        preparing = time.perf_counter()
+        if prepare_kernels:
+            if _is_local(dask_client):
+                warmup.compile_announced(ground, kernels, _say)
+            warm_workers(dask_client, ground, kernels, _say)
+        prepared = time.perf_counter()
         if announce is not None:
             announce(the_plan.line())
         # The run's time starts once the cluster is up (a local cluster takes seconds to
@@ -528,7 +605,8 @@ def run_scenario(
             scheduler=address,
             workers=n_workers,
             threads_per_worker=sorted(set(threads)),
-            cluster_start_s=round(started - connecting, 3),
+            cluster_start_s=round(preparing - connecting, 3),
+            kernels_prepare_s=round(prepared - preparing, 3),
             numba_threads_per_task=NUMBA_THREADS_PER_TASK,
             chunks=len(chunks),
             retries=retries,

@@ -1,0 +1,71 @@
+"""``mcrun warm-up``: compile the kernels into Numba's on-disk cache ahead of the first run (after
+an install, an upgrade, or on a new machine), in parallel processes where there are cores, and
+say what was compiled or found cached and how long each took."""
+
+from mcrun.cli import CommandError
+from mcrun.engine import warmup
+
+ALL = "all"
+
+
+def _which(value, allowed):
+    return allowed if value == ALL else (value,)
+
+
+def _cmd_warm_up(args):
+    if args.processes is not None and args.processes < 1:
+        raise CommandError(f"--processes {args.processes}: give a whole number >= 1")
+    grounds = _which(args.ground, warmup.GROUNDS)
+    kernels = _which(args.kernel, warmup.KERNELS)
+    try:
+        report = warmup.warm_up_all(grounds, kernels, args.processes)
+    except warmup.WarmUpError as err:
+        raise CommandError(str(err)) from None
+    print(f"{'ground':<8}  {'kernel':<7}  {'state':<8}  {'time':>8}")
+    for done in report.kernels:
+        state = {True: "cached", False: "compiled"}.get(done.was_cached, "ready")
+        print(f"{done.ground:<8}  {done.kernel:<7}  {state:<8}  {done.seconds:>6.1f} s")
+    n = len(report.kernels)
+    compiled = sum(done.was_cached is False for done in report.kernels)
+    where = "1 process" if report.processes == 1 else f"{report.processes} processes"
+    print(
+        f"{n} kernel{'s' if n != 1 else ''} ({compiled} compiled, {n - compiled} cached) in "
+        f"{report.wall_s:.1f} s wall time on {where}"
+    )
+    return 0
+
+
+def register(subparsers):
+    """Add ``warm-up`` to an argparse subparsers object."""
+    p = subparsers.add_parser(
+        "warm-up",
+        help="compile the kernels into the on-disk cache ahead of the first run",
+        description="Compile the kernels (the batch, the traced batch and the run from a "
+        "landing, on the plane and on a hole's terrain) into Numba's on-disk cache, or find "
+        "them there, so that no later command compiles: one process per kind of ground, at "
+        "most the cores. Says what it compiled or found cached and how long each took. The "
+        "cache is __pycache__ beside mcrun's sources, or NUMBA_CACHE_DIR.",
+        epilog="example: mcrun warm-up --ground plane",
+        allow_abbrev=False,
+    )
+    p.add_argument(
+        "--ground",
+        choices=(*warmup.GROUNDS, ALL),
+        default=ALL,
+        help="the kind of ground: plane (no hole), terrain (a hole) or all (default)",
+    )
+    p.add_argument(
+        "--kernel",
+        choices=(*warmup.KERNELS, ALL),
+        default=ALL,
+        help="the kernel: batch (every run), traced (recorded paths), landed (the paper's "
+        "bounce studies) or all (default)",
+    )
+    p.add_argument(
+        "--processes",
+        metavar="N",
+        type=int,
+        help="processes at once (default: one per kind of ground, at most the cores; 1: one "
+        "after the other in this process)",
+    )
+    p.set_defaults(func=_cmd_warm_up)
