@@ -78,13 +78,10 @@ def _incidences(b, e):
 
 
 @njit(cache=True, error_model="numpy")
-def _impact_lanes(b, e, terrain, rb):
-    """One impact, and the hop it starts, for every bounce lane: ``bounce.impact`` in two
-    vectorised loops (as ``step_lanes``, so that the lanes' long chains overlap), on the ground
-    under the ball (on a terrain, ``_impact_lanes_on_grid``). Returns the number of lanes
-    (empty ones included) whose ball no longer hops."""
-    if ground.varies(terrain):
-        return _impact_lanes_on_grid(b, e, terrain, rb)
+def _impact_lanes_on_plane(terrain, b, e, rb):
+    """One impact, and the hop it starts, for every bounce lane on its Plane: ``bounce.impact``
+    in two vectorised loops (as ``step_lanes``, so that the lanes' long chains overlap).
+    Returns the number of lanes (empty ones included) whose ball no longer hops."""
     _incidences(b, e)
     ended = 0
     for k in range(LANES):
@@ -139,7 +136,7 @@ def _impact_lanes(b, e, terrain, rb):
 
 
 @njit(cache=True, error_model="numpy")
-def _impact_lanes_on_grid(b, e, terrain, rb):
+def _impact_lanes_on_grid(terrain, b, e, rb):
     """``_impact_lanes`` on a terrain: the impacts' rebounds, and their hops where the ground
     is calm (one plane and zone as far as the hop goes: there the plane's exact hop, as on a
     Plane), in vectorised loops (into the rebound table ``rb``), then each other lane's hop on
@@ -285,6 +282,11 @@ def _record_hop(b, k, before, traj, tracer, terrain):
         )  # fmt: skip
         tracer[TRACER.T_NEXT] += tracer[TRACER.DT_RECORD]
     tracer[TRACER.ROW] = n
+
+
+# One impact of every lane, on the kind of ground the kernel is compiled for (the other's loop
+# is not compiled into it).
+_impact_lanes = ground.by_ground(_impact_lanes_on_plane, _impact_lanes_on_grid)
 
 
 @njit(cache=True, error_model="numpy")
@@ -438,7 +440,7 @@ def bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain):
                     traced = k
                     for row in range(BOUNCE.N):  # (a slice copy compiles a shape check)
                         before[row] = b[row * LANES + k]
-        ended = _impact_lanes(b, e, terrain, rb)
+        ended = _impact_lanes(terrain, b, e, rb)
         if traced >= 0 and (b[BOUNCE.THEN * LANES + traced] == HOPS) | (
             b[BOUNCE.THEN * LANES + traced] == ENDS
         ):

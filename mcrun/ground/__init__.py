@@ -31,6 +31,7 @@ and its ``Patch``, are the physics' (``physics.roll``).
 
 from mcrun.ground.plane import Plane, plane
 from mcrun.ground.questions import (
+    by_ground,
     calm_reach,
     clearance,
     clearance_rate,
@@ -71,6 +72,7 @@ __all__ = [
     "Plane",
     "Surface",
     "Terrain",
+    "by_ground",
     "calm_cells",
     "calm_reach",
     "clearance",

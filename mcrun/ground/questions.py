@@ -52,6 +52,21 @@ def question(answers):
     return ask
 
 
+def by_ground(on_plane, on_grid):
+    """A call ``f(terrain, a, b, c)`` of ``on_plane(terrain, a, b, c)`` on a Plane and of
+    ``on_grid(terrain, a, b, c)`` on a grid, picked by the type of ``terrain`` as a question's
+    answer is: the kernel of each kind of ground compiles its own alone (a loop written for
+    one kind costs the other's compile nothing)."""
+
+    def answers(terrain, a, b, c):
+        if _flat(terrain):
+            return lambda terrain, a, b, c: on_plane(terrain, a, b, c)
+        return lambda terrain, a, b, c: on_grid(terrain, a, b, c)
+
+    answers.__name__ = on_plane.__name__
+    return question(answers)
+
+
 @question
 def height_at(terrain, x, y):
     """Height (m) of the ground's surface at (x, y): where the flight ends. On a Plane the flight
