@@ -21,10 +21,11 @@ def _cmd_warm_up(args):
         report = warmup.warm_up_all(grounds, kernels, args.processes)
     except warmup.WarmUpError as err:
         raise CommandError(str(err)) from None
-    print(f"{'ground':<8}  {'kernel':<7}  {'state':<8}  {'time':>8}")
+    width = max(7, *(len(done.kernel) for done in report.kernels))
+    print(f"{'ground':<8}  {'kernel':<{width}}  {'state':<8}  {'time':>8}")
     for done in report.kernels:
         state = {True: "cached", False: "compiled"}.get(done.was_cached, "ready")
-        print(f"{done.ground:<8}  {done.kernel:<7}  {state:<8}  {done.seconds:>6.1f} s")
+        print(f"{done.ground:<8}  {done.kernel:<{width}}  {state:<8}  {done.seconds:>6.1f} s")
     n = len(report.kernels)
     compiled = sum(done.was_cached is False for done in report.kernels)
     where = "1 process" if report.processes == 1 else f"{report.processes} processes"
@@ -40,8 +41,9 @@ def register(subparsers):
     p = subparsers.add_parser(
         "warm-up",
         help="compile the kernels into the on-disk cache ahead of the first run",
-        description="Compile the kernels (the batch, the traced batch and the run from a "
-        "landing, on the plane and on a hole's terrain) into Numba's on-disk cache, or find "
+        description="Compile the kernels (the batch and the traced batch, each for the usual "
+        "flight and for the general lanes, and the run from a landing, on the plane and on a "
+        "hole's terrain) into Numba's on-disk cache, or find "
         "them there, so that no later command compiles: one process per kind of ground, at "
         "most the cores. Says what it compiled or found cached and how long each took. The "
         "cache is __pycache__ beside mcrun's sources, or NUMBA_CACHE_DIR.",
@@ -59,7 +61,8 @@ def register(subparsers):
         choices=(*warmup.KERNELS, ALL),
         default=ALL,
         help="the kernel: batch (every run), traced (recorded paths), landed (the paper's "
-        "bounce studies) or all (default)",
+        "bounce studies), batch_general and traced_general (those of the aerodynamic models "
+        "and wind profiles that fly in the general lanes) or all (default)",
     )
     p.add_argument(
         "--processes",
