@@ -582,6 +582,8 @@ def run_scenario(
         address, n_workers, threads = _cluster_size(dask_client)
         ground = "plane" if scenario.hole is None else "terrain"
         kernels = ("batch",) if the_plan.trajectories_every is None else ("batch", "traced")
+        if plan.general_flight(the_plan.scenario):
+            kernels = warmup.general(kernels)
         preparing = time.perf_counter()
         if prepare_kernels:
             if _is_local(dask_client):
