@@ -134,7 +134,8 @@ def _report(result):
     rows = []
     for c in result.clubs:
         k = c.best
-        bearing = math.degrees(result.bearing_rad(c.offsets_m[k]))
+        # (About the line to the pin, as the offset is.)
+        bearing = math.degrees(math.atan2(c.offsets_m[k], result.pin_distance_m))
         rows.append([
             c.club, str(len(c.offsets_m)), f"{c.offsets_m[k]:+.1f} m ({bearing:+.1f} deg)",
             f"{c.expected[k]:.3f}", f"{c.expected_se[k]:.3f}",
