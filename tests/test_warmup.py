@@ -236,3 +236,29 @@ def test_cli_warm_up_reports_a_failed_job_in_one_line(monkeypatch, capsys):
     assert capsys.readouterr().err == (
         "mcrun: error: warming up the batch kernel(s) on the terrain failed: boom\n"
     )
+
+
+def test_the_general_lanes_kernels_are_compiled_where_a_command_needs_them(tmp_path):
+    """The kernels of the general flight lanes (another aerodynamic model, a wind profile) are
+    their own, compiled only where a batch holds such a shot, and named among what a command
+    compiles (and says) before its work: by its options, or by its scenario's points."""
+    from mcrun.cli import build_parser, kernels_of
+    from mcrun.engine.batch import general_flight
+    from mcrun.run import plan
+
+    assert not general_flight("ferguson2022", "uniform")
+    assert not general_flight("trackman2019_lyu", "uniform")  # a Reynolds model, in the lanes
+    assert general_flight("lyu2018", "uniform") and general_flight("ferguson2022", "log")
+    parser = build_parser("shot")
+    shot = ["shot", "--ball-speed", "60", "--launch", "12", "--spin", "300"]
+    assert kernels_of(parser.parse_args(shot)) == ("batch",)
+    assert kernels_of(parser.parse_args([*shot, "--aero", "lyu2018"])) == ("batch_general",)
+    traced = parser.parse_args([*shot, "--wind-profile", "log", "--trajectory", "path.csv"])
+    assert kernels_of(traced) == ("batch_general", "traced_general")
+    assert not plan.general_flight(scenario.load(ROOT / "scenarios" / "pga-driver.toml"))
+    path = tmp_path / "s.toml"
+    path.write_text(
+        "[launch]\nball_speed = 60\nlaunch_angle = 12\nspin = 300\n\n"
+        '[[group]]\nname = "a"\n\n[[group]]\nname = "b"\nmodels.aero = "lyu2018"\n'
+    )
+    assert plan.general_flight(scenario.load(path))
