@@ -157,7 +157,9 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, terrain, plane, t0, traj, n, t_next
         v = math.sqrt(vx * vx + vy * vy + vz * vz)
         h_cap = ds / v if v > 0.0 else math.inf
         to_edge = False  # a step to the edge of a level patch, where the next one turns it
-        if (patch.smooth != 0.0) & (v > 1e-12):
+        # (A Plane has no patches: Numba prunes the branch on ``terrain is not None`` from a
+        # Plane's kernel, which then compiles none of this.)
+        if (terrain is not None) and ((patch.smooth != 0.0) & (v > 1e-12)):
             # On smooth ground: a Runge-Kutta step to the patch's edge, unless the ball is
             # about to stop.
             decel = (5.0 / 7.0) * G_MPS2 * (vz / v + turf.rho_g * nz)
