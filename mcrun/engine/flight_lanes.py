@@ -343,7 +343,7 @@ def _make_flight(derivative, stage, step, constants, context):
                     )
         # Where each step ends: below the ground (LANDED), and, on a ground that varies, over
         # ground in play or not (one look-up of the ground each).
-        if ground.varies(terrain):
+        if terrain is not None:  # (a grid; pruned from the Plane's kernel, which never varies)
             for k in range(LANES):
                 x1 = lanes[LANE.X1 * LANES + k]
                 y1 = lanes[LANE.Y1 * LANES + k]
