@@ -199,9 +199,9 @@ def _run_options(args):
 def _cmd_run(args):
     try:
         args.scenario = scenario_module.load(args.scenario)
-        # The kernel of the scenario's ground alone (a hole's runs nothing on the plane), said
+        # The kernels of the scenario's ground alone (a hole's runs nothing on the plane), said
         # apart from the run's time.
-        ground = "plane" if args.scenario.hole is None else "terrain"
+        ground, _ = plan.kernels_of(args.scenario)
         compile_if_needed(ground, kernels_of(args, plan.general_flight(args.scenario)))
         if _dask_backend(args):
             result = _run_on_dask(args)

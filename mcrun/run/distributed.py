@@ -580,10 +580,7 @@ def run_scenario(
     connecting = time.perf_counter()
     with destination, _connect(client, scheduler, scheduler_file, workers) as dask_client:
         address, n_workers, threads = _cluster_size(dask_client)
-        ground = "plane" if scenario.hole is None else "terrain"
-        kernels = ("batch",) if the_plan.trajectories_every is None else ("batch", "traced")
-        if plan.general_flight(the_plan.scenario):
-            kernels = warmup.general(kernels)
+        ground, kernels = plan.kernels_of(scenario, the_plan.trajectories_every is not None)
         preparing = time.perf_counter()
         if prepare_kernels:
             if _is_local(dask_client):

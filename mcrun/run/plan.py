@@ -35,7 +35,7 @@ import pandas as pd
 from mcrun.engine.backend import simulate_traced
 from mcrun.engine.batch import general_flight as general_flight_of
 from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
-from mcrun.engine.warmup import warm_up
+from mcrun.engine.warmup import general, warm_up
 from mcrun.quantities import DRIVER_COLUMNS, InputError
 from mcrun.results import geometry, output, reader, stats
 from mcrun.results import on_hole as on_hole_results
@@ -180,11 +180,20 @@ def general_flight(scenario):
     )
 
 
+def kernels_of(scenario, traced=False):
+    """(ground, kernels) the scenario's shots run (``engine.warmup``): on the plane or a hole's
+    terrain, the batch (and the traced batch where paths are recorded), of the general flight
+    kind where a point flies in the general lanes."""
+    ground = "plane" if scenario.hole is None else "terrain"
+    kernels = ("batch", "traced") if traced else ("batch",)
+    return ground, general(kernels) if general_flight(scenario) else kernels
+
+
 def compile_kernel(scenario):
     """Compile the batch kernel the scenario's shots run (or load it from the cache), so that
     a run's clock starts after it: on its ground, of its flight kinds."""
-    ground = "plane" if scenario.hole is None else "terrain"
-    warm_up((ground,), ("batch_general",) if general_flight(scenario) else ("batch",))
+    ground, kernels = kernels_of(scenario)
+    warm_up((ground,), kernels)
 
 
 def terrain_of(scenario):

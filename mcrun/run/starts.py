@@ -218,12 +218,10 @@ def _on_dask(client, scenario, point, n, chunks, aim, strokes, keep_shots):
     """``play_chunk`` of every chunk as a Dask task (the scenario travels as its text and is
     read once per worker), gathered in chunk order, once every worker has the kernel
     (``distributed.warm_workers``)."""
-    from mcrun.engine.warmup import general
     from mcrun.run.distributed import warm_workers
-    from mcrun.run.plan import general_flight
+    from mcrun.run.plan import kernels_of
 
-    kernels = general(("batch",)) if general_flight(scenario) else ("batch",)
-    warm_workers(client, "terrain", kernels)  # each worker's compile said, not silent
+    warm_workers(client, *kernels_of(scenario))  # each worker's compile said, not silent
     text, path, seed = scenario.text, str(scenario.path), scenario.seed
     futures = [
         client.submit(
