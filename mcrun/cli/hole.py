@@ -8,6 +8,7 @@ from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
 from mcrun.hole.hole import M_PER_YD, hole_from_table, load_hole, read_hole_file, tee_and_pin
 from mcrun.hole.osm import ATTRIBUTION, hole_title, read_course
+from mcrun.putting.on_hole import check_putting
 
 GEOJSON_SUFFIXES = (".geojson", ".json")
 
@@ -86,6 +87,7 @@ def _cmd_hole(args):
         hole = hole_from_table({"map": path.name, "hole": args.hole}, path.parent, str(path))
     else:
         hole = load_hole(path) if args.hole is None else _with_hole(path, args.hole)
+    check_putting(hole)
     _describe(hole)
     if args.plot:
         from mcrun.report.hole_map import write_hole_map

@@ -1,7 +1,10 @@
 """``mcrun putt``: a putt on a plane green, read and holed out n times: make rate, three-putt
-rate and average putts with their standard errors, and the read (start line and pace)."""
+rate and average putts with their standard errors, and the read (start line and pace); or,
+with ``--hole``, the expected-putts map of a hole's green to Parquet (and a picture)."""
 
+import contextlib
 import math
+import sys
 
 from mcrun.putting import PUTTERS, putt
 from mcrun.quantities import InputError
@@ -28,13 +31,24 @@ def _whole(text, name, least):
 
 
 def _cmd_putt(args):
+    if args.hole is not None:
+        return _cmd_green(args)
+    if args.distance is None:
+        raise InputError("--distance: required for a putt on a plane green (or give --hole)")
+    for name in ("resolution", "output", "plot"):
+        if getattr(args, name) is not None:
+            raise InputError(f"--{name}: is for a green's map (with --hole)")
+    args.slope = "0%" if args.slope is None else args.slope
+    args.direction = "0" if args.direction is None else args.direction
+    args.putter = "tour" if args.putter is None else args.putter
+    args.seed = "0" if args.seed is None else args.seed
     result = putt(
         parse_quantity(args.distance, "length", "--distance"),
         parse_quantity(args.stimp, "length", "--stimp"),
         _slope_tan(args.slope),
         parse_quantity(args.direction, "angle", "--direction") * 180.0 / math.pi,
         putter=args.putter,
-        n=_whole(args.n, "-n", 2),
+        n=_whole("2000" if args.n is None else args.n, "-n", 2),
         seed=_whole(args.seed, "--seed", 0),
     )
     r = result.read
@@ -56,6 +70,112 @@ def _cmd_putt(args):
     return 0
 
 
+def _cmd_green(args):
+    """The expected-putts map of a hole's green: a table, a picture, a few lines."""
+    from mcrun import exits
+    from mcrun.cli import Interrupted
+    from mcrun.hole.hole import load_hole
+    from mcrun.putting.green import GreenError, green_of_hole
+    from mcrun.putting.green_map import expected_putts_map
+    from mcrun.putting.on_hole import check_putting
+    from mcrun.results import output
+    from mcrun.run import aim
+
+    for name in ("distance", "slope", "direction"):
+        if getattr(args, name) is not None:
+            raise InputError(f"--{name}: is for a plane green; with --hole the green is the hole's")
+    if args.output is None:
+        raise InputError("--hole: give -o FILE.parquet for the map (and --plot FILE.png)")
+    hole = check_putting(load_hole(args.hole))
+    destination = aim.check_output(args.output, args.force, "-o", (".parquet",), ".parquet")
+    if args.plot is not None:
+        from mcrun.report import style
+
+        style.require_matplotlib("putt --plot")
+        aim.check_output(args.plot, args.force, "--plot", (".png",), ".png")
+    spec = dict(hole.putting)
+    resolution = (spec["resolution_m"] if args.resolution is None
+                  else parse_quantity(args.resolution, "length", "--resolution"))  # fmt: skip
+    if not 0.05 <= resolution <= 5.0:
+        raise InputError(f"--resolution {args.resolution}: allowed: 0.05 m to 5 m")
+    n = spec["n"] if args.n is None else _whole(args.n, "-n", 2)
+    seed = spec["seed"] if args.seed is None else _whole(args.seed, "--seed", 0)
+    putter = spec["putter"] if args.putter is None else args.putter
+    try:
+        green = green_of_hole(hole, spec["cell_m"])
+    except GreenError as err:
+        raise InputError(str(err)) from None
+    print(f"putt: the green of {hole.source}: {green.area_m2():.0f} m^2, Stimp "
+          f"{green.stimp_m / 0.3048:.1f} ft; map {resolution:g} m, putter {putter}, {n} putts "
+          f"a read, seed {seed}", file=sys.stderr, flush=True)  # fmt: skip
+    bar = _bar()
+    try:
+        result = expected_putts_map(green, putter, n, seed, resolution, progress=bar)
+    except KeyboardInterrupt:
+        raise Interrupted("nothing was written") from None
+    finally:
+        bar.close()
+    frame = result.frame()
+    lon, lat = hole.to_lonlat(frame["x_m"].to_numpy(), frame["y_m"].to_numpy())
+    frame.insert(2, "lon_deg", lon)
+    frame.insert(3, "lat_deg", lat)
+    provenance = {
+        "hole": hole.source, "putter": putter, "n": n, "seed": seed,
+        "resolution_m": resolution, "green_cell_m": green.cell_m, "stimp_m": green.stimp_m,
+        "pin_xy_m": list(green.pin_xy_m), "sweep_change": result.sweep_change,
+        "elapsed_s": round(result.elapsed_s, 3), "file": "putts",
+        "attribution": hole.attribution or "",
+    }  # fmt: skip
+    written = False
+    try:
+        with contextlib.ExitStack() as stack:
+            pictures = None
+            if args.plot is not None:
+                from mcrun.report import green_plot, style
+
+                pictures = stack.enter_context(style.Pictures(force=args.force))
+                pictures.add(args.plot, green_plot.green_figure(result, hole.attribution),
+                             green_plot.DPI)  # fmt: skip
+            with exits.interrupts_deferred():
+                with output.AtomicFile(destination, force=args.force) as target:
+                    output.write_table(target.tmp, frame, output.encode_provenance(provenance))
+                    target.commit()
+                if pictures is not None:
+                    pictures.commit()
+                written = True
+    except KeyboardInterrupt:
+        raise Interrupted(
+            "after writing everything" if written else "nothing was written"
+        ) from None
+    v = frame["expected_putts"]
+    away = v[v > 0.0]  # (a node at the pin is in the hole)
+    print(
+        f"expected putts over the green: {away.min():.3f} to {away.max():.3f}, mean "
+        f"{away.mean():.3f} ({len(away)} points, {result.elapsed_s:.1f} s; a second sweep "
+        f"changed a value by {result.sweep_change:.4f} at most)"
+    )
+    print(f"wrote {destination}")
+    if args.plot is not None:
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _bar():
+    from tqdm import tqdm
+
+    bar = tqdm(total=1, unit="point", file=sys.stderr, leave=False, dynamic_ncols=True)
+
+    class Bar:
+        def __call__(self, done, total):
+            bar.total = total
+            bar.update(done - bar.n)
+
+        def close(self):
+            bar.close()
+
+    return Bar()
+
+
 def register(subparsers):
     """Add ``putt`` to an argparse subparsers object."""
     p = subparsers.add_parser(
@@ -66,17 +186,23 @@ def register(subparsers):
         "errors), and the read (start line and pace past the hole) that minimises the average "
         "putts. DIRECTION is the direction the green falls, in degrees from the putt's line "
         "(ball to hole), counter-clockwise seen from above: 0 downhill, 90 falls to the left "
-        "(the putt breaks left), 180 uphill, 270 falls to the right.",
-        epilog="example: mcrun putt --distance 10ft --stimp 11ft --slope 2%% --direction 90",
+        "(the putt breaks left), 180 uphill, 270 falls to the right. With --hole: the "
+        "expected-putts map of the hole's green (every point read and valued by N putts; its "
+        "settings default to the hole's [hole.putting]) to -o FILE.parquet, and --plot PNG.",
+        epilog="examples: mcrun putt --distance 10ft --stimp 11ft --slope 2%% --direction 90; "
+        "mcrun putt --hole green.toml -o putts.parquet --plot putts.png",
         allow_abbrev=False,
     )
-    p.add_argument("--distance", required=True, help="to the hole, e.g. 10ft, 3m")
+    p.add_argument("--distance", help="to the hole, e.g. 10ft, 3m")
     p.add_argument("--stimp", default="11ft", help="the green's Stimpmeter reading (11ft)")
-    p.add_argument("--slope", default="0%", help="the green's slope: 2%%, 0.02 or 1.1deg (0%%)")
-    p.add_argument(
-        "--direction", default="0", help="the fall line, degrees from the putt's line (0)"
-    )
-    p.add_argument("--putter", default="tour", choices=list(PUTTERS), help="(tour)")
-    p.add_argument("-n", default="2000", metavar="N", help="holings-out (2000); 1e4 works")
-    p.add_argument("--seed", default="0", metavar="S", help="random seed (0)")
+    p.add_argument("--slope", help="the green's slope: 2%%, 0.02 or 1.1deg (0%%)")
+    p.add_argument("--direction", help="the fall line, degrees from the putt's line (0)")
+    p.add_argument("--putter", choices=list(PUTTERS), help="(tour)")
+    p.add_argument("-n", metavar="N", help="holings-out (2000; a map: the hole's, 200)")
+    p.add_argument("--seed", metavar="S", help="random seed (0)")
+    p.add_argument("--hole", metavar="HOLE", help="a hole TOML file: map its green")
+    p.add_argument("--resolution", help="the map's spacing (the hole's, 0.5m)")
+    p.add_argument("-o", "--output", metavar="FILE", help="the map's Parquet (with --hole)")
+    p.add_argument("--plot", metavar="PNG", help="the map's picture (with --hole)")
+    p.add_argument("--force", action="store_true", help="replace existing outputs")
     p.set_defaults(func=_cmd_putt)

@@ -20,7 +20,12 @@ The ``[hole]`` table of a scenario and a standalone hole TOML file have the same
   relief under Rule 17.1d: red lateral, yellow not); default as mapped (``golf=water_hazard``
   yellow, ``golf=lateral_water_hazard`` and ``natural=water`` red);
 - ``[hole.turf.KIND]``: turf values of a zone kind (``preset`` = a turf preset, and any
-  ``physics.turf.Turf`` field), checked against ``turf.LIMITS``.
+  ``physics.turf.Turf`` field), checked against ``turf.LIMITS``;
+- ``putting``: how a ball at rest on the green is valued: "table" (default: the baseline's
+  putts from its distance) or "physics" (the expected-putts map of the green's contour,
+  ``mcrun.putting.green_map``), or a table ``[hole.putting]`` with ``model`` and the map's
+  settings (``PUTTING_KEYS``: ``putter``, ``n``, ``seed``, ``resolution_m``, ``cell_m`` the
+  green's grid, finer than the hole's where its ground has the detail).
 """
 
 import math
@@ -75,7 +80,13 @@ KEYS = (
     "name",
     "penalty_areas",
     "turf",
+    "putting",
 )
+PUTTING_MODELS = ("table", "physics")
+# [hole.putting]: its keys, defaults and what is allowed.
+PUTTING_DEFAULTS = {"model": "table", "putter": "tour", "n": 200, "seed": 0,
+                    "resolution_m": 0.5, "cell_m": None}  # fmt: skip
+PUTTING_KEYS = tuple(PUTTING_DEFAULTS)
 
 
 @dataclass
@@ -98,6 +109,7 @@ class Hole:
     attribution: str | None = None  # to show wherever the map's data or a figure of it appears
     ground: str = "flat"  # "flat", "elevation FILE" or "shape KIND"
     line_xy: np.ndarray | None = None  # the hole line in the frame
+    putting: dict = field(default_factory=lambda: dict(PUTTING_DEFAULTS))  # [hole.putting]
     _heights: object = None  # callable(x_m, y_m) -> heights relative to the tee, or None
     _terrain: Terrain | None = None
 
@@ -308,6 +320,34 @@ def _turfs(table, where):
         except ValueError as err:
             raise HoleError(f"{where}: '{key}': {err} (limits: {LIMITS})") from None
     return turfs
+
+
+def _putting(table, where):
+    """The ``putting`` key: a model name or a table of ``PUTTING_KEYS``, checked (the putter's
+    name against the presets by ``putting.on_hole.check_putting``, a layer above)."""
+    value = table.get("putting", "table")
+    spec = dict(PUTTING_DEFAULTS)
+    if isinstance(value, str):
+        value = {"model": value}
+    if not isinstance(value, dict):
+        raise HoleError(f"{where}: 'putting' must be {' or '.join(map(repr, PUTTING_MODELS))} "
+                        "or a table [hole.putting]")  # fmt: skip
+    for key, v in value.items():
+        name = f"putting.{key}"
+        if key not in PUTTING_DEFAULTS:
+            raise HoleError(f"{where}: '{name}': unknown key; allowed: {', '.join(PUTTING_KEYS)}")
+        if key == "model" and v not in PUTTING_MODELS:
+            raise HoleError(f"{where}: '{name}' = {v!r}: choose {', '.join(PUTTING_MODELS)}")
+        if key == "putter" and (not isinstance(v, str) or not v):
+            raise HoleError(f"{where}: '{name}' = {v!r} must be a putter's name")
+        if key == "n" and (isinstance(v, bool) or not isinstance(v, int) or not 2 <= v <= 100_000):
+            raise HoleError(f"{where}: '{name}' = {v!r} must be a whole number in [2, 100000]")
+        if key == "seed" and (isinstance(v, bool) or not isinstance(v, int) or v < 0):
+            raise HoleError(f"{where}: '{name}' = {v!r} must be a whole number 0 or more")
+        if key in ("resolution_m", "cell_m"):
+            v = _number({name: v}, name, where, 0.05, 5.0)
+        spec[key] = v
+    return spec
 
 
 def _ring_distance_m(polygon, x, y):
@@ -600,6 +640,7 @@ def hole_from_table(table, folder, source):
         attribution=parts.get("attribution"),
         ground=ground,
         line_xy=parts.get("line_xy"),
+        putting=_putting(table, where),
         _heights=heights,
     )
     return hole

@@ -13,17 +13,27 @@ rolling resistance (5/7) rho_g g cos(beta) (A. R. Penner, "The physics of puttin
 reading (``mcrun.physics.turf.rho_g_from_stimp``). A ball at rest stays so only where
 tan(beta) <= rho_g (the stopping slope); on a steeper plane it never rests.
 
-Coordinates: x, y (m) in the plane of the green (distances along its surface, so that the
-equations above hold exactly), x from the ball's start towards the hole, y to the left. The slope
-is asked of ``slope_at(x, y, ...)``: a plane gives the same everywhere; a green from an elevation
-grid would answer per point through the same call.
+Two grounds, one roll:
+
+- ``roll``, a plane green: x, y (m) in the plane of the green (distances along its surface, so
+  that the equations above hold exactly), x from the ball's start towards the hole, y to the
+  left; the slope is the same everywhere.
+- ``roll_on``, a green on a grid of heights (``Surface``): x, y (m) in the horizontal plane of
+  the hole's frame. The slope at a point is the gradient of the bilinear surface there: tan(beta)
+  = |grad z|, the fall line -grad z / |grad z|. Distances are taken in the horizontal plane, not
+  along the surface: on a green's slopes (under 5 %) the two differ by under 0.13 %. Each step
+  takes the slope at its predicted midpoint, so the roll follows the grid's bends to second
+  order in the step, and no step is longer than ``ds_max_m``. A ball that reaches a node that
+  is not the green's stops there with ``STATUS_OFF_GREEN``: it is a chip from there.
 
 Integration: classical Runge-Kutta (RK4) in time steps ``dt_s``; the last step before the ball
 stops is solved in closed form (deceleration taken constant over it).
 """
 
 import math
+from typing import NamedTuple
 
+import numpy as np
 from numba import njit
 
 from mcrun.physics.constants import G_MPS2
@@ -36,8 +46,11 @@ __all__ = [
     "STATUS_CAP",
     "STATUS_HOLED",
     "STATUS_NO_REST",
+    "STATUS_OFF_GREEN",
     "STATUS_STOPPED",
+    "Surface",
     "roll",
+    "roll_on",
     "slope_at",
 ]
 
@@ -49,13 +62,79 @@ STATUS_STOPPED = 0  # at rest on the green
 STATUS_HOLED = 1  # dropped in the cup
 STATUS_NO_REST = 2  # still moving at the cap on a plane steeper than the stopping slope
 STATUS_CAP = 3  # still moving at the cap
-ROLL_STATUS = ("stopped", "holed", "no rest", "cap")
+STATUS_OFF_GREEN = 4  # left the green (or its grid): a chip from where it left
+ROLL_STATUS = ("stopped", "holed", "no rest", "cap", "off the green")
+
+
+class Surface(NamedTuple):
+    """A green on a grid: node [iy, ix] at (x0_m + ix cell_m, y0_m + iy cell_m) of the hole's
+    frame, its height (m) and whether it is the green's (1) or not (0: a ball that reaches it
+    has left the green). The height between nodes is bilinear."""
+
+    height_m: np.ndarray  # (ny, nx) float64
+    on_green: np.ndarray  # (ny, nx) uint8
+    x0_m: float
+    y0_m: float
+    cell_m: float
+
+
+# A plane green asks no grid: the empty surface.
+NO_SURFACE = Surface(np.zeros((0, 0)), np.zeros((0, 0), dtype=np.uint8), 0.0, 0.0, 1.0)
 
 
 @njit(cache=True)
 def slope_at(x_m, y_m, slope_tan, fall_x, fall_y):
     """The slope at (x_m, y_m): (tan(beta), fall direction x, y). A plane: the same everywhere."""
     return slope_tan, fall_x, fall_y
+
+
+@njit(cache=True)
+def grid_slope(x_m, y_m, surface):
+    """The slope of ``surface`` at (x_m, y_m): (tan(beta), fall direction x, y), from the
+    gradient of its bilinear height (the nearest cell where the point is off the grid)."""
+    h = surface.height_m
+    ny, nx = h.shape
+    fx = (x_m - surface.x0_m) / surface.cell_m
+    fy = (y_m - surface.y0_m) / surface.cell_m
+    ix = min(max(int(math.floor(fx)), 0), nx - 2)
+    iy = min(max(int(math.floor(fy)), 0), ny - 2)
+    tx = min(max(fx - ix, 0.0), 1.0)
+    ty = min(max(fy - iy, 0.0), 1.0)
+    h00, h10 = h[iy, ix], h[iy, ix + 1]
+    h01, h11 = h[iy + 1, ix], h[iy + 1, ix + 1]
+    gx = ((1.0 - ty) * (h10 - h00) + ty * (h11 - h01)) / surface.cell_m
+    gy = ((1.0 - tx) * (h01 - h00) + tx * (h11 - h10)) / surface.cell_m
+    s = math.sqrt(gx * gx + gy * gy)
+    if s > 0.0:
+        return s, -gx / s, -gy / s
+    return 0.0, 1.0, 0.0
+
+
+@njit(cache=True)
+def grid_height(x_m, y_m, surface):
+    """The bilinear height (m) of ``surface`` at (x_m, y_m) (clamped to its grid)."""
+    h = surface.height_m
+    ny, nx = h.shape
+    fx = (x_m - surface.x0_m) / surface.cell_m
+    fy = (y_m - surface.y0_m) / surface.cell_m
+    ix = min(max(int(math.floor(fx)), 0), nx - 2)
+    iy = min(max(int(math.floor(fy)), 0), ny - 2)
+    tx = min(max(fx - ix, 0.0), 1.0)
+    ty = min(max(fy - iy, 0.0), 1.0)
+    return ((1.0 - ty) * ((1.0 - tx) * h[iy, ix] + tx * h[iy, ix + 1])
+            + ty * ((1.0 - tx) * h[iy + 1, ix] + tx * h[iy + 1, ix + 1]))  # fmt: skip
+
+
+@njit(cache=True)
+def on_green(x_m, y_m, surface):
+    """Whether (x_m, y_m) is on the green: its nearest node is the green's (False off the
+    grid)."""
+    ny, nx = surface.on_green.shape
+    ix = int(math.floor((x_m - surface.x0_m) / surface.cell_m + 0.5))
+    iy = int(math.floor((y_m - surface.y0_m) / surface.cell_m + 0.5))
+    if ix < 0 or iy < 0 or ix >= nx or iy >= ny:
+        return False
+    return surface.on_green[iy, ix] != 0
 
 
 @njit(cache=True)
@@ -96,29 +175,54 @@ def _entry(x0, y0, x1, y1, hx, hy):
 @njit(cache=True)
 def roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, hole_y_m,
          cup, dt_s, max_time_s):  # fmt: skip
-    """Roll a ball from (x_m, y_m) at (vx_mps, vy_mps) until it stops, drops (with ``cup``) or
-    runs past ``max_time_s``.
+    """Roll a ball on a plane green from (x_m, y_m) at (vx_mps, vy_mps) until it stops, drops
+    (with ``cup``) or runs past ``max_time_s``.
 
     Returns (status, x_m, y_m, time_s, closest_m, closest_x_m, closest_y_m): the ``STATUS_*``,
     where it ended, when, and the point of its path closest to the hole's centre.
     """
+    return _roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m,
+                 hole_y_m, cup, dt_s, max_time_s, NO_SURFACE, 0.0)  # fmt: skip
+
+
+@njit(cache=True)
+def roll_on(x_m, y_m, vx_mps, vy_mps, surface, rho_g, hole_x_m, hole_y_m, cup, dt_s,
+            max_time_s, ds_max_m):  # fmt: skip
+    """``roll`` on the grid ``surface`` (a ``Surface``; positions in the hole's frame), in steps
+    of at most ``dt_s`` and ``ds_max_m``; it also ends ``STATUS_OFF_GREEN``, where the ball
+    reached a node that is not the green's (the position: that point)."""
+    return _roll(x_m, y_m, vx_mps, vy_mps, 0.0, 1.0, 0.0, rho_g, hole_x_m, hole_y_m, cup, dt_s,
+                 max_time_s, surface, ds_max_m)  # fmt: skip
+
+
+@njit(cache=True, inline="always")
+def _roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, hole_y_m,
+          cup, dt_s, max_time_s, surface, ds_max_m):  # fmt: skip
+    """The roll of ``roll`` (an empty ``surface``: the plane of slope_tan, fall_x, fall_y) and
+    of ``roll_on`` (a grid)."""
+    grid = surface.height_m.shape[0] > 0
     x, y, vx, vy, t = x_m, y_m, vx_mps, vy_mps, 0.0
     best = math.hypot(x - hole_x_m, y - hole_y_m)
     bx, by = x, y
     while t < max_time_s:
-        s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
         speed = math.sqrt(vx * vx + vy * vy)
+        h = dt_s
+        if grid:
+            if ds_max_m > 0.0 and speed * h > ds_max_m:
+                h = ds_max_m / speed
+            s_tan, fx, fy = grid_slope(x + vx * h / 2.0, y + vy * h / 2.0, surface)
+        else:
+            s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
         ax, ay = _accel(vx, vy, s_tan, fx, fy, rho_g)
         # The step in which the ball stops: along its motion it slows at -a.v_hat.
         decel = -(ax * vx + ay * vy) / speed if speed > 1e-9 else 0.0
-        if speed > 1e-9 and decel > 0.0 and speed <= decel * dt_s:
+        if speed > 1e-9 and decel > 0.0 and speed <= decel * h:
             t_stop = speed / decel
             x1 = x + vx * t_stop / 2.0
             y1 = y + vy * t_stop / 2.0
             v1x, v1y = 0.0, 0.0
             h = t_stop
         else:
-            h = dt_s
             k1x, k1y = ax, ay
             k2x, k2y = _accel(vx + h / 2 * k1x, vy + h / 2 * k1y, s_tan, fx, fy, rho_g)
             k3x, k3y = _accel(vx + h / 2 * k2x, vy + h / 2 * k2y, s_tan, fx, fy, rho_g)
@@ -148,9 +252,17 @@ def roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, h
         if dist < best:
             best, bx, by = dist, px, py
         x, y, vx, vy, t = x1, y1, v1x, v1y, t + h
+        if grid and not on_green(x, y, surface):
+            return STATUS_OFF_GREEN, x, y, t, best, bx, by
         if vx == 0.0 and vy == 0.0:
-            s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+            if grid:
+                s_tan, fx, fy = grid_slope(x, y, surface)
+            else:
+                s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
             if s_tan <= rho_g:
                 return 0, x, y, t, best, bx, by
-    s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+    if grid:
+        s_tan, fx, fy = grid_slope(x, y, surface)
+    else:
+        s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
     return (2 if s_tan > rho_g else 3), x, y, t, best, bx, by

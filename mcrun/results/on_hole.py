@@ -22,7 +22,8 @@ import pyarrow as pa
 from mcrun import status as status_codes
 from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.hole.zones import PENALTY_ZONES, ZONE_KINDS
-from mcrun.strokes import OUTCOMES, point_strokes, score_shots, start_of
+from mcrun.putting.on_hole import map_of_hole
+from mcrun.strokes import OUTCOMES, PUTTING_COLUMNS, point_strokes, score_shots, start_of
 
 OFF_MAP = "off_map"
 ZONE_NAMES = (*ZONE_KINDS, OFF_MAP)
@@ -46,6 +47,19 @@ COLUMNS = {
     "expected_strokes_after": pa.float64(),
     "strokes_gained": pa.float64(),
 }
+# The columns a hole adds where its green is valued by its expected-putts map
+# (``[hole] putting = "physics"``): each ball at rest on the green's chance to hole out in one
+# putt, and to take three or more (NaN off the green).
+PUTTING = {name: pa.float64() for name in PUTTING_COLUMNS}
+
+
+def columns_of(hole):
+    """The columns a shot on ``hole`` adds: COLUMNS, and PUTTING under physics putting."""
+    if hole.putting["model"] == "physics":
+        return {**COLUMNS, **PUTTING}
+    return COLUMNS
+
+
 # A share's interval: Wilson's score interval at 95 %.
 Z95 = 1.959963984540054
 
@@ -90,6 +104,8 @@ def scores(hole, outcomes, strokes=None, finish=None, start_xy_m=TEE):
     if finish is None:
         finish = _zones(hole, fx, fy, column["status"])
     strokes = dict(strokes or {})
+    if "putting" not in strokes:
+        strokes["putting"] = map_of_hole(hole)
     if not _at_tee(start_xy_m):
         strokes["start_lie"], strokes["start_distance_m"] = start_of(hole, start_xy_m, True)
     return score_shots(
@@ -108,8 +124,8 @@ def scores(hole, outcomes, strokes=None, finish=None, start_xy_m=TEE):
 
 
 def shot_columns(hole, outcomes, strokes=None, start_xy_m=TEE):
-    """{name: Arrow array} of COLUMNS for the kernel's ``outcomes`` (n, N_OUTCOME) of shots
-    struck from ``start_xy_m`` (as ``scores``); ``strokes``: keyword arguments of
+    """{name: Arrow array} of ``columns_of(hole)`` for the kernel's ``outcomes`` (n, N_OUTCOME)
+    of shots struck from ``start_xy_m`` (as ``scores``); ``strokes``: keyword arguments of
     ``strokes.score_shots`` (the baseline, lies)."""
     column = {name: outcomes[:, k] for name, k in _COLUMN.items()}
     fx, fy = column["final_x_m"], column["final_y_m"]
@@ -131,6 +147,7 @@ def shot_columns(hole, outcomes, strokes=None, start_xy_m=TEE):
             name: pa.array(scored[name].to_numpy(dtype=float))
             for name in ("penalty_strokes", "expected_strokes_after", "strokes_gained")
         },
+        **{name: pa.array(scored[name].to_numpy(float)) for name in PUTTING if name in scored},
     }
 
 
@@ -157,11 +174,12 @@ def wilson(k, n, z=Z95):
     return max(centre - half, 0.0), min(centre + half, 1.0)
 
 
-def zone_shares(columns):
+def zone_shares(columns, putting=False):
     """The summary's zone columns of one point, whose shots ``columns`` (a
     ``stats.ShotsColumns``) reads: for the landing and the finish, the share of the shots that
     landed in each zone (``p_finish_green``) with its 95 % interval (``_lo95``, ``_hi95``)
-    and the count they are out of (``n_landed``)."""
+    and the count they are out of (``n_landed``); with ``putting`` (a hole whose green is valued
+    by its map), the putting shares of its balls on the green (``_putting_summary``)."""
     counts = {"landing": np.zeros(len(ZONE_NAMES), np.int64),
               "finish": np.zeros(len(ZONE_NAMES), np.int64)}  # fmt: skip
     for table in columns.tables(["landing_zone", "finish_zone"]):
@@ -176,6 +194,8 @@ def zone_shares(columns):
             )
     n = int(counts["landing"].sum())
     row = {"n_landed": n, **_strokes_summary(columns)}
+    if putting:
+        row.update(_putting_summary(columns))
     for which, tally in counts.items():
         for name, k in zip(ZONE_NAMES, tally, strict=True):
             lo, hi = wilson(int(k), n)
@@ -218,6 +238,26 @@ def _strokes_summary(columns):
         row[f"p_outcome_{name}"] = full[f"p_{name}"]
         row[f"expected_strokes_after_part_{name}"] = full[f"expected_strokes_after_part_{name}"]
     return row
+
+
+def _putting_summary(columns):
+    """Under physics putting: the mean one-putt and three-or-more shares of the point's balls
+    at rest on the green (``p_one_putt_green``, ``p_three_putt_green``) and how many there
+    were (``n_on_green``)."""
+    ones, threes = [], []
+    for table in columns.tables(list(PUTTING)):
+        one = table["p_one_putt"].to_numpy(zero_copy_only=False)
+        three = table["p_three_putt"].to_numpy(zero_copy_only=False)
+        on = np.isfinite(one)
+        ones.append(one[on])
+        threes.append(three[on])
+    n = int(sum(len(v) for v in ones))
+    # math.fsum: exactly rounded, so the same whatever the row groups (local or Dask).
+    return {
+        "n_on_green": n,
+        "p_one_putt_green": math.fsum(np.concatenate(ones)) / n if n else math.nan,
+        "p_three_putt_green": math.fsum(np.concatenate(threes)) / n if n else math.nan,
+    }
 
 
 def _outcome_of(shots):

@@ -173,7 +173,8 @@ def shots_schema(input_names, input_types=None, metadata=None, on_hole=False):
     """Arrow schema of shots.parquet for the given sampled input columns.
 
     ``input_types``: Arrow type per input name (default float64); ``on_hole``: a run on a
-    hole, whose shots have ``HOLE_FIELDS`` and ``on_hole.COLUMNS`` too.
+    hole, whose shots have ``HOLE_FIELDS`` and ``on_hole.COLUMNS`` too (True), or the Hole
+    itself, whose shots have ``on_hole.columns_of(hole)``.
     """
     input_types = input_types or {}
     fields = [
@@ -187,8 +188,9 @@ def shots_schema(input_names, input_types=None, metadata=None, on_hole=False):
         dtype = np.dtype(OUTCOME_DTYPES.get(name, np.float64))
         fields.append(pa.field(name, pa.from_numpy_dtype(dtype)))
     fields.append(pa.field("status_name", pa.dictionary(pa.int32(), pa.string())))
-    if on_hole:
-        fields += [pa.field(name, kind) for name, kind in on_hole_columns.COLUMNS.items()]
+    if on_hole is not False and on_hole is not None:
+        added = on_hole_columns.COLUMNS if on_hole is True else on_hole_columns.columns_of(on_hole)
+        fields += [pa.field(name, kind) for name, kind in added.items()]
     return pa.schema(fields, metadata=metadata)
 
 
@@ -245,7 +247,8 @@ class ShotsWriter(_ParquetWriter):
         self._group_dictionary = pa.array(list(group_index), pa.string())
         self._group_index = [group_index[g] for g in groups]
         self._label_dictionary = pa.array(list(labels), pa.string())
-        self.schema = shots_schema(self.input_names, self.input_types, metadata, hole is not None)
+        self.schema = shots_schema(self.input_names, self.input_types, metadata,
+                                   False if hole is None else hole)  # fmt: skip
         self.row_groups = {}  # point -> list of the row groups that hold its shots
         self._n_row_groups = 0
         self._pending = []  # (point, table) of the chunks not written yet

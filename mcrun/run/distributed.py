@@ -657,7 +657,7 @@ def run_scenario(
             point_stats,
             lambda point: _PartsColumns(fs, parts[point]),
             budget_bytes,
-            on_hole=the_plan.scenario.hole is not None,
+            on_hole=the_plan.scenario.hole,
         )
         with fs.open_output_stream(f"{root}/{output.SUMMARY_FILE}") as f:
             output.write_table(f, rows, plan.summary_metadata(provenance, started))

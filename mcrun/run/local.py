@@ -153,7 +153,7 @@ def run_scenario(
                         the_plan.chunk_size,
                     ),
                     budget_bytes,
-                    on_hole=the_plan.scenario.hole is not None,
+                    on_hole=the_plan.scenario.hole,
                 )
             output.write_table(
                 folder.file(output.SUMMARY_FILE),

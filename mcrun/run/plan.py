@@ -437,7 +437,10 @@ def summary_rows(points, point_stats, shots_of, budget_bytes, on_hole=False):
     """summary.parquet's rows, one per point: its index, group, label and sweep values, then
     ``stats.summarise`` of its streamed ``PointStats`` and of its ok shots, which
     ``shots_of(point index)`` reads (a ``stats.ShotsColumns``) from wherever they were
-    written; ``on_hole``: and the shares of its zones (``on_hole.zone_shares``)."""
+    written; ``on_hole``: the run's Hole (or True), and the shares of its zones
+    (``on_hole.zone_shares``), with the putting shares where its green is valued by its map."""
+    putting = getattr(on_hole, "putting", {}).get("model") == "physics"
+    on_hole = on_hole is not None and on_hole is not False
     rows = []
     sweep = _sweep_columns(points)
     for point, one in zip(points, point_stats, strict=True):
@@ -451,7 +454,7 @@ def summary_rows(points, point_stats, shots_of, budget_bytes, on_hole=False):
             )
         )
         if on_hole:
-            row.update(on_hole_results.zone_shares(columns))
+            row.update(on_hole_results.zone_shares(columns, putting))
         rows.append(row)
     return pd.DataFrame(rows)
 

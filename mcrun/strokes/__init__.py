@@ -11,6 +11,7 @@ from mcrun.strokes.baseline import (
 from mcrun.strokes.expected import (
     LIE_OF_ZONE,
     OUTCOMES,
+    PUTTING_COLUMNS,
     SHOT_COLUMNS,
     check_lie_of_zone,
     point_strokes,
@@ -22,6 +23,7 @@ __all__ = [
     "LIES",
     "LIE_OF_ZONE",
     "OUTCOMES",
+    "PUTTING_COLUMNS",
     "SHOT_COLUMNS",
     "Baseline",
     "BaselineError",

@@ -40,6 +40,7 @@ from mcrun.strokes.baseline import LIES, tour_baseline
 __all__ = [
     "LIE_OF_ZONE",
     "OUTCOMES",
+    "PUTTING_COLUMNS",
     "SHOT_COLUMNS",
     "check_lie_of_zone",
     "point_strokes",
@@ -220,6 +221,7 @@ def score_shots(
     start_distance_m=None,
     baseline=None,
     lie_of_zone=None,
+    putting=None,
 ):
     """Per shot of a run on a hole: a DataFrame of ``SHOT_COLUMNS``, one row per shot in order.
 
@@ -232,7 +234,10 @@ def score_shots(
     (shots struck from different places: ``start_of`` gives both; the lies may be their
     indices in ``LIES``). ``baseline``: a
     ``Baseline``, the Tour's by default. ``lie_of_zone``: {zone: lie} overrides of
-    ``LIE_OF_ZONE``.
+    ``LIE_OF_ZONE``. ``putting``: a green's expected-putts map (``putting.green_map.GreenMap``,
+    or anything with its ``value_at``): a ball at rest on the green (where the map has a value)
+    is valued by it, not by the baseline's putts, and the frame gets ``PUTTING_COLUMNS``
+    (``p_one_putt``, ``p_three_putt``: NaN off the green).
     """
     base = baseline or tour_baseline()
     lies = check_lie_of_zone(lie_of_zone)
@@ -267,6 +272,11 @@ def score_shots(
     in_play = (outcome >= 0) & (outcome < len(IN_PLAY_ZONES))
     distance_after[in_play] = d_final[in_play]
     expected_after[in_play] = base.expected_by_code(lie_after[in_play], d_final[in_play])
+    putts = None
+    if putting is not None:
+        putts = _putts_by_map(putting, shots, outcome, n)
+        mapped = np.isfinite(putts[0])
+        expected_after[mapped] = putts[0][mapped]
 
     # Stroke and distance: one penalty stroke, the shot again from its start.
     again = (outcome == OUTCOMES.index("out_of_bounds")) | (outcome == OUTCOMES.index("off_map"))
@@ -311,7 +321,9 @@ def score_shots(
     reference_lie = np.where(outcome == OUTCOMES.index("green"), LIES.index("green"),
                              LIES.index("fairway"))  # fmt: skip
     reference = base.expected_by_code(reference_lie, d_final)
-    return pd.DataFrame(
+    if putts is not None:
+        reference = np.where(np.isfinite(putts[0]), putts[0], reference)
+    frame = pd.DataFrame(
         {
             "outcome": pd.Categorical.from_codes(
                 np.where(scored, outcome, len(OUTCOMES)), [*OUTCOMES, FAILED]
@@ -324,6 +336,24 @@ def score_shots(
             "lie_cost_strokes": np.where(scored, expected_after - reference, np.nan),
         }
     ).assign(expected_strokes_start=e_start)
+    if putts is not None:
+        frame["p_one_putt"], frame["p_three_putt"] = putts[1], putts[2]
+    return frame
+
+
+PUTTING_COLUMNS = ("p_one_putt", "p_three_putt")
+
+
+def _putts_by_map(putting, shots, outcome, n):
+    """(expected putts, one-putt share, share of three or more) of each ball at rest on the
+    green by the map ``putting``; NaN for the others and where the map has no value."""
+    out = [np.full(n, np.nan) for _ in range(3)]
+    green = outcome == OUTCOMES.index("green")
+    if green.any():
+        x, y = _floats(shots, "final_x_m", n)[green], _floats(shots, "final_y_m", n)[green]
+        for k, values in enumerate(putting.value_at(x, y)):
+            out[k][green] = values
+    return out
 
 
 def _mean_se(values):

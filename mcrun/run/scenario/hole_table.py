@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from mcrun.hole.errors import HoleError
 from mcrun.hole.hole import hole_from_table, read_hole_file
+from mcrun.putting.on_hole import check_putting
 from mcrun.run.scenario.specs import ScenarioError
 from mcrun.run.scenario.values import as_table
 
@@ -108,7 +109,7 @@ def _cached_hole(key, table, folder, source):
     key = (key, str(folder))
     if key not in _HOLES:
         try:
-            _HOLES[key] = hole_from_table(table, folder, source)
+            _HOLES[key] = check_putting(hole_from_table(table, folder, source))
         except HoleError as err:
             raise ScenarioError(str(err)) from None
     return _HOLES[key]

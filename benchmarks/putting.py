@@ -1,0 +1,87 @@
+"""``python -m benchmarks.putting [--resolution R] [--n N]``: the expected-putts map of a
+600 m^2 green.
+
+The issue's target: the map of a 600 m^2 green at 0.5 m, with a best read per point and 200
+putts per read, in under 60 s on two cores. The green: an ellipse of 16 m x 12 m semi-axes
+(603 m^2) on a grid of 0.25 m, falling from back to front at 2 % with a crown of 0.15 m
+(cos^2 over 8 m) off the pin's left, Stimp 11 ft; the pin 3 m short of its centre and 2 m
+left. Timed after a warm-up (compilation, a map of a small green) that is not; every point
+read (the paces of ``putting.read``, then its start lines) and valued by n putts of the Tour
+putter.
+
+Prints a Markdown table and writes ``benchmarks/results/putting.md``; asserts nothing.
+"""
+
+import argparse
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+
+from mcrun.physics.turf import rho_g_from_stimp
+from mcrun.putting.green import Green
+from mcrun.putting.green_map import expected_putts_map
+from mcrun.putting.roll import Surface
+from mcrun.strokes.baseline import FOOT_M
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "benchmarks" / "results" / "putting.md"
+TARGET_S = 60.0
+SEMI_AXES_M = (16.0, 12.0)
+PIN_XY_M = (-3.0, -2.0)
+
+
+def bench_green(semi_axes_m=SEMI_AXES_M, cell_m=0.25, slope=0.02, stimp_ft=11.0):
+    """The benchmark's green (a ``putting.green.Green``), x towards the back."""
+    a, b = semi_axes_m
+    xs = np.arange(-a - 1.0, a + 1.0 + cell_m / 2, cell_m)
+    ys = np.arange(-b - 1.0, b + 1.0 + cell_m / 2, cell_m)
+    x, y = np.meshgrid(xs, ys)
+    r = np.hypot(x - 4.0, y - 5.0)
+    crown = np.where(r < 8.0, 0.15 * np.cos(0.5 * np.pi * r / 8.0) ** 2, 0.0)
+    height = slope * x + crown
+    on = ((x / a) ** 2 + (y / b) ** 2 <= 1.0).astype(np.uint8)
+    surface = Surface(height, on, float(xs[0]), float(ys[0]), cell_m)
+    return Green(surface, PIN_XY_M, float(rho_g_from_stimp(stimp_ft * FOOT_M)), "benchmark")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--resolution", type=float, default=0.5)
+    parser.add_argument("--n", type=int, default=200)
+    args = parser.parse_args(argv)
+    threads = len(os.sched_getaffinity(0))
+    expected_putts_map(bench_green((3.0, 3.0)), n=20, resolution_m=1.0)  # compile
+    green = bench_green()
+    started = time.perf_counter()
+    m = expected_putts_map(green, n=args.n, resolution_m=args.resolution)
+    elapsed = time.perf_counter() - started
+    points = int(m.valid.sum())
+    below = float(m.value_at(PIN_XY_M[0] - 3.0, PIN_XY_M[1])[0][0])
+    above = float(m.value_at(PIN_XY_M[0] + 3.0, PIN_XY_M[1])[0][0])
+    verdict = "met" if elapsed < TARGET_S else f"NOT met ({elapsed - TARGET_S:.1f} s over)"
+    lines = [
+        "# The expected-putts map of a 600 m^2 green",
+        "",
+        f"`python -m benchmarks.putting --resolution {args.resolution:g} --n {args.n}` on "
+        f"{threads} threads: a green of {green.area_m2():.0f} m^2 (its grid 0.25 m), Stimp 11 ft,"
+        " 2 % back to front with a crown; every point read and valued by the Tour putter.",
+        "",
+        "| map | points | putts per read | time | target | |",
+        "|---|---|---|---|---|---|",
+        f"| {args.resolution:g} m | {points:,} (+ {m.polar_expected.size} around the hole) | "
+        f"{args.n} | {elapsed:.1f} s | < {TARGET_S:g} s | {verdict} |",
+        "",
+        f"Second sweep: the largest change of a point's value {m.sweep_change:.4f} putts.",
+        f"3 m below the pin: {below:.3f} putts; 3 m above it: {above:.3f}.",
+        "",
+    ]
+    text = "\n".join(lines)
+    print(text)
+    RESULTS.parent.mkdir(parents=True, exist_ok=True)
+    RESULTS.write_text(text)
+
+
+if __name__ == "__main__":
+    main()

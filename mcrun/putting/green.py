@@ -1,0 +1,97 @@
+"""A hole's green to putt on: its grid of heights (``roll.Surface``), which nodes are the
+green's, the pin and the green's speed.
+
+The green's grid may be finer than the hole's (``cell_m``, default ``DEFAULT_GREEN_CELL_M``):
+its heights are sampled from the hole's own ground (the elevation file's interpolation, or the
+analytic shape) at that spacing, over the box of the green that holds the pin plus a margin of
+``MARGIN_CELLS`` nodes. A node is the green's where the hole's zones put the green there
+(``hole.zones.rasterize`` at the green's spacing). The green's speed is the rolling resistance
+of the hole's green turf (``[hole.turf.green] rho_g``; its Stimp reading is
+``physics.turf.stimp_from_rho_g``): the approach's roll and the putts roll on one green.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from mcrun.hole.errors import HoleError
+from mcrun.hole.zones import ZONE_INDEX, contains, rasterize
+from mcrun.physics.turf import stimp_from_rho_g
+from mcrun.putting.roll import Surface
+
+__all__ = ["DEFAULT_GREEN_CELL_M", "Green", "GreenError", "green_of_hole"]
+
+DEFAULT_GREEN_CELL_M = 0.25
+MARGIN_CELLS = 2
+GREEN = ZONE_INDEX["green"]
+
+
+class GreenError(HoleError):
+    """A hole whose green cannot be putted on; its message is one line."""
+
+
+@dataclass(frozen=True)
+class Green:
+    """A green on a grid (``surface``, the hole's frame: x from the tee towards the pin, y to the
+    right), its pin (m) and rolling resistance ``rho_g``; ``source`` names it in messages."""
+
+    surface: Surface
+    pin_xy_m: tuple
+    rho_g: float
+    source: str
+
+    @property
+    def stimp_m(self):
+        return float(stimp_from_rho_g(self.rho_g))
+
+    @property
+    def cell_m(self):
+        return self.surface.cell_m
+
+    def nodes_xy(self):
+        """(x, y) of every node of the grid: two (ny, nx) arrays."""
+        s = self.surface
+        ny, nx = s.height_m.shape
+        return np.meshgrid(s.x0_m + np.arange(nx) * s.cell_m, s.y0_m + np.arange(ny) * s.cell_m)
+
+    def area_m2(self):
+        return float(self.surface.on_green.sum()) * self.cell_m**2
+
+    def key(self):
+        """What the green's maps depend on: its heights, nodes, pin and speed (bytes)."""
+        s = self.surface
+        head = np.array([s.x0_m, s.y0_m, s.cell_m, *self.pin_xy_m, self.rho_g], dtype=float)
+        return head.tobytes() + s.height_m.tobytes() + s.on_green.tobytes()
+
+
+def green_of_hole(hole, cell_m=None):
+    """The Green of ``hole`` (a ``mcrun.hole.Hole``): the green that holds its pin, on a grid of
+    ``cell_m`` (default ``DEFAULT_GREEN_CELL_M``, or the hole's own cell where that is finer).
+    GreenError when the pin is on no green of the hole's zones."""
+    cell = min(DEFAULT_GREEN_CELL_M, hole.cell_m) if cell_m is None else float(cell_m)
+    px, py = hole.pin_xy
+    polygons = [p for kind, p in hole.zones if kind == "green" and contains(p, px, py)]
+    if not polygons:
+        raise GreenError(
+            f"{hole.source}: the pin is on no green of the hole's zones: putting on the green "
+            "needs a golf=green polygon around the pin (a hole without a map: 'surface' = "
+            "'green')"
+        )
+    rings = np.concatenate([ring for polygon in polygons for ring in polygon])
+    margin = MARGIN_CELLS * cell
+    x_min, y_min = rings.min(axis=0) - margin
+    x_max, y_max = rings.max(axis=0) + margin
+    # Within the hole's grid: the green's heights come from the hole's ground there.
+    ex = hole.extent_m
+    x_min, x_max = max(x_min, ex[0]), min(x_max, ex[1])
+    y_min, y_max = max(y_min, ex[2]), min(y_max, ex[3])
+    x0 = math.floor(x_min / cell) * cell
+    y0 = math.floor(y_min / cell) * cell
+    nx = int(math.ceil((x_max - x0) / cell)) + 1
+    ny = int(math.ceil((y_max - y0) / cell)) + 1
+    zone = rasterize(hole.zones, x0, y0, cell, nx, ny, hole.boundary)
+    height = np.zeros((ny, nx)) if hole._heights is None else hole._heights(x0, y0, cell, nx, ny)
+    on = np.ascontiguousarray(zone == GREEN, dtype=np.uint8)
+    surface = Surface(np.ascontiguousarray(height, dtype=float), on, float(x0), float(y0), cell)
+    return Green(surface, (float(px), float(py)), float(hole.turf["green"].rho_g), hole.source)

@@ -1,0 +1,97 @@
+"""The expected-putts map of a hole's green, as the hole's scores ask for it: built once per
+green, pin, putter and settings, kept in memory and in a cache folder.
+
+``map_of_hole(hole)`` is None where the hole values a ball on its green by the baseline's table
+(``[hole] putting = "table"``, the default), else the ``GreenMap`` of its green
+(``putting = "physics"``). The cache folder is ``$MCRUN_CACHE_DIR/greens`` (default
+``~/.cache/mcrun/greens``); a map is stored under a hash of everything it depends on (the
+green's heights and nodes, the pin, the speed, the putter, n, seed, resolution and the map's
+code version ``MAP_VERSION``), so that an edit of any of them builds a new map. A folder that
+cannot be written is skipped: the map is then built in each process.
+"""
+
+import hashlib
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from mcrun.putting.green import green_of_hole
+from mcrun.putting.green_map import GreenMap, expected_putts_map
+from mcrun.putting.putter import PUTTERS
+
+__all__ = ["MAP_VERSION", "cache_folder", "check_putting", "map_of_hole"]
+
+# Raise when the map's numbers change for the same inputs.
+MAP_VERSION = 1
+_MEMORY = {}
+_ARRAYS = ("expected_putts", "expected_putts_se", "p_one_putt", "p_three_putt", "read_aim_deg",
+           "read_pace_m", "polar_expected", "polar_p_one", "polar_p_three")  # fmt: skip
+
+
+def check_putting(hole):
+    """``hole``, whose ``[hole.putting] putter`` is one of ``PUTTERS``; GreenError (a HoleError:
+    one line) otherwise."""
+    from mcrun.putting.green import GreenError
+
+    name = hole.putting["putter"]
+    if name not in PUTTERS:
+        raise GreenError(f"{hole.source}: 'putting.putter' = {name!r}: choose {', '.join(PUTTERS)}")
+    return hole
+
+
+def cache_folder():
+    root = os.environ.get("MCRUN_CACHE_DIR")
+    base = Path(root) if root else Path.home() / ".cache" / "mcrun"
+    return base / "greens"
+
+
+def _key(green, spec):
+    h = hashlib.sha256()
+    h.update(green.key())
+    h.update(repr((MAP_VERSION, spec["putter"], spec["n"], spec["seed"],
+                   spec["resolution_m"])).encode())  # fmt: skip
+    return h.hexdigest()[:32]
+
+
+def map_of_hole(hole, progress=None):
+    """The GreenMap of ``hole``'s green under its ``putting`` settings; None under the table."""
+    spec = hole.putting
+    if spec["model"] != "physics":
+        return None
+    green = green_of_hole(hole, spec["cell_m"])
+    key = _key(green, spec)
+    if key in _MEMORY:
+        return _MEMORY[key]
+    path = cache_folder() / f"{key}.npz"
+    found = None
+    try:
+        with np.load(path) as data:
+            found = GreenMap(
+                green=green, x0_m=float(data["x0_m"]), y0_m=float(data["y0_m"]),
+                resolution_m=float(spec["resolution_m"]),
+                **{name: data[name] for name in _ARRAYS},
+                putter=PUTTERS[spec["putter"]], n=spec["n"], seed=spec["seed"],
+                sweep_change=float(data["sweep_change"]), elapsed_s=float(data["elapsed_s"]),
+            )  # fmt: skip
+    except (OSError, KeyError, ValueError):
+        found = None
+    if found is None:
+        if progress is None:
+            print(f"mcrun: computing the expected-putts map of {green.source}'s green "
+                  f"({green.area_m2():.0f} m^2 at {spec['resolution_m']:g} m, "
+                  f"{spec['n']} putts a read) ...", file=sys.stderr, flush=True)  # fmt: skip
+        found = expected_putts_map(green, spec["putter"], spec["n"], spec["seed"],
+                                   spec["resolution_m"], progress=progress)  # fmt: skip
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            tmp = path.with_suffix(f".{os.getpid()}.tmp.npz")
+            np.savez(tmp, x0_m=found.x0_m, y0_m=found.y0_m, sweep_change=found.sweep_change,
+                     elapsed_s=found.elapsed_s,
+                     **{name: getattr(found, name) for name in _ARRAYS})  # fmt: skip
+            os.replace(tmp, path)
+        except OSError:
+            pass
+    _MEMORY[key] = found
+    return found

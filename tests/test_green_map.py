@@ -1,0 +1,270 @@
+"""Putting on a green's contour (mcrun.putting: ``roll_on``, ``green``, ``green_map``,
+``on_hole``): the roll on a grid of heights against the plane's closed forms and an independent
+integration on a curved green, the green's edge, the expected-putts map against the plane's
+holing-out, its independence of the thread count, and a hole whose green is valued by its map
+(``[hole] putting = "physics"``)."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from mcrun.cli import main
+from mcrun.hole.hole import load_hole
+from mcrun.physics.constants import G_MPS2
+from mcrun.physics.turf import STIMP_LAUNCH_SPEED_MPS, rho_g_from_stimp
+from mcrun.putting import putt
+from mcrun.putting.green import Green
+from mcrun.putting.green_map import MAP_DT_S, expected_putts_map
+from mcrun.putting.on_hole import map_of_hole
+from mcrun.putting.roll import (
+    DT_S,
+    MAX_TIME_S,
+    STATUS_OFF_GREEN,
+    STATUS_STOPPED,
+    Surface,
+    roll,
+    roll_on,
+)
+from mcrun.results.reader import open_run
+from mcrun.run import local
+from mcrun.strokes import score_shots
+from mcrun.strokes.baseline import FOOT_M
+
+K = 5.0 / 7.0 * G_MPS2
+RHO_11FT = float(rho_g_from_stimp(11 * FOOT_M))
+
+
+def plane_surface(slope, fall_rad, half_m=30.0, cell_m=0.25, on=None):
+    """A grid of a plane falling at ``slope`` towards ``fall_rad`` (from +x towards +y)."""
+    xs = np.arange(-half_m, half_m + cell_m / 2, cell_m)
+    x, y = np.meshgrid(xs, xs)
+    height = -slope * (x * math.cos(fall_rad) + y * math.sin(fall_rad))
+    mask = np.ones(x.shape, np.uint8) if on is None else on(x, y).astype(np.uint8)
+    return Surface(height, mask, float(xs[0]), float(xs[0]), cell_m)
+
+
+@pytest.mark.parametrize("dt_s, ds_m, tol_m", [(DT_S, 0.0, 1e-9), (MAP_DT_S, 0.125, 1e-4)])
+def test_a_putt_on_a_grid_of_a_plane_is_the_plane_s_putt(dt_s, ds_m, tol_m):
+    """1.5 m/s across a 2 % plane falling to +y on a 0.25 m grid: where it stops is the plane
+    roll's (the plane's own steps: to 1 nm; the map's longer steps: to 0.1 mm)."""
+    surface = plane_surface(0.02, math.pi / 2)
+    ref = roll(0.0, 0.0, 1.5, 0.0, 0.02, 0.0, 1.0, RHO_11FT, 1e3, 0.0, False, DT_S, MAX_TIME_S)
+    got = roll_on(0.0, 0.0, 1.5, 0.0, surface, RHO_11FT, 1e3, 0.0, False, dt_s, MAX_TIME_S, ds_m)
+    assert got[0] == ref[0] == STATUS_STOPPED
+    assert ref[2] > 0.2  # it breaks by decimetres
+    assert math.hypot(got[1] - ref[1], got[2] - ref[2]) < tol_m
+
+
+def test_the_stimpmeter_on_a_level_grid_rolls_the_green_s_reading():
+    """1.83 m/s on a level grid of a Stimp 11 ft green rolls 11 ft, within 1 mm."""
+    got = roll_on(0.0, 0.0, STIMP_LAUNCH_SPEED_MPS, 0.0, plane_surface(0.0, 0.0), RHO_11FT, 1e3,
+                  0.0, False, MAP_DT_S, MAX_TIME_S, 0.125)  # fmt: skip
+    assert got[0] == STATUS_STOPPED and abs(got[1] - 11 * FOOT_M) < 0.001
+
+
+def test_a_putt_across_a_bowl_follows_an_independent_integration():
+    """A bowl z = r^2 / (2 R), R = 100 m, on a 0.1 m grid: a putt struck at 2 m/s from 4 m off
+    its bottom, across it, stops where scipy's DOP853 on the bowl's exact gradient says
+    (a = (5/7) g (sin b f - rho_g cos b v_hat)), within 2 cm (the grid's bilinear slope)."""
+    radius, cell = 100.0, 0.1
+    xs = np.arange(-12.0, 12.0 + cell / 2, cell)
+    x, y = np.meshgrid(xs, xs)
+    surface = Surface((x * x + y * y) / (2 * radius), np.ones(x.shape, np.uint8), -12.0, -12.0,
+                      cell)  # fmt: skip
+
+    def rhs(t, u):
+        gx, gy = u[0] / radius, u[1] / radius
+        s = math.hypot(gx, gy)
+        cos_b, sin_b = 1 / math.sqrt(1 + s * s), s / math.sqrt(1 + s * s)
+        fx, fy = (-gx / s, -gy / s) if s > 0 else (0.0, 0.0)
+        speed = math.hypot(u[2], u[3])
+        return [u[2], u[3], K * (sin_b * fx - RHO_11FT * cos_b * u[2] / speed),
+                K * (sin_b * fy - RHO_11FT * cos_b * u[3] / speed)]  # fmt: skip
+
+    def slow(t, u):
+        return math.hypot(u[2], u[3]) - 1e-5
+
+    slow.terminal = True
+    ref = solve_ivp(rhs, (0, 60), [-4.0, -4.0, 2.0, 0.6], method="DOP853", rtol=1e-10,
+                    atol=1e-12, events=slow)  # fmt: skip
+    got = roll_on(-4.0, -4.0, 2.0, 0.6, surface, RHO_11FT, 1e3, 0.0, False, MAP_DT_S, MAX_TIME_S,
+                  cell / 2)  # fmt: skip
+    assert got[0] == STATUS_STOPPED
+    assert math.hypot(got[1] - ref.y[0, -1], got[2] - ref.y[1, -1]) < 0.02
+    assert abs(ref.y[1, -1] - (-4.0)) > 0.5  # the bowl bends it by decimetres
+
+
+def test_a_putt_that_leaves_the_green_stops_at_its_edge():
+    """A green that ends at x = 3 m: a putt struck hard along +x leaves it there (the nearest
+    node off the green: within half a cell past the edge)."""
+    surface = plane_surface(0.0, 0.0, on=lambda x, y: x <= 3.0)
+    got = roll_on(0.0, 0.0, 3.0, 0.0, surface, RHO_11FT, 1e3, 0.0, False, MAP_DT_S, MAX_TIME_S,
+                  0.125)  # fmt: skip
+    assert got[0] == STATUS_OFF_GREEN
+    assert 3.0 < got[1] <= 3.0 + 0.125 + 0.125 + 1e-9
+
+
+def disc_green(radius_m=4.0, slope=0.0, stimp_ft=11.0):
+    surface = plane_surface(slope, math.pi, half_m=radius_m + 1.0,
+                            on=lambda x, y: np.hypot(x, y) <= radius_m)  # fmt: skip
+    return Green(surface, (0.0, 0.0), float(rho_g_from_stimp(stimp_ft * FOOT_M)), "disc")
+
+
+@pytest.fixture(scope="module")
+def flat_map():
+    return expected_putts_map(disc_green(), n=400, seed=1, resolution_m=1.0, threads=2)
+
+
+def test_the_map_on_a_flat_green_agrees_with_the_plane_s_holing_out(flat_map):
+    """From 3 m on a flat Stimp 11 ft green: the map's expected putts and one-putt share
+    against ``putting.putt`` (the read, then the putter's own reads) on 4,000 holings-out,
+    within three standard errors of their difference (the map reads every putt, so it may be
+    lower, never by more)."""
+    ref = putt(3.0, 11 * FOOT_M, 0.0, 0.0, n=4000, seed=5)
+    values, one, _ = flat_map.value_at(np.array([-3.0, 0.0]), np.array([0.0, 3.0]))
+    se = math.hypot(float(flat_map.expected_putts_se[np.isfinite(flat_map.expected_putts_se)]
+                          .max()), ref.average_putts_se)  # fmt: skip
+    for v, p in zip(values, one, strict=True):
+        assert abs(v - ref.average_putts) < 3 * se + 0.01
+        assert abs(p - ref.make_rate) < 3 * math.sqrt(ref.make_rate * (1 - ref.make_rate) / 400)
+    assert flat_map.sweep_change < 0.01
+
+
+def test_the_map_is_the_same_on_one_thread_and_on_two(flat_map):
+    one = expected_putts_map(disc_green(), n=400, seed=1, resolution_m=1.0, threads=1)
+    for name in ("expected_putts", "expected_putts_se", "p_one_putt", "read_aim_deg"):
+        np.testing.assert_array_equal(getattr(one, name), getattr(flat_map, name))
+
+
+def test_a_flat_green_s_map_is_symmetric_about_the_hole(flat_map):
+    """On the level every direction is the same: the map at (x, y) and (-x, -y) agree within
+    their standard errors' sum (the errors are common, the geometry mirrored)."""
+    v = flat_map.expected_putts
+    se = flat_map.expected_putts_se
+    ok = np.isfinite(v) & np.isfinite(v[::-1, ::-1])
+    assert (np.abs(v - v[::-1, ::-1])[ok] <= 3 * (se + se[::-1, ::-1])[ok] + 1e-12).all()
+
+
+HOLE = """
+length_m = 12.0
+width_m = 12.0
+margin_m = 4.0
+surface = "green"
+shape = {{ kind = "tilted_plane", slope_deg = 1.0, fall_line_deg = 180.0 }}
+putting = {putting}
+
+[turf.green]
+rho_g = 0.0713
+"""
+
+
+def _hole(tmp_path, putting):
+    path = tmp_path / f"{abs(hash(putting))}.toml"
+    path.write_text(HOLE.format(putting=putting))
+    return load_hole(path)
+
+
+def test_physics_putting_values_a_ball_on_the_green_by_the_map(tmp_path, monkeypatch):
+    """``putting = "physics"``: a ball at rest on the green is worth the map's expected putts
+    there; its one-putt and three-putt shares come with it; the map is built once, then read
+    from the cache folder."""
+    monkeypatch.setenv("MCRUN_CACHE_DIR", str(tmp_path / "cache"))
+    hole = _hole(tmp_path, '{ model = "physics", resolution_m = 2.0, n = 60 }')
+    built = map_of_hole(hole)
+    assert list((tmp_path / "cache" / "greens").glob("*.npz"))
+    from mcrun.putting import on_hole
+
+    on_hole._MEMORY.clear()
+    again = map_of_hole(hole)
+    np.testing.assert_array_equal(again.expected_putts, built.expected_putts)
+    x = np.array([9.0, 14.0, 12.0])
+    y = np.array([0.0, 0.0, 3.0])
+    shots = {"finish_zone": np.array(["green"] * 3), "status": np.zeros(3, np.int64),
+             "final_x_m": x, "final_y_m": y, "pin_distance_m": np.hypot(x - 12.0, y),
+             "penalty_x_m": np.full(3, np.nan), "penalty_y_m": np.full(3, np.nan)}  # fmt: skip
+    scored = score_shots(shots, hole, putting=built)
+    value, one, three = built.value_at(x, y)
+    np.testing.assert_array_equal(scored["expected_strokes_after"].to_numpy(), value)
+    np.testing.assert_array_equal(scored["p_one_putt"].to_numpy(), one)
+    np.testing.assert_array_equal(scored["p_three_putt"].to_numpy(), three)
+    table = score_shots(shots, _hole(tmp_path, '"table"'))
+    assert "p_one_putt" not in table
+    assert not np.array_equal(table["expected_strokes_after"].to_numpy(), value)
+
+
+CHIP = """
+[scenario]
+name = "chip"
+shots = 40
+seed = 1
+
+[hole]
+file = "{hole}"
+start = [2.0, 0.0]
+
+[launch]
+ball_speed = {{ dist = "normal", mean = "14 mph", sd = "1 mph" }}
+launch_angle = "30 deg"
+spin = "3000 rpm"
+"""
+
+
+def test_a_run_with_physics_putting_writes_the_putting_shares(tmp_path, monkeypatch):
+    monkeypatch.setenv("MCRUN_CACHE_DIR", str(tmp_path / "cache"))
+    hole = tmp_path / "hole.toml"
+    hole.write_text(HOLE.format(putting='{ model = "physics", resolution_m = 2.0, n = 60 }'))
+    scenario = tmp_path / "s.toml"
+    scenario.write_text(CHIP.format(hole=hole.name))
+    result = local.run_scenario(scenario, out_dir=tmp_path / "run", progress=False)
+    shots, summary = result.shots(), result.summary()
+    on = shots["finish_zone"].astype(str) == "green"
+    assert on.sum() > 10
+    assert np.isfinite(shots.loc[on, "p_one_putt"]).all()
+    assert summary.loc[0, "n_on_green"] == on.sum()
+    assert summary.loc[0, "p_one_putt_green"] == pytest.approx(shots.loc[on, "p_one_putt"].mean())
+    assert open_run(tmp_path / "run") is not None
+
+
+@pytest.mark.parametrize(
+    "putting, says",
+    [
+        ('"exact"', "'putting.model' = 'exact': choose table, physics"),
+        ('{ model = "physics", putter = "pro" }', "'putting.putter' = 'pro': choose"),
+        ('{ model = "physics", n = 1 }', "'putting.n' = 1 must be a whole number"),
+        ('{ model = "physics", speed = 2 }', "'putting.speed': unknown key"),
+    ],
+)
+def test_bad_putting_settings_give_one_line(tmp_path, capsys, putting, says):
+    path = tmp_path / "hole.toml"
+    path.write_text(HOLE.format(putting=putting))
+    assert main(["hole", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert says in err and len(err.splitlines()) == 1
+
+
+def test_a_physics_putting_run_on_dask_is_the_local_run(tmp_path, monkeypatch):
+    """The same run on a local Dask cluster: every shot, its putting shares and the summary's,
+    bit for bit (each worker reads the map its own process built or the cache folder holds)."""
+    pytest.importorskip("distributed")
+    from mcrun.results.reader import read_shots
+    from mcrun.run import distributed
+
+    monkeypatch.setenv("MCRUN_CACHE_DIR", str(tmp_path / "cache"))
+    hole = tmp_path / "hole.toml"
+    hole.write_text(HOLE.format(putting='{ model = "physics", resolution_m = 2.0, n = 60 }'))
+    scenario = tmp_path / "s.toml"
+    scenario.write_text(CHIP.format(hole=hole.name))
+    local.run_scenario(scenario, out_dir=tmp_path / "local", progress=False, chunk_size=16)
+    distributed.run_scenario(scenario, out_dir=tmp_path / "dask", progress=False, chunk_size=16,
+                             workers=2)  # fmt: skip
+    a, b = read_shots(tmp_path / "local"), read_shots(tmp_path / "dask")
+    assert np.isfinite(a["p_one_putt"]).sum() > 10
+    import pandas as pd
+
+    pd.testing.assert_frame_equal(a, b, check_exact=True)
+    sa = pd.read_parquet(tmp_path / "local" / "summary.parquet")
+    sb = pd.read_parquet(tmp_path / "dask" / "summary.parquet")
+    for name in ("n_on_green", "p_one_putt_green", "p_three_putt_green"):
+        assert sa.loc[0, name] == sb.loc[0, name]
