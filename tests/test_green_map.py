@@ -268,3 +268,22 @@ def test_a_physics_putting_run_on_dask_is_the_local_run(tmp_path, monkeypatch):
     sb = pd.read_parquet(tmp_path / "dask" / "summary.parquet")
     for name in ("n_on_green", "p_one_putt_green", "p_three_putt_green"):
         assert sa.loc[0, name] == sb.loc[0, name]
+
+
+def test_a_putt_down_the_fall_line_holds_its_line_better_than_one_up_it():
+    """Why this model finds putts from above the hole no harder than from below: with the same
+    start-line error (1.5 deg), a 3 m putt straight down a 3 % Stimp 11 ft plane passes closer to
+    the hole's centre than the same putt straight up it (gravity adds speed along the fall line
+    only, so a downhill ball's heading turns back towards it and an uphill ball's away), each
+    struck to finish 0.43 m past on the straight line (v^2 = 2 a (L + 0.43))."""
+    s, d, err = 0.03, 3.0, math.radians(1.5)
+    cos_b, sin_b = 1 / math.sqrt(1 + s * s), s / math.sqrt(1 + s * s)
+    miss = {}
+    for name, fall in (("down", 0.0), ("up", math.pi)):
+        a = K * (RHO_11FT * cos_b - sin_b * math.cos(fall))
+        v = math.sqrt(2 * a * (d + 0.43))
+        out = roll(0.0, 0.0, v * math.cos(err), v * math.sin(err), s, math.cos(fall),
+                   math.sin(fall), RHO_11FT, d, 0.0, False, DT_S, MAX_TIME_S)  # fmt: skip
+        miss[name] = out[4]
+    assert miss["down"] < miss["up"] - 0.005
+    assert miss["up"] > d * math.tan(err)  # the uphill ball's error grows past the straight line

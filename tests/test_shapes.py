@@ -21,6 +21,10 @@ CASES = [
     ("two_tier", {"front_m": -0.2, "back_m": 0.7, "step_x_m": 150.0, "step_width_m": 4.0}),
     ("bowl", {"centre_x_m": 140.0, "centre_y_m": 5.0, "radius_m": 30.0, "bottom_m": -1.0}),
     ("ridge", {"crest_x_m": 160.0, "height_m": 1.5, "half_width_m": 8.0, "angle_deg": 20.0}),
+    ("back_to_front", {}),
+    ("back_to_front", {"front_x_m": 135.0, "back_x_m": 175.0, "slope_pct": 3.0, "blend_m": 5.0}),
+    ("crown", {}),
+    ("crown", {"centre_x_m": 145.0, "centre_y_m": -4.0, "height_m": -0.7, "radius_m": 25.0}),
 ]
 
 
@@ -110,6 +114,66 @@ def test_ridge_crest_and_feet():
     np.testing.assert_allclose(shape_height("ridge", turned, on_crest_x, on_crest_y), 1.5)
 
 
+def test_back_to_front_heights_and_slopes():
+    p = {"front_x_m": 140.0, "back_x_m": 170.0, "slope_pct": 2.0, "blend_m": 2.0}
+    s, w = 2.0 / 100, 2.0
+    # The sharp ramp would rise s (back - front); each half-cosine blend gives up s w / 2 of it.
+    rise = s * (170.0 - 140.0 - w)
+    x = np.array([100.0, 139.9, 140.0, 141.0, 142.0, 155.0, 169.0, 170.0, 170.1, 200.0])
+    z = shape_height("back_to_front", p, x, -4.0)
+    gx, gy = shape_gradient("back_to_front", p, x, -4.0)
+    assert z[0] == z[1] == z[2] == 0.0  # flat, at the tee's height, up to the front
+    assert z[7] == z[8] == z[9] == pytest.approx(rise, rel=1e-14)  # flat from the back on
+    assert gx[0] == gx[2] == gx[7] == gx[9] == 0.0 and np.all(gy == 0.0)
+    # Halfway up the first blend the slope is s/2, the height s/2 (t - (w/pi) sin(pi t / w)).
+    assert gx[3] == pytest.approx(s / 2, rel=1e-15)
+    assert z[3] == pytest.approx(s / 2 * (1.0 - w / math.pi), rel=1e-14)
+    # Between the blends the slope is exactly slope_pct / 100, the height s (x - front - w/2).
+    assert gx[4] == gx[5] == s
+    assert z[4] == pytest.approx(s * w / 2, rel=1e-14)
+    assert z[5] == pytest.approx(s * (155.0 - 140.0 - w / 2), rel=1e-14)
+    # The top blend mirrors the foot's: z(back - d) = rise - z(front + d).
+    assert z[6] == pytest.approx(rise - z[3], rel=1e-14)
+    assert gx[6] == pytest.approx(gx[3], rel=1e-14)
+    # C1 across the four joins: every 1 cm from 139 to 171 m the gradient is the central
+    # difference of the height. Here z'' = s h is continuous and |z'''| <= s (pi/w)^2 / 2, so
+    # the difference errs by at most d^2/6 |z'''| = 4e-11 plus rounding (~1e-12): 1e-9 m/m.
+    xs = np.linspace(139.0, 171.0, 3201)
+    d = 1e-4
+    up = shape_height("back_to_front", p, xs + d, 0.0)
+    down = shape_height("back_to_front", p, xs - d, 0.0)
+    fd = (up - down) / (2 * d)
+    np.testing.assert_allclose(shape_gradient("back_to_front", p, xs, 0.0)[0], fd, atol=1e-9)
+    # The slope tends to 0 at the foot and the top, and to s at the ends of the blends.
+    near = shape_gradient("back_to_front", p, np.array([140 + 1e-6, 170 - 1e-6, 142 - 1e-6]), 0)
+    assert np.all(np.abs(near[0][:2]) < 1e-12) and abs(near[0][2] - s) < 1e-12
+    assert np.all(np.diff(shape_height("back_to_front", p, xs, 0.0)) >= 0.0)  # never falls
+
+
+def test_crown_top_rim_and_steepest_slope():
+    p = {"centre_x_m": 150.0, "centre_y_m": -3.0, "height_m": 0.5, "radius_m": 12.0}
+    assert shape_height("crown", p, 150.0, -3.0) == 0.5
+    gx, gy = shape_gradient("crown", p, 150.0, -3.0)
+    assert gx == 0.0 and gy == 0.0  # level on the top
+    # Zero height and slope on the rim (r = R) and beyond.
+    rim_x = np.array([162.0, 138.0, 150.0, 150.0, 170.0, 100.0])
+    rim_y = np.array([-3.0, -3.0, 9.0, -15.0, -3.0, 20.0])
+    assert np.all(shape_height("crown", p, rim_x, rim_y) == 0.0)
+    gx, gy = shape_gradient("crown", p, rim_x, rim_y)
+    assert np.all(gx == 0.0) and np.all(gy == 0.0)
+    # At r = R/2 the height is height cos^2(pi/4) = height/2 and the ground falls away from the
+    # top at its steepest, height pi / (2R) per metre (here along x, and along (3, 4) / 5).
+    assert shape_height("crown", p, 156.0, -3.0) == pytest.approx(0.25, rel=1e-14)
+    gx, gy = shape_gradient("crown", p, 156.0, -3.0)
+    assert gx == pytest.approx(-0.5 * math.pi / 24.0, rel=1e-14) and gy == 0.0
+    gx, gy = shape_gradient("crown", p, 150.0 + 3.6, -3.0 + 4.8)
+    want = -0.5 * math.pi / 24.0 * np.array([0.6, 0.8])
+    np.testing.assert_allclose([gx, gy], want, rtol=1e-14, atol=0)
+    # A negative height is a hollow of the same profile.
+    hollow = shape_height("crown", dict(p, height_m=-0.5), X, Y)
+    np.testing.assert_array_equal(hollow, -shape_height("crown", p, X, Y))
+
+
 def test_defaults_and_shapes_listing():
     for kind, spec in SHAPES.items():
         assert set(check_shape(kind)) == set(spec["params"])
@@ -130,6 +194,16 @@ def test_defaults_and_shapes_listing():
         ("two_tier", {"step_width_m": 0.0}, "two_tier.step_width_m = 0: allowed is a number in (0"),
         ("bowl", {"radius_m": float("nan")}, "bowl.radius_m = nan"),
         ("ridge", {"height_m": True}, "ridge.height_m = True"),
+        ("back_to_front", {"slope_pct": 12.0}, "back_to_front.slope_pct = 12: allowed is a"),
+        ("back_to_front", {"blend_m": 0.0}, "back_to_front.blend_m = 0: allowed is a number in (0"),
+        (
+            "back_to_front",
+            {"front_x_m": 140.0, "back_x_m": 144.0},
+            "back_to_front.back_x_m = 144: allowed is more than front_x_m + 2 blend_m = 140 + 2",
+        ),
+        ("back_to_front", {"back_x_m": 120.0}, "back_to_front.back_x_m = 120: allowed is more"),
+        ("crown", {"radius_m": 0.0}, "crown.radius_m = 0: allowed is a number in (0, 200] m"),
+        ("crown", {"height_m": 6.0}, "crown.height_m = 6: allowed is a number in [-5, 5] m"),
     ],
 )
 def test_bad_parameters_say_so_in_one_line(kind, params, expected):

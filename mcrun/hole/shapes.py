@@ -15,6 +15,17 @@ that line, and its exact gradient.
   each side (zero height and slope at its feet, flat ground beyond), its crest line through
   (``crest_x_m``, 0); ``angle_deg`` turns the ridge's normal from +x towards the right (0: the
   crest lies across the line of play).
+- ``back_to_front``: a green falling from back to front, on a ramp from ``front_x_m`` to
+  ``back_x_m`` (L = back - front) rising by s = ``slope_pct`` / 100 per metre, flat before and
+  after. Its slope is s h(u) - s h(u - L + w), u = x - front, w = ``blend_m``, with h a half
+  cosine from 0 to 1 over [0, w]: h(t) = (1 - cos(pi t / w)) / 2. Both blends lie inside the
+  ramp (back > front + 2 w), so the height is z = s (H(u) - H(u - L + w)), H(t) = 0 for t <= 0,
+  (t - (w / pi) sin(pi t / w)) / 2 on [0, w], t - w/2 beyond: 0 up to the front, s (L - w)
+  from the back on (each blend gives up s w / 2 of the rise of the sharp ramp), the slope s
+  between the blends, C1 at the joins (its slope continuous).
+- ``crown``: a dome (a turtle-back green) z = height cos^2(pi r / (2 R)) for r < R, 0 beyond, r
+  the distance from (``centre_x_m``, ``centre_y_m``), R = ``radius_m``: zero height and slope at
+  its rim, steepest at r = R/2 (falling height pi / (2 R) per metre).
 
 ``SHAPES`` lists each kind's parameters (default, unit, allowed range) so that a reader of
 scenario files can validate them; ``check_shape`` does so.
@@ -82,7 +93,40 @@ SHAPES = {
             ),
         },
     },
+    "back_to_front": {
+        "doc": "a green falling from back to front on a ramp with smooth joins",
+        "params": {
+            "front_x_m": ShapeParam(140.0, "m", -100.0, 1000.0, False, "x of the ramp's foot"),
+            "back_x_m": ShapeParam(170.0, "m", -100.0, 1000.0, False, "x of the ramp's top"),
+            "slope_pct": ShapeParam(2.0, "%", 0.0, 10.0, False, "slope of the ramp, up to +x"),
+            "blend_m": ShapeParam(
+                2.0, "m", 0.0, 100.0, True, "the slope's half-cosine rise at each end"
+            ),
+        },
+    },
+    "crown": {
+        "doc": "a dome (turtle back), z = height cos^2(pi r / (2 R)) for r < R",
+        "params": {
+            "centre_x_m": ShapeParam(150.0, "m", -100.0, 1000.0, False, "x of the top"),
+            "centre_y_m": ShapeParam(0.0, "m", -500.0, 500.0, False, "y of the top"),
+            "height_m": ShapeParam(0.5, "m", -5.0, 5.0, False, "height of the top"),
+            "radius_m": ShapeParam(12.0, "m", 0.0, 200.0, True, "radius of the rim"),
+        },
+    },
 }
+
+
+def _check_back_to_front(kind, p):
+    front, back, w = p["front_x_m"], p["back_x_m"], p["blend_m"]
+    if not back > front + 2.0 * w:
+        raise ShapeError(
+            f"{kind}.back_x_m = {back:g}: allowed is more than front_x_m + 2 blend_m"
+            f" = {front:g} + 2 * {w:g} = {front + 2.0 * w:g} m"
+        )
+
+
+# Checks of a kind's parameters together, after each has been checked on its own.
+_CONSISTENCY = {"back_to_front": _check_back_to_front}
 
 
 def check_shape(kind, params=None):
@@ -110,6 +154,8 @@ def check_shape(kind, params=None):
         if not math.isfinite(value) or too_low or value > p.max:
             raise ShapeError(f"{kind}.{name} = {value:g}: allowed is {allowed}")
         out[name] = value
+    if kind in _CONSISTENCY:
+        _CONSISTENCY[kind](kind, out)
     return out
 
 
@@ -135,6 +181,17 @@ def _ridge_profile(d, a):
     return np.where(inside, c * c, 0.0), np.where(inside, -np.pi / a * c * s, 0.0)
 
 
+def _blend(t, w):
+    """h(t): 0 for t <= 0, (1 - cos(pi t / w)) / 2 on [0, w], 1 beyond; and its integral H(t)
+    from 0: 0, (t - (w / pi) sin(pi t / w)) / 2, t - w / 2."""
+    a = np.pi * t / w
+    h = np.where(t <= 0.0, 0.0, np.where(t >= w, 1.0, 0.5 * (1.0 - np.cos(a))))
+    big_h = np.where(
+        t <= 0.0, 0.0, np.where(t >= w, t - 0.5 * w, 0.5 * (t - w / np.pi * np.sin(a)))
+    )
+    return h, big_h
+
+
 def _evaluate(kind, params, x_m, y_m):
     p = check_shape(kind, params)
     x, y = _xy(x_m, y_m)
@@ -155,12 +212,28 @@ def _evaluate(kind, params, x_m, y_m):
         dx, dy = x - p["centre_x_m"], y - p["centre_y_m"]
         r = p["radius_m"]
         return p["bottom_m"] + (dx * dx + dy * dy) / (2.0 * r), dx / r, dy / r
-    # ridge
-    th = math.radians(p["angle_deg"])
-    c, s = math.cos(th), math.sin(th)
-    f, df = _ridge_profile((x - p["crest_x_m"]) * c + y * s, p["half_width_m"])
-    h = p["height_m"]
-    return h * f, h * df * c, h * df * s
+    if kind == "ridge":
+        th = math.radians(p["angle_deg"])
+        c, s = math.cos(th), math.sin(th)
+        f, df = _ridge_profile((x - p["crest_x_m"]) * c + y * s, p["half_width_m"])
+        h = p["height_m"]
+        return h * f, h * df * c, h * df * s
+    if kind == "back_to_front":
+        slope = p["slope_pct"] / 100.0
+        w = p["blend_m"]
+        length = p["back_x_m"] - p["front_x_m"]
+        top = length - w  # where the second blend starts, from the foot
+        u = np.minimum(x - p["front_x_m"], length)  # the same height all along the top
+        h_up, big_h_up = _blend(u, w)
+        h_down, big_h_down = _blend(u - top, w)
+        return slope * (big_h_up - big_h_down), slope * (h_up - h_down), zero
+    # crown: dz/dr = -height pi / (2R) sin(pi r / R), and sin(pi r / R) / r = (pi / R) sinc(r / R)
+    dx, dy = x - p["centre_x_m"], y - p["centre_y_m"]
+    r_rim, h = p["radius_m"], p["height_m"]
+    r = np.hypot(dx, dy)
+    f, _ = _ridge_profile(r, r_rim)
+    k = np.where(r < r_rim, -h * np.pi**2 / (2.0 * r_rim**2) * np.sinc(r / r_rim), 0.0)
+    return h * f, k * dx, k * dy
 
 
 def shape_height(kind, params, x_m, y_m):

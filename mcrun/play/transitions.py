@@ -1,0 +1,262 @@
+"""The transitions of a hole's decision process: every action (a club, at a power, and an aim)
+flown from every state it fits, the same ``n`` sampled shots of the club from every state and
+aim (common random numbers), and where each shot left the ball, in a compact form.
+
+Aims (``AIMS``): the pin, and 2 and 4 deg either side of the line to it; where the club stops
+short of the pin (its mean total on the level under ``reach``), the point of the hole's line
+(its centre line, tee to green) that far along it, and 3 deg either side: the fairway and
+lay-up targets. A club fits a state when its mean total is under the distance to the pin plus
+``OVERSHOOT_M`` or a tenth of it (hitting well over the green is never the best), and the
+shortest shot of the bag (the wedge at its least power) fits every state.
+
+A shot's kind (``KINDS``): ``PLAY`` at rest in play off the green (its point and lie);
+``GREEN`` at rest on the green (its expected putts: the hole's putting map, or the baseline's
+putts by distance); ``WATER`` in a penalty area (the drop: for a red area the reference point,
+from the fairway where it lies on mown grass and from the rough otherwise, as the scores do;
+for a yellow one the first point in play on the line from the pin through the reference point,
+behind it); ``RESTART`` out of bounds or off the map (stroke and distance); ``FAILED`` (left
+out of the means).
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from mcrun import status
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.schema import COLUMN, OUTCOME_FIELDS
+from mcrun.hole.zones import MOWN_ZONES, ZONE_KINDS
+from mcrun.play.lattice import GREEN_LIE, LIE_CODE_OF_ZONE
+from mcrun.play.player import LIE_LAUNCH, PART_POWERS
+from mcrun.run import sampling, starts
+from mcrun.strokes.baseline import HOLE_RADIUS_M, LIES
+
+__all__ = ["AIMS", "KINDS", "Action", "Transitions", "fly"]
+
+PLAY, GREEN, WATER, RESTART, FAILED = range(5)
+KINDS = ("play", "green", "water", "restart", "failed")
+# (target, angle deg + right of the line to it)
+AIMS = (("pin", 0.0), ("pin", -2.0), ("pin", 2.0), ("pin", -4.0), ("pin", 4.0),
+        ("line", 0.0), ("line", -3.0), ("line", 3.0))  # fmt: skip
+OVERSHOOT_M = 20.0
+BALL_SPEED = COLUMN["ball_speed_mps"]
+SPIN = COLUMN["spin_radps"]
+_OUT = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
+
+
+@dataclass(frozen=True)
+class Action:
+    club: int  # the point of the player's scenario
+    power: float  # ball speed and spin times this (1: a full shot)
+    aim: int  # index of AIMS
+    total_m: float  # the shot's mean total on the level, full power
+
+    def name(self, clubs):
+        power = "" if self.power == 1.0 else f" {100 * self.power:.0f}%"
+        target, angle = AIMS[self.aim]
+        side = "" if angle == 0 else f" {abs(angle):g} deg {'right' if angle > 0 else 'left'}"
+        return f"{clubs[self.club]}{power} at the {target}{side}"
+
+
+@dataclass
+class Transitions:
+    """Every row (a state and an action): ``row_state``, ``row_action`` (index of
+    ``actions``), and its shots ``row_start[r]`` .. ``row_start[r + 1]`` in the arrays ``kind``,
+    ``lie`` (codes of LIES), ``x``, ``y`` (where it rests or drops), ``const`` (a shot on the
+    green: its expected putts)."""
+
+    actions: list
+    row_state: np.ndarray
+    row_action: np.ndarray
+    row_start: np.ndarray
+    kind: np.ndarray
+    lie: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    const: np.ndarray
+    n: int
+    shots_flown: int
+
+
+def _shots(scenario, club, n, power):
+    inputs, _ = sampling.sample(scenario, scenario.points[club], 0, n)
+    inputs = np.asfortranarray(inputs.copy())
+    inputs[:, BALL_SPEED] *= power
+    inputs[:, SPIN] *= power
+    return inputs
+
+
+def _level_total(inputs):
+    out = simulate_batch(np.asfortranarray(inputs.copy()))
+    return float(np.nanmean(out[:, _OUT["total_m"]]))
+
+
+def _options(scenario, n):
+    """(club, power, inputs, mean total m) of every full club and the wedge's part powers."""
+    options = []
+    last = len(scenario.points) - 1
+    for club in range(len(scenario.points)):
+        for power in (1.0, *(PART_POWERS if club == last else ())):
+            inputs = _shots(scenario, club, n, power)
+            options.append((club, power, inputs, _level_total(inputs)))
+    return options
+
+
+def _line_point(line, x0, y0, ahead_m):
+    """The point of the polyline ``line`` ``ahead_m`` along it beyond the projection of
+    (x0, y0) on it (arrays of starts), the line's end at most."""
+    seg = np.diff(line, axis=0)
+    length = np.hypot(seg[:, 0], seg[:, 1])
+    arc = np.r_[0.0, np.cumsum(length)]
+    best_arc = np.zeros(len(x0))
+    best_d = np.full(len(x0), np.inf)
+    for k in range(len(seg)):
+        if length[k] == 0:
+            continue
+        t = ((x0 - line[k, 0]) * seg[k, 0] + (y0 - line[k, 1]) * seg[k, 1]) / length[k] ** 2
+        t = np.clip(t, 0.0, 1.0)
+        d = np.hypot(line[k, 0] + t * seg[k, 0] - x0, line[k, 1] + t * seg[k, 1] - y0)
+        closer = d < best_d
+        best_d = np.where(closer, d, best_d)
+        best_arc = np.where(closer, arc[k] + t * length[k], best_arc)
+    target = np.minimum(best_arc + ahead_m, arc[-1])
+    k = np.clip(np.searchsorted(arc, target, side="right") - 1, 0, len(seg) - 1)
+    t = (target - arc[k]) / np.where(length[k] > 0, length[k], 1.0)
+    return line[k, 0] + t * seg[k, 0], line[k, 1] + t * seg[k, 1]
+
+
+def _aims(hole, xy, aim, total_m):
+    """The aim points (m, 2) of ``AIMS[aim]`` from the starts ``xy``; None where the aim is not
+    offered (a line aim of a club that reaches the pin, or of a hole without a line)."""
+    target, angle = AIMS[aim]
+    px, py = hole.pin_xy
+    dist = np.hypot(px - xy[:, 0], py - xy[:, 1])
+    if target == "pin":
+        tx, ty = np.full(len(xy), px), np.full(len(xy), py)
+        offered = np.ones(len(xy), dtype=bool)
+    else:
+        if hole.line_xy is None or len(hole.line_xy) < 2:
+            return None, np.zeros(len(xy), dtype=bool)
+        line = np.vstack([hole.line_xy[hole.line_xy[:, 0] > 0.0], [hole.pin_xy]])
+        line = np.vstack([[(0.0, 0.0)], line])
+        tx, ty = _line_point(line, xy[:, 0], xy[:, 1], total_m)
+        offered = total_m < dist - OVERSHOOT_M
+    bearing = np.arctan2(ty - xy[:, 1], tx - xy[:, 0]) + math.radians(angle)
+    reach = np.maximum(np.hypot(tx - xy[:, 0], ty - xy[:, 1]), 1.0)
+    return np.column_stack([xy[:, 0] + reach * np.cos(bearing),
+                            xy[:, 1] + reach * np.sin(bearing)]), offered  # fmt: skip
+
+
+def _drops(hole, rx, ry, area):
+    """(x, y, lie code) of the drop of balls in a penalty area of kind ``area`` (zone codes)
+    that crossed into it at (rx, ry)."""
+    px, py = hole.pin_xy
+    mown = np.isin(hole.zone_at(rx, ry), [ZONE_KINDS.index(z) for z in MOWN_ZONES])
+    lie = np.where(mown, LIES.index("fairway"), LIES.index("rough")).astype(np.int8)
+    x, y = rx.copy(), ry.copy()
+    yellow = area == ZONE_KINDS.index("water_yellow")
+    if yellow.any():
+        dx, dy = rx[yellow] - px, ry[yellow] - py
+        d0 = np.maximum(np.hypot(dx, dy), 1e-9)
+        ux, uy = dx / d0, dy / d0
+        behind = np.arange(1.0, 101.0)
+        bx = px + ux[:, None] * (d0[:, None] + behind)
+        by = py + uy[:, None] * (d0[:, None] + behind)
+        playable = hole.in_play_at(bx, by)
+        first = np.argmax(playable, axis=1)
+        rows = np.arange(len(first))
+        x[yellow], y[yellow] = bx[rows, first], by[rows, first]
+        zone = hole.zone_at(x[yellow], y[yellow])
+        code = LIE_CODE_OF_ZONE[np.maximum(zone, 0)]
+        lie[yellow] = np.where(code >= 0, code, LIES.index("rough"))
+    return x, y, lie
+
+
+def _classify(hole, out, putting, baseline):
+    """(kind, lie, x, y, const) of every shot of ``out`` (the kernel's outcomes)."""
+    state = out[:, _OUT["status"]].astype(np.int64)
+    fx, fy = out[:, _OUT["final_x_m"]], out[:, _OUT["final_y_m"]]
+    m = len(state)
+    kind = np.full(m, FAILED, dtype=np.int8)
+    lie = np.full(m, -1, dtype=np.int8)
+    const = np.zeros(m)
+    x, y = fx.copy(), fy.copy()
+    ok = state == status.OK
+    zone = np.where(ok, hole.zone_at(np.where(ok, fx, 0.0), np.where(ok, fy, 0.0)), -1)
+    code = np.where(zone >= 0, LIE_CODE_OF_ZONE[np.maximum(zone, 0)], -1)
+    green = ok & (code == GREEN_LIE)
+    kind[green] = GREEN
+    if green.any():
+        d = np.hypot(fx[green] - hole.pin_xy[0], fy[green] - hole.pin_xy[1])
+        if putting is None:
+            const[green] = baseline.expected("green", d)
+        else:
+            const[green] = putting.value_at(fx[green], fy[green])[0]
+        const[green] = np.where(d <= HOLE_RADIUS_M, 0.0, const[green])
+    play = ok & (code >= 0) & (code != GREEN_LIE)
+    kind[play] = PLAY
+    lie[play] = code[play]
+    restart = (state == status.OUT_OF_BOUNDS_STATUS) | (state == status.OFF_MAP) | (ok & (code < 0))
+    kind[restart] = RESTART
+    water = state == status.IN_PENALTY_AREA
+    if water.any():
+        rx, ry = out[water, _OUT["penalty_x_m"]], out[water, _OUT["penalty_y_m"]]
+        area = hole.penalty_area_at(fx[water], fy[water])
+        x[water], y[water], lie[water] = _drops(hole, rx, ry, area)
+        kind[water] = WATER
+    return kind, lie, x, y, const
+
+
+def fly(scenario, lat, n, putting=None, baseline=None, chunk_rows=256, progress=None):
+    """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``."""
+    hole = scenario.hole
+    terrain = hole.terrain()
+    options = _options(scenario, n)
+    px, py = hole.pin_xy
+    dist = np.hypot(px - lat.xy[:, 0], py - lat.xy[:, 1])
+    speed_f = np.array([LIE_LAUNCH.get(LIES[k], (1.0, 1.0))[0] for k in lat.lie])
+    spin_f = np.array([LIE_LAUNCH.get(LIES[k], (1.0, 1.0))[1] for k in lat.lie])
+    shortest = min(range(len(options)), key=lambda k: options[k][3])
+    actions, parts = [], []
+    flown = 0
+    for k, (club, power, inputs, total) in enumerate(options):
+        fits = total <= dist + np.maximum(OVERSHOOT_M, 0.1 * dist)
+        if k == shortest:
+            fits[:] = True
+        for aim in range(len(AIMS)):
+            points, offered = _aims(hole, lat.xy, aim, total)
+            chosen = np.flatnonzero(fits & offered)
+            if chosen.size == 0:
+                continue
+            a = len(actions)
+            actions.append(Action(club, power, aim, total))
+            for c in range(0, chosen.size, chunk_rows):
+                rows = chosen[c : c + chunk_rows]
+                batch = starts.tile(inputs, scenario.points[club].play, lat.xy[rows],
+                                    (points[rows, 0], points[rows, 1]))  # fmt: skip
+                batch[:, BALL_SPEED].reshape(len(rows), n)[:] *= speed_f[rows, None]
+                batch[:, SPIN].reshape(len(rows), n)[:] *= spin_f[rows, None]
+                out = simulate_batch(batch, terrain=terrain)
+                flown += len(batch)
+                parts.append((rows, a, _classify(hole, out, putting, baseline)))
+            if progress is not None:
+                progress(len(actions))
+    rows_state = np.concatenate([p[0] for p in parts])
+    rows_action = np.concatenate([np.full(len(p[0]), p[1]) for p in parts])
+    order = np.lexsort((rows_action, rows_state))
+    arrays = [np.concatenate([p[2][j].reshape(len(p[0]), n) for p in parts])[order].ravel()
+              for j in range(5)]  # fmt: skip
+    return Transitions(
+        actions=actions,
+        row_state=rows_state[order].astype(np.int64),
+        row_action=rows_action[order].astype(np.int64),
+        row_start=np.arange(len(order) + 1, dtype=np.int64) * n,
+        kind=arrays[0].astype(np.int8),
+        lie=arrays[1].astype(np.int8),
+        x=arrays[2].astype(np.float64),
+        y=arrays[3].astype(np.float64),
+        const=arrays[4].astype(np.float64),
+        n=int(n),
+        shots_flown=flown,
+    )
