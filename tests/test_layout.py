@@ -20,6 +20,7 @@ LAYERS = (
     ("mcrun.api", "mcrun.putting"),
     ("mcrun.results",),
     ("mcrun.run",),
+    ("mcrun.play",),
     ("mcrun.report", "mcrun.paper", "mcrun.calibrate"),
     ("mcrun.cli",),
 )

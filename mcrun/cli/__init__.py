@@ -94,6 +94,7 @@ COMMAND_MODULES = {
     "hole": "mcrun.cli.hole",
     "aim": "mcrun.cli.aim",
     "putt": "mcrun.cli.putt",
+    "play": "mcrun.cli.play",
     "warm-up": "mcrun.cli.warmup",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")

@@ -154,5 +154,5 @@ def stacked(lat):
     index = np.full((len(lat.grids), ny, nx), -1, dtype=np.int64)
     for k, g in enumerate(lat.grids):
         index[k, : g[3].shape[0], : g[3].shape[1]] = g[3]
-    return (np.array([g[0] for g in lat.grids]), np.array([g[1] for g in lat.grids]),
-            np.array([g[2] for g in lat.grids]), index, np.array(lat.reach_m, dtype=float))  # fmt: skip
+    x0, y0, cell = (np.array([g[k] for g in lat.grids]) for k in range(3))
+    return x0, y0, cell, index, np.array(lat.reach_m, dtype=float)

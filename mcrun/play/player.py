@@ -5,13 +5,17 @@ A player file is a scenario file without a ``[hole]``: its ``[[group]]``s are th
 with its launch (presets, correlated normals, or fitted from a launch-monitor session:
 ``[launch] file`` with a club filter), its weather and models; ``pga-tour-bag`` (the library's)
 is the Tour player. The shortest club of the bag (its last group: the wedge) is also hit at
-part power (``PART_POWERS``): its ball speed and spin scaled by the power, its launch angle
-kept, an ESTIMATE of a pitch's launch.
+part power (``PART_POWERS``), an ESTIMATE of a pitch's launch: ball speed times the power p,
+spin times sqrt(p), launch angle raised by (1 - p) ``PITCH_LOFT_DEG`` (a pitch is played with
+the face open: a Tour 50-yd pitch launches near 30 deg with 6,000-7,000 rpm, against the
+full wedge's 24 deg and 9,300 rpm).
 
 How a lie changes a launch (``LIE_LAUNCH``, ESTIMATES a user can override): from the rough a
-"flyer" (grass between the face and the ball: less spin, a little less speed); from a bunker
-less speed and spin (sand taken with the ball); a recovery shot (under trees) is a punch, at
-much less speed. Fairway and tee shots are the launch as sampled.
+"flyer" (grass between the face and the ball: less spin, a little less speed) and a wider
+pattern (the ball speed's, azimuth's and spin axis's deviations from their means times
+``spread``); from a bunker less speed and spin (sand taken with the ball) and a wider pattern;
+a recovery shot (under trees) is a punch, at much less speed. Fairway and tee shots are the
+launch as sampled.
 """
 
 import dataclasses
@@ -21,20 +25,36 @@ from mcrun.quantities import InputError
 from mcrun.run import scenario as sc
 from mcrun.run.scenario.hole_table import Play
 
-__all__ = ["LIE_LAUNCH", "PART_POWERS", "Player", "PlayerError", "load_player", "on_hole"]
+__all__ = [
+    "LIE_LAUNCH",
+    "PART_POWERS",
+    "PITCH_LOFT_DEG",
+    "TOUR_SPREAD",
+    "Player",
+    "PlayerError",
+    "load_player",
+    "on_hole",
+]
 
-# (ball speed factor, spin factor) by the lie the ball is struck from. ESTIMATES: a flyer from
-# the rough carries 20-50 % less spin (the grass between face and ball); a fairway bunker
-# shot loses about a tenth of its speed; a recovery is a punch back into play.
+# (ball speed factor, spin factor, spread factor) by the lie the ball is struck from.
+# ESTIMATES: a flyer from the rough carries 20-50 % less spin (the grass between face and
+# ball) and scatters more; a fairway bunker shot loses about a tenth of its speed; a recovery
+# is a punch back into play.
 LIE_LAUNCH = {
-    "tee": (1.0, 1.0),
-    "fairway": (1.0, 1.0),
-    "rough": (0.97, 0.65),
-    "sand": (0.90, 0.80),
-    "recovery": (0.60, 0.80),
+    "tee": (1.0, 1.0, 1.0),
+    "fairway": (1.0, 1.0, 1.0),
+    "rough": (0.97, 0.65, 1.6),
+    "sand": (0.90, 0.80, 1.6),
+    "recovery": (0.60, 0.80, 2.0),
 }
-# The wedge at part power: ball speed and spin times each of these.
-PART_POWERS = (0.85, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2)
+# The wedge at part power p: ball speed times p, spin times sqrt(p), launch angle plus
+# (1 - p) PITCH_LOFT_DEG.
+PART_POWERS = tuple(round(1.0 - 0.05 * k, 2) for k in range(1, 17))  # 0.95 .. 0.2
+PITCH_LOFT_DEG = 16.0
+# CALIBRATED (``mcrun.play.calibration.calibrate``, 4,000 shots a club; tests/test_play.py):
+# the Tour bag's spread per club, Driver .. PW, to the Tour's approach proximity and fairways.
+TOUR_BAG = "pga-tour-bag"
+TOUR_SPREAD = (1.654, 1.877, 1.929, 1.235, 1.452, 1.454, 1.424, 1.457, 1.542, 1.678, 2.101, 2.29)
 
 
 class PlayerError(InputError):
@@ -44,17 +64,22 @@ class PlayerError(InputError):
 @dataclass(frozen=True)
 class Player:
     """A bag: ``scenario`` (a plane scenario whose points are the clubs), the clubs' names,
-    the putter (a name of ``mcrun.putting.PUTTERS``) and where it was read."""
+    each club's ``spread`` (the factor on its launch's deviations from their means:
+    ``mcrun.play.calibration``), the putter (a name of ``mcrun.putting.PUTTERS``) and where it
+    was read."""
 
     name: str
     scenario: object
     clubs: tuple
+    spread: tuple
     putter: str
     source: str
 
 
-def load_player(spec, putter="tour"):
-    """The Player of a player file or a library scenario's name (``pga-tour-bag``)."""
+def load_player(spec, putter="tour", spread=None):
+    """The Player of a player file or a library scenario's name (``pga-tour-bag``: the Tour
+    player, its spreads ``TOUR_SPREAD``); ``spread``: one factor for every club, or a tuple
+    (default 1, the file's own dispersion)."""
     scenario = sc.load(spec)
     if scenario.hole is not None:
         raise PlayerError(
@@ -64,7 +89,15 @@ def load_player(spec, putter="tour"):
     clubs = tuple(p.label or p.group or f"club {p.index}" for p in scenario.points)
     if len(set(clubs)) != len(clubs):
         raise PlayerError(f"{scenario.path}: each club (group) needs a name of its own")
-    return Player(scenario.name, scenario, clubs, putter, str(scenario.path))
+    if spread is None:
+        spread = TOUR_SPREAD if scenario.name == TOUR_BAG else (1.0,) * len(clubs)
+    elif isinstance(spread, int | float):
+        spread = (float(spread),) * len(clubs)
+    spread = tuple(float(v) for v in spread)
+    if len(spread) != len(clubs) or not all(0.0 < v <= 10.0 for v in spread):
+        raise PlayerError(f"{scenario.path}: spread {spread}: allowed: one factor in (0, 10] "
+                          f"or one per club ({len(clubs)})")  # fmt: skip
+    return Player(scenario.name, scenario, clubs, spread, putter, str(scenario.path))
 
 
 def on_hole(player, hole):

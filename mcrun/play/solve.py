@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from mcrun.play.lattice import stacked, value_at
+from mcrun.play.lattice import TABLE_STEP_M, stacked, value_at
 from mcrun.play.transitions import GREEN, PLAY, RESTART, WATER
 
 __all__ = ["MAX_SWEEPS", "TOLERANCE", "SolveResult", "solve"]
@@ -107,9 +107,12 @@ def solve(lat, tr, allowed=None, start_values=None, threads=None):
     threads = threads or _threads()
     n_states = lat.size
     allowed = np.ones(len(tr.row_state), dtype=np.bool_) if allowed is None else allowed
-    values = (lat.table[lat.lie, np.minimum(
-        (np.hypot(lat.xy[:, 0] - lat.pin_xy[0], lat.xy[:, 1] - lat.pin_xy[1]) / 0.5).astype(int),
-        lat.table.shape[1] - 1)].copy() if start_values is None else start_values.copy())  # fmt: skip
+    if start_values is None:
+        d = np.hypot(lat.xy[:, 0] - lat.pin_xy[0], lat.xy[:, 1] - lat.pin_xy[1])
+        column = np.minimum((d / TABLE_STEP_M).astype(int), lat.table.shape[1] - 1)
+        values = lat.table[lat.lie, column].copy()
+    else:
+        values = start_values.copy()
     grids = stacked(lat)
     q = np.empty(len(tr.row_state))
     q_se = np.empty(len(tr.row_state))
@@ -127,7 +130,7 @@ def solve(lat, tr, allowed=None, start_values=None, threads=None):
                 for a, b in jobs:
                     _q_rows(a, b, values, *args, q, q_se)
             else:
-                list(pool.map(lambda ab: _q_rows(ab[0], ab[1], values, *args, q, q_se), jobs))
+                list(pool.map(lambda ab, v=values: _q_rows(ab[0], ab[1], v, *args, q, q_se), jobs))
             _best(q, tr.row_state, allowed, n_states, best_v, best_row)
             # A state no allowed row fits keeps its value (the tee's lattice always has one).
             new = np.where(best_row >= 0, best_v, values)

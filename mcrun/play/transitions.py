@@ -27,8 +27,9 @@ from mcrun import status
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import COLUMN, OUTCOME_FIELDS
 from mcrun.hole.zones import MOWN_ZONES, ZONE_KINDS
+from mcrun.play.calibration import spread_inputs
 from mcrun.play.lattice import GREEN_LIE, LIE_CODE_OF_ZONE
-from mcrun.play.player import LIE_LAUNCH, PART_POWERS
+from mcrun.play.player import LIE_LAUNCH, PART_POWERS, PITCH_LOFT_DEG
 from mcrun.run import sampling, starts
 from mcrun.strokes.baseline import HOLE_RADIUS_M, LIES
 
@@ -42,6 +43,9 @@ AIMS = (("pin", 0.0), ("pin", -2.0), ("pin", 2.0), ("pin", -4.0), ("pin", 4.0),
 OVERSHOOT_M = 20.0
 BALL_SPEED = COLUMN["ball_speed_mps"]
 SPIN = COLUMN["spin_radps"]
+LAUNCH = COLUMN["launch_angle_rad"]
+AZIMUTH = COLUMN["azimuth_rad"]
+SPIN_AXIS = COLUMN["spin_axis_rad"]
 _OUT = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
 
 
@@ -79,12 +83,27 @@ class Transitions:
     shots_flown: int
 
 
-def _shots(scenario, club, n, power):
+def _shots(scenario, club, n, power, spread):
     inputs, _ = sampling.sample(scenario, scenario.points[club], 0, n)
-    inputs = np.asfortranarray(inputs.copy())
+    inputs = spread_inputs(inputs, spread)
     inputs[:, BALL_SPEED] *= power
-    inputs[:, SPIN] *= power
+    inputs[:, SPIN] *= math.sqrt(power)
+    inputs[:, LAUNCH] += (1.0 - power) * math.radians(PITCH_LOFT_DEG)
     return inputs
+
+
+def _lie_launch(batch, rows_lie, n):
+    """``batch`` (starts x n shots, start-major) struck from lies ``rows_lie``: speed and spin
+    scaled, the spread of speed, azimuth and spin axis about their means widened
+    (``LIE_LAUNCH``)."""
+    factors = np.array([LIE_LAUNCH.get(LIES[k], (1.0, 1.0, 1.0)) for k in rows_lie])
+    m = len(rows_lie)
+    for column, f in ((BALL_SPEED, factors[:, 0]), (SPIN, factors[:, 1])):
+        batch[:, column].reshape(m, n)[:] *= f[:, None]
+    for column in (BALL_SPEED, AZIMUTH, SPIN_AXIS):
+        view = batch[:, column].reshape(m, n)
+        centre = view.mean(axis=1, keepdims=True)
+        view[:] = centre + (view - centre) * factors[:, 2, None]
 
 
 def _level_total(inputs):
@@ -92,13 +111,13 @@ def _level_total(inputs):
     return float(np.nanmean(out[:, _OUT["total_m"]]))
 
 
-def _options(scenario, n):
+def _options(scenario, n, spread):
     """(club, power, inputs, mean total m) of every full club and the wedge's part powers."""
     options = []
     last = len(scenario.points) - 1
     for club in range(len(scenario.points)):
         for power in (1.0, *(PART_POWERS if club == last else ())):
-            inputs = _shots(scenario, club, n, power)
+            inputs = _shots(scenario, club, n, power, spread[club])
             options.append((club, power, inputs, _level_total(inputs)))
     return options
 
@@ -208,15 +227,14 @@ def _classify(hole, out, putting, baseline):
     return kind, lie, x, y, const
 
 
-def fly(scenario, lat, n, putting=None, baseline=None, chunk_rows=256, progress=None):
-    """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``."""
+def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None):
+    """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``,
+    each club's launch at its ``spread``."""
     hole = scenario.hole
     terrain = hole.terrain()
-    options = _options(scenario, n)
+    options = _options(scenario, n, spread)
     px, py = hole.pin_xy
     dist = np.hypot(px - lat.xy[:, 0], py - lat.xy[:, 1])
-    speed_f = np.array([LIE_LAUNCH.get(LIES[k], (1.0, 1.0))[0] for k in lat.lie])
-    spin_f = np.array([LIE_LAUNCH.get(LIES[k], (1.0, 1.0))[1] for k in lat.lie])
     shortest = min(range(len(options)), key=lambda k: options[k][3])
     actions, parts = [], []
     flown = 0
@@ -235,8 +253,7 @@ def fly(scenario, lat, n, putting=None, baseline=None, chunk_rows=256, progress=
                 rows = chosen[c : c + chunk_rows]
                 batch = starts.tile(inputs, scenario.points[club].play, lat.xy[rows],
                                     (points[rows, 0], points[rows, 1]))  # fmt: skip
-                batch[:, BALL_SPEED].reshape(len(rows), n)[:] *= speed_f[rows, None]
-                batch[:, SPIN].reshape(len(rows), n)[:] *= spin_f[rows, None]
+                _lie_launch(batch, lat.lie[rows], n)
                 out = simulate_batch(batch, terrain=terrain)
                 flown += len(batch)
                 parts.append((rows, a, _classify(hole, out, putting, baseline)))

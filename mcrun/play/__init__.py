@@ -1,0 +1,187 @@
+"""The whole hole played as a given player: their own expected strokes from everywhere, and the
+best club and aim there, by value iteration over mcrun's own shots (a Markov decision process,
+as Stauffer and Guillot solve a hole from shot-location data; here every shot is flown on the
+hole's ground).
+
+The parts: the player (``player``: a bag, its spread, lies, part power; ``calibration``: the
+Tour bag's spread), the states (``lattice``), the actions and their shots (``transitions``),
+the values and the policy (``solve``), the score distribution (``episodes``). ``play_hole`` is
+the entry point from Python; ``mcrun play`` prints its result.
+"""
+
+import math
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+import pandas as pd
+
+from mcrun.play.episodes import MAX_STROKES, play_policy
+from mcrun.play.lattice import (
+    DEFAULT_COARSE_M,
+    DEFAULT_FINE_M,
+    DEFAULT_FINE_WITHIN_M,
+    lattice,
+)
+from mcrun.play.player import Player, PlayerError, load_player, on_hole
+from mcrun.play.solve import solve
+from mcrun.play.transitions import AIMS, fly
+from mcrun.putting.on_hole import map_of_hole
+from mcrun.strokes.baseline import LIES, tour_baseline
+
+__all__ = ["DEFAULT_N", "PlayResult", "Player", "PlayerError", "load_player", "play_hole"]
+
+DEFAULT_N = 100
+DEFAULT_PLAYS = 4000
+SCORE_NAMES = ("eagle or better", "birdie", "par", "bogey", "double bogey or worse")
+
+
+@dataclass
+class PlayResult:
+    """A solved hole (see ``play_hole``)."""
+
+    player: Player
+    hole: object
+    lattice: object
+    transitions: object
+    solution: object
+    fairway_solution: object
+    scores: np.ndarray  # strokes of each play of the policy
+    n: int
+    seed: int
+    seconds: float
+
+    def action_name(self, row):
+        return self.transitions.actions[self.transitions.row_action[row]].name(self.player.clubs)
+
+    @property
+    def tee_value(self):
+        return float(self.solution.values[0])
+
+    @property
+    def tee_se(self):
+        return float(self.solution.q_se[self.solution.best_row[0]])
+
+    def tee_rows(self):
+        """Every row of the tee (state 0): (row, name, Q, se), best first."""
+        rows = np.flatnonzero(self.transitions.row_state == 0)
+        out = [(int(r), self.action_name(r), float(self.solution.q[r]),
+                float(self.solution.q_se[r])) for r in rows]  # fmt: skip
+        return sorted(out, key=lambda row: row[2])
+
+    def savings(self):
+        """{policy: (its expected strokes from the tee, strokes saved by the solution)} for the
+        simple policies: the driver aimed at the pin from the tee (then the best), and every
+        shot at the centre of the fairway (the line aim where offered, else the pin)."""
+        out = {}
+        tr = self.transitions
+        driver = [r for r, name, q, se in self.tee_rows()
+                  if tr.actions[tr.row_action[r]].club == 0
+                  and tr.actions[tr.row_action[r]].power == 1.0
+                  and AIMS[tr.actions[tr.row_action[r]].aim] == ("pin", 0.0)]  # fmt: skip
+        if driver:
+            q = float(self.solution.q[driver[0]])
+            out[f"{self.player.clubs[0]} at the pin"] = (q, q - self.tee_value)
+        if self.fairway_solution is not None:
+            v = float(self.fairway_solution.values[0])
+            out["every shot at the fairway's centre"] = (v, v - self.tee_value)
+        return out
+
+    def score_shares(self):
+        """{name: share} of the plays' scores against par (``SCORE_NAMES``)."""
+        par = self.hole.par or round(self.tee_value)
+        d = self.scores - par
+        counts = (d <= -2, d == -1, d == 0, d == 1, d >= 2)
+        return {name: float(c.mean()) for name, c in zip(SCORE_NAMES, counts, strict=True)}
+
+    def states_frame(self):
+        """One row per state: x_m, y_m, lie, expected_strokes, its se, the best action."""
+        s = self.solution
+        tr = self.transitions
+        best = s.best_row
+        action = [tr.actions[tr.row_action[r]] if r >= 0 else None for r in best]
+        return pd.DataFrame(
+            {
+                "x_m": self.lattice.xy[:, 0],
+                "y_m": self.lattice.xy[:, 1],
+                "lie": pd.Categorical([LIES[k] for k in self.lattice.lie], categories=LIES),
+                "expected_strokes": s.values,
+                "expected_strokes_se": np.where(best >= 0, s.q_se[np.maximum(best, 0)], np.nan),
+                "club": [self.player.clubs[a.club] if a else None for a in action],
+                "power": [a.power if a else math.nan for a in action],
+                "aim": [
+                    f"{AIMS[a.aim][0]} {AIMS[a.aim][1]:+g} deg" if a else None for a in action
+                ],  # fmt: skip
+                "baseline_strokes": tour_baseline().expected(
+                    [LIES[k] for k in self.lattice.lie],
+                    np.hypot(
+                        self.lattice.xy[:, 0] - self.hole.pin_xy[0],
+                        self.lattice.xy[:, 1] - self.hole.pin_xy[1],
+                    ),
+                ),  # fmt: skip
+            }
+        )
+
+    def actions_frame(self):
+        """One row per state and action: state, x_m, y_m, club, power, aim, expected_strokes
+        (Q) and its se, best (the state's chosen action)."""
+        tr, s = self.transitions, self.solution
+        a = [tr.actions[k] for k in tr.row_action]
+        return pd.DataFrame(
+            {
+                "state": tr.row_state,
+                "x_m": self.lattice.xy[tr.row_state, 0],
+                "y_m": self.lattice.xy[tr.row_state, 1],
+                "club": pd.Categorical(
+                    [self.player.clubs[x.club] for x in a], categories=self.player.clubs
+                ),  # fmt: skip
+                "power": [x.power for x in a],
+                "aim": pd.Categorical([f"{AIMS[x.aim][0]} {AIMS[x.aim][1]:+g} deg" for x in a]),
+                "expected_strokes": s.q,
+                "expected_strokes_se": s.q_se,
+                "best": s.best_row[tr.row_state] == np.arange(len(tr.row_state)),
+            }
+        )
+
+
+def play_hole(player, hole, n=DEFAULT_N, seed=None, coarse_m=DEFAULT_COARSE_M,
+              fine_m=DEFAULT_FINE_M, fine_within_m=DEFAULT_FINE_WITHIN_M, plays=DEFAULT_PLAYS,
+              progress=None):  # fmt: skip
+    """Solve ``hole`` (a ``mcrun.hole.Hole``) for ``player`` (a ``Player``): ``n`` shots of each
+    action from each state (the player's scenario's first n, its seed or ``seed``), states every
+    ``coarse_m`` and every ``fine_m`` within ``fine_within_m`` of the pin; the policy played
+    ``plays`` times. A ball on the green is worth the hole's putting (its map under
+    ``putting = "physics"``, else the baseline's putts)."""
+    started = time.perf_counter()
+    if not (isinstance(n, int) and n >= 2):
+        raise PlayerError(f"n {n!r}: allowed: a whole number of at least 2")
+    scenario = on_hole(player, hole)
+    if seed is not None:
+        scenario = replace(scenario, seed=int(seed))
+    base = tour_baseline()
+    lat = lattice(hole, base, coarse_m, fine_m, fine_within_m)
+    tr = fly(scenario, lat, n, player.spread, putting=map_of_hole(hole), baseline=base,
+             progress=progress)  # fmt: skip
+    solution = solve(lat, tr)
+    if solution.change > 1e-3 or not np.isfinite(solution.values[0]):
+        worst = int(np.argmax(solution.values))
+        raise PlayerError(
+            f"{hole.source}: the values did not settle in {solution.sweeps} sweeps: from "
+            f"({lat.xy[worst, 0]:.0f}, {lat.xy[worst, 1]:.0f}) m the player cannot hole out "
+            "(no green around the pin, or every shot of the bag flies past it)"
+        )
+    # Every shot at the fairway's centre: each club's line aim where it has one from there
+    # (it stops short of the pin), else its pin aim.
+    option = np.array([(a.club, a.power) for a in tr.actions])
+    key = tr.row_state * 1000 + np.unique(option, axis=0, return_inverse=True)[1].ravel()[
+        tr.row_action]  # fmt: skip
+    row_aim = np.array([tr.actions[a].aim for a in tr.row_action])
+    line_rows = row_aim == AIMS.index(("line", 0.0))
+    allowed = line_rows | ((row_aim == AIMS.index(("pin", 0.0))) & ~np.isin(key, key[line_rows]))
+    fairway = solve(lat, tr, allowed=allowed, start_values=solution.values)
+    scores = play_policy(lat, tr, solution, plays, scenario.seed)
+    return PlayResult(player, hole, lat, tr, solution, fairway, scores, n, scenario.seed,
+                      time.perf_counter() - started)  # fmt: skip
+
+
+__all__ += ["MAX_STROKES", "SCORE_NAMES"]

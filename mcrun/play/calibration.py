@@ -1,0 +1,101 @@
+"""The Tour player's dispersion, calibrated: each club's spread (``Player.spread``, the factor
+on the deviations of its ball speed, launch angle, spin, spin axis and azimuth from their
+means) set to the Tour's published outcomes (the strokes-gained reference, "A strategy's
+checks"):
+
+- approach clubs (a mean total under ``WOOD_YD``, 235 yd): the mean distance of the finishes
+  from the centre of the club's pattern, on the level, equal to the Tour's approach proximity at the
+  club's distance: 20 ft 0 in from 100-125 yd and 27 ft 6 in from 150-175 yd, linear in the
+  distance between and beyond those bands' middles;
+- the driver and the woods (longer): the share of drives within 15 m either side of the pattern's
+  centre line (a fairway 30 m, 33 yd, wide, centred) equal to the Tour's 60 % of fairways hit.
+
+The pattern is centred (the club's mean distance, the aim's line): a player who chooses the
+club for the distance and aims at the pin; the errors of choosing and aiming are in the
+spread. The proximity and the lateral spread grow in proportion to the spread (tested), so one
+step of the ratio finds it, and a second checks it. ``calibrate(player, n)`` returns the
+spreads; ``mcrun.play.player.TOUR_SPREAD`` holds those of the Tour bag, and
+``tests/test_play.py`` checks them.
+"""
+
+import math
+
+import numpy as np
+
+from mcrun.engine.backend import simulate_batch
+from mcrun.engine.schema import COLUMN, OUTCOME_FIELDS
+from mcrun.run import sampling
+from mcrun.strokes.baseline import FOOT_M, YARD_M
+
+__all__ = ["FAIRWAY_HALF_WIDTH_M", "FAIRWAY_SHARE", "calibrate", "pattern", "proximity_target_ft"]
+
+WOOD_YD = 235.0
+# The Tour's approach proximity (ft) at the middle of two distance bands (yd).
+PROXIMITY_FT = ((112.5, 20.0), (162.5, 27.5))
+FAIRWAY_HALF_WIDTH_M = 15.0
+FAIRWAY_SHARE = 0.60
+SPREAD_COLUMNS = ("ball_speed_mps", "launch_angle_rad", "spin_radps", "spin_axis_rad",
+                  "azimuth_rad")  # fmt: skip
+_OUT = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
+
+
+def spread_inputs(inputs, factor):
+    """``inputs`` with each ``SPREAD_COLUMNS`` deviation from its mean times ``factor``."""
+    out = np.asfortranarray(inputs.copy())
+    for name in SPREAD_COLUMNS:
+        j = COLUMN[name]
+        centre = out[:, j].mean()
+        out[:, j] = centre + (out[:, j] - centre) * factor
+    return out
+
+
+def pattern(scenario, club, n, factor):
+    """(total_yd, proximity_ft about the centre, share within the fairway) of ``club``'s
+    first n shots on the level at spread ``factor``."""
+    inputs, _ = sampling.sample(scenario, scenario.points[club], 0, n)
+    out = simulate_batch(spread_inputs(inputs, factor))
+    x, y = out[:, _OUT["final_x_m"]], out[:, _OUT["final_y_m"]]
+    ok = np.isfinite(x) & np.isfinite(y)
+    x, y = x[ok], y[ok]
+    proximity = float(np.hypot(x - x.mean(), y - y.mean()).mean()) / FOOT_M
+    share = float((np.abs(y - y.mean()) <= FAIRWAY_HALF_WIDTH_M).mean())
+    return float(x.mean()) / YARD_M, proximity, share
+
+
+def proximity_target_ft(distance_yd):
+    (d0, p0), (d1, p1) = PROXIMITY_FT
+    return p0 + (p1 - p0) * (distance_yd - d0) / (d1 - d0)
+
+
+def calibrate(player, n=4000):
+    """Each club's spread (a tuple in the bag's order) and what it gives: rows (club, total_yd,
+    spread, proximity_ft, target_ft or None, fairway share, target share or None)."""
+    spreads, rows = [], []
+    for club, name in enumerate(player.clubs):
+        total, proximity, share = pattern(player.scenario, club, n, 1.0)
+        if total < WOOD_YD:
+            target = proximity_target_ft(total)
+            factor = target / proximity
+        else:
+            # The share within the fairway of a normal lateral spread: erf(w / (sd sqrt 2)).
+            sd = FAIRWAY_HALF_WIDTH_M / (math.sqrt(2.0) * _erfinv(share))
+            factor = FAIRWAY_HALF_WIDTH_M / (math.sqrt(2.0) * _erfinv(FAIRWAY_SHARE)) / sd
+        factor = round(factor, 3)
+        total, proximity, share = pattern(player.scenario, club, n, factor)
+        spreads.append(factor)
+        rows.append((name, total, factor, proximity,
+                     proximity_target_ft(total) if total < WOOD_YD else None, share,
+                     FAIRWAY_SHARE if total >= WOOD_YD else None))  # fmt: skip
+    return tuple(spreads), rows
+
+
+def _erfinv(p):
+    """The inverse of erf on (0, 1), by bisection (no scipy at run time)."""
+    lo, hi = 0.0, 6.0
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if math.erf(mid) < p:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)

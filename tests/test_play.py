@@ -1,0 +1,273 @@
+"""The whole hole played as a player (``mcrun.play``): first principles (a symmetric hole and
+player give a symmetric solution; a penalty area raises the values only where shots can reach
+it; the same solution on any number of threads), the Tour bag's calibrated spread against the
+Tour's proximity and fairways, and ``mcrun play``."""
+
+import dataclasses
+import json
+import textwrap
+
+import numpy as np
+import pytest
+
+from mcrun.cli import main
+from mcrun.hole.hole import load_hole
+from mcrun.play import load_player, play_hole
+from mcrun.play.calibration import (
+    FAIRWAY_SHARE,
+    WOOD_YD,
+    pattern,
+    proximity_target_ft,
+)
+from mcrun.play.lattice import lattice
+from mcrun.play.player import TOUR_SPREAD, on_hole
+from mcrun.play.solve import solve
+from mcrun.play.transitions import WATER, fly
+from mcrun.run import scenario as sc
+from mcrun.strokes import tour_baseline
+
+# Two clubs without spread: every shot of a club is the same shot, mirrored by a mirrored aim.
+BAG = """
+[scenario]
+name = "two-clubs"
+shots = 2
+seed = 1
+
+[weather]
+temperature = "20 C"
+
+[[group]]
+name = "7-iron"
+launch.ball_speed = "120 mph"
+launch.launch_angle = "16 deg"
+launch.spin = "7000 rpm"
+
+[[group]]
+name = "wedge"
+launch.ball_speed = "100 mph"
+launch.launch_angle = "24 deg"
+launch.spin = "9000 rpm"
+"""
+LAT0, LON0 = 45.0, 15.0
+M_LAT = 1.0 / 111_320.0
+M_LON = M_LAT / np.cos(np.radians(LAT0))
+
+
+def _lonlat(x_m, y_m):
+    """A point x m north and y m east of (LON0, LAT0): the frame of a hole played north."""
+    return [LON0 + y_m * M_LON, LAT0 + x_m * M_LAT]
+
+
+def _ring(points):
+    return [[_lonlat(x, y) for x, y in [*points, points[0]]]]
+
+
+def symmetric_map():
+    """A made-up course (not real data), mirror-symmetric about its hole's line: a 150 m hole
+    played north, a fairway 28.4 m wide from 30 to 138 m, a round green of radius 11.3 m about
+    the pin, the course boundary 60 m either side."""
+    angles = np.linspace(0.0, 2 * np.pi, 48, endpoint=False)
+    green = [(150.0 + 11.3 * np.cos(a), 11.3 * np.sin(a)) for a in angles]
+    features = [
+        (
+            "leisure",
+            "golf_course",
+            "Polygon",
+            _ring([(-30, -60), (-30, 60), (200, 60), (200, -60)]),
+        ),
+        ("golf", "hole", "LineString", [_lonlat(0, 0), _lonlat(150, 0)]),
+        ("golf", "fairway", "Polygon", _ring([(30, -14.2), (30, 14.2), (138, 14.2), (138, -14.2)])),
+        ("golf", "green", "Polygon", _ring(green)),
+    ]
+    return {
+        "type": "FeatureCollection",
+        "features": [
+            {"type": "Feature", "properties": {key: value, **({"ref": "1", "par": "3"}
+                                                              if value == "hole" else {})},
+             "geometry": {"type": kind, "coordinates": coordinates}}
+            for key, value, kind, coordinates in features
+        ],
+    }  # fmt: skip
+
+
+HOLE = """
+map = "course.geojson"
+hole = "1"
+margin_m = 25.0
+"""
+
+
+@pytest.fixture(scope="module")
+def symmetric(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("play")
+    (tmp / "bag.toml").write_text(textwrap.dedent(BAG))
+    (tmp / "hole.toml").write_text(textwrap.dedent(HOLE))
+    (tmp / "course.geojson").write_text(json.dumps(symmetric_map()))
+    player, hole = load_player(tmp / "bag.toml"), load_hole(tmp / "hole.toml")
+    return player, hole, play_hole(player, hole, n=2, coarse_m=10.0, fine_m=5.0, plays=200)
+
+
+def test_a_symmetric_hole_and_player_give_a_symmetric_solution(symmetric):
+    """A course symmetric about its hole's line, straight shots: the value at (x, y) is the
+    value at (x, -y) (to rounding), and the tee's best aim is the pin or ties with its
+    mirror image."""
+    _, _, result = symmetric
+    xy, v = result.lattice.xy, result.solution.values
+    key = {(round(x, 6), round(y, 6)): k for k, (x, y) in enumerate(xy)}
+    pairs = [
+        (k, key[(round(x, 6), round(-y, 6))])
+        for k, (x, y) in enumerate(xy)
+        if k > 0 and (round(x, 6), round(-y, 6)) in key
+    ]  # fmt: skip (0: the tee)
+    assert len(pairs) > 50
+    a, b = np.array(pairs).T
+    np.testing.assert_allclose(v[a], v[b], atol=1e-9)
+    rows = result.tee_rows()
+    best = rows[0]
+    if "deg" in best[1]:
+        mirror = best[1].replace("left", "RIGHT").replace("right", "left").replace("RIGHT", "right")
+        assert any(name == mirror and abs(q - best[2]) < 1e-9 for _, name, q, _ in rows)
+
+
+def test_the_solution_is_the_same_on_one_thread_and_on_two(symmetric):
+    player, hole, result = symmetric
+    one = solve(result.lattice, result.transitions, threads=1)
+    np.testing.assert_array_equal(one.values, result.solution.values)
+    np.testing.assert_array_equal(one.best_row, result.solution.best_row)
+
+
+def test_the_tee_value_is_what_its_plays_average(symmetric):
+    """Straight shots: the policy played 200 times averages the tee's value within 0.25
+    strokes (the putts are drawn to the table's mean)."""
+    _, _, result = symmetric
+    assert abs(result.scores.mean() - result.tee_value) < 0.25
+
+
+def _dry(hole):
+    """``hole`` with every penalty area made rough."""
+    zones = [("rough" if kind.startswith("water") else kind, p) for kind, p in hole.zones]
+    return dataclasses.replace(hole, zones=zones, _terrain=None)
+
+
+def test_a_penalty_area_raises_the_values_only_where_shots_can_reach_it():
+    """Riverside 2, a par 3 over water, for the Tour bag (10 shots an action) with its water
+    and with the water made rough: the same shots (common random numbers) from each state.
+    Near the green (within 25 m of the pin, beyond the water) no shot reaches the water, and
+    the values are the same bit for bit; where shots can end in the water, it costs strokes
+    (by more than 0.1 somewhere). (From the tee the Tour player carries it: no cost there.)"""
+    scenario = sc.load("par3-over-water")
+    player = load_player("pga-tour-bag")
+    wet = scenario.hole
+    values = {}
+    for name, hole in (("wet", wet), ("dry", _dry(wet))):
+        base = tour_baseline()
+        lat = lattice(hole, base, coarse_m=12.0, fine_m=4.0, fine_within_m=24.0)
+        tr = fly(on_hole(player, hole), lat, 10, player.spread, baseline=base)
+        values[name] = (lat, solve(lat, tr).values, tr)
+    lat, wet_v, tr = values["wet"]
+    dry_lat, dry_v, _ = values["dry"]
+    dry_at = {(x, y): k for k, (x, y) in enumerate(dry_lat.xy)}
+    both = np.array([k for k, (x, y) in enumerate(lat.xy) if k and (x, y) in dry_at])
+    other = np.array([dry_at[tuple(lat.xy[k])] for k in both])
+    d = np.hypot(lat.xy[both, 0] - wet.pin_xy[0], lat.xy[both, 1] - wet.pin_xy[1])
+    near = d < 25.0
+    assert near.sum() > 10
+    np.testing.assert_array_equal(wet_v[both[near]], dry_v[other[near]])
+    # The states some of whose shots ended in the water: the water costs there.
+    splashed = np.unique(tr.row_state[np.repeat(np.arange(len(tr.row_state)), tr.n)
+                                      [tr.kind == WATER]])  # fmt: skip
+    reached = np.isin(both, splashed)
+    assert reached.sum() > 5
+    assert (wet_v[both[reached]] - dry_v[other[reached]]).max() > 0.1
+
+
+def test_the_tour_bag_s_spread_meets_the_tour_s_proximity_and_fairways():
+    """Each club of the Tour bag at its ``TOUR_SPREAD`` on 2,000 shots: approach clubs within
+    1.5 ft of the Tour's proximity at their distance (20 ft at 112.5 yd, 27.5 ft at 162.5 yd,
+    linear), driver and woods within 3 points of the Tour's 60 % of fairways 30 m wide."""
+    player = load_player("pga-tour-bag")
+    assert player.spread == TOUR_SPREAD
+    for club, factor in enumerate(TOUR_SPREAD):
+        total, proximity, share = pattern(player.scenario, club, 2000, factor)
+        if total < WOOD_YD:
+            assert abs(proximity - proximity_target_ft(total)) < 1.5, player.clubs[club]
+        else:
+            assert abs(share - FAIRWAY_SHARE) < 0.03, player.clubs[club]
+
+
+def test_mcrun_play_prints_the_solution(symmetric, tmp_path, capsys):
+    folder = tmp_path
+    (folder / "bag.toml").write_text(textwrap.dedent(BAG))
+    (folder / "hole.toml").write_text(textwrap.dedent(HOLE))
+    (folder / "course.geojson").write_text(json.dumps(symmetric_map()))
+    out = folder / "play.parquet"
+    code = main(["play", str(folder / "bag.toml"), str(folder / "hole.toml"), "-n", "2",
+                 "--coarse", "10m", "--fine", "5m", "--plays", "100", "-o", str(out)])  # fmt: skip
+    printed = capsys.readouterr().out
+    assert code == 0
+    assert "expected score from the tee:" in printed and "plays:" in printed
+    import pandas as pd
+
+    frame = pd.read_parquet(out)
+    assert {"state", "club", "aim", "expected_strokes", "best"} <= set(frame.columns)
+    assert frame.groupby("state")["best"].sum().max() == 1
+
+
+@pytest.mark.parametrize(
+    "argv, says",
+    [
+        (["play", "par3-over-water", "scenarios/holes/riverside-2.toml"], "a player is a bag"),
+        (["play", "pga-tour-bag", "pga-driver"], "a scenario without a [hole]"),
+        (["play", "pga-tour-bag", "par3-over-water", "-n", "1"], "-n '1': allowed"),
+    ],
+)
+def test_mcrun_play_refuses_bad_input_in_one_line(argv, says, capsys, monkeypatch):
+    from pathlib import Path
+
+    monkeypatch.chdir(Path(__file__).resolve().parents[1])
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert says in err and len(err.splitlines()) == 1
+
+
+def oob_map(length_m=360.0):
+    """``symmetric_map`` stretched to a par 4 of ``length_m`` with the course's boundary 20 m
+    right of the hole's line (out of bounds beyond) and 60 m left of it."""
+    course = symmetric_map()
+    angles = np.linspace(0.0, 2 * np.pi, 48, endpoint=False)
+    green = [(length_m + 11.3 * np.cos(a), 11.3 * np.sin(a)) for a in angles]
+    shapes = {
+        "golf_course": _ring([(-30, -60), (-30, 20), (length_m + 50, 20), (length_m + 50, -60)]),
+        "hole": [_lonlat(0, 0), _lonlat(length_m, 0)],
+        "fairway": _ring(
+            [(30, -14.2), (30, 14.2), (length_m - 12, 14.2), (length_m - 12, -14.2)]
+        ),  # fmt: skip
+        "green": _ring(green),
+    }
+    for feature in course["features"]:
+        value = feature["properties"].get("leisure") or feature["properties"]["golf"]
+        feature["geometry"]["coordinates"] = shapes[value]
+        if value == "hole":
+            feature["properties"]["par"] = "4"
+    return course
+
+
+def test_out_of_bounds_on_the_right_moves_the_tee_shot_left(tmp_path):
+    """Broadie's example (Every Shot Counts, 2014; the strokes-gained reference): out of bounds
+    along the right of a par 4, the driver's best aim from the tee is left of the line down the
+    middle, and the solution saves strokes against the driver aimed down the middle; more for
+    a wider pattern (the Tour bag's spread doubled, whose best tee shot is a shorter club)."""
+    (tmp_path / "course.geojson").write_text(json.dumps(oob_map()))
+    # A map wide enough for the left rough: the boundary 60 m left is out of bounds.
+    (tmp_path / "hole.toml").write_text(textwrap.dedent(HOLE).replace("25.0", "70.0"))
+    hole = load_hole(tmp_path / "hole.toml")
+    saved = {}
+    for factor in (1.0, 2.0):
+        player = load_player("pga-tour-bag")
+        player = dataclasses.replace(player, spread=tuple(factor * v for v in player.spread))
+        result = play_hole(player, hole, n=30, coarse_m=12.0, fine_m=6.0, plays=10)
+        driver = [name for _, name, _, _ in result.tee_rows() if name.startswith("Driver")]
+        assert "left" in driver[0], (factor, driver[0])
+        saved[factor] = result.savings()["Driver at the pin"][1]
+    assert saved[1.0] > 0.0
+    assert saved[2.0] > saved[1.0]
