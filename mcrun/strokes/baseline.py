@@ -1,7 +1,7 @@
 """Expected strokes to hole out by lie and distance: the PGA Tour baseline of Broadie (2012) or a
 table of the user's, interpolated linearly in distance.
 
-The package's table, ``mcrun/data/pga_tour_baseline_broadie2012.csv``, is a selection of
+The package's table, ``mcrun/data/pga_tour_baseline_broadie2012.csv``, is the full table of
 M. Broadie, "Assessing Golfer Performance on the PGA TOUR", Interfaces 42(2), 146-165 (2012),
 Appendix A, Table 9. A baseline CSV has the columns ``lie,distance_yd,distance_ft,
 expected_strokes``, one of the two distances per row, ``#`` comment lines anywhere, and at least
@@ -11,7 +11,7 @@ Where the table has no row (README, Decisions, "Expected strokes and strokes gai
 
 - between rows: linear in distance; above a lie's last row: the line through its last two rows;
 - off the green, below a lie's first row: the putt from the same distance plus the lie's step
-  over the putt at that first row (20 yd: fairway +0.19, rough +0.38, sand +0.32, recovery +1.30
+  over the putt at that first row (10 yd: fairway +0.20, rough +0.36, sand +0.45, recovery +1.47
   in the Tour table); the tee below its first row (100 yd) is the fairway;
 - on the green: 0 within the hole's radius (the ball is in), 1.0 from there to 1 ft, linear from
   1 ft to the first row (3 ft: 1.04).
