@@ -188,7 +188,7 @@ def test_the_tour_bag_s_spread_meets_the_tour_s_proximity_and_fairways():
     player = load_player("pga-tour-bag")
     assert player.spread == TOUR_SPREAD
     for club, factor in enumerate(TOUR_SPREAD):
-        total, proximity, share = pattern(player.scenario, club, 2000, factor)
+        total, proximity, share, _ = pattern(player.scenario, club, 2000, factor)
         if total < WOOD_YD:
             assert abs(proximity - proximity_target_ft(total)) < 1.5, player.clubs[club]
         else:
@@ -202,10 +202,13 @@ def test_mcrun_play_prints_the_solution(symmetric, tmp_path, capsys):
     (folder / "course.geojson").write_text(json.dumps(symmetric_map()))
     out = folder / "play.parquet"
     code = main(["play", str(folder / "bag.toml"), str(folder / "hole.toml"), "-n", "2",
-                 "--coarse", "10m", "--fine", "5m", "--plays", "100", "-o", str(out)])  # fmt: skip
+                 "--coarse", "10m", "--fine", "5m", "--plays", "100", "-o", str(out),
+                 "--vs", str(folder / "bag.toml")])  # fmt: skip
     printed = capsys.readouterr().out
     assert code == 0
     assert "expected score from the tee:" in printed and "plays:" in printed
+    # the same player again: the same solution, +0.000
+    assert "+0.000 against two-clubs" in printed
     import pandas as pd
 
     frame = pd.read_parquet(out)
@@ -271,3 +274,36 @@ def test_out_of_bounds_on_the_right_moves_the_tee_shot_left(tmp_path):
         saved[factor] = result.savings()["Driver at the pin"][1]
     assert saved[1.0] > 0.0
     assert saved[2.0] > saved[1.0]
+
+
+@pytest.mark.parametrize("name, drive_yd, reach_yd", [("scratch", 250.0, 470.0),
+                                                      ("bogey", 200.0, 370.0)])  # fmt: skip
+def test_the_scratch_and_bogey_presets_follow_the_usga_definitions(name, drive_yd, reach_yd):
+    """USGA Course Rating: a scratch player drives 250 yd and reaches 470 yd in two, a bogey
+    player 200 and 370. The presets' drive on the level within 3 yd of it, and drive plus
+    3-wood at least the reach; the scratch 7-iron's 20-ball width (3.735 standard deviations)
+    within 2 yd of 26 yd, its driver's within 4 yd of 72.5 (the reference's patterns)."""
+    player = load_player(name)
+    drive = pattern(player.scenario, 0, 4000, player.spread[0], player.speed_of(0))
+    wood = pattern(player.scenario, 1, 4000, player.spread[1], player.speed_of(1))
+    assert abs(drive[0] - drive_yd) < 3.0
+    assert drive[0] + wood[0] >= reach_yd
+    if name == "scratch":
+        seven = player.clubs.index("7-iron")
+        iron = pattern(player.scenario, seven, 4000, player.spread[seven],
+                       player.speed_of(seven))  # fmt: skip
+        assert abs(3.735 * iron[3] / 0.9144 - 26.0) < 2.0
+        assert abs(3.735 * drive[3] / 0.9144 - 72.5) < 4.0
+
+
+def test_ten_more_yards_of_driving():
+    """``longer``: the Tour player's driver 10 yd longer on the level (within 0.5 yd), every
+    other club unchanged."""
+    from mcrun.play.player import longer
+
+    player = load_player("tour")
+    before = pattern(player.scenario, 0, 2000, player.spread[0], player.speed_of(0))[0]
+    more = longer(player, 0, 10.0)
+    after = pattern(more.scenario, 0, 2000, more.spread[0], more.speed_of(0))[0]
+    assert abs(after - before - 10.0) < 0.5
+    assert more.speed[1:] == (1.0,) * (len(more.clubs) - 1)

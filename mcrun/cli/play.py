@@ -61,6 +61,16 @@ def _cmd_play(args):
         if not 1.0 <= value <= 50.0:
             raise InputError(f"{name} {value:g} m: allowed: 1 m to 50 m")
     seed = None if args.seed is None else _whole(args.seed, "--seed", 0)
+    others = []
+    if args.vs is not None:
+        others.append(load_player(args.vs))
+    if args.longer is not None:
+        from mcrun.play.player import longer
+
+        yards = parse_quantity(args.longer, "length", "--longer") / 0.9144
+        if not -100.0 <= yards <= 100.0:
+            raise InputError(f"--longer {args.longer}: allowed: -100 yd to 100 yd")
+        others.append(longer(player, 0, yards))
     print(f"play: {hole.name or hole.source} (par {hole.par or '?'}, {hole.length_m:.0f} m) as "
           f"{player.name} ({len(player.clubs)} clubs); {n} shots an action",
           file=sys.stderr, flush=True)  # fmt: skip
@@ -86,6 +96,11 @@ def _cmd_play(args):
     shares = result.score_shares()
     listed = ", ".join(f"{k} {100 * v:.1f} %" for k, v in shares.items())
     print(f"{len(result.scores):,} plays: {listed}; mean {result.scores.mean():.3f}")
+    for other in others:
+        o = play_hole(other, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine, plays=plays)
+        print(f"{other.name}: {o.tee_value:.3f} +- {o.tee_se:.3f} from the tee (best: "
+              f"{o.tee_rows()[0][1]}), {o.tee_value - result.tee_value:+.3f} against "
+              f"{player.name}")  # fmt: skip
     if args.output is None and args.plot is None:
         return 0
     written = False
@@ -139,7 +154,7 @@ def register(subparsers):
         "play",
         help="solve a hole for a player: expected strokes, club and aim from everywhere",
         description="Solve HOLE (a hole file, or a scenario with a [hole]) for PLAYER (a "
-        "player file: a scenario of clubs without a hole; pga-tour-bag is the Tour player): "
+        "preset: tour, scratch, bogey; or a player file: a scenario of clubs without a hole): "
         "every club and aim flown N times from every state of the hole, value iteration to the "
         "player's expected strokes from everywhere and the best club and aim; the expected "
         "score from the tee, the strokes the decisions save against simple policies, and the "
@@ -154,6 +169,8 @@ def register(subparsers):
     p.add_argument("--coarse", default="8m", help="states' spacing (8m)")
     p.add_argument("--fine", default="3m", help="near the pin (3m)")
     p.add_argument("--plays", default="4000", help="plays of the policy (4000)")
+    p.add_argument("--vs", metavar="PLAYER2", help="a second player on the same hole")
+    p.add_argument("--longer", metavar="YD", help="and the player with a driver YD longer: 10yd")
     p.add_argument("-o", "--output", metavar="FILE", help="every state and action (.parquet)")
     p.add_argument("--plot", metavar="PNG", help="the picture")
     p.add_argument("--force", action="store_true", help="replace existing outputs")

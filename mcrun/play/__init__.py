@@ -161,7 +161,7 @@ def play_hole(player, hole, n=DEFAULT_N, seed=None, coarse_m=DEFAULT_COARSE_M,
     base = tour_baseline()
     lat = lattice(hole, base, coarse_m, fine_m, fine_within_m)
     tr = fly(scenario, lat, n, player.spread, putting=map_of_hole(hole), baseline=base,
-             progress=progress)  # fmt: skip
+             progress=progress, speed=player.speed)  # fmt: skip
     solution = solve(lat, tr)
     if solution.change > 1e-3 or not np.isfinite(solution.values[0]):
         worst = int(np.argmax(solution.values))

@@ -49,17 +49,20 @@ def spread_inputs(inputs, factor):
     return out
 
 
-def pattern(scenario, club, n, factor):
-    """(total_yd, proximity_ft about the centre, share within the fairway) of ``club``'s
-    first n shots on the level at spread ``factor``."""
+def pattern(scenario, club, n, factor, speed=1.0):
+    """(total_yd, proximity_ft about the centre, share within the fairway, lateral standard
+    deviation m) of ``club``'s first n shots on the level at spread ``factor``, ball speed
+    times ``speed``."""
     inputs, _ = sampling.sample(scenario, scenario.points[club], 0, n)
-    out = simulate_batch(spread_inputs(inputs, factor))
+    shots = spread_inputs(inputs, factor)
+    shots[:, COLUMN["ball_speed_mps"]] *= speed
+    out = simulate_batch(shots)
     x, y = out[:, _OUT["final_x_m"]], out[:, _OUT["final_y_m"]]
     ok = np.isfinite(x) & np.isfinite(y)
     x, y = x[ok], y[ok]
     proximity = float(np.hypot(x - x.mean(), y - y.mean()).mean()) / FOOT_M
     share = float((np.abs(y - y.mean()) <= FAIRWAY_HALF_WIDTH_M).mean())
-    return float(x.mean()) / YARD_M, proximity, share
+    return float(x.mean()) / YARD_M, proximity, share, float(y.std())
 
 
 def proximity_target_ft(distance_yd):
@@ -72,7 +75,7 @@ def calibrate(player, n=4000):
     spread, proximity_ft, target_ft or None, fairway share, target share or None)."""
     spreads, rows = [], []
     for club, name in enumerate(player.clubs):
-        total, proximity, share = pattern(player.scenario, club, n, 1.0)
+        total, proximity, share, _ = pattern(player.scenario, club, n, 1.0)
         if total < WOOD_YD:
             target = proximity_target_ft(total)
             factor = target / proximity
@@ -81,7 +84,7 @@ def calibrate(player, n=4000):
             sd = FAIRWAY_HALF_WIDTH_M / (math.sqrt(2.0) * _erfinv(share))
             factor = FAIRWAY_HALF_WIDTH_M / (math.sqrt(2.0) * _erfinv(FAIRWAY_SHARE)) / sd
         factor = round(factor, 3)
-        total, proximity, share = pattern(player.scenario, club, n, factor)
+        total, proximity, share, _ = pattern(player.scenario, club, n, factor)
         spreads.append(factor)
         rows.append((name, total, factor, proximity,
                      proximity_target_ft(total) if total < WOOD_YD else None, share,

@@ -33,6 +33,7 @@ __all__ = [
     "Player",
     "PlayerError",
     "load_player",
+    "longer",
     "on_hole",
 ]
 
@@ -55,6 +56,21 @@ PITCH_LOFT_DEG = 16.0
 # the Tour bag's spread per club, Driver .. PW, to the Tour's approach proximity and fairways.
 TOUR_BAG = "pga-tour-bag"
 TOUR_SPREAD = (1.654, 1.877, 1.929, 1.235, 1.452, 1.454, 1.424, 1.457, 1.542, 1.678, 2.101, 2.29)
+# The presets: (the bag, its ball speed factor, its spread per club). Scratch and bogey are
+# ESTIMATES after the USGA Course Rating definitions (a scratch player drives 250 yd and
+# reaches 470 yd in two; a bogey player drives 200 yd and reaches 370 yd in two): the Tour
+# bag's ball speeds times 0.8875 and 0.7572 (the driver's mean total on the level 250 and 200
+# yd, its 3-wood then 228 and 183 yd). Their dispersion from the shot patterns of the
+# strokes-gained reference: a scratch player's 7-iron 26 yd wide over 20 balls (their range,
+# about 3.7 standard deviations: spread 1.34) and driver 70-75 yd wide (spread 2.013 for the
+# driver and the woods); a 15-handicap's 8-iron 43 yd wide (spread 3.344, every club: no
+# published driver pattern, so the irons' factor).
+_SCRATCH_WOODS = 2.013
+PLAYERS = {
+    "tour": (TOUR_BAG, 1.0, TOUR_SPREAD),
+    "scratch": (TOUR_BAG, 0.8875, (_SCRATCH_WOODS,) * 3 + (1.34,) * 9),
+    "bogey": (TOUR_BAG, 0.7572, (3.344,) * 12),
+}
 
 
 class PlayerError(InputError):
@@ -74,12 +90,22 @@ class Player:
     spread: tuple
     putter: str
     source: str
+    speed: tuple = ()  # each club's ball speed times this (empty: 1)
+
+    def speed_of(self, club):
+        return self.speed[club] if self.speed else 1.0
 
 
 def load_player(spec, putter="tour", spread=None):
-    """The Player of a player file or a library scenario's name (``pga-tour-bag``: the Tour
-    player, its spreads ``TOUR_SPREAD``); ``spread``: one factor for every club, or a tuple
-    (default 1, the file's own dispersion)."""
+    """The Player of a preset (``PLAYERS``: tour, scratch, bogey), a player file or a library
+    scenario's name (``pga-tour-bag``: the Tour player, its spreads ``TOUR_SPREAD``);
+    ``spread``: one factor for every club, or a tuple (default 1, the file's own dispersion)."""
+    if str(spec) in PLAYERS:
+        name = str(spec)
+        bag, speed, preset = PLAYERS[name]
+        player = load_player(bag, putter, preset if spread is None else spread)
+        return Player(name, player.scenario, player.clubs, player.spread, putter,
+                      player.source, (speed,) * len(player.clubs))  # fmt: skip
     scenario = sc.load(spec)
     if scenario.hole is not None:
         raise PlayerError(
@@ -98,6 +124,26 @@ def load_player(spec, putter="tour", spread=None):
         raise PlayerError(f"{scenario.path}: spread {spread}: allowed: one factor in (0, 10] "
                           f"or one per club ({len(clubs)})")  # fmt: skip
     return Player(scenario.name, scenario, clubs, spread, putter, str(scenario.path))
+
+
+def longer(player, club, yards, n=2000):
+    """``player`` whose ``club`` (an index) goes ``yards`` further on the level (its mean total):
+    its ball speed factor found by bisection (its other launch values kept)."""
+    from mcrun.play.calibration import pattern
+
+    base = player.speed_of(club)
+    target = pattern(player.scenario, club, n, player.spread[club], base)[0] + yards
+    lo, hi = 0.5 * base, 1.5 * base
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        if pattern(player.scenario, club, n, player.spread[club], mid)[0] < target:
+            lo = mid
+        else:
+            hi = mid
+    speed = list(player.speed or (1.0,) * len(player.clubs))
+    speed[club] = 0.5 * (lo + hi)
+    name = f"{player.name} ({player.clubs[club]} {yards:+g} yd)"
+    return dataclasses.replace(player, name=name, speed=tuple(speed))
 
 
 def on_hole(player, hole):

@@ -83,9 +83,10 @@ class Transitions:
     shots_flown: int
 
 
-def _shots(scenario, club, n, power, spread):
+def _shots(scenario, club, n, power, spread, speed=1.0):
     inputs, _ = sampling.sample(scenario, scenario.points[club], 0, n)
     inputs = spread_inputs(inputs, spread)
+    inputs[:, BALL_SPEED] *= speed
     inputs[:, BALL_SPEED] *= power
     inputs[:, SPIN] *= math.sqrt(power)
     inputs[:, LAUNCH] += (1.0 - power) * math.radians(PITCH_LOFT_DEG)
@@ -111,13 +112,13 @@ def _level_total(inputs):
     return float(np.nanmean(out[:, _OUT["total_m"]]))
 
 
-def _options(scenario, n, spread):
+def _options(scenario, n, spread, speed):
     """(club, power, inputs, mean total m) of every full club and the wedge's part powers."""
     options = []
     last = len(scenario.points) - 1
     for club in range(len(scenario.points)):
         for power in (1.0, *(PART_POWERS if club == last else ())):
-            inputs = _shots(scenario, club, n, power, spread[club])
+            inputs = _shots(scenario, club, n, power, spread[club], speed[club])
             options.append((club, power, inputs, _level_total(inputs)))
     return options
 
@@ -227,12 +228,13 @@ def _classify(hole, out, putting, baseline):
     return kind, lie, x, y, const
 
 
-def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None):
+def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None,
+        speed=None):  # fmt: skip
     """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``,
-    each club's launch at its ``spread``."""
+    each club's launch at its ``spread``, its ball speed times its ``speed`` (default 1)."""
     hole = scenario.hole
     terrain = hole.terrain()
-    options = _options(scenario, n, spread)
+    options = _options(scenario, n, spread, speed or (1.0,) * len(spread))
     px, py = hole.pin_xy
     dist = np.hypot(px - lat.xy[:, 0], py - lat.xy[:, 1])
     shortest = min(range(len(options)), key=lambda k: options[k][3])
