@@ -8,6 +8,10 @@ length. The hole: Riverside 9 (388 m, par 4; par4-tee-shot's), the player ``pga-
 its calibrated spread, ``n`` shots an action (default 100), states every 8 m and every 3 m
 within 36 m of the pin. Also Riverside 2 (the par 3 over water) for the tee.
 
+With ``--dask W``: the par 4 solved again with its shots flown on a local Dask cluster of W
+single-threaded workers (after the workers have the kernel), timed and checked bit for bit
+against the local solution.
+
 Prints a Markdown table and writes ``benchmarks/results/play.md``; asserts nothing.
 """
 
@@ -43,9 +47,33 @@ def bands(result, base, lie="fairway", edges_yd=(100, 125, 150, 175, 200)):
     return rows
 
 
+def dask_line(player, hole, n, workers, local):
+    """A line: the hole solved with its shots on a local cluster of ``workers``, timed."""
+    from distributed import Client
+
+    from mcrun.run import distributed
+
+    cluster = distributed.local_cluster(workers)
+    try:
+        with Client(cluster) as client:
+            play_hole(player, hole, n=4, coarse_m=40.0, fine_m=20.0, plays=10, client=client)
+            started = time.perf_counter()
+            there = play_hole(player, hole, n=n, client=client)
+            elapsed = time.perf_counter() - started
+    finally:
+        cluster.close()
+    same = np.array_equal(there.solution.values, local.solution.values) and np.array_equal(
+        there.scores, local.scores
+    )
+    said = "bit for bit" if same else "NOT bit for bit"
+    return (f"On a local Dask cluster of {workers} single-threaded workers: {elapsed:.1f} s in "
+            f"all ({said} the local solution).")  # fmt: skip
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=100)
+    parser.add_argument("--dask", type=int, default=0, metavar="W")
     args = parser.parse_args(argv)
     threads = len(os.sched_getaffinity(0))
     player = load_player("pga-tour-bag")
@@ -57,6 +85,9 @@ def main(argv=None):
         started = time.perf_counter()
         result = play_hole(player, hole, n=args.n)
         elapsed = time.perf_counter() - started
+        extra = []
+        if args.dask and name == HOLES[0]:
+            extra = [dask_line(player, hole, args.n, args.dask, result), ""]
         tee_table = float(base.expected("tee", hole.length_m))
         verdict = "met" if elapsed < TARGET_S else "NOT met"
         lines += [
@@ -77,7 +108,7 @@ def main(argv=None):
         saved = "; ".join(f"{k}: saves {s:.3f}" for k, (_, s) in result.savings().items())
         lines += ["", f"Best from the tee: {result.tee_rows()[0][1]}. {saved}.",
                   f"{len(result.scores):,} plays: {shares}; mean {result.scores.mean():.3f}.",
-                  ""]  # fmt: skip
+                  "", *extra]  # fmt: skip
     text = "\n".join(lines)
     print(text)
     RESULTS.parent.mkdir(parents=True, exist_ok=True)

@@ -483,3 +483,19 @@ def test_workers_of_a_warm_cache_load_the_kernels_and_say_nothing(client):
     assert said == []
     assert sorted(seconds) == sorted(client.scheduler_info(n_workers=-1)["workers"])
     assert distributed._is_local(client)
+
+
+def test_a_hole_solved_on_dask_is_the_local_solution(client):
+    """``mcrun.play.play_hole`` with the shots flown by Dask workers: every value, every best
+    action and the plays, bit for bit the local solution."""
+    from mcrun.play import load_player, play_hole
+    from mcrun.run import scenario as sc
+
+    hole = sc.load(sc.library_folder() / "par3-over-water.toml").hole
+    player = load_player("tour")
+    options = dict(n=6, coarse_m=16.0, fine_m=8.0, plays=50)
+    here = play_hole(player, hole, **options)
+    there = play_hole(player, hole, client=client, **options)
+    assert np.array_equal(here.solution.values, there.solution.values)
+    assert np.array_equal(here.solution.best_row, there.solution.best_row)
+    assert np.array_equal(here.scores, there.scores)

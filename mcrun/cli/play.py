@@ -77,13 +77,26 @@ def _cmd_play(args):
     from tqdm import tqdm
 
     bar = tqdm(unit="action", file=sys.stderr, leave=False, dynamic_ncols=True)
-    try:
-        result = play_hole(player, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
-                           plays=plays, progress=lambda k: bar.update(k - bar.n))  # fmt: skip
-    except KeyboardInterrupt:
-        raise Interrupted("nothing was written") from None
-    finally:
-        bar.close()
+    with contextlib.ExitStack() as stack:
+        client = None
+        if args.dask is not None:
+            from distributed import Client
+
+            from mcrun.run import distributed
+
+            workers = None if args.workers is None else _whole(args.workers, "--workers", 1)
+            cluster = stack.enter_context(distributed.local_cluster(workers))
+            client = stack.enter_context(Client(cluster))
+        try:
+            result = play_hole(player, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
+                               plays=plays, progress=lambda k: bar.update(k - bar.n),
+                               client=client)  # fmt: skip
+            others = [play_hole(o, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
+                                plays=plays, client=client) for o in others]  # fmt: skip
+        except KeyboardInterrupt:
+            raise Interrupted("nothing was written") from None
+        finally:
+            bar.close()
     tr, s = result.transitions, result.solution
     print(f"{result.lattice.size:,} states (every {coarse:g} m, every {fine:g} m near the pin), "
           f"{len(tr.actions)} actions, {tr.shots_flown:,} shots; solved in {s.sweeps} sweeps, "
@@ -96,8 +109,8 @@ def _cmd_play(args):
     shares = result.score_shares()
     listed = ", ".join(f"{k} {100 * v:.1f} %" for k, v in shares.items())
     print(f"{len(result.scores):,} plays: {listed}; mean {result.scores.mean():.3f}")
-    for other in others:
-        o = play_hole(other, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine, plays=plays)
+    for o in others:
+        other = o.player
         print(f"{other.name}: {o.tee_value:.3f} +- {o.tee_se:.3f} from the tee (best: "
               f"{o.tee_rows()[0][1]}), {o.tee_value - result.tee_value:+.3f} against "
               f"{player.name}")  # fmt: skip
@@ -171,6 +184,8 @@ def register(subparsers):
     p.add_argument("--plays", default="4000", help="plays of the policy (4000)")
     p.add_argument("--vs", metavar="PLAYER2", help="a second player on the same hole")
     p.add_argument("--longer", metavar="YD", help="and the player with a driver YD longer: 10yd")
+    p.add_argument("--dask", choices=["local"], help="fly the shots on a local Dask cluster")
+    p.add_argument("--workers", metavar="W", help="its workers (default: the cores)")
     p.add_argument("-o", "--output", metavar="FILE", help="every state and action (.parquet)")
     p.add_argument("--plot", metavar="PNG", help="the picture")
     p.add_argument("--force", action="store_true", help="replace existing outputs")

@@ -146,12 +146,13 @@ class PlayResult:
 
 def play_hole(player, hole, n=DEFAULT_N, seed=None, coarse_m=DEFAULT_COARSE_M,
               fine_m=DEFAULT_FINE_M, fine_within_m=DEFAULT_FINE_WITHIN_M, plays=DEFAULT_PLAYS,
-              progress=None):  # fmt: skip
+              progress=None, client=None):  # fmt: skip
     """Solve ``hole`` (a ``mcrun.hole.Hole``) for ``player`` (a ``Player``): ``n`` shots of each
     action from each state (the player's scenario's first n, its seed or ``seed``), states every
     ``coarse_m`` and every ``fine_m`` within ``fine_within_m`` of the pin; the policy played
     ``plays`` times. A ball on the green is worth the hole's putting (its map under
-    ``putting = "physics"``, else the baseline's putts)."""
+    ``putting = "physics"``, else the baseline's putts). ``client``: a Dask client whose
+    workers fly the shots (the same solution, bit for bit)."""
     started = time.perf_counter()
     if not (isinstance(n, int) and n >= 2):
         raise PlayerError(f"n {n!r}: allowed: a whole number of at least 2")
@@ -161,7 +162,7 @@ def play_hole(player, hole, n=DEFAULT_N, seed=None, coarse_m=DEFAULT_COARSE_M,
     base = tour_baseline()
     lat = lattice(hole, base, coarse_m, fine_m, fine_within_m)
     tr = fly(scenario, lat, n, player.spread, putting=map_of_hole(hole), baseline=base,
-             progress=progress, speed=player.speed)  # fmt: skip
+             progress=progress, speed=player.speed, client=client)  # fmt: skip
     solution = solve(lat, tr)
     if solution.change > 1e-3 or not np.isfinite(solution.values[0]):
         worst = int(np.argmax(solution.values))

@@ -228,18 +228,38 @@ def _classify(hole, out, putting, baseline):
     return kind, lie, x, y, const
 
 
-def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None,
-        speed=None):  # fmt: skip
-    """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``,
-    each club's launch at its ``spread``, its ball speed times its ``speed`` (default 1)."""
+def _batch(scenario, club, inputs, xy, points, lies, n, putting, baseline):
+    """The classified shots (kind, lie, x, y, const) of ``inputs`` (one club's n shots) struck
+    from the starts ``xy`` at the aim points ``points``, from their ``lies``."""
     hole = scenario.hole
-    terrain = hole.terrain()
+    batch = starts.tile(inputs, scenario.points[club].play, xy, (points[:, 0], points[:, 1]))
+    _lie_launch(batch, lies, n)
+    out = simulate_batch(batch, terrain=hole.terrain())
+    return _classify(hole, out, putting, baseline)
+
+
+def _batch_task(scenario, club, inputs, xy, points, lies, n, putting, baseline):
+    """A Dask task: ``_batch`` on one Numba thread."""
+    import numba
+
+    from mcrun.run.distributed import NUMBA_THREADS_PER_TASK
+
+    numba.set_num_threads(NUMBA_THREADS_PER_TASK)
+    return _batch(scenario, club, inputs, xy, points, lies, n, putting, baseline)
+
+
+def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None,
+        speed=None, client=None):  # fmt: skip
+    """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``,
+    each club's launch at its ``spread``, its ball speed times its ``speed`` (default 1).
+    ``client``: a ``dask.distributed.Client`` whose workers fly the batches (the same shots,
+    bit for bit, put back in order)."""
+    hole = scenario.hole
     options = _options(scenario, n, spread, speed or (1.0,) * len(spread))
     px, py = hole.pin_xy
     dist = np.hypot(px - lat.xy[:, 0], py - lat.xy[:, 1])
     shortest = min(range(len(options)), key=lambda k: options[k][3])
-    actions, parts = [], []
-    flown = 0
+    actions, jobs = [], []
     for k, (club, power, inputs, total) in enumerate(options):
         fits = total <= dist + np.maximum(OVERSHOOT_M, 0.1 * dist)
         if k == shortest:
@@ -253,19 +273,33 @@ def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, p
             actions.append(Action(club, power, aim, total))
             for c in range(0, chosen.size, chunk_rows):
                 rows = chosen[c : c + chunk_rows]
-                batch = starts.tile(inputs, scenario.points[club].play, lat.xy[rows],
-                                    (points[rows, 0], points[rows, 1]))  # fmt: skip
-                _lie_launch(batch, lat.lie[rows], n)
-                out = simulate_batch(batch, terrain=terrain)
-                flown += len(batch)
-                parts.append((rows, a, _classify(hole, out, putting, baseline)))
+                jobs.append((rows, a, club, inputs, points[rows]))
+    if client is None:
+        parts = []
+        for rows, action, club, inputs, points in jobs:
+            parts.append(_batch(scenario, club, inputs, lat.xy[rows], points, lat.lie[rows], n,
+                                putting, baseline))  # fmt: skip
             if progress is not None:
-                progress(len(actions))
-    rows_state = np.concatenate([p[0] for p in parts])
-    rows_action = np.concatenate([np.full(len(p[0]), p[1]) for p in parts])
+                progress(action + 1)
+    else:
+        from mcrun.run.distributed import warm_workers
+        from mcrun.run.plan import kernels_of
+
+        warm_workers(client, *kernels_of(scenario))
+        shared = client.scatter([scenario, putting, baseline], broadcast=True)
+        futures = [client.submit(_batch_task, shared[0], club, inputs, lat.xy[rows], points,
+                                 lat.lie[rows], n, shared[1], shared[2], pure=False)
+                   for rows, _, club, inputs, points in jobs]  # fmt: skip
+        parts = client.gather(futures)
+        if progress is not None:
+            progress(len(actions))
+    flown = sum(len(job[0]) for job in jobs) * n
+    rows_state = np.concatenate([job[0] for job in jobs])
+    rows_action = np.concatenate([np.full(len(job[0]), job[1]) for job in jobs])
     order = np.lexsort((rows_action, rows_state))
-    arrays = [np.concatenate([p[2][j].reshape(len(p[0]), n) for p in parts])[order].ravel()
-              for j in range(5)]  # fmt: skip
+    arrays = [np.concatenate([p[j].reshape(len(job[0]), n) for p, job in zip(parts, jobs,
+                                                                          strict=True)])[order]
+              .ravel() for j in range(5)]  # fmt: skip
     return Transitions(
         actions=actions,
         row_state=rows_state[order].astype(np.int64),
