@@ -203,12 +203,13 @@ def test_mcrun_play_prints_the_solution(symmetric, tmp_path, capsys):
     out = folder / "play.parquet"
     code = main(["play", str(folder / "bag.toml"), str(folder / "hole.toml"), "-n", "2",
                  "--coarse", "10m", "--fine", "5m", "--plays", "100", "-o", str(out),
-                 "--vs", str(folder / "bag.toml")])  # fmt: skip
+                 "--vs", str(folder / "bag.toml"), "--plot", str(folder / "play.png")])  # fmt: skip
     printed = capsys.readouterr().out
     assert code == 0
     assert "expected score from the tee:" in printed and "plays:" in printed
     # the same player again: the same solution, +0.000
     assert "+0.000 against two-clubs" in printed
+    assert (folder / "play.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     import pandas as pd
 
     frame = pd.read_parquet(out)

@@ -37,22 +37,24 @@ def play_figure(result):
         x, y = lat.xy[k]
         target, angle = AIMS[a.aim]
         bearing = math.atan2(py - y, px - x) + math.radians(angle)
-        length = min(a.total_m * a.power, math.hypot(px - x, py - y) + 10.0)
+        # (a part-power shot's distance falls faster than its power: drawn as power^1.5)
+        length = min(a.total_m * a.power**1.5, math.hypot(px - x, py - y) + 10.0)
         left.annotate("", xy=(y + length * math.sin(bearing), x + length * math.cos(bearing)),
                       xytext=(y, x), arrowprops=dict(arrowstyle="->", color="crimson", lw=0.8),
                       zorder=4)  # fmt: skip
         if k == 0 or k in picks[::6]:
             power = "" if a.power == 1.0 else f" {100 * a.power:.0f}%"
             left.text(y, x, result.player.clubs[a.club] + power, fontsize=7, zorder=5)
-    left.set_title(f"{result.player.name} on {result.hole.name or result.hole.source}: "
-                   f"expected strokes and the best aim", fontsize=10)  # fmt: skip
+    left.set_title(f"{result.player.name} on {result.hole.name or result.hole.source}\n"
+                   "expected strokes to hole out, and the best aim", fontsize=9)  # fmt: skip
     shares = result.score_shares()
     right.bar(range(len(SCORE_NAMES)), [100 * shares[k] for k in SCORE_NAMES], color="0.4")
     right.set_xticks(range(len(SCORE_NAMES)), [k.replace(" or ", "\nor ") for k in SCORE_NAMES],
                      fontsize=8)  # fmt: skip
     right.set_ylabel("share of plays (%)")
-    title = (f"{len(result.scores):,} plays of the policy: mean {result.scores.mean():.3f}, "
-             f"expected {result.tee_value:.3f} +- {result.tee_se:.3f}")  # fmt: skip
-    right.set_title(title, fontsize=10)
+    title = (f"{len(result.scores):,} plays of the policy from the tee\nmean "
+             f"{result.scores.mean():.3f}; expected {result.tee_value:.3f} +- "
+             f"{result.tee_se:.3f}")  # fmt: skip
+    right.set_title(title, fontsize=9)
     right.grid(alpha=0.3, axis="y")
     return fig
