@@ -52,6 +52,7 @@ class PlayResult:
     seconds: float
 
     def action_name(self, row):
+        """The action of transition row ``row``, in words ("7-iron at the pin 2 deg left")."""
         return self.transitions.actions[self.transitions.row_action[row]].name(self.player.clubs)
 
     @property

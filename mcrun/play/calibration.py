@@ -66,6 +66,7 @@ def pattern(scenario, club, n, factor, speed=1.0):
 
 
 def proximity_target_ft(distance_yd):
+    """The Tour's approach proximity (ft) at ``distance_yd``: linear through ``PROXIMITY_FT``."""
     (d0, p0), (d1, p1) = PROXIMITY_FT
     return p0 + (p1 - p0) * (distance_yd - d0) / (d1 - d0)
 

@@ -93,6 +93,7 @@ class Player:
     speed: tuple = ()  # each club's ball speed times this (empty: 1)
 
     def speed_of(self, club):
+        """The ball speed factor of ``club`` (an index)."""
         return self.speed[club] if self.speed else 1.0
 
 

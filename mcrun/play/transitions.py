@@ -57,6 +57,7 @@ class Action:
     total_m: float  # the shot's mean total on the level, full power
 
     def name(self, clubs):
+        """In words, with the bag's club names ``clubs``: "PW 40% at the line 3 deg right"."""
         power = "" if self.power == 1.0 else f" {100 * self.power:.0f}%"
         target, angle = AIMS[self.aim]
         side = "" if angle == 0 else f" {abs(angle):g} deg {'right' if angle > 0 else 'left'}"
