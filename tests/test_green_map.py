@@ -5,6 +5,7 @@ holing-out, its independence of the thread count, and a hole whose green is valu
 (``[hole] putting = "physics"``)."""
 
 import math
+import textwrap
 
 import numpy as np
 import pytest
@@ -287,3 +288,52 @@ def test_a_putt_down_the_fall_line_holds_its_line_better_than_one_up_it():
         miss[name] = out[4]
     assert miss["down"] < miss["up"] - 0.005
     assert miss["up"] > d * math.tan(err)  # the uphill ball's error grows past the straight line
+
+
+def test_a_survey_of_the_green_alone_gives_its_contour(tmp_path):
+    """``[hole.putting] elevation``: survey points of Riverside 18's green only (a plane rising
+    3 % towards the east), the hole itself flat: the green's slope is the survey's, 3 %
+    towards the east, within 0.1 % at the pin; a survey that misses the green is refused in one
+    line."""
+    from mcrun.putting.green import GreenError, green_of_hole
+
+    hole_file = tmp_path / "green.toml"
+    library = sc_folder() / "holes"
+    pin_lon, pin_lat = load_hole(library / "riverside-18-green.toml").pin_lonlat
+    lon, lat = np.meshgrid(np.linspace(pin_lon - 0.0008, pin_lon + 0.0008, 41),
+                           np.linspace(pin_lat - 0.0006, pin_lat + 0.0006, 31))  # fmt: skip
+    east_m = (lon - pin_lon) * 111_320.0 * math.cos(math.radians(pin_lat))
+    rows = ["lon,lat,alt"] + [f"{a:.7f},{b:.7f},{100.0 + 0.03 * e:.4f}"
+                              for a, b, e in zip(lon.ravel(), lat.ravel(), east_m.ravel(),
+                                                 strict=True)]  # fmt: skip
+    (tmp_path / "survey.csv").write_text("\n".join(rows) + "\n")
+    hole_file.write_text(
+        textwrap.dedent(f"""
+        map = "{library / "riverside-zagreb.osm.geojson"}"
+        hole = 18
+        tee = [15.895075, 45.779224]
+        margin_m = 30.0
+        putting = {{ model = "physics", elevation = "survey.csv" }}
+    """)
+    )
+    hole = load_hole(hole_file)
+    green = green_of_hole(hole, None, hole.putting["elevation"], None)
+    from mcrun.putting.roll import grid_slope
+
+    slope, fx, fy = grid_slope(*green.pin_xy_m, green.surface)
+    # East in the hole's frame: its direction from the frame's own conversion.
+    x0, y0 = hole.frame.to_xy(pin_lon, pin_lat)
+    x1, y1 = hole.frame.to_xy(pin_lon + 0.0001, pin_lat)
+    ex, ey = np.array([x1 - x0, y1 - y0]) / math.hypot(x1 - x0, y1 - y0)
+    assert abs(slope - 0.03) < 0.001
+    assert fx * ex + fy * ey < -0.999  # it falls towards the west
+    (tmp_path / "survey.csv").write_text("lon,lat,alt\n15.0,45.0,1\n15.001,45.0,1\n15.0,45.001,1\n"
+                                         "15.001,45.001,1\n")  # fmt: skip
+    with pytest.raises(GreenError, match="does not cover the green"):
+        green_of_hole(hole, None, hole.putting["elevation"], None)
+
+
+def sc_folder():
+    from mcrun.run import scenario as sc
+
+    return sc.library_folder()

@@ -102,7 +102,7 @@ def _cmd_green(args):
     seed = spec["seed"] if args.seed is None else _whole(args.seed, "--seed", 0)
     putter = spec["putter"] if args.putter is None else args.putter
     try:
-        green = green_of_hole(hole, spec["cell_m"])
+        green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"])
     except GreenError as err:
         raise InputError(str(err)) from None
     print(f"putt: the green of {hole.source}: {green.area_m2():.0f} m^2, Stimp "

@@ -25,7 +25,8 @@ The ``[hole]`` table of a scenario and a standalone hole TOML file have the same
   putts from its distance) or "physics" (the expected-putts map of the green's contour,
   ``mcrun.putting.green_map``), or a table ``[hole.putting]`` with ``model`` and the map's
   settings (``PUTTING_KEYS``: ``putter``, ``n``, ``seed``, ``resolution_m``, ``cell_m`` the
-  green's grid, finer than the hole's where its ground has the detail).
+  green's grid, finer than the hole's where its ground has the detail; ``elevation``, a survey
+  of the green alone, relative to the TOML's folder, and its ``elevation_crs``).
 """
 
 import math
@@ -85,7 +86,8 @@ KEYS = (
 PUTTING_MODELS = ("table", "physics")
 # [hole.putting]: its keys, defaults and what is allowed.
 PUTTING_DEFAULTS = {"model": "table", "putter": "tour", "n": 200, "seed": 0,
-                    "resolution_m": 0.5, "cell_m": None}  # fmt: skip
+                    "resolution_m": 0.5, "cell_m": None, "elevation": None,
+                    "elevation_crs": None}  # fmt: skip
 PUTTING_KEYS = tuple(PUTTING_DEFAULTS)
 
 
@@ -322,7 +324,7 @@ def _turfs(table, where):
     return turfs
 
 
-def _putting(table, where):
+def _putting(table, where, folder):
     """The ``putting`` key: a model name or a table of ``PUTTING_KEYS``, checked (the putter's
     name against the presets by ``putting.on_hole.check_putting``, a layer above)."""
     value = table.get("putting", "table")
@@ -346,6 +348,10 @@ def _putting(table, where):
             raise HoleError(f"{where}: '{name}' = {v!r} must be a whole number 0 or more")
         if key in ("resolution_m", "cell_m"):
             v = _number({name: v}, name, where, 0.05, 5.0)
+        if key in ("elevation", "elevation_crs") and (not isinstance(v, str) or not v):
+            raise HoleError(f"{where}: '{name}' = {v!r} must be a file name (a CRS for _crs)")
+        if key == "elevation":
+            v = str(Path(folder) / v)
         spec[key] = v
     return spec
 
@@ -640,7 +646,7 @@ def hole_from_table(table, folder, source):
         attribution=parts.get("attribution"),
         ground=ground,
         line_xy=parts.get("line_xy"),
-        putting=_putting(table, where),
+        putting=_putting(table, where, folder),
         _heights=heights,
     )
     return hole

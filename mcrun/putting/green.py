@@ -65,10 +65,13 @@ class Green:
         return head.tobytes() + s.height_m.tobytes() + s.on_green.tobytes()
 
 
-def green_of_hole(hole, cell_m=None):
+def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None):
     """The Green of ``hole`` (a ``mcrun.hole.Hole``): the green that holds its pin, on a grid of
-    ``cell_m`` (default ``DEFAULT_GREEN_CELL_M``, or the hole's own cell where that is finer).
-    GreenError when the pin is on no green of the hole's zones."""
+    ``cell_m`` (default ``DEFAULT_GREEN_CELL_M``, or the hole's own cell where that is finer),
+    its heights from the hole's ground or from ``elevation``, a survey of the green alone (any
+    file ``mcrun.hole.elevation`` reads; ``elevation_crs`` where it does not say). GreenError
+    (one line) when the pin is on no green of the hole's zones, or the survey does not cover
+    the green."""
     cell = min(DEFAULT_GREEN_CELL_M, hole.cell_m) if cell_m is None else float(cell_m)
     px, py = hole.pin_xy
     polygons = [p for kind, p in hole.zones if kind == "green" and contains(p, px, py)]
@@ -91,7 +94,62 @@ def green_of_hole(hole, cell_m=None):
     nx = int(math.ceil((x_max - x0) / cell)) + 1
     ny = int(math.ceil((y_max - y0) / cell)) + 1
     zone = rasterize(hole.zones, x0, y0, cell, nx, ny, hole.boundary)
-    height = np.zeros((ny, nx)) if hole._heights is None else hole._heights(x0, y0, cell, nx, ny)
     on = np.ascontiguousarray(zone == GREEN, dtype=np.uint8)
+    if elevation is not None:
+        height = _surveyed(hole, elevation, elevation_crs, x0, y0, cell, nx, ny, on)
+    elif hole._heights is None:
+        height = np.zeros((ny, nx))
+    else:
+        height = hole._heights(x0, y0, cell, nx, ny)
     surface = Surface(np.ascontiguousarray(height, dtype=float), on, float(x0), float(y0), cell)
     return Green(surface, (float(px), float(py)), float(hole.turf["green"].rho_g), hole.source)
+
+
+def _surveyed(hole, path, crs, x0, y0, cell, nx, ny, on):
+    """Heights (m) of the green's nodes from the survey ``path``: the nodes off the green that it
+    does not cover take the heights of the covered ones around them (they only bound the
+    green)."""
+    from mcrun.hole.elevation import load_elevation
+
+    if hole.frame is None:
+        raise GreenError(f"{hole.source}: 'putting.elevation' needs the hole on the Earth: a "
+                         "'map', or 'tee' and 'pin'")  # fmt: skip
+    try:
+        survey = load_elevation(path, crs=crs)
+    except (OSError, ValueError) as err:
+        raise GreenError(f"{hole.source}: 'putting.elevation': {' '.join(str(err).split())}"
+                         ) from None  # fmt: skip
+    x, y = np.meshgrid(x0 + np.arange(nx) * cell, y0 + np.arange(ny) * cell)
+    lon, lat = hole.frame.to_lonlat(x, y)
+    height = np.asarray(survey.height_m(lon, lat), dtype=float)
+    missing = ~np.isfinite(height)
+    if (missing & (on != 0)).any():
+        iy, ix = np.argwhere(missing & (on != 0))[0]
+        raise GreenError(
+            f"{hole.source}: 'putting.elevation' {path} does not cover the green: "
+            f"{int((missing & (on != 0)).sum())} of its {int(on.sum())} nodes have no height, "
+            f"first at x = {x[iy, ix]:.1f} m, y = {y[iy, ix]:.1f} m"
+        )
+    # Grown outwards from the covered nodes: each uncovered node next to covered ones takes
+    # their mean, ring after ring.
+    while missing.any():
+        known = np.where(missing, 0.0, height)
+        count = np.zeros(height.shape)
+        total = np.zeros(height.shape)
+        for dy, dx in ((-1, 0), (1, 0), (0, -1), (0, 1)):
+            shifted_known = np.roll(~missing, (dy, dx), axis=(0, 1))
+            shifted = np.roll(known, (dy, dx), axis=(0, 1))
+            edge = np.zeros(height.shape, dtype=bool)  # np.roll wraps: not across the edges
+            if dy:
+                edge[0 if dy > 0 else -1, :] = True
+            if dx:
+                edge[:, 0 if dx > 0 else -1] = True
+            ok = shifted_known & ~edge
+            count += ok
+            total += np.where(ok, shifted, 0.0)
+        grow = missing & (count > 0)
+        if not grow.any():
+            break
+        height[grow] = total[grow] / count[grow]
+        missing &= ~grow
+    return height

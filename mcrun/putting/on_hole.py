@@ -61,7 +61,7 @@ def map_of_hole(hole, progress=None):
     spec = hole.putting
     if spec["model"] != "physics":
         return None
-    green = green_of_hole(hole, spec["cell_m"])
+    green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"])
     key = _key(green, spec)
     if key in _MEMORY:
         return _MEMORY[key]
