@@ -5,7 +5,7 @@ to Parquet, and a picture."""
 import contextlib
 import sys
 
-from mcrun.cli import Interrupted
+from mcrun.cli import Interrupted, compile_if_needed
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
 
@@ -74,6 +74,7 @@ def _cmd_play(args):
     print(f"play: {hole.name or hole.source} (par {hole.par or '?'}, {hole.length_m:.0f} m) as "
           f"{player.name} ({len(player.clubs)} clubs); {n} shots an action",
           file=sys.stderr, flush=True)  # fmt: skip
+    compile_if_needed("terrain")  # said apart from the solver's own time
     from tqdm import tqdm
 
     bar = tqdm(unit="action", file=sys.stderr, leave=False, dynamic_ncols=True)
