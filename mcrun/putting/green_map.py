@@ -35,7 +35,7 @@ from numba import njit
 
 from mcrun.physics.constants import G_MPS2
 from mcrun.putting.cup import HOLE_RADIUS_M
-from mcrun.putting.holeout import READ_SPAN_RAD, READ_TOL_M
+from mcrun.putting.holeout import centre_line
 from mcrun.putting.putter import PUTTERS, putter_errors
 from mcrun.putting.read import AIM_STEPS_DEG, PACES_M
 from mcrun.putting.roll import (
@@ -150,45 +150,6 @@ def _speed(x, y, hx, hy, pace_m, surface, rho_g):
 
 
 @njit(cache=True)
-def _miss(x, y, hx, hy, angle, speed, surface, rho_g, ux, uy, dt, ds):
-    out = roll_on(x, y, speed * math.cos(angle), speed * math.sin(angle), surface, rho_g, hx, hy,
-                  False, dt, MAX_TIME_S, ds)  # fmt: skip
-    return (out[5] - hx) * (-uy) + (out[6] - hy) * ux
-
-
-@njit(cache=True)
-def _centre_line(x, y, hx, hy, speed, surface, rho_g, dt, ds):
-    """The start line (rad from the line to the hole, + towards the frame's +y) on which the
-    error-free putt at ``speed`` rolls over the hole's centre (Illinois, as ``holeout``)."""
-    length = math.hypot(hx - x, hy - y)
-    ux, uy = (hx - x) / length, (hy - y) / length
-    base = math.atan2(uy, ux)
-    a, b = -READ_SPAN_RAD, READ_SPAN_RAD
-    fa = _miss(x, y, hx, hy, base + a, speed, surface, rho_g, ux, uy, dt, ds)
-    fb = _miss(x, y, hx, hy, base + b, speed, surface, rho_g, ux, uy, dt, ds)
-    if fa * fb > 0.0:
-        return a if abs(fa) < abs(fb) else b
-    side = 0
-    c = 0.0
-    for _ in range(40):
-        c = (a * fb - b * fa) / (fb - fa)
-        fc = _miss(x, y, hx, hy, base + c, speed, surface, rho_g, ux, uy, dt, ds)
-        if abs(fc) < READ_TOL_M:
-            return c
-        if fc * fb > 0.0:
-            b, fb = c, fc
-            if side == -1:
-                fa /= 2.0
-            side = -1
-        else:
-            a, fa = c, fc
-            if side == 1:
-                fb /= 2.0
-            side = 1
-    return c
-
-
-@njit(cache=True)
 def _score(x, y, aim, speed, surface, rho_g, hx, hy, line_sd, speed_sd, z, dt, ds, polar_v,
            polar_p1, grid, grid_v, grid_p1, grid_valid, chip):  # fmt: skip
     """(mean, standard error, one-putt share, share of three or more) of the putts from (x, y)
@@ -247,7 +208,7 @@ def _solve_points(xs, ys, read, surface, rho_g, hx, hy, line_sd, speed_sd, z, dt
         best = (0.0, 0.0, 1e30, 0.0, 0.0, 0.0)
         for pace in paces:
             speed = _speed(x, y, hx, hy, pace, surface, rho_g)
-            aim = _centre_line(x, y, hx, hy, speed, surface, rho_g, dt, ds)
+            aim = centre_line(x, y, hx, hy, speed, 0.0, 1.0, 0.0, rho_g, surface, dt, ds)
             m, se, p1, p3 = _score(x, y, aim, speed, surface, rho_g, hx, hy, line_sd, speed_sd,
                                    z, dt, ds, polar_v, polar_p1, grid, grid_v, grid_p1,
                                    grid_valid, chip)  # fmt: skip

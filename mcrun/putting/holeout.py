@@ -18,13 +18,15 @@ from mcrun.putting.cup import HOLE_RADIUS_M
 from mcrun.putting.roll import (
     DT_S,
     MAX_TIME_S,
+    NO_SURFACE,
     ROLLING_FACTOR,
     STATUS_HOLED,
     STATUS_STOPPED,
     roll,
+    roll_core,
 )
 
-__all__ = ["MAX_PUTTS", "hole_out", "line_through_centre", "pace_speed_mps"]
+__all__ = ["MAX_PUTTS", "centre_line", "hole_out", "line_through_centre", "pace_speed_mps"]
 
 MAX_PUTTS = 10
 # The start lines the read looks between (rad, either side of the line to the hole), and how
@@ -48,30 +50,35 @@ def pace_speed_mps(length_m, pace_m, along_fall, slope_tan, rho_g):
 
 
 @njit(cache=True)
-def _miss_m(x, y, hx, hy, angle, speed, slope_tan, fall_x, fall_y, rho_g, ux, uy):
+def _miss_m(x, y, hx, hy, angle, speed, slope_tan, fall_x, fall_y, rho_g, ux, uy, surface, dt_s,
+            ds_max_m):  # fmt: skip
     """How far left (+) of the hole's centre the error-free putt passes (the cup ignored)."""
-    out = roll(x, y, speed * math.cos(angle), speed * math.sin(angle), slope_tan, fall_x, fall_y,
-               rho_g, hx, hy, False, DT_S, MAX_TIME_S)  # fmt: skip
+    out = roll_core(x, y, speed * math.cos(angle), speed * math.sin(angle), slope_tan, fall_x,
+                    fall_y, rho_g, hx, hy, False, dt_s, MAX_TIME_S, surface, ds_max_m)  # fmt: skip
     return (out[5] - hx) * (-uy) + (out[6] - hy) * ux
 
 
 @njit(cache=True)
-def line_through_centre(x, y, hx, hy, speed, slope_tan, fall_x, fall_y, rho_g):
-    """The start line (rad, from the line to the hole, + left) on which a putt from (x, y) at
-    ``speed`` rolls over the hole's centre: regula falsi (Illinois) within +-READ_SPAN_RAD."""
+def centre_line(x, y, hx, hy, speed, slope_tan, fall_x, fall_y, rho_g, surface, dt_s, ds_max_m):
+    """The start line (rad, from the line to the hole, + towards the frame's +y) on which a putt
+    from (x, y) at ``speed`` rolls over the hole's centre: regula falsi (Illinois) within
+    +-READ_SPAN_RAD, on either ground of ``roll.roll_core`` (a plane: ``NO_SURFACE``)."""
     length = math.hypot(hx - x, hy - y)
     ux, uy = (hx - x) / length, (hy - y) / length
     base = math.atan2(uy, ux)
     a, b = -READ_SPAN_RAD, READ_SPAN_RAD
-    fa = _miss_m(x, y, hx, hy, base + a, speed, slope_tan, fall_x, fall_y, rho_g, ux, uy)
-    fb = _miss_m(x, y, hx, hy, base + b, speed, slope_tan, fall_x, fall_y, rho_g, ux, uy)
+    fa = _miss_m(x, y, hx, hy, base + a, speed, slope_tan, fall_x, fall_y, rho_g, ux, uy,
+                 surface, dt_s, ds_max_m)  # fmt: skip
+    fb = _miss_m(x, y, hx, hy, base + b, speed, slope_tan, fall_x, fall_y, rho_g, ux, uy,
+                 surface, dt_s, ds_max_m)  # fmt: skip
     if fa * fb > 0.0:  # beyond reach: the side that misses least
         return a if abs(fa) < abs(fb) else b
     side = 0
     c = 0.0
     for _ in range(40):
         c = (a * fb - b * fa) / (fb - fa)
-        fc = _miss_m(x, y, hx, hy, base + c, speed, slope_tan, fall_x, fall_y, rho_g, ux, uy)
+        fc = _miss_m(x, y, hx, hy, base + c, speed, slope_tan, fall_x, fall_y, rho_g, ux, uy,
+                     surface, dt_s, ds_max_m)  # fmt: skip
         if abs(fc) < READ_TOL_M:
             return c
         if fc * fb > 0.0:
@@ -85,6 +92,13 @@ def line_through_centre(x, y, hx, hy, speed, slope_tan, fall_x, fall_y, rho_g):
                 fb /= 2.0
             side = 1
     return c
+
+
+@njit(cache=True)
+def line_through_centre(x, y, hx, hy, speed, slope_tan, fall_x, fall_y, rho_g):
+    """``centre_line`` on a plane green, in the plane's steps (+ left: the putt's frame)."""
+    return centre_line(x, y, hx, hy, speed, slope_tan, fall_x, fall_y, rho_g, NO_SURFACE, DT_S,
+                       0.0)  # fmt: skip
 
 
 @njit(cache=True)

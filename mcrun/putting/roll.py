@@ -47,9 +47,11 @@ __all__ = [
     "STATUS_HOLED",
     "STATUS_NO_REST",
     "STATUS_OFF_GREEN",
+    "NO_SURFACE",
     "STATUS_STOPPED",
     "Surface",
     "roll",
+    "roll_core",
     "roll_on",
     "slope_at",
 ]
@@ -88,18 +90,24 @@ def slope_at(x_m, y_m, slope_tan, fall_x, fall_y):
     return slope_tan, fall_x, fall_y
 
 
+@njit(cache=True, inline="always")
+def _cell(x_m, y_m, surface):
+    """The cell of ``surface`` holding (x_m, y_m) (the nearest one off the grid) and where in it:
+    (ix, iy, tx, ty), the fractions clamped to [0, 1]."""
+    ny, nx = surface.height_m.shape
+    fx = (x_m - surface.x0_m) / surface.cell_m
+    fy = (y_m - surface.y0_m) / surface.cell_m
+    ix = min(max(int(math.floor(fx)), 0), nx - 2)
+    iy = min(max(int(math.floor(fy)), 0), ny - 2)
+    return ix, iy, min(max(fx - ix, 0.0), 1.0), min(max(fy - iy, 0.0), 1.0)
+
+
 @njit(cache=True)
 def grid_slope(x_m, y_m, surface):
     """The slope of ``surface`` at (x_m, y_m): (tan(beta), fall direction x, y), from the
     gradient of its bilinear height (the nearest cell where the point is off the grid)."""
     h = surface.height_m
-    ny, nx = h.shape
-    fx = (x_m - surface.x0_m) / surface.cell_m
-    fy = (y_m - surface.y0_m) / surface.cell_m
-    ix = min(max(int(math.floor(fx)), 0), nx - 2)
-    iy = min(max(int(math.floor(fy)), 0), ny - 2)
-    tx = min(max(fx - ix, 0.0), 1.0)
-    ty = min(max(fy - iy, 0.0), 1.0)
+    ix, iy, tx, ty = _cell(x_m, y_m, surface)
     h00, h10 = h[iy, ix], h[iy, ix + 1]
     h01, h11 = h[iy + 1, ix], h[iy + 1, ix + 1]
     gx = ((1.0 - ty) * (h10 - h00) + ty * (h11 - h01)) / surface.cell_m
@@ -114,13 +122,7 @@ def grid_slope(x_m, y_m, surface):
 def grid_height(x_m, y_m, surface):
     """The bilinear height (m) of ``surface`` at (x_m, y_m) (clamped to its grid)."""
     h = surface.height_m
-    ny, nx = h.shape
-    fx = (x_m - surface.x0_m) / surface.cell_m
-    fy = (y_m - surface.y0_m) / surface.cell_m
-    ix = min(max(int(math.floor(fx)), 0), nx - 2)
-    iy = min(max(int(math.floor(fy)), 0), ny - 2)
-    tx = min(max(fx - ix, 0.0), 1.0)
-    ty = min(max(fy - iy, 0.0), 1.0)
+    ix, iy, tx, ty = _cell(x_m, y_m, surface)
     return ((1.0 - ty) * ((1.0 - tx) * h[iy, ix] + tx * h[iy, ix + 1])
             + ty * ((1.0 - tx) * h[iy + 1, ix] + tx * h[iy + 1, ix + 1]))  # fmt: skip
 
@@ -181,8 +183,8 @@ def roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, h
     Returns (status, x_m, y_m, time_s, closest_m, closest_x_m, closest_y_m): the ``STATUS_*``,
     where it ended, when, and the point of its path closest to the hole's centre.
     """
-    return _roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m,
-                 hole_y_m, cup, dt_s, max_time_s, NO_SURFACE, 0.0)  # fmt: skip
+    return roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m,
+                     hole_y_m, cup, dt_s, max_time_s, NO_SURFACE, 0.0)  # fmt: skip
 
 
 @njit(cache=True)
@@ -191,15 +193,15 @@ def roll_on(x_m, y_m, vx_mps, vy_mps, surface, rho_g, hole_x_m, hole_y_m, cup, d
     """``roll`` on the grid ``surface`` (a ``Surface``; positions in the hole's frame), in steps
     of at most ``dt_s`` and ``ds_max_m``; it also ends ``STATUS_OFF_GREEN``, where the ball
     reached a node that is not the green's (the position: that point)."""
-    return _roll(x_m, y_m, vx_mps, vy_mps, 0.0, 1.0, 0.0, rho_g, hole_x_m, hole_y_m, cup, dt_s,
-                 max_time_s, surface, ds_max_m)  # fmt: skip
+    return roll_core(x_m, y_m, vx_mps, vy_mps, 0.0, 1.0, 0.0, rho_g, hole_x_m, hole_y_m, cup,
+                     dt_s, max_time_s, surface, ds_max_m)  # fmt: skip
 
 
 @njit(cache=True, inline="always")
-def _roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, hole_y_m,
-          cup, dt_s, max_time_s, surface, ds_max_m):  # fmt: skip
-    """The roll of ``roll`` (an empty ``surface``: the plane of slope_tan, fall_x, fall_y) and
-    of ``roll_on`` (a grid)."""
+def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, hole_y_m,
+              cup, dt_s, max_time_s, surface, ds_max_m):  # fmt: skip
+    """The one roll of ``roll`` (an empty ``surface``, ``NO_SURFACE``: the plane of slope_tan,
+    fall_x, fall_y) and of ``roll_on`` (a grid), for what asks of either ground."""
     grid = surface.height_m.shape[0] > 0
     x, y, vx, vy, t = x_m, y_m, vx_mps, vy_mps, 0.0
     best = math.hypot(x - hole_x_m, y - hole_y_m)
