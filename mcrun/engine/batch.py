@@ -44,6 +44,7 @@ __all__ = [
     "N_LANDING",
     "TASK_SHOTS",
     "TRAJECTORY_DT_S",
+    "on_threads",
     "simulate_batch",
     "simulate_landed",
     "simulate_traced",
@@ -183,25 +184,34 @@ def _run(inputs, table, out, terrain):
     compile: 8 s of the plane's cold start.)"""
     task = _batch_task_general if needs_general(inputs) else _batch_task
     tasks = (inputs.shape[0] + TASK_SHOTS - 1) // TASK_SHOTS
-    threads = min(numba.get_num_threads(), tasks)
+    on_threads(lambda k: task(inputs, k, table, out, terrain), tasks)
+
+
+def on_threads(work, tasks, threads=None):
+    """``work(k)`` for every k in range(``tasks``) on ``threads`` threads (default
+    ``numba.get_num_threads()``) of the kernels' pool (``_threads``), each thread taking the
+    next k until none is left; on this thread alone when one thread or one task. ``work`` should
+    release the GIL (a ``nogil`` kernel) and the tasks be independent: then neither the thread
+    count nor their order changes a bit."""
+    threads = min(numba.get_num_threads() if threads is None else int(threads), tasks)
     if threads <= 1:
         for k in range(tasks):
-            task(inputs, k, table, out, terrain)
+            work(k)
         return
     todo = iter(range(tasks))
     lock = threading.Lock()
     stopped = threading.Event()
 
-    def work():
+    def take():
         while not stopped.is_set():
             with lock:
                 k = next(todo, None)
             if k is None:
                 return
-            task(inputs, k, table, out, terrain)
+            work(k)
 
     pool = _threads()
-    running = [pool.submit(work) for _ in range(threads)]
+    running = [pool.submit(take) for _ in range(threads)]
     try:
         for each in running:
             each.result()

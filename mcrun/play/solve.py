@@ -10,21 +10,21 @@ V(s) = min over the actions a that fit s of Q(s, a), Q(s, a) = the mean over its
 - ``RESTART``: 1 + 1 + V(s) (stroke and distance);
 
 its ``FAILED`` shots left out. Starting from the baseline's strokes at every state, the sweeps
-(every row from the last sweep's values, rows on threads: the same values whatever their
-number) go on until no value moves by more than ``TOLERANCE`` (``SolveResult.sweeps``,
-``change``). A standard error of Q is that of the mean of its shots' costs at the solution (the
-values themselves are taken as known).
+(every row from the last sweep's values, rows on the kernels' threads, ``batch.on_threads``:
+the same values whatever their number) go on until no value moves by more than
+``TOLERANCE`` (``SolveResult.sweeps``, ``change``). A standard error of Q is that of the mean
+of its shots' costs at the solution (the values themselves are taken as known).
 """
 
 import math
-import os
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from numba import njit
 
+from mcrun.engine.batch import on_threads
 from mcrun.play.lattice import TABLE_STEP_M, stacked, value_at
 from mcrun.play.transitions import GREEN, PLAY, RESTART, WATER
 
@@ -96,15 +96,11 @@ class SolveResult:
     seconds: float
 
 
-def _threads():
-    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1)
-
-
 def solve(lat, tr, allowed=None, start_values=None, threads=None):
     """Value iteration of the transitions ``tr`` over the lattice ``lat``; ``allowed``: a mask
     of the rows a policy may choose (default all: the best policy)."""
     started = time.perf_counter()
-    threads = threads or _threads()
+    threads = numba.get_num_threads() if threads is None else int(threads)
     n_states = lat.size
     allowed = np.ones(len(tr.row_state), dtype=np.bool_) if allowed is None else allowed
     if start_values is None:
@@ -121,26 +117,20 @@ def solve(lat, tr, allowed=None, start_values=None, threads=None):
     bounds = np.linspace(0, len(q), min(threads * 8, max(len(q), 1)) + 1).astype(np.int64)
     args = (tr.row_state, tr.row_start, tr.kind, tr.lie, tr.x, tr.y, tr.const, lat.lie,
             *grids, lat.pin_xy[0], lat.pin_xy[1], lat.table)  # fmt: skip
-    pool = ThreadPoolExecutor(threads) if threads > 1 else None
     sweeps, change = 0, math.inf
-    try:
-        while sweeps < MAX_SWEEPS:
-            jobs = [(int(bounds[k]), int(bounds[k + 1])) for k in range(len(bounds) - 1)]
-            if pool is None:
-                for a, b in jobs:
-                    _q_rows(a, b, values, *args, q, q_se)
-            else:
-                list(pool.map(lambda ab, v=values: _q_rows(ab[0], ab[1], v, *args, q, q_se), jobs))
-            _best(q, tr.row_state, allowed, n_states, best_v, best_row)
-            # A state no allowed row fits keeps its value (the tee's lattice always has one).
-            new = np.where(best_row >= 0, best_v, values)
-            change = float(np.max(np.abs(new - values)))
-            values = new
-            sweeps += 1
-            if change <= TOLERANCE:
-                break
-    finally:
-        if pool is not None:
-            pool.shutdown()
+    while sweeps < MAX_SWEEPS:
+
+        def work(k, v=values):
+            _q_rows(bounds[k], bounds[k + 1], v, *args, q, q_se)
+
+        on_threads(work, len(bounds) - 1, threads)
+        _best(q, tr.row_state, allowed, n_states, best_v, best_row)
+        # A state no allowed row fits keeps its value (the tee's lattice always has one).
+        new = np.where(best_row >= 0, best_v, values)
+        change = float(np.max(np.abs(new - values)))
+        values = new
+        sweeps += 1
+        if change <= TOLERANCE:
+            break
     return SolveResult(values, best_row.copy(), q, q_se, sweeps, change,
                        time.perf_counter() - started)  # fmt: skip

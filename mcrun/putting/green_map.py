@@ -25,14 +25,14 @@ the points are independent, so the map is the same whatever the number of thread
 """
 
 import math
-import os
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
+import numba
 import numpy as np
 from numba import njit
 
+from mcrun.engine.batch import on_threads
 from mcrun.physics.constants import G_MPS2
 from mcrun.putting.cup import HOLE_RADIUS_M
 from mcrun.putting.holeout import centre_line
@@ -336,10 +336,6 @@ def _chip_table():
     return _CHIP
 
 
-def _threads():
-    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1)
-
-
 def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
                        resolution_m=DEFAULT_RESOLUTION_M, threads=None,
                        progress=None):  # fmt: skip
@@ -349,7 +345,7 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
     started = time.perf_counter()
     if isinstance(putter, str):
         putter = PUTTERS[putter]
-    threads = threads or _threads()
+    threads = numba.get_num_threads() if threads is None else int(threads)
     surface = green.surface
     hx, hy = green.pin_xy_m
     rho_g = green.rho_g
@@ -389,61 +385,52 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
 
     total = px.size + int(on.sum())
     done = 0
-    pool = ThreadPoolExecutor(threads) if threads > 1 else None
 
     def solve(xs, ys, read, out):
-        if xs.size == 0:
-            return
+        """``_solve_points`` of the points (xs, ys) into ``out``, in slices on threads."""
         args = (surface, rho_g, hx, hy, line_sd, speed_sd, z, dt, ds, paces, aim_steps, polar_v,
                 polar_p1, grid, grid_v, grid_p1, grid_valid, chip)  # fmt: skip
-        if pool is None or xs.size < 2:
-            _solve_points(xs, ys, read, *args, out)
-            return
-        parts = np.array_split(np.arange(xs.size), min(threads * 4, xs.size))
-        outs = [np.ascontiguousarray(out[p]) for p in parts]
-        list(pool.map(lambda k: _solve_points(np.ascontiguousarray(xs[parts[k]]),
-                                              np.ascontiguousarray(ys[parts[k]]), read, *args,
-                                              outs[k]), range(len(parts))))  # fmt: skip
-        for p, o in zip(parts, outs, strict=True):
-            out[p] = o
+        cuts = np.linspace(0, xs.size, min(xs.size, 4 * threads) + 1).astype(np.int64)
 
-    try:
-        # First sweep: the rings, inside out, then the grid in bands of distance.
-        for j in range(len(radii)):
-            out = np.zeros((POLAR_ANGLES, 6))
-            solve(px[j], py[j], True, out)
-            polar_out[j] = out
-            polar_v[j], polar_p1[j] = out[:, 2], out[:, 4]
-            done += POLAR_ANGLES
-            if progress is not None:
-                progress(done, total)
-        iy, ix = np.nonzero(on)
-        r = np.hypot(mx[iy, ix] - hx, my[iy, ix] - hy)
-        order = np.argsort(r, kind="stable")
-        iy, ix, r = iy[order], ix[order], r[order]
-        band = np.floor(r / BAND_M).astype(np.int64)
-        edges = np.flatnonzero(np.diff(band)) + 1
-        for chosen in np.split(np.arange(r.size), edges):
-            out = np.zeros((chosen.size, 6))
-            solve(mx[iy[chosen], ix[chosen]], my[iy[chosen], ix[chosen]], True, out)
-            grid_out[iy[chosen], ix[chosen]] = out
-            grid_v[iy[chosen], ix[chosen]] = out[:, 2]
-            grid_p1[iy[chosen], ix[chosen]] = out[:, 4]
-            done += chosen.size
-            if progress is not None:
-                progress(done, total)
-        # Second sweep: every point with its read, on the first sweep's values.
-        again_polar = polar_out.reshape(-1, 6).copy()
-        solve(px.ravel(), py.ravel(), False, again_polar)
-        again_grid = grid_out[iy, ix].copy()
-        solve(mx[iy, ix], my[iy, ix], False, again_grid)
-        change = max(
-            float(np.abs(again_polar[:, 2] - polar_out.reshape(-1, 6)[:, 2]).max()),
-            float(np.abs(again_grid[:, 2] - grid_out[iy, ix, 2]).max()) if iy.size else 0.0,
-        )
-    finally:
-        if pool is not None:
-            pool.shutdown()
+        def work(k):
+            a, b = cuts[k], cuts[k + 1]
+            _solve_points(xs[a:b], ys[a:b], read, *args, out[a:b])
+
+        on_threads(work, len(cuts) - 1, threads)
+
+    # First sweep: the rings, inside out, then the grid in bands of distance.
+    for j in range(len(radii)):
+        out = np.zeros((POLAR_ANGLES, 6))
+        solve(px[j], py[j], True, out)
+        polar_out[j] = out
+        polar_v[j], polar_p1[j] = out[:, 2], out[:, 4]
+        done += POLAR_ANGLES
+        if progress is not None:
+            progress(done, total)
+    iy, ix = np.nonzero(on)
+    r = np.hypot(mx[iy, ix] - hx, my[iy, ix] - hy)
+    order = np.argsort(r, kind="stable")
+    iy, ix, r = iy[order], ix[order], r[order]
+    band = np.floor(r / BAND_M).astype(np.int64)
+    edges = np.flatnonzero(np.diff(band)) + 1
+    for chosen in np.split(np.arange(r.size), edges):
+        out = np.zeros((chosen.size, 6))
+        solve(mx[iy[chosen], ix[chosen]], my[iy[chosen], ix[chosen]], True, out)
+        grid_out[iy[chosen], ix[chosen]] = out
+        grid_v[iy[chosen], ix[chosen]] = out[:, 2]
+        grid_p1[iy[chosen], ix[chosen]] = out[:, 4]
+        done += chosen.size
+        if progress is not None:
+            progress(done, total)
+    # Second sweep: every point with its read, on the first sweep's values.
+    again_polar = polar_out.reshape(-1, 6).copy()
+    solve(px.ravel(), py.ravel(), False, again_polar)
+    again_grid = grid_out[iy, ix].copy()
+    solve(mx[iy, ix], my[iy, ix], False, again_grid)
+    change = max(
+        float(np.abs(again_polar[:, 2] - polar_out.reshape(-1, 6)[:, 2]).max()),
+        float(np.abs(again_grid[:, 2] - grid_out[iy, ix, 2]).max()) if iy.size else 0.0,
+    )
 
     nan = np.where(on, 1.0, np.nan)
     return GreenMap(
