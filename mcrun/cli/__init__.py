@@ -22,6 +22,7 @@ function returns its exit code and raises these; it prints no error itself.
 """
 
 import argparse
+import contextlib
 import importlib
 import os
 import re
@@ -41,6 +42,34 @@ class CommandError(ValueError):
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C or SIGTERM during a command's step that says what the interruption left:
     ``mcrun: interrupted: <message>``."""
+
+
+def write_all_or_nothing(write=None, picture=None, force=False):
+    """A command's table and picture, all or nothing: the picture (``picture``: (path, draw,
+    dpi), ``draw()`` its Figure) drawn under a temporary name, then the table written
+    (``write()``) and the picture renamed into place, interrupts deferred. Ctrl-C: Interrupted,
+    saying whether everything was written."""
+    from mcrun import exits
+
+    written = False
+    try:
+        with contextlib.ExitStack() as stack:
+            pictures = None
+            if picture is not None:
+                from mcrun.report import style
+
+                path, draw, dpi = picture
+                pictures = stack.enter_context(style.Pictures(force=force))
+                pictures.add(path, draw(), dpi)
+            with exits.interrupts_deferred():
+                if write is not None:
+                    write()
+                if pictures is not None:
+                    pictures.commit()
+                written = True
+    except KeyboardInterrupt:
+        said = "after writing everything" if written else "nothing was written"
+        raise Interrupted(said) from None
 
 
 # --- the parser --------------------------------------------------------------------------------

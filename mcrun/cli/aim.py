@@ -3,12 +3,10 @@ expected strokes (``mcrun.strokes``), with common random numbers; a table of eve
 (Parquet, written by ``aim.write_table`` with its provenance and geometry) and a picture
 (``mcrun.report.aim_plot``) on request. Here the arguments are read and the results said."""
 
-import contextlib
 import math
 import sys
 
-from mcrun import exits
-from mcrun.cli import Interrupted, compile_if_needed
+from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
 from mcrun.quantities import InputError
 from mcrun.run import aim
 from mcrun.strokes import BaselineError, load_baseline
@@ -67,26 +65,13 @@ def _cmd_aim(args):
         print(line, file=sys.stderr)
     if destination is None and args.plot is None:
         return 0
-    # The table and the picture all or nothing: the picture drawn under a temporary name, then
-    # the table written and the picture renamed into place, interrupts deferred.
-    written = False
-    try:
-        with contextlib.ExitStack() as stack:
-            pictures = None
-            if args.plot is not None:
-                pictures = stack.enter_context(style.Pictures(force=args.force))
-                pictures.add(
-                    args.plot, aim_plot.aim_figure(result, aim.patterns(result)), aim_plot.DPI
-                )
-            with exits.interrupts_deferred():
-                if destination is not None:
-                    aim.write_table(result, destination, baseline=args.baseline, force=args.force)
-                if pictures is not None:
-                    pictures.commit()
-                written = True
-    except KeyboardInterrupt:
-        said = "after writing everything" if written else "nothing was written"
-        raise Interrupted(said) from None
+    write_all_or_nothing(
+        None if destination is None else lambda: aim.write_table(
+            result, destination, baseline=args.baseline, force=args.force),
+        None if args.plot is None else (
+            args.plot, lambda: aim_plot.aim_figure(result, aim.patterns(result)), aim_plot.DPI),
+        args.force,
+    )  # fmt: skip
     if destination is not None:
         print(f"wrote {destination}")
     if args.plot is not None:

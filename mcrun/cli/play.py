@@ -5,7 +5,7 @@ to Parquet, and a picture."""
 import contextlib
 import sys
 
-from mcrun.cli import Interrupted, compile_if_needed
+from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
 
@@ -40,7 +40,6 @@ def _whole(text, name, least):
 
 
 def _cmd_play(args):
-    from mcrun import exits
     from mcrun.play import load_player, play_hole
     from mcrun.run import aim
 
@@ -117,25 +116,16 @@ def _cmd_play(args):
               f"{player.name}")  # fmt: skip
     if args.output is None and args.plot is None:
         return 0
-    written = False
-    try:
-        with contextlib.ExitStack() as stack:
-            pictures = None
-            if args.plot is not None:
-                from mcrun.report import play_plot, style
+    picture = None
+    if args.plot is not None:
+        from mcrun.report import play_plot
 
-                pictures = stack.enter_context(style.Pictures(force=args.force))
-                pictures.add(args.plot, play_plot.play_figure(result), play_plot.DPI)
-            with exits.interrupts_deferred():
-                if args.output is not None:
-                    write_play(result, destination, args.force)
-                if pictures is not None:
-                    pictures.commit()
-                written = True
-    except KeyboardInterrupt:
-        raise Interrupted(
-            "after writing everything" if written else "nothing was written"
-        ) from None
+        picture = (args.plot, lambda: play_plot.play_figure(result), play_plot.DPI)
+    write_all_or_nothing(
+        None if args.output is None else lambda: write_play(result, destination, args.force),
+        picture,
+        args.force,
+    )
     for path in (args.output, args.plot):
         if path is not None:
             print(f"wrote {path}")

@@ -2,7 +2,6 @@
 rate and average putts with their standard errors, and the read (start line and pace); or,
 with ``--hole``, the expected-putts map of a hole's green to Parquet (and a picture)."""
 
-import contextlib
 import math
 import sys
 
@@ -72,8 +71,7 @@ def _cmd_putt(args):
 
 def _cmd_green(args):
     """The expected-putts map of a hole's green: a table, a picture, a few lines."""
-    from mcrun import exits
-    from mcrun.cli import Interrupted
+    from mcrun.cli import Interrupted, write_all_or_nothing
     from mcrun.hole.hole import load_hole
     from mcrun.putting.green import GreenError, green_of_hole
     from mcrun.putting.green_map import expected_putts_map
@@ -126,27 +124,19 @@ def _cmd_green(args):
         "elapsed_s": round(result.elapsed_s, 3), "file": "putts",
         "attribution": hole.attribution or "",
     }  # fmt: skip
-    written = False
-    try:
-        with contextlib.ExitStack() as stack:
-            pictures = None
-            if args.plot is not None:
-                from mcrun.report import green_plot, style
 
-                pictures = stack.enter_context(style.Pictures(force=args.force))
-                pictures.add(args.plot, green_plot.green_figure(result, hole.attribution),
-                             green_plot.DPI)  # fmt: skip
-            with exits.interrupts_deferred():
-                with output.AtomicFile(destination, force=args.force) as target:
-                    output.write_table(target.tmp, frame, output.encode_provenance(provenance))
-                    target.commit()
-                if pictures is not None:
-                    pictures.commit()
-                written = True
-    except KeyboardInterrupt:
-        raise Interrupted(
-            "after writing everything" if written else "nothing was written"
-        ) from None
+    def write():
+        with output.AtomicFile(destination, force=args.force) as target:
+            output.write_table(target.tmp, frame, output.encode_provenance(provenance))
+            target.commit()
+
+    picture = None
+    if args.plot is not None:
+        from mcrun.report import green_plot
+
+        picture = (args.plot, lambda: green_plot.green_figure(result, hole.attribution),
+                   green_plot.DPI)  # fmt: skip
+    write_all_or_nothing(write, picture, args.force)
     v = frame["expected_putts"]
     away = v[v > 0.0]  # (a node at the pin is in the hole)
     print(
