@@ -13,6 +13,7 @@ cannot be written is skipped: the map is then built in each process.
 import hashlib
 import os
 import sys
+import weakref
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +28,7 @@ __all__ = ["MAP_VERSION", "cache_folder", "check_putting", "map_of_hole"]
 # full Table 9 (a putt that leaves the green is a chip valued by its fairway rows).
 MAP_VERSION = 2
 _MEMORY = {}
+_OF_HOLE = {}  # id(hole) -> (a weak reference to it, its putting settings, its map's key)
 _ARRAYS = ("expected_putts", "expected_putts_se", "p_one_putt", "p_three_putt", "read_aim_deg",
            "read_pace_m", "polar_expected", "polar_p_one", "polar_p_three")  # fmt: skip
 
@@ -61,8 +63,13 @@ def map_of_hole(hole, progress=None):
     spec = hole.putting
     if spec["model"] != "physics":
         return None
+    # The hole asked before (every chunk of a run asks): its map, without building its green.
+    known = _OF_HOLE.get(id(hole))
+    if known is not None and known[0]() is hole and known[1] == spec and known[2] in _MEMORY:
+        return _MEMORY[known[2]]
     green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"])
     key = _key(green, spec)
+    _OF_HOLE[id(hole)] = (weakref.ref(hole), dict(spec), key)
     if key in _MEMORY:
         return _MEMORY[key]
     path = cache_folder() / f"{key}.npz"
