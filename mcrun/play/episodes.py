@@ -11,6 +11,7 @@ out of bounds, one penalty stroke and the shot again. A play stops at ``MAX_STRO
 
 import numpy as np
 
+from mcrun.play.lattice import stacked, value_at
 from mcrun.play.transitions import FAILED, GREEN, PLAY, RESTART, WATER
 
 __all__ = ["MAX_STROKES", "play_policy"]
@@ -50,6 +51,7 @@ def play_policy(lat, tr, solution, plays, seed=0):
     state = np.zeros(plays, dtype=np.int64)
     strokes = np.zeros(plays, dtype=np.int64)
     done = np.zeros(plays, dtype=bool)
+    grids = stacked(lat)
     while not done.all():
         live = np.flatnonzero(~done)
         rows = solution.best_row[state[live]]
@@ -71,7 +73,7 @@ def play_policy(lat, tr, solution, plays, seed=0):
         penalty = (kind == WATER) | (kind == RESTART)
         strokes[live[penalty]] += 1
         moves = (kind == PLAY) | (
-            (kind == WATER) & _drop_better(solution, tr, state[live], shot, lat)
+            (kind == WATER) & _drop_better(solution, tr, state[live], shot, lat, grids)
         )
         if moves.any():
             state[live[moves]] = _nearest_states(lat, tr.x[shot[moves]], tr.y[shot[moves]],
@@ -82,11 +84,8 @@ def play_policy(lat, tr, solution, plays, seed=0):
     return strokes
 
 
-def _drop_better(solution, tr, states, shot, lat):
+def _drop_better(solution, tr, states, shot, lat, grids):
     """Whether a water ball's drop is worth less than playing again from its state."""
-    from mcrun.play.lattice import stacked, value_at
-
-    grids = stacked(lat)
     out = np.zeros(len(shot), dtype=bool)
     for k in np.flatnonzero(tr.kind[shot] == WATER):
         i = shot[k]
