@@ -57,6 +57,17 @@ def number(text, option):
     return value
 
 
+def whole(text, option, least):
+    """A whole number of at least ``least`` (``2000``, ``1e4``); InputError naming the option."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or value != int(value) or value < least:
+        raise InputError(f"{option} {text!r}: allowed: a whole number of at least {least}")
+    return int(value)
+
+
 def given(**kwargs):
     """The keyword arguments that were given, so that the API's defaults apply to the rest."""
     return {k: v for k, v in kwargs.items() if v is not None}

@@ -6,6 +6,7 @@ import contextlib
 import sys
 
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
+from mcrun.cli.options import whole
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
 
@@ -29,16 +30,6 @@ def _hole_of(spec):
     return scenario.hole
 
 
-def _whole(text, name, least):
-    try:
-        value = float(text)
-    except ValueError:
-        value = -1.0
-    if value != int(value) or value < least:
-        raise InputError(f"{name} {text!r}: allowed: a whole number of at least {least}")
-    return int(value)
-
-
 def _cmd_play(args):
     from mcrun.play import load_player, play_hole
     from mcrun.run import aim
@@ -52,14 +43,14 @@ def _cmd_play(args):
         aim.check_output(args.plot, args.force, "--plot", (".png",), ".png")
     player = load_player(args.player)
     hole = _hole_of(args.hole)
-    n = _whole(args.n, "-n", 2)
-    plays = _whole(args.plays, "--plays", 1)
+    n = whole(args.n, "-n", 2)
+    plays = whole(args.plays, "--plays", 1)
     coarse = parse_quantity(args.coarse, "length", "--coarse")
     fine = parse_quantity(args.fine, "length", "--fine")
     for name, value in (("--coarse", coarse), ("--fine", fine)):
         if not 1.0 <= value <= 50.0:
             raise InputError(f"{name} {value:g} m: allowed: 1 m to 50 m")
-    seed = None if args.seed is None else _whole(args.seed, "--seed", 0)
+    seed = None if args.seed is None else whole(args.seed, "--seed", 0)
     others = []
     if args.vs is not None:
         others.append(load_player(args.vs))
@@ -84,7 +75,7 @@ def _cmd_play(args):
 
             from mcrun.run import distributed
 
-            workers = None if args.workers is None else _whole(args.workers, "--workers", 1)
+            workers = None if args.workers is None else whole(args.workers, "--workers", 1)
             cluster = stack.enter_context(distributed.local_cluster(workers))
             client = stack.enter_context(Client(cluster))
         try:

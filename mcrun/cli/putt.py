@@ -5,6 +5,7 @@ with ``--hole``, the expected-putts map of a hole's green to Parquet (and a pict
 import math
 import sys
 
+from mcrun.cli.options import whole
 from mcrun.putting import PUTTERS, putt
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
@@ -16,17 +17,6 @@ def _slope_tan(text):
     if any(unit in text.lower() for unit in ("deg", "rad", "°")):
         return math.tan(parse_quantity(text, "angle", "--slope"))
     return parse_quantity(text, "fraction", "--slope")
-
-
-def _whole(text, name, least):
-    """A whole number of at least ``least``: ``2000``, ``1e4``."""
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not math.isfinite(value) or value != int(value) or value < least:
-        raise InputError(f"{name} {text!r}: allowed: a whole number of at least {least}")
-    return int(value)
 
 
 def _cmd_putt(args):
@@ -47,8 +37,8 @@ def _cmd_putt(args):
         _slope_tan(args.slope),
         parse_quantity(args.direction, "angle", "--direction") * 180.0 / math.pi,
         putter=args.putter,
-        n=_whole("2000" if args.n is None else args.n, "-n", 2),
-        seed=_whole(args.seed, "--seed", 0),
+        n=whole("2000" if args.n is None else args.n, "-n", 2),
+        seed=whole(args.seed, "--seed", 0),
     )
     r = result.read
     if abs(r.aim_deg) < 0.005:
@@ -96,8 +86,8 @@ def _cmd_green(args):
                   else parse_quantity(args.resolution, "length", "--resolution"))  # fmt: skip
     if not 0.05 <= resolution <= 5.0:
         raise InputError(f"--resolution {args.resolution}: allowed: 0.05 m to 5 m")
-    n = spec["n"] if args.n is None else _whole(args.n, "-n", 2)
-    seed = spec["seed"] if args.seed is None else _whole(args.seed, "--seed", 0)
+    n = spec["n"] if args.n is None else whole(args.n, "-n", 2)
+    seed = spec["seed"] if args.seed is None else whole(args.seed, "--seed", 0)
     putter = spec["putter"] if args.putter is None else args.putter
     try:
         green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"])
