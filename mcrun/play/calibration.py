@@ -18,7 +18,7 @@ spreads; ``mcrun.play.player.TOUR_SPREAD`` holds those of the Tour bag, and
 ``tests/test_play.py`` checks them.
 """
 
-import math
+from statistics import NormalDist
 
 import numpy as np
 
@@ -81,9 +81,9 @@ def calibrate(player, n=4000):
             target = proximity_target_ft(total)
             factor = target / proximity
         else:
-            # The share within the fairway of a normal lateral spread: erf(w / (sd sqrt 2)).
-            sd = FAIRWAY_HALF_WIDTH_M / (math.sqrt(2.0) * _erfinv(share))
-            factor = FAIRWAY_HALF_WIDTH_M / (math.sqrt(2.0) * _erfinv(FAIRWAY_SHARE)) / sd
+            # A normal lateral spread puts a share 2 Phi(w / sd) - 1 within w of its centre:
+            # the spread scales sd by the ratio of the two quantiles.
+            factor = _quantile(share) / _quantile(FAIRWAY_SHARE)
         factor = round(factor, 3)
         total, proximity, share, _ = pattern(player.scenario, club, n, factor)
         spreads.append(factor)
@@ -93,13 +93,6 @@ def calibrate(player, n=4000):
     return tuple(spreads), rows
 
 
-def _erfinv(p):
-    """The inverse of erf on (0, 1), by bisection (no scipy at run time)."""
-    lo, hi = 0.0, 6.0
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if math.erf(mid) < p:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
+def _quantile(share):
+    """w / sd of a normal spread that puts ``share`` within w of its centre."""
+    return NormalDist().inv_cdf((1.0 + share) / 2.0)
