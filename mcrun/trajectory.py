@@ -1,6 +1,7 @@
 """Recording a shot's path into a preallocated buffer (time, x, y, z, phase) inside the kernel.
 
-Rows are in the user's frame (y to the right). A zero-row buffer records nothing.
+Rows are in the user's frame (y to the right). A zero-row buffer records nothing; so does no
+buffer (None), the batch kernels' case, where the recording is pruned from the compiled code.
 """
 
 from numba import njit
@@ -14,6 +15,8 @@ PHASE_NAMES = ("flight", "bounce", "roll")
 @njit(cache=True)
 def record(traj, n, t, x, y, z, phase):
     """Write one point (core frame in, user frame out) at row n; return the next row."""
+    if traj is None:
+        return n + 1
     if n < traj.shape[0]:
         traj[n, 0] = t
         traj[n, 1] = x

@@ -517,15 +517,15 @@ def test_only_the_command_line_reads_arguments_and_prints_errors():
     [
         (["shot", "--ball-speed", "60", "--launch", "12", "--spin", "600"], ("batch",)),
         (["shot", "--ball-speed", "60", "--launch", "12", "--spin", "600", "--trajectory",
-          "PATH"], ("batch", "traced")),
+          "PATH"], ("traced",)),
         (["run", "pga-driver", "-n", "100", "--trajectories", "10", "-o", "PATH"],
          ("batch", "traced")),
     ],
 )  # fmt: skip
 def test_a_command_compiles_the_kernels_it_runs(argv, kernels, tmp_path, capsys, monkeypatch):
-    """A shot that records its path and a run that writes trajectories run the traced kernel
-    too, which a fresh install compiles: it is asked for (and said) before the command's work,
-    not compiled silently within it."""
+    """A shot that records its path runs the traced kernel (alone: the batch kernel carries no
+    recording), and a run that writes trajectories runs it too, which a fresh install compiles:
+    it is asked for (and said) before the command's work, not compiled silently within it."""
     asked = []
 
     def cached(ground, kernels=("batch",)):

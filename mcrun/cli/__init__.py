@@ -175,11 +175,14 @@ def _kernel_cached(ground, kernels=("batch",)):
 
 def kernels_of(args, general=None):
     """The kernels (``engine.warmup.KERNELS``) a command runs with ``args``: the batch, and the
-    traced batch where it records a path, and the run from a landing for the paper's figures;
-    their general kinds where its shots fly in the general lanes (``general``, or, when None,
-    the aerodynamic model and wind profile its options name)."""
+    traced batch where it records a path (that alone for one shot's path), and the run from a
+    landing for the paper's figures; their general kinds where its shots fly in the general
+    lanes (``general``, or, when None, the aerodynamic model and wind profile its options
+    name)."""
     if args.command == "paper":
         kernels = ("batch", "traced", "landed")
+    elif args.command == "shot" and getattr(args, "trajectory", None):
+        kernels = ("traced",)
     elif getattr(args, "trajectory", None) or getattr(args, "trajectories", None):
         kernels = ("batch", "traced")
     else:

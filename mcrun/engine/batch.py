@@ -34,7 +34,7 @@ from mcrun.engine.bounce_lanes import bounce_all
 from mcrun.engine.flight_lanes import GENERAL, QUADRATIC, flight_kind, fly_general, fly_quadratic
 from mcrun.engine.schema import N_INPUT, N_OUTCOME
 from mcrun.engine.shot import TRAJECTORY_DT_S, from_start
-from mcrun.engine.tables import IN, LANDING, LANES, N_LANDING, TRACER
+from mcrun.engine.tables import IN, LANDING, LANES, N_LANDING, NO_SHOTS, TRACER
 from mcrun.physics import aero
 from mcrun.physics.aero import LANE_MODELS, QUADRATIC_COEFFICIENTS
 from mcrun.physics.flight import WIND_UNIFORM
@@ -80,8 +80,8 @@ def _lockstep(inputs, start, stop, table, out, traj, tracer, terrain):
     landings = np.empty((stop - start, N_LANDING))
     pending = np.empty(stop - start, dtype=np.int64)
     n_landed = fly_quadratic(
-        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, 0, traj, tracer,
-        terrain,
+        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, NO_SHOTS, traj,
+        tracer, terrain,
     )  # fmt: skip
     _run_out(inputs, start, stop, landings, pending[:n_landed], out, traj, tracer, terrain)
 
@@ -93,8 +93,8 @@ def _lockstep_general(inputs, start, stop, table, out, traj, tracer, terrain):
     landings = np.empty((stop - start, N_LANDING))
     pending = np.empty(stop - start, dtype=np.int64)
     n_landed = fly_quadratic(
-        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, 0, traj, tracer,
-        terrain,
+        inputs, kinds, QUADRATIC, start, stop, table, out, landings, pending, NO_SHOTS, traj,
+        tracer, terrain,
     )  # fmt: skip
     n_landed = fly_general(
         inputs, kinds, GENERAL, start, stop, table, out, landings, pending, n_landed, traj,
@@ -126,24 +126,20 @@ TASK_SHOTS = 2048
 
 @njit(cache=True, error_model="numpy", nogil=True)
 def _batch_task(inputs, task, table, out, terrain):
-    """Task ``task`` of a batch: its TASK_SHOTS shots, of the quadratic flight kind."""
+    """Task ``task`` of a batch: its TASK_SHOTS shots, of the quadratic flight kind. No path
+    is recorded (traj and tracer None): the recording's branches are pruned from this kernel
+    as it compiles, and it carries none of their code (``simulate_traced`` has its own)."""
     n = inputs.shape[0]
-    untraced = np.full(4, -1.0)
-    _lockstep(
-        inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out, np.empty((0, 5)),
-        untraced, terrain,
-    )  # fmt: skip
+    start = task * TASK_SHOTS
+    _lockstep(inputs, start, min(n, start + TASK_SHOTS), table, out, None, None, terrain)
 
 
 @njit(cache=True, error_model="numpy", nogil=True)
 def _batch_task_general(inputs, task, table, out, terrain):
     """``_batch_task`` for shots of both flight kinds."""
     n = inputs.shape[0]
-    untraced = np.full(4, -1.0)
-    _lockstep_general(
-        inputs, task * TASK_SHOTS, min(n, (task + 1) * TASK_SHOTS), table, out, np.empty((0, 5)),
-        untraced, terrain,
-    )  # fmt: skip
+    start = task * TASK_SHOTS
+    _lockstep_general(inputs, start, min(n, start + TASK_SHOTS), table, out, None, None, terrain)
 
 
 def _as_kernel_layout(inputs):

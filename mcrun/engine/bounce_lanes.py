@@ -20,6 +20,7 @@ from mcrun.engine.tables import (
     INCIDENCE,
     LANDING,
     LANES,
+    NO_SHOTS,
     REBOUND,
     TRACER,
     any_lane_busy,
@@ -382,7 +383,17 @@ def _file_rolls(start, landings, r, count, out, traj, tracer, terrain):
         )
         ref_x = np.nan
         ref_y = np.nan
-        traced = i == tracer[TRACER.TRACED]
+        # The path's buffer, its next row and time, and its interval: the traced shot's, an
+        # empty buffer for the others; none in a batch (its recording pruned from the kernel).
+        if tracer is None:
+            traced = False
+            path, row, t_next, dt_record = traj, 0, s[BOUNCE.T], 0.0
+        else:
+            traced = i == tracer[TRACER.TRACED]
+            path = traj if traced else traj[:0]
+            row = int(tracer[TRACER.ROW]) if traced else 0
+            t_next = tracer[TRACER.T_NEXT] if traced else s[BOUNCE.T]
+            dt_record = tracer[TRACER.DT_RECORD]
         if s[BOUNCE.SHORT] == 0.0 or traced:
             x, y, z, t, status, n, qx, qy = roll_out(
                 s[BOUNCE.X],
@@ -397,10 +408,10 @@ def _file_rolls(start, landings, r, count, out, traj, tracer, terrain):
                 terrain,
                 _lane_ground(r, j),
                 s[BOUNCE.T],
-                traj if traced else traj[:0],
-                int(tracer[TRACER.ROW]) if traced else 0,
-                tracer[TRACER.T_NEXT] if traced else s[BOUNCE.T],
-                tracer[TRACER.DT_RECORD],
+                path,
+                row,
+                t_next,
+                dt_record,
             )
             if traced:
                 tracer[TRACER.ROW] = n
@@ -427,24 +438,25 @@ def bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain):
     e = np.ones(INCIDENCE.N * LANES)  # the equivalent surfaces of the impacts
     rb = np.ones(REBOUND.N * LANES)  # their rebounds, on a terrain
     before = np.zeros(BOUNCE.N)  # the traced lane before its impact
-    waiting = 0  # shots in it
+    waiting = NO_SHOTS  # shots in it
     shot = np.full(LANES, -1)
-    next_j = 0
+    next_j = NO_SHOTS
     for k in range(LANES):
         next_j = _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terrain)
     while any_lane_busy(shot):
         traced = -1
-        if tracer[TRACER.TRACED] >= 0:
+        if tracer is not None:  # (a batch has none: pruned from its kernel)
             for k in range(LANES):
                 if shot[k] == tracer[TRACER.TRACED]:
                     traced = k
                     for row in range(BOUNCE.N):  # (a slice copy compiles a shape check)
                         before[row] = b[row * LANES + k]
         ended = _impact_lanes(terrain, b, e, rb)
-        if traced >= 0 and (b[BOUNCE.THEN * LANES + traced] == HOPS) | (
-            b[BOUNCE.THEN * LANES + traced] == ENDS
-        ):
-            _record_hop(b, traced, before, traj, tracer, terrain)
+        if tracer is not None:
+            if traced >= 0 and (b[BOUNCE.THEN * LANES + traced] == HOPS) | (
+                b[BOUNCE.THEN * LANES + traced] == ENDS
+            ):
+                _record_hop(b, traced, before, traj, tracer, terrain)
         if ended == 0:
             continue
         for k in range(LANES):
@@ -498,7 +510,7 @@ def bounce_all(inputs, start, landings, pending, out, traj, tracer, terrain):
                 waiting += 1
                 if waiting == LANES:
                     _file_rolls(start, landings, r, waiting, out, traj, tracer, terrain)
-                    waiting = 0
+                    waiting = NO_SHOTS
             next_j = _load_bounce_lane(
                 inputs, landings, start, pending, next_j, b, shot, k, terrain
             )

@@ -31,6 +31,7 @@ from mcrun.engine.tables import (
     LANDING,
     LANE,
     LANES,
+    NO_SHOTS,
     QUADRATIC_ROWS,
     SHOT_ROWS,
     TRACER,
@@ -334,7 +335,7 @@ def _make_flight(derivative, stage, step, constants, context):
         ones included) that went below the ground or past MAX_FLIGHT_TIME_S."""
         rk4_lanes(lanes, table)
         traced = -1
-        if tracer[TRACER.TRACED] >= 0:
+        if tracer is not None:  # (a batch has none: pruned from its kernel)
             for k in range(LANES):
                 if shot[k] == tracer[TRACER.TRACED] and _clearance_end(lanes, k, terrain) >= 0.0:
                     traced = k
@@ -395,12 +396,14 @@ def _make_flight(derivative, stage, step, constants, context):
                 lanes[LANE.W * LANES + k] if landed else lanes[LANE.W1 * LANES + k]
             )
             events += 1 if landed | (lanes[LANE.T * LANES + k] > MAX_FLIGHT_TIME_S) else 0
-        if traced >= 0:
-            k = traced
-            tracer[TRACER.ROW] = record(
-                traj, int(tracer[TRACER.ROW]), lanes[LANE.T * LANES + k], lanes[LANE.X * LANES + k],
-                lanes[LANE.Y * LANES + k], lanes[LANE.Z * LANES + k], FLIGHT,
-            )  # fmt: skip
+        if tracer is not None:
+            if traced >= 0:
+                k = traced
+                tracer[TRACER.ROW] = record(
+                    traj, int(tracer[TRACER.ROW]), lanes[LANE.T * LANES + k],
+                    lanes[LANE.X * LANES + k], lanes[LANE.Y * LANES + k],
+                    lanes[LANE.Z * LANES + k], FLIGHT,
+                )  # fmt: skip
         return events
 
     @njit(cache=True, error_model="numpy")
@@ -465,12 +468,13 @@ def _make_flight(derivative, stage, step, constants, context):
             i = int(s[LANE.SHOT])
             w1 = s[LANE.W1]
             z1 = ground.height_at(terrain, s[LANE.X1], s[LANE.Y1])
-            if i == tracer[TRACER.TRACED]:
-                n = record_step(g, j, s[LANE.DT], table, traj, int(tracer[TRACER.ROW]))
-                tracer[TRACER.ROW] = record(
-                    traj, n, s[LANE.T_LANDING], s[LANE.X1], s[LANE.Y1], z1, FLIGHT
-                )
-                tracer[TRACER.T_NEXT] = s[LANE.T_LANDING] + tracer[TRACER.DT_RECORD]
+            if tracer is not None:
+                if i == tracer[TRACER.TRACED]:
+                    n = record_step(g, j, s[LANE.DT], table, traj, int(tracer[TRACER.ROW]))
+                    tracer[TRACER.ROW] = record(
+                        traj, n, s[LANE.T_LANDING], s[LANE.X1], s[LANE.Y1], z1, FLIGHT
+                    )
+                    tracer[TRACER.T_NEXT] = s[LANE.T_LANDING] + tracer[TRACER.DT_RECORD]
             write_landing(
                 out,
                 i,
@@ -569,8 +573,9 @@ def _make_flight(derivative, stage, step, constants, context):
                 lanes[row * LANES + k] = value
             constants(lanes, k, p, table)
             shot[k] = i
-            if i == tracer[TRACER.TRACED]:
-                tracer[TRACER.ROW] = record(traj, 0, 0.0, x0, y0, z0, FLIGHT)
+            if tracer is not None:
+                if i == tracer[TRACER.TRACED]:
+                    tracer[TRACER.ROW] = record(traj, 0, 0.0, x0, y0, z0, FLIGHT)
             return next_i
         shot[k] = -1
         return next_i
@@ -583,7 +588,7 @@ def _make_flight(derivative, stage, step, constants, context):
         # (Of ones: see ``tables.LANES``.)
         lanes = np.ones(LANE.N * LANES)
         g = np.ones(LANE.N * LANES)  # the landing table
-        waiting = 0  # shots in it
+        waiting = NO_SHOTS  # shots in it
         shot = np.full(LANES, -1)
         next_i = start
         for k in range(LANES):
@@ -629,7 +634,7 @@ def _make_flight(derivative, stage, step, constants, context):
                             g, waiting, out, start, landings, pending, n_landed, table, traj,
                             tracer, terrain,
                         )  # fmt: skip
-                        waiting = 0
+                        waiting = NO_SHOTS
                     next_i = load_lane(
                         inputs, kinds, kind, next_i, stop, start, table, lanes, shot, k, traj,
                         tracer, terrain,

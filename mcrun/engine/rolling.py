@@ -43,6 +43,8 @@ from mcrun.trajectory import ROLL, record
 @njit(cache=True)
 def _record_segment(traj, n, t_next, dt_record, t0, h, px, py, pz, vx, vy, vz, ax, ay, az):
     """Record the points of the trajectory grid that fall inside [t0, t0 + h)."""
+    if traj is None:  # (a batch: pruned)
+        return n, t_next
     if traj.shape[0] == 0:
         return n, t_next
     while t_next < t0 + h:
@@ -65,6 +67,8 @@ def _record_patch_step(traj, n, t_next, dt_record, t0, h, px, py, vx, vy, x1, y1
                        patch):  # fmt: skip
     """Record the points of the trajectory grid inside [t0, t0 + h) of a step on a patch: the
     cubic through its ends with their velocities, on the patch's surface."""
+    if traj is None:  # (a batch: pruned)
+        return n, t_next
     if traj.shape[0] == 0:
         return n, t_next
     while t_next < t0 + h:

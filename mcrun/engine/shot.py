@@ -61,7 +61,7 @@ def default_dt_s(wind_profile="uniform"):
     return DEFAULT_DT_S if wind_profile == "uniform" else DEFAULT_DT_WIND_PROFILE_S
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def fail(out, i, status, first=CARRY):
     """Record that shot i ended with ``status``: its fields from ``first`` on (the flight's and
     the run's, or the run's alone when the flight was complete) are NaN."""
@@ -150,7 +150,7 @@ def from_start(out, i, x0, y0, z0):
     out[i, APEX] -= z0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def write_run(out, i, landing_x, x, y, z, t, status, bounces, first_height, first_length, ref_x,
               ref_y):  # fmt: skip
     """Write the run fields of shot i, which landed at x = landing_x and rests (or ended) at

@@ -10,6 +10,7 @@ number, and two tables cannot share a row by mistake (``LANE.X`` is not ``BOUNCE
 
 from collections import namedtuple
 
+import numpy as np
 from numba import njit
 
 from mcrun.engine.schema import COLUMN, INPUT_FIELDS
@@ -138,3 +139,7 @@ N_LANDING = LANDING.N
 # the trajectory, and the time of the next point of the run (its bounces and roll) and the
 # interval of those points; the flight's are every TRAJECTORY_DT_S.
 TRACER = rows("Tracer", "TRACED", "ROW", "T_NEXT", "DT_RECORD")
+# No shots yet: the start of the loops' counts. Numba types a literal 0 as Literal[int](0) and
+# compiles a callee given it a specialisation of its own, beside the int64 one the count
+# takes later (three compiles of ``file_landings`` where one does); an int64 zero is int64.
+NO_SHOTS = np.int64(0)
