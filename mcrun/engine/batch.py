@@ -4,10 +4,12 @@
 order (each column contiguous, named by ``schema.INPUT_FIELDS``, SI, user frame), in tasks of
 TASK_SHOTS shots on a pool of threads, and writes ``out``, an (n, N_OUTCOME) float64 array in
 Fortran order whose columns are ``schema.OUTCOME_FIELDS``. A single shot, with its trajectory
-or without, is the same loop on one row (``simulate_traced``): there is no other. Each kernel
-comes in two kinds, compiled apart on first use: for shots of the quadratic flight kind (the
-usual models in uniform wind) and for batches that also hold shots of the general kind
-(``needs_general``).
+or without, is the same loop on one row (``simulate_traced``): there is no other. The batch
+kernels pass no path buffer and no tracer (None), so that every branch that records a path is
+pruned from them as they compile (``tracer is not None``); ``simulate_traced`` compiles the same
+loop with them. Each kernel comes in two kinds, compiled apart on first use: for shots of the
+quadratic flight kind (the usual models in uniform wind) and for batches that also hold shots
+of the general kind (``needs_general``).
 
 A task's shots go through the phases of a shot in lanes, LANES shots at a time, each phase
 written once: they fly (RK4 steps, ``physics.flight``) and land (the root inside the last step,
