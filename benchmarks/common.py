@@ -156,6 +156,15 @@ def status_counts(out):
 # --- the report --------------------------------------------------------------------------------
 
 
+def publish(path, lines):
+    """Print a script's report (its Markdown ``lines``) and write it to ``path``, making its
+    folder where needed."""
+    text = "\n".join(lines)
+    print(text)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+
+
 def target(name, measured, met, shown):
     """One row of the report's targets table: what the issue asks, the number measured, whether
     it is met, and the number as the table shows it."""

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from benchmarks.common import publish
 from mcrun.play import load_player, play_hole
 from mcrun.run import scenario as sc
 from mcrun.strokes import tour_baseline
@@ -109,10 +110,7 @@ def main(argv=None):
         lines += ["", f"Best from the tee: {result.tee_rows()[0][1]}. {saved}.",
                   f"{len(result.scores):,} plays: {shares}; mean {result.scores.mean():.3f}.",
                   "", *extra]  # fmt: skip
-    text = "\n".join(lines)
-    print(text)
-    RESULTS.parent.mkdir(parents=True, exist_ok=True)
-    RESULTS.write_text(text)
+    publish(RESULTS, lines)
 
 
 if __name__ == "__main__":

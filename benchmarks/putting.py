@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from benchmarks.common import publish
 from mcrun.physics.turf import rho_g_from_stimp
 from mcrun.putting.green import Green
 from mcrun.putting.green_map import expected_putts_map
@@ -77,10 +78,7 @@ def main(argv=None):
         f"3 m below the pin: {below:.3f} putts; 3 m above it: {above:.3f}.",
         "",
     ]
-    text = "\n".join(lines)
-    print(text)
-    RESULTS.parent.mkdir(parents=True, exist_ok=True)
-    RESULTS.write_text(text)
+    publish(RESULTS, lines)
 
 
 if __name__ == "__main__":
