@@ -260,6 +260,42 @@ def test_sigterm_stops_a_run_as_ctrl_c_does(tmp_path):
     assert listing(tmp_path) == ["scenario.toml"]
 
 
+# SIGTERM arrives while the main thread waits in ``Thread.start`` for a kernel thread of the
+# pool: the thread is made to start late (0.5 s), and the signal comes 0.2 s in.
+STARTING_THREAD_SIGTERM = """\
+import os, subprocess, threading, time
+from mcrun import exits
+from mcrun.engine import batch
+
+bootstrap = threading.Thread._bootstrap_inner
+def late_bootstrap(self):
+    time.sleep(0.5)
+    bootstrap(self)
+threading.Thread._bootstrap_inner = late_bootstrap
+subprocess.Popen(["sh", "-c", f"sleep 0.2; kill -TERM {os.getpid()}"])
+try:
+    with exits.sigterm_interrupts():
+        batch.on_threads(lambda k: time.sleep(0.01), 4, threads=2)
+except exits.Terminated:
+    print("terminated", flush=True)
+time.sleep(1)  # every thread has started by now: the interpreter would wait for one left out
+"""
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="SIGTERM from a shell")
+def test_sigterm_while_a_kernel_thread_starts_leaves_no_thread_behind():
+    """A signal that lands while the kernels' pool starts a thread: the command stops, and the
+    process exits (a thread left out of the pool's list would make the interpreter wait for it
+    forever at exit)."""
+    process = subprocess.run(
+        [sys.executable, "-c", STARTING_THREAD_SIGTERM],
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
+    assert (process.returncode, process.stdout) == (0, "terminated\n"), process.stderr
+
+
 def test_sigterm_stops_a_dask_run_and_its_cluster(tmp_path):
     """The same on a local Dask cluster (SIGTERM to the whole process group, as Slurm sends
     it): exit 143, one line, no folder, no warning of leaked resources."""

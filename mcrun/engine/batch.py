@@ -31,7 +31,7 @@ import numba
 import numpy as np
 from numba import njit
 
-from mcrun import ground
+from mcrun import exits, ground
 from mcrun.engine.bounce_lanes import bounce_all
 from mcrun.engine.flight_lanes import GENERAL, QUADRATIC, flight_kind, fly_general, fly_quadratic
 from mcrun.engine.schema import N_INPUT, N_OUTCOME
@@ -209,8 +209,13 @@ def on_threads(work, tasks, threads=None):
             work(k)
 
     pool = _threads()
-    running = [pool.submit(take) for _ in range(threads)]
+    running = []
     try:
+        # The pool starts its threads as work is submitted. Ctrl-C or SIGTERM while a thread
+        # starts would leave that thread out of the pool's list, and the interpreter would wait
+        # for it forever at exit: they wait until the threads have started.
+        with exits.interrupts_deferred():
+            running.extend(pool.submit(take) for _ in range(threads))
         for each in running:
             each.result()
     finally:  # (Ctrl-C: the threads finish the task they hold, and take no other)
