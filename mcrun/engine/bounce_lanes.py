@@ -335,8 +335,12 @@ def _load_bounce_lane(inputs, landings, start, pending, next_j, b, shot, k, terr
 @njit(cache=True, error_model="numpy")
 def _roll_lanes(r, terrain):
     """``roll.roll_out_short`` of every lane of the roll table ``r`` (the vectorised loop), on
-    a Plane; on a terrain every ball rolls out on its own (``rolling.roll_out``)."""
-    plane = not ground.varies(terrain)
+    a Plane; on a terrain every ball rolls out on its own (``rolling.roll_out``), and nothing
+    is asked here."""
+    if ground.varies(terrain):
+        for k in range(LANES):
+            r[BOUNCE.SHORT * LANES + k] = 0.0
+        return
     for k in range(LANES):
         under = _lane_ground(r, k)
         x = r[BOUNCE.X * LANES + k]
@@ -363,7 +367,7 @@ def _roll_lanes(r, terrain):
         r[BOUNCE.REST_X * LANES + k] = x
         r[BOUNCE.REST_Y * LANES + k] = y
         r[BOUNCE.REST_T * LANES + k] = t
-        r[BOUNCE.SHORT * LANES + k] = 1.0 if short & plane else 0.0
+        r[BOUNCE.SHORT * LANES + k] = 1.0 if short else 0.0
 
 
 @njit(cache=True, error_model="numpy")
