@@ -157,7 +157,7 @@ def _grid_contact(terrain, x, y):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _grid_calm_reach(terrain, x, y):
-    ix, iy, _, _, _ = _locate(terrain, x, y)
+    ix, iy, _, _, _, _, _, _, _ = _cell_at(terrain, x, y)
     return float(terrain.calm[iy, ix]) * terrain.cell_m
 
 

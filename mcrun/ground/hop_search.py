@@ -5,7 +5,7 @@ import math
 
 from numba import njit
 
-from mcrun.ground.grid import _grid_height, _locate
+from mcrun.ground.grid import _cell_at, _grid_height, _locate
 from mcrun.physics.bounce import hop
 from mcrun.physics.constants import G_MPS2
 
@@ -25,7 +25,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     between the parabola and the bilinear surface is a quadratic in time, and the hop ends at
     its first root (``_marched_hop`` where that finds none: a track that leaves the grid)."""
     vh = math.sqrt(vx * vx + vy * vy)
-    ix, iy, _, _, _ = _locate(terrain, x, y)
+    ix, iy, _, _, _, _, _, _, _ = _cell_at(terrain, x, y)
     reach_m = float(terrain.calm[iy, ix]) * terrain.cell_m
     if (hop_time > 0.0) & (vh * hop_time <= reach_m):
         x1, y1, z1, vz1 = hop(x, y, z, vx, vy, vz, hop_time)
