@@ -261,18 +261,21 @@ def test_sigterm_stops_a_run_as_ctrl_c_does(tmp_path):
 
 
 # SIGTERM arrives while the main thread waits in ``Thread.start`` for a kernel thread of the
-# pool: the thread is made to start late (0.5 s), and the signal comes 0.2 s in.
+# pool: the new thread sends it before it starts, and starts 0.5 s later.
 STARTING_THREAD_SIGTERM = """\
-import os, subprocess, threading, time
+import os, signal, threading, time
 from mcrun import exits
 from mcrun.engine import batch
 
 bootstrap = threading.Thread._bootstrap_inner
+sent = []
 def late_bootstrap(self):
-    time.sleep(0.5)
+    if not sent:
+        sent.append(True)
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(0.5)
     bootstrap(self)
 threading.Thread._bootstrap_inner = late_bootstrap
-subprocess.Popen(["sh", "-c", f"sleep 0.2; kill -TERM {os.getpid()}"])
 try:
     with exits.sigterm_interrupts():
         batch.on_threads(lambda k: time.sleep(0.01), 4, threads=2)
@@ -282,7 +285,7 @@ time.sleep(1)  # every thread has started by now: the interpreter would wait for
 """
 
 
-@pytest.mark.skipif(sys.platform == "win32", reason="SIGTERM from a shell")
+@pytest.mark.skipif(sys.platform == "win32", reason="no SIGTERM handler on Windows")
 def test_sigterm_while_a_kernel_thread_starts_leaves_no_thread_behind():
     """A signal that lands while the kernels' pool starts a thread: the command stops, and the
     process exits (a thread left out of the pool's list would make the interpreter wait for it
