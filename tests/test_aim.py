@@ -322,7 +322,9 @@ def test_ctrl_c_while_drawing_leaves_no_picture_and_no_table(tmp_path, capsys, m
     assert picture.stat().st_size > 0
 
 
-def test_ctrl_c_while_the_outputs_are_put_in_place_waits_for_both(tmp_path, capsys, monkeypatch):
+def test_ctrl_c_while_the_outputs_are_put_in_place_waits_for_both(
+    tmp_path, capsys, monkeypatch, ctrl_c_raises
+):
     """Ctrl-C while the table is written waits until the picture is in place too, then stops
     the command, saying that everything was written."""
     pytest.importorskip("matplotlib")

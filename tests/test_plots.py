@@ -443,7 +443,7 @@ def test_ctrl_c_during_plot_leaves_no_picture(runs, tmp_path, capsys, monkeypatc
     assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
 
 
-def test_pictures_are_renamed_with_interrupts_deferred(tmp_path, monkeypatch):
+def test_pictures_are_renamed_with_interrupts_deferred(tmp_path, monkeypatch, ctrl_c_raises):
     """Ctrl-C (here SIGINT raised by the second rename) waits until every picture is in place:
     the set is whole, and the interrupt follows."""
     import signal
