@@ -28,14 +28,23 @@ def _cell_index(f, last):
     return lambda f, last: min(max(int(math.floor(f)), 0), last)
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _in_cells(terrain, d):
+    """A length d (m) in cells of the grid: d times 1 / cell_m, which the compiler computes
+    once, out of the loops (a division at every look-up was the longest wait in it); exactly
+    d / cell_m where the cell is a power of two of a metre (0.25, 0.5, 1, 2 m: every library
+    hole), and within a rounding of it otherwise."""
+    return d * (1.0 / terrain.cell_m)
+
+
 @njit(cache=True, error_model="numpy")
 def _locate(terrain, x, y):
     """The cell of the grid under core-frame (x, y) (y to the LEFT, the grid's y to the right):
     its lower node (ix, iy), the fractions (tx, ty) across it, and whether (x, y) is on the
     grid at all (off it, the edge cells are extended)."""
     ny, nx = terrain.height_m.shape
-    fx = (x - terrain.x0_m) / terrain.cell_m
-    fy = (-y - terrain.y0_m) / terrain.cell_m
+    fx = _in_cells(terrain, x - terrain.x0_m)
+    fy = _in_cells(terrain, -y - terrain.y0_m)
     inside = (fx >= 0.0) & (fx <= nx - 1.0) & (fy >= 0.0) & (fy <= ny - 1.0)
     ix = cell_index(fx, nx - 2)
     iy = cell_index(fy, ny - 2)
@@ -48,8 +57,8 @@ def _cell_at(terrain, x, y):
     in and out), with the heights of the cell's four nodes: (ix, iy, tx, ty, inside, h00,
     h10, h01, h11)."""
     ny_, nx_ = terrain.height_m.shape
-    fx = (x - terrain.x0_m) / terrain.cell_m
-    fy = (-y - terrain.y0_m) / terrain.cell_m
+    fx = _in_cells(terrain, x - terrain.x0_m)
+    fy = _in_cells(terrain, -y - terrain.y0_m)
     inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
     ix = cell_index(fx, nx_ - 2)
     iy = cell_index(fy, ny_ - 2)
@@ -63,8 +72,8 @@ def _cell_at(terrain, x, y):
 def _cell_slope(terrain, tx, ty, h00, h10, h01, h11):
     """(dh/dx, dh/dy) at fractions (tx, ty) of a cell of these node heights, y to the LEFT
     (``_grid_gradient``'s numbers)."""
-    hx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) / terrain.cell_m
-    hy = -((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) / terrain.cell_m
+    hx = _in_cells(terrain, (h10 - h00) * (1.0 - ty) + (h11 - h01) * ty)
+    hy = -_in_cells(terrain, (h01 - h00) * (1.0 - tx) + (h11 - h10) * tx)
     return hx, hy
 
 
@@ -85,7 +94,7 @@ def _grid_gradient(terrain, x, y):
     h = terrain.height_m
     dx = (h[iy, ix + 1] - h[iy, ix]) * (1.0 - ty) + (h[iy + 1, ix + 1] - h[iy + 1, ix]) * ty
     dy = (h[iy + 1, ix] - h[iy, ix]) * (1.0 - tx) + (h[iy + 1, ix + 1] - h[iy, ix + 1]) * tx
-    return dx / terrain.cell_m, -dy / terrain.cell_m
+    return _in_cells(terrain, dx), -_in_cells(terrain, dy)
 
 
 @njit(cache=True, error_model="numpy")

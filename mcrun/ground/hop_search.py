@@ -5,7 +5,7 @@ import math
 
 from numba import njit
 
-from mcrun.ground.grid import _cell_at, _grid_height, _locate
+from mcrun.ground.grid import _cell_at, _grid_height, _in_cells, _locate
 from mcrun.physics.bounce import hop
 from mcrun.physics.constants import G_MPS2
 
@@ -40,12 +40,11 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     ):
         return x, y, z, vz, 0.0
     ny, nx = terrain.height_m.shape
-    c = terrain.cell_m
     h = terrain.height_m
-    fx0 = (x - terrain.x0_m) / c
-    fy0 = (-y - terrain.y0_m) / c
-    dfx = vx / c
-    dfy = -vy / c
+    fx0 = _in_cells(terrain, x - terrain.x0_m)
+    fy0 = _in_cells(terrain, -y - terrain.y0_m)
+    dfx = _in_cells(terrain, vx)
+    dfy = -_in_cells(terrain, vy)
     sx = 1 if dfx > 0.0 else -1
     sy = 1 if dfy > 0.0 else -1
     t_in = 0.0
