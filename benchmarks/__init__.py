@@ -21,6 +21,8 @@ results.
 - ``suite.py``: the driver: runs the figures, writes the JSON and the Markdown.
 - ``holes.py``: the kernel on each library hole, an aim search and a course's grid
   (``python -m benchmarks.holes``, ``results/holes.md``).
+- ``profile.py``: where the kernel's time goes, function by function, sampled by Linux
+  ``perf`` (``python -m benchmarks.profile [SCENARIO]``; needs ``perf``).
 - ``monitors.py``: reading and replaying a 100,000-row launch-monitor export
   (``python -m benchmarks.monitors``, ``results/monitors.md``). Measured once: 0.61 s to read,
   0.90 s to read, replay and summarise per club, of which 0.08 s in the kernel, so 0.82 s

@@ -126,3 +126,55 @@ def test_step_study_error_grows_with_the_step(results):
             assert row["carry_error_cm"][label] < 1.0
             assert row["total_error_cm"][label] < 1.0
         assert coarse["carry_error_cm"][label] > 10.0 * fine["carry_error_cm"][label]
+
+
+def test_profile_names_numba_functions_and_maps_their_code(tmp_path):
+    """``benchmarks.profile``: a Numba symbol read as its Python name, perf's map of a compiled
+    function covering the address it starts at, and the kernel's shares renormalised over its
+    own functions (the rest of a perf report left out)."""
+    from numba import njit
+
+    from benchmarks import profile
+
+    assert (
+        profile.readable("_ZN5mcrun6engine7rolling4rollB4v442B54c8tJTIeFIjxE")
+        == "mcrun.engine.rolling.roll"
+    )
+    assert profile.readable("_ZN5mcrun2fl12_make_flight12_3clocals_3e3flyB2v1E") == (
+        "mcrun.fl._make_flight.<locals>.fly"
+    )
+    assert profile.readable("NRT_incref") == "NRT_incref"
+
+    @njit
+    def twice(x):
+        return 2.0 * x
+
+    twice(1.0)
+    library = twice.overloads[twice.signatures[0]].library
+    path = tmp_path / "perf.map"
+    assert profile.write_perf_map([library], path) >= 1
+    rows = [line.split(" ", 2) for line in path.read_text().splitlines()]
+    name = "test_benchmarks.test_profile_names_numba_functions_and_maps_their_code.<locals>.twice"
+    named = [r for r in rows if r[2] == name]  # (and its Python wrapper: cpython.test_...)
+    assert len(named) == 1
+    start = int(named[0][0], 16)
+    entry = next(
+        f.name for f in library._final_module.functions if profile.readable(f.name) == name
+    )
+    assert start == library.get_pointer_to_function(entry)
+    assert int(named[0][1], 16) > 0
+
+    report = (
+        "    40.00%  [.] _PyEval_EvalFrameDefault\n"
+        "    30.00%  [.] mcrun.engine.rolling.roll\n"
+        "    20.00%  [.] NRT_decref\n"
+        "    10.00%  [.] mcrun.ground.questions.surface\n"
+    )
+    shares = profile.shares(report, {"mcrun.engine.rolling.roll", "mcrun.ground.questions.surface"})
+    assert list(shares) == [
+        "mcrun.engine.rolling.roll",
+        "NRT_decref",
+        "mcrun.ground.questions.surface",
+    ]
+    assert shares["mcrun.engine.rolling.roll"] == pytest.approx(0.5, abs=1e-12)
+    assert sum(shares.values()) == pytest.approx(1.0, abs=1e-12)
