@@ -41,14 +41,9 @@ def _in_cells(terrain, d):
 def _locate(terrain, x, y):
     """The cell of the grid under core-frame (x, y) (y to the LEFT, the grid's y to the right):
     its lower node (ix, iy), the fractions (tx, ty) across it, and whether (x, y) is on the
-    grid at all (off it, the edge cells are extended)."""
-    ny, nx = terrain.height_m.shape
-    fx = _in_cells(terrain, x - terrain.x0_m)
-    fy = _in_cells(terrain, -y - terrain.y0_m)
-    inside = (fx >= 0.0) & (fx <= nx - 1.0) & (fy >= 0.0) & (fy <= ny - 1.0)
-    ix = cell_index(fx, nx - 2)
-    iy = cell_index(fy, ny - 2)
-    return ix, iy, min(max(fx - ix, 0.0), 1.0), min(max(fy - iy, 0.0), 1.0), inside
+    grid at all (off it, the edge cells are extended): ``_cell_at`` without the heights."""
+    ix, iy, tx, ty, inside, _, _, _, _ = _cell_at(terrain, x, y)
+    return ix, iy, tx, ty, inside
 
 
 @njit(cache=True, error_model="numpy", inline="always")
