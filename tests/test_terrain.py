@@ -520,6 +520,38 @@ def test_threads_and_row_order_change_nothing_on_a_terrain():
         assert np.array_equal(out, outs[0], equal_nan=True)
 
 
+@numba.njit
+def _through_borrowed(terrain, xs, ys):
+    """Every array of ``ground.borrowed(terrain)`` as the kernel reads it, and the ground's
+    height at (xs, ys) through it and through ``terrain`` itself."""
+    view = ground.borrowed(terrain)
+    heights = np.empty((2, xs.size))
+    for k in range(xs.size):
+        heights[0, k] = ground.height_at(view, xs[k], ys[k])
+        heights[1, k] = ground.height_at(terrain, xs[k], ys[k])
+    return (
+        view.height_m.copy(), view.zone.copy(), view.turf.copy(), view.penalty.copy(),
+        view.calm.copy(), heights, ground.borrowed(None) is None,
+    )  # fmt: skip
+
+
+def test_a_tasks_borrowed_terrain_reads_its_arrays():
+    """``ground.borrowed``, the view of a Terrain a batch's task reads without counting
+    references to it: each array element for element (shape, strides and data taken over), and
+    the same heights, bit for bit, as the Terrain's own; None stays None."""
+    terrain = grid(0.0, 40.0, -20.0, 20.0, 0.5, shape("bowl", **BOWL),
+                   zone=lambda X, Y: X >= 30.0, turfs=("green", "fairway"),
+                   penalty=(ground.IN_PLAY, ground.PENALTY_AREA))  # fmt: skip
+    rng = np.random.default_rng(3)
+    xs = rng.uniform(-1.0, 41.0, 200)
+    ys = rng.uniform(-21.0, 21.0, 200)
+    *arrays, heights, none = _through_borrowed(terrain, xs, ys)
+    for name, got in zip(("height_m", "zone", "turf", "penalty", "calm"), arrays, strict=True):
+        assert np.array_equal(got, getattr(terrain, name)), name
+    assert np.array_equal(heights[0], heights[1])
+    assert none
+
+
 # -- 8. the end of a hop on the grid ------------------------------------------------------------
 
 

@@ -133,7 +133,8 @@ def _batch_task(inputs, task, table, out, terrain):
     as it compiles, and it carries none of their code (``simulate_traced`` has its own)."""
     n = inputs.shape[0]
     start = task * TASK_SHOTS
-    _lockstep(inputs, start, min(n, start + TASK_SHOTS), table, out, None, None, terrain)
+    stop = min(n, start + TASK_SHOTS)
+    _lockstep(inputs, start, stop, table, out, None, None, ground.borrowed(terrain))
 
 
 @njit(cache=True, error_model="numpy", nogil=True)
@@ -141,7 +142,8 @@ def _batch_task_general(inputs, task, table, out, terrain):
     """``_batch_task`` for shots of both flight kinds."""
     n = inputs.shape[0]
     start = task * TASK_SHOTS
-    _lockstep_general(inputs, start, min(n, start + TASK_SHOTS), table, out, None, None, terrain)
+    stop = min(n, start + TASK_SHOTS)
+    _lockstep_general(inputs, start, stop, table, out, None, None, ground.borrowed(terrain))
 
 
 def _as_kernel_layout(inputs):

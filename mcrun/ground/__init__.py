@@ -24,9 +24,9 @@ the loop is compiled once for each kind, and the Plane's loop is the same code, 
 numbers, as before there were terrains.
 
 Where things are: ``questions`` (the questions, each answered on both kinds), ``plane`` (a
-shot's own Plane), ``terrain`` (a hole's Terrain and its build), ``grid`` (the look-ups of its
-grid), ``hop_search`` (where a hop comes down on it). The types the roll reads, ``Surface``
-and its ``Patch``, are the physics' (``physics.roll``).
+shot's own Plane), ``terrain`` (a hole's Terrain, its build, and the view of it a kernel's task
+borrows), ``grid`` (the look-ups of its grid), ``hop_search`` (where a hop comes down on it).
+The types the roll reads, ``Surface`` and its ``Patch``, are the physics' (``physics.roll``).
 """
 
 from mcrun.ground.plane import Plane, plane
@@ -55,6 +55,7 @@ from mcrun.ground.terrain import (
     OUT_OF_BOUNDS,
     PENALTY_AREA,
     Terrain,
+    borrowed,
     calm_cells,
     make_terrain,
     read_turf,
@@ -72,6 +73,7 @@ __all__ = [
     "Plane",
     "Surface",
     "Terrain",
+    "borrowed",
     "by_ground",
     "calm_cells",
     "calm_reach",
