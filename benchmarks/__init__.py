@@ -23,6 +23,8 @@ results.
   (``python -m benchmarks.holes``, ``results/holes.md``).
 - ``profile.py``: where the kernel's time goes, function by function, sampled by Linux
   ``perf`` (``python -m benchmarks.profile [SCENARIO]``; needs ``perf``).
+- ``ground_parts.py``: what each part of a shot on curved ground costs alone, for one ball and
+  over lanes of balls (``python -m benchmarks.ground_parts``, ``results/ground-parts.md``).
 - ``monitors.py``: reading and replaying a 100,000-row launch-monitor export
   (``python -m benchmarks.monitors``, ``results/monitors.md``). Measured once: 0.61 s to read,
   0.90 s to read, replay and summarise per club, of which 0.08 s in the kernel, so 0.82 s

@@ -178,3 +178,28 @@ def test_profile_names_numba_functions_and_maps_their_code(tmp_path):
     ]
     assert shares["mcrun.engine.rolling.roll"] == pytest.approx(0.5, abs=1e-12)
     assert sum(shares.values()) == pytest.approx(1.0, abs=1e-12)
+
+
+def test_ground_parts_times_each_part_where_drives_roll_out():
+    """``benchmarks.ground_parts`` (a few hundred calls a part): a row for every part and way of
+    running it, each a time; its roll steps all on the grid, in play (balls that left it would
+    time the edge's cells); the hops' tracks longer with their speed, and their line the least
+    squares through their rows."""
+    from benchmarks import ground_parts
+
+    rows, fixed, per_cell, in_play = ground_parts.measure(calls=512)
+    runs = 1 + len(ground_parts.LANE_COUNTS)
+    assert [part for part, *_ in rows] == (
+        ["roll step on a curved cell"] * runs
+        + ["its Runge-Kutta step"] * runs
+        + ["the roll's look-up (ground.surface)"] * 2
+        + ["a hop's search"] * len(ground_parts.HOP_TRACK_SCALES)
+    )
+    assert all(np.isfinite(ns) and ns > 0.0 for *_, ns in rows)
+    assert in_play == 1.0
+    hops = rows[-len(ground_parts.HOP_TRACK_SCALES) :]
+    cells = [float(how.split()[2]) for _, how, _ in hops]
+    assert cells == sorted(cells) and cells[0] < 0.1 < 1.0 < cells[-1]
+    want = np.polyfit(cells, [ns for *_, ns in hops], 1)
+    assert per_cell == pytest.approx(want[0], rel=1e-2, abs=0.05)
+    assert fixed == pytest.approx(want[1], rel=1e-2, abs=0.05)
