@@ -75,15 +75,11 @@ def _cell_slope(terrain, tx, ty, h00, h10, h01, h11):
 @njit(cache=True, error_model="numpy")
 def _grid_height(terrain, x, y):
     """Bilinear height (m) of the grid at core-frame (x, y)."""
-    return _bilinear_height(terrain, x, y)
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _bilinear_height(terrain, x, y):
-    """``_grid_height`` inlined where a hop starts and ends (``hop_search``: a call there was a
-    tenth of a short hop's search)."""
-    _, _, tx, ty, _, h00, h10, h01, h11 = _cell_at(terrain, x, y)
-    return (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
+    ix, iy, tx, ty, _ = _locate(terrain, x, y)
+    h = terrain.height_m
+    return (h[iy, ix] * (1.0 - tx) + h[iy, ix + 1] * tx) * (1.0 - ty) + (
+        h[iy + 1, ix] * (1.0 - tx) + h[iy + 1, ix + 1] * tx
+    ) * ty
 
 
 @njit(cache=True, error_model="numpy")

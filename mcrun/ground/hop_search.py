@@ -5,7 +5,7 @@ import math
 
 from numba import njit
 
-from mcrun.ground.grid import _bilinear_height, _cell_at, _grid_height, _in_cells, _locate
+from mcrun.ground.grid import _cell_at, _grid_height, _in_cells, _locate
 from mcrun.physics.bounce import hop
 from mcrun.physics.constants import G_MPS2
 
@@ -35,7 +35,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
         z
         + vz * t_min
         - 0.5 * G_MPS2 * t_min * t_min
-        - _bilinear_height(terrain, x + vx * t_min, y + vy * t_min)
+        - _grid_height(terrain, x + vx * t_min, y + vy * t_min)
         <= 0.0
     ):
         return x, y, z, vz, 0.0
@@ -83,7 +83,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
             t = t_in + s
             x1 = x + vx * t
             y1 = y + vy * t
-            return x1, y1, _bilinear_height(terrain, x1, y1), vz - G_MPS2 * t, t
+            return x1, y1, _grid_height(terrain, x1, y1), vz - G_MPS2 * t, t
         if t_out == math.inf:
             break
         t_in = t_out
