@@ -39,7 +39,8 @@ ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "results" / "ground-parts.md"
 SCENARIO = "drive-real-ground"
 LANE_COUNTS = (2, 4, 16)
-# Where the drives of the scenario roll out: x (m) from the tee, y (m) to the left.
+# Where the drives of the scenario roll out, in the core's frame: x (m) from the tee, y (m) to
+# the left.
 X_RANGE_M = (230.0, 280.0)
 Y_RANGE_M = (-8.0, 8.0)
 # The longest roll step the loops take (s): short, so that a ball stays on the fairway.
@@ -66,6 +67,7 @@ def _roll_step(terrain, plane, px, py, vx, vy):
         exit_time(px - patch.xc, vx, ax, patch.u_lo, patch.u_hi),
         exit_time(patch.yc - py, -vy, -ay, patch.w_lo, patch.w_hi),
     )
+    # (0 g_t: gravity is computed, as the roll needs it, and not dropped by the compiler.)
     h = min(STEP_S, PATCH_DT_MAX_S, h_edge + 1e-3 + 0.0 * g_t)
     x1, y1, vx1, vy1 = patch_step(px, py, vx, vy, ax, ay, h, patch, RHO_G)
     if (x1 > X_RANGE_M[1]) | (vx1 < 0.5):
