@@ -45,7 +45,7 @@ def readable(symbol):
 def write_perf_map(libraries, path):
     """Write perf's map of the functions compiled into ``libraries`` (Numba code libraries, as
     compiled, not loaded from its cache) to ``path``: each function from its address to the next
-    one's. Returns the number of functions."""
+    one's. Returns the functions' names, in the map's order."""
     starts = {}
     for library in libraries:
         for function in library._final_module.functions:
@@ -59,7 +59,7 @@ def write_perf_map(libraries, path):
         for k, address in enumerate(ordered):
             size = ordered[k + 1] - address if k + 1 < len(ordered) else 1 << 16
             out.write(f"{address:x} {min(size, 1 << 20):x} {starts[address]}\n")
-    return len(ordered)
+    return [starts[address] for address in ordered]
 
 
 def shares(report, names):
@@ -94,16 +94,16 @@ def _child(scenario, shots, seconds, names):
         if ("Terrain" in str(sig)) == (terrain is not None)
     ]
     path = f"/tmp/perf-{os.getpid()}.map"
-    n = write_perf_map(libraries, path)
+    mapped = write_perf_map(libraries, path)
     with open(names, "w") as out:
-        out.write(path + "\n")
-        out.writelines(line.split(" ", 2)[2] for line in open(path))
+        out.write("\n".join([path, *mapped]) + "\n")
     started = time.perf_counter()
     rounds = 0
     while time.perf_counter() - started < seconds:
         simulate_batch(inputs, terrain=terrain)
         rounds += 1
     rate = rounds * shots / (time.perf_counter() - started)
+    n = len(mapped)
     print(f"{n} functions mapped; {rounds * shots:,} shots at {rate:,.0f} shots/s", flush=True)
 
 

@@ -152,8 +152,10 @@ def test_profile_names_numba_functions_and_maps_their_code(tmp_path):
     twice(1.0)
     library = twice.overloads[twice.signatures[0]].library
     path = tmp_path / "perf.map"
-    assert profile.write_perf_map([library], path) >= 1
+    mapped = profile.write_perf_map([library], path)
+    assert len(mapped) >= 1
     rows = [line.split(" ", 2) for line in path.read_text().splitlines()]
+    assert [r[2] for r in rows] == mapped
     name = "test_benchmarks.test_profile_names_numba_functions_and_maps_their_code.<locals>.twice"
     named = [r for r in rows if r[2] == name]  # (and its Python wrapper: cpython.test_...)
     assert len(named) == 1
