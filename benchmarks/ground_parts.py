@@ -134,6 +134,7 @@ def _rk4_lanes(patch, calls, lanes):
 def _look_ups(terrain, plane, calls, inlined):
     """The roll's look-up of the ground (``ground.surface``, a call; or inlined), each at a
     point that waits on the last one's answer, as a roll's steps do."""
+    terrain = ground.borrowed(terrain)
     total = 0.0
     x = X_RANGE_M[0]
     y = 0.0
@@ -168,6 +169,7 @@ def _hops(terrain, x, y, z, vx, vy, vz, calls):
 
 @njit(cache=True, error_model="numpy")
 def _heights(terrain, x, y):
+    terrain = ground.borrowed(terrain)
     out = np.empty(x.size)
     for i in range(x.size):
         out[i] = ground.height_at(terrain, x[i], y[i])
@@ -221,7 +223,8 @@ def measure(calls, seed=1):
             )
         )
     # A patch of the grid's own kind (bilinear, twisted), as ``ground.surface`` builds it.
-    patch = _grid_surface(terrain, 250.0, 0.3).patch._replace(u_hi=np.inf, w_hi=np.inf)
+    here = _grid_surface(ground.borrowed(terrain), 250.0, 0.3)
+    patch = here.patch._replace(u_hi=np.inf, w_hi=np.inf)
     rk4 = "its Runge-Kutta step"
     row(rk4, "one ball", lambda c: _rk4_chain(patch, c))
     for k in LANE_COUNTS:

@@ -80,14 +80,15 @@ def rolling(terrain, x, y, vx, vy, dt_record=0.0, rows=0):
     slipping at horizontal velocity (vx, vy), along the ground. Returns (x, y, z, t, status)
     of its end in the hole frame, and its path (rows t, x, y, z, phase) every ``dt_record``."""
     xc, yc, vxc, vyc = x, -y, vx, -vy  # the core frame: y to the LEFT
-    hx, hy = ground.grid._grid_gradient(terrain, xc, yc)
+    view = ground.borrowed(terrain)  # (what compiled code asks of the ground)
+    hx, hy = ground.grid._grid_gradient(view, xc, yc)
     n = np.array([-hx, -hy, 1.0]) / math.sqrt(1.0 + hx * hx + hy * hy)
     v = np.array([vxc, vyc, hx * vxc + hy * vyc])
     w = np.cross(n, v) / BALL_RADIUS_M  # no slip: v + w x (-r n) = 0
     traj = np.empty((rows, 5))
     any_plane = ground.Plane(0.0, 0.0, 1.0, PRESETS["green"])
     x1, y1, z1, t1, status, m, _, _ = roll_out(
-        xc, yc, ground.grid._grid_height(terrain, xc, yc), *v, *w, terrain,
+        xc, yc, ground.grid._grid_height(view, xc, yc), *v, *w, view,
         any_plane, 0.0, traj, 0, dt_record, dt_record,
     )  # fmt: skip
     assert m <= rows or rows == 0
@@ -97,7 +98,7 @@ def rolling(terrain, x, y, vx, vy, dt_record=0.0, rows=0):
 def landed(terrain, x, y, vx, vy, vz, turf="green"):
     """``simulate_landed`` of one ball touching the terrain at (x, y) (hole frame) at velocity
     (vx, vy, vz), without spin: its outcomes."""
-    hx, hy = ground.grid._grid_gradient(terrain, x, -y)
+    hx, hy = ground.grid._grid_gradient(ground.borrowed(terrain), x, -y)
     n = np.array([-hx, -hy, 1.0]) / math.sqrt(1.0 + hx * hx + hy * hy)
     landing = np.array([[x, -y, vx, -vy, vz, 0.0, 0.0, 0.0, 0.0, *n]])
     assert landing.shape[1] == N_LANDING
@@ -340,7 +341,8 @@ def test_energy_is_never_created(kind, params, ball):
     assert status == OK and len(path) > 10_000
     p = path[path[:, 4] == ROLL][:-1]  # the last is the rest, off the grid of times
     t, x, y = p[:, 0], p[:, 1], p[:, 2]
-    z = np.array([ground.grid._grid_height(terrain, a, -b) for a, b in zip(x, y, strict=True)])
+    view = ground.borrowed(terrain)
+    z = np.array([ground.grid._grid_height(view, a, -b) for a, b in zip(x, y, strict=True)])
     xyz = np.column_stack([x, y, z])
     v = (xyz[2:] - xyz[:-2]) / (t[2:] - t[:-2])[:, None]
     speed = np.linalg.norm(v, axis=1)
@@ -522,34 +524,59 @@ def test_threads_and_row_order_change_nothing_on_a_terrain():
 
 @numba.njit
 def _through_borrowed(terrain, xs, ys):
-    """Every array of ``ground.borrowed(terrain)`` as the kernel reads it, and the ground's
-    height at (xs, ys) through it and through ``terrain`` itself."""
+    """Every number of ``ground.borrowed(terrain)`` as a kernel reads it (its arrays element by
+    element, through their flat index), and the ground's height at (xs, ys) asked of it."""
     view = ground.borrowed(terrain)
-    heights = np.empty((2, xs.size))
+    nodes = view.nx * view.ny
+    height = np.empty(nodes)
+    zone = np.empty(nodes, np.int8)
+    for i in range(nodes):
+        height[i] = view.height_m[i]
+        zone[i] = view.zone[i]
+    turf = np.empty(terrain.turf.size)
+    for i in range(turf.size):
+        turf[i] = view.turf[i]
+    penalty = np.empty(terrain.penalty.size, np.int8)
+    for i in range(penalty.size):
+        penalty[i] = view.penalty[i]
+    calm = np.empty((view.nx - 1) * (view.ny - 1), np.uint8)
+    for i in range(calm.size):
+        calm[i] = view.calm[i]
+    heights = np.empty(xs.size)
     for k in range(xs.size):
-        heights[0, k] = ground.height_at(view, xs[k], ys[k])
-        heights[1, k] = ground.height_at(terrain, xs[k], ys[k])
-    return (
-        view.height_m.copy(), view.zone.copy(), view.turf.copy(), view.penalty.copy(),
-        view.calm.copy(), heights, ground.borrowed(None) is None,
-    )  # fmt: skip
+        heights[k] = ground.height_at(view, xs[k], ys[k])
+    numbers = (view.x0_m, view.y0_m, view.cell_m, view.nx, view.ny)
+    return numbers, height, zone, turf, penalty, calm, heights, ground.borrowed(None) is None
 
 
-def test_a_tasks_borrowed_terrain_reads_its_arrays():
-    """``ground.borrowed``, the view of a Terrain a batch's task reads without counting
-    references to it: each array element for element (shape, strides and data taken over), and
-    the same heights, bit for bit, as the Terrain's own; None stays None."""
+@numba.njit
+def _asked_of_the_terrain(terrain):
+    return ground.height_at(terrain, 1.0, 2.0)
+
+
+def test_a_kernel_reads_a_terrain_through_its_borrowed_view():
+    """``ground.borrowed``, the view of a Terrain a kernel reads (pointers, its arrays flat, row
+    by row): each number element for element, and the same heights, bit for bit, as a question
+    asked of the Terrain from Python; None stays None, a view stays itself. Compiled code that
+    asks a question of a Terrain itself is told to borrow it."""
     terrain = grid(0.0, 40.0, -20.0, 20.0, 0.5, shape("bowl", **BOWL),
                    zone=lambda X, Y: X >= 30.0, turfs=("green", "fairway"),
                    penalty=(ground.IN_PLAY, ground.PENALTY_AREA))  # fmt: skip
     rng = np.random.default_rng(3)
     xs = rng.uniform(-1.0, 41.0, 200)
     ys = rng.uniform(-21.0, 21.0, 200)
-    *arrays, heights, none = _through_borrowed(terrain, xs, ys)
+    numbers, *arrays, heights, none = _through_borrowed(terrain, xs, ys)
+    ny, nx = terrain.height_m.shape
+    assert numbers == (terrain.x0_m, terrain.y0_m, terrain.cell_m, nx, ny)
     for name, got in zip(("height_m", "zone", "turf", "penalty", "calm"), arrays, strict=True):
-        assert np.array_equal(got, getattr(terrain, name)), name
-    assert np.array_equal(heights[0], heights[1])
+        assert np.array_equal(got, getattr(terrain, name).ravel()), name
+    asked = [ground.height_at(terrain, x, y) for x, y in zip(xs, ys, strict=True)]
+    assert np.array_equal(heights, asked)
     assert none
+    view = ground.borrowed(terrain)
+    assert ground.borrowed(view) is view
+    with pytest.raises(numba.core.errors.TypingError, match="pass ground.borrowed"):
+        _asked_of_the_terrain(terrain)
 
 
 # -- 8. the end of a hop on the grid ------------------------------------------------------------
@@ -566,7 +593,7 @@ def test_a_hop_ends_at_the_first_crossing_of_the_surface(height):
     square at once): where it ends the ball is on the bilinear surface within 1e-9 m, and no
     earlier time of 400 along the hop finds it below (by more than rounding); it agrees with
     the march along the parabola (``_marched_hop``) within 1 um where that is not grazing."""
-    terrain = grid(0.0, 40.0, -20.0, 20.0, 0.5, height)
+    terrain = ground.borrowed(grid(0.0, 40.0, -20.0, 20.0, 0.5, height))
     rng = np.random.default_rng(3)
     for _ in range(200):
         x, y = rng.uniform(8.0, 30.0), rng.uniform(-8.0, 8.0)

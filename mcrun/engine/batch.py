@@ -242,14 +242,16 @@ def _threads():
 @njit(cache=True, error_model="numpy")
 def _simulate_traced(inputs, shot, table, out, traj, terrain):
     tracer = np.array([float(shot), 0.0, 0.0, TRAJECTORY_DT_S])
-    _lockstep(inputs, 0, inputs.shape[0], table, out, traj, tracer, terrain)
+    _lockstep(inputs, 0, inputs.shape[0], table, out, traj, tracer, ground.borrowed(terrain))
     return int(tracer[TRACER.ROW])
 
 
 @njit(cache=True, error_model="numpy")
 def _simulate_traced_general(inputs, shot, table, out, traj, terrain):
     tracer = np.array([float(shot), 0.0, 0.0, TRAJECTORY_DT_S])
-    _lockstep_general(inputs, 0, inputs.shape[0], table, out, traj, tracer, terrain)
+    _lockstep_general(
+        inputs, 0, inputs.shape[0], table, out, traj, tracer, ground.borrowed(terrain)
+    )
     return int(tracer[TRACER.ROW])
 
 
@@ -279,7 +281,10 @@ def _recorded(simulate, rows):
 
 @njit(cache=True, error_model="numpy")
 def _simulate_landed(inputs, landings, out, traj, tracer, terrain):
-    bounce_all(inputs, 0, landings, np.arange(landings.shape[0]), out, traj, tracer, terrain)
+    bounce_all(
+        inputs, 0, landings, np.arange(landings.shape[0]), out, traj, tracer,
+        ground.borrowed(terrain),
+    )  # fmt: skip
     return int(tracer[TRACER.ROW])
 
 

@@ -21,7 +21,8 @@ a loop asks at every step are answered in one look-up of the grid each. Two kind
 
 Each question is a Numba ``overload`` on the type of ``terrain`` (``questions.question``), so
 the loop is compiled once for each kind, and the Plane's loop is the same code, with the same
-numbers, as before there were terrains.
+numbers, as before there were terrains. Compiled code asks the grid's questions of a Terrain's
+view (``borrowed``: ten numbers, its arrays as pointers), which a kernel borrows once.
 
 Where things are: ``questions`` (the questions, each answered on both kinds), ``plane`` (a
 shot's own Plane), ``terrain`` (a hole's Terrain, its build, and the view of it a kernel's task
@@ -55,6 +56,7 @@ from mcrun.ground.terrain import (
     OUT_OF_BOUNDS,
     PENALTY_AREA,
     Terrain,
+    TerrainView,
     borrowed,
     calm_cells,
     make_terrain,
@@ -73,6 +75,7 @@ __all__ = [
     "Plane",
     "Surface",
     "Terrain",
+    "TerrainView",
     "borrowed",
     "by_ground",
     "calm_cells",

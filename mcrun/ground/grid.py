@@ -1,13 +1,14 @@
 """The look-ups of a Terrain's grid: the cell under a point, its height, slope, zone and state,
 and the answers to the shot loop's questions on a grid (``ground.questions``), each in one
-look-up of the cell where a loop asks at every step."""
+look-up of the cell where a loop asks at every step. Each reads the grid through its view
+(``terrain.TerrainView``: flat arrays, row by row)."""
 
 import math
 
 from numba import njit
 from numba.extending import overload
 
-from mcrun.ground.terrain import OUT_OF_BOUNDS, PENALTY_AREA, read_turf
+from mcrun.ground.terrain import OUT_OF_BOUNDS, PENALTY_AREA, TURF_FIELDS, read_turf
 from mcrun.physics.roll import LEVEL_PATCH, Patch, Surface
 from mcrun.status import IN_PENALTY_AREA, OFF_MAP, OK, OUT_OF_BOUNDS_STATUS
 
@@ -48,10 +49,9 @@ def _locate(terrain, x, y):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _cell_at(terrain, x, y):
-    """``_locate`` inlined where a loop asks at every step (a call counts the terrain's arrays
-    in and out), with the heights of the cell's four nodes: (ix, iy, tx, ty, inside, h00,
-    h10, h01, h11)."""
-    ny_, nx_ = terrain.height_m.shape
+    """``_locate`` inlined where a loop asks at every step, with the heights of the cell's four
+    nodes: (ix, iy, tx, ty, inside, h00, h10, h01, h11)."""
+    ny_, nx_ = terrain.ny, terrain.nx
     fx = _in_cells(terrain, x - terrain.x0_m)
     fy = _in_cells(terrain, -y - terrain.y0_m)
     inside = (fx >= 0.0) & (fx <= nx_ - 1.0) & (fy >= 0.0) & (fy <= ny_ - 1.0)
@@ -60,7 +60,8 @@ def _cell_at(terrain, x, y):
     tx = min(max(fx - ix, 0.0), 1.0)
     ty = min(max(fy - iy, 0.0), 1.0)
     h = terrain.height_m
-    return ix, iy, tx, ty, inside, h[iy, ix], h[iy, ix + 1], h[iy + 1, ix], h[iy + 1, ix + 1]
+    i = iy * nx_ + ix
+    return ix, iy, tx, ty, inside, h[i], h[i + 1], h[i + nx_], h[i + nx_ + 1]
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -72,13 +73,33 @@ def _cell_slope(terrain, tx, ty, h00, h10, h01, h11):
     return hx, hy
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _nearest_zone(terrain, ix, iy, tx, ty):
+    """The zone of the node of cell (ix, iy) nearest the point at fractions (tx, ty) across it."""
+    return terrain.zone[(iy + (1 if ty >= 0.5 else 0)) * terrain.nx + ix + (1 if tx >= 0.5 else 0)]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _zone_turf(terrain, zone):
+    """The Turf of a zone."""
+    return read_turf(terrain.turf, int(zone) * TURF_FIELDS, 1)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _calm(terrain, ix, iy):
+    """``calm_cells`` of cell (ix, iy)."""
+    return terrain.calm[iy * (terrain.nx - 1) + ix]
+
+
 @njit(cache=True, error_model="numpy")
 def _grid_height(terrain, x, y):
     """Bilinear height (m) of the grid at core-frame (x, y)."""
     ix, iy, tx, ty, _ = _locate(terrain, x, y)
     h = terrain.height_m
-    return (h[iy, ix] * (1.0 - tx) + h[iy, ix + 1] * tx) * (1.0 - ty) + (
-        h[iy + 1, ix] * (1.0 - tx) + h[iy + 1, ix + 1] * tx
+    i = iy * terrain.nx + ix
+    j = i + terrain.nx  # (the node above)
+    return (h[i] * (1.0 - tx) + h[i + 1] * tx) * (1.0 - ty) + (
+        h[j] * (1.0 - tx) + h[j + 1] * tx
     ) * ty
 
 
@@ -87,8 +108,10 @@ def _grid_gradient(terrain, x, y):
     """(dh/dx, dh/dy) of the bilinear grid at core-frame (x, y), y to the LEFT."""
     ix, iy, tx, ty, _ = _locate(terrain, x, y)
     h = terrain.height_m
-    dx = (h[iy, ix + 1] - h[iy, ix]) * (1.0 - ty) + (h[iy + 1, ix + 1] - h[iy + 1, ix]) * ty
-    dy = (h[iy + 1, ix] - h[iy, ix]) * (1.0 - tx) + (h[iy + 1, ix + 1] - h[iy, ix + 1]) * tx
+    i = iy * terrain.nx + ix
+    j = i + terrain.nx  # (the node above)
+    dx = (h[i + 1] - h[i]) * (1.0 - ty) + (h[j + 1] - h[j]) * ty
+    dy = (h[j] - h[i]) * (1.0 - tx) + (h[j + 1] - h[i + 1]) * tx
     return _in_cells(terrain, dx), -_in_cells(terrain, dy)
 
 
@@ -96,7 +119,7 @@ def _grid_gradient(terrain, x, y):
 def _grid_zone(terrain, x, y):
     """The zone of the node nearest core-frame (x, y)."""
     ix, iy, tx, ty, _ = _locate(terrain, x, y)
-    return terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
+    return _nearest_zone(terrain, ix, iy, tx, ty)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -113,7 +136,7 @@ def _state_of(inside, kind):
 def _grid_flight_check(terrain, x, y, z):
     ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
     height = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
-    kind = terrain.penalty[terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]]
+    kind = terrain.penalty[_nearest_zone(terrain, ix, iy, tx, ty)]
     state = _state_of(inside, kind)
     return z - height, state
 
@@ -127,8 +150,7 @@ def _grid_normal(terrain, x, y):
 
 @njit(cache=True, error_model="numpy")
 def _grid_turf(terrain, x, y):
-    t = terrain.turf[_grid_zone(terrain, x, y)]
-    return read_turf(t, 0, 1)
+    return _zone_turf(terrain, _grid_zone(terrain, x, y))
 
 
 @njit(cache=True, error_model="numpy")
@@ -150,19 +172,18 @@ def _grid_contact(terrain, x, y):
     ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
     hx, hy = _cell_slope(terrain, tx, ty, h00, h10, h01, h11)
     k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
-    zone = terrain.zone[iy + (1 if ty >= 0.5 else 0), ix + (1 if tx >= 0.5 else 0)]
-    t = terrain.turf[zone]
+    zone = _nearest_zone(terrain, ix, iy, tx, ty)
     kind = terrain.penalty[zone]
     state = _state_of(inside, kind)
-    turf = read_turf(t, 0, 1)
-    reach = float(terrain.calm[iy, ix]) * terrain.cell_m
+    turf = _zone_turf(terrain, zone)
+    reach = float(_calm(terrain, ix, iy)) * terrain.cell_m
     return state, -hx * k, -hy * k, k, turf, reach
 
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _grid_calm_reach(terrain, x, y):
     ix, iy, _, _, _, _, _, _, _ = _cell_at(terrain, x, y)
-    return float(terrain.calm[iy, ix]) * terrain.cell_m
+    return float(_calm(terrain, ix, iy)) * terrain.cell_m
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -175,21 +196,18 @@ def _grid_surface(terrain, x, y):
     upper_x = tx >= 0.5
     upper_y = ty >= 0.5
     zones = terrain.zone
-    zone = zones[iy + (1 if upper_y else 0), ix + (1 if upper_x else 0)]
-    t = terrain.turf[zone]
+    i = iy * terrain.nx + ix
+    j = i + terrain.nx  # (the node above)
+    zone = zones[(j if upper_y else i) + (1 if upper_x else 0)]
     kind = terrain.penalty[zone]
     state = _state_of(inside, kind)
-    calm = terrain.calm[iy, ix]
+    calm = _calm(terrain, ix, iy)
     c = terrain.cell_m
     u_lo = 0.0
     u_hi = c
     w_lo = 0.0
     w_hi = c
-    if (
-        (zones[iy, ix] != zones[iy, ix + 1])
-        | (zones[iy, ix] != zones[iy + 1, ix])
-        | (zones[iy, ix] != zones[iy + 1, ix + 1])
-    ):
+    if (zones[i] != zones[i + 1]) | (zones[i] != zones[j]) | (zones[i] != zones[j + 1]):
         # The quarter of the cell nearest the node whose zone is that of (x, y).
         u_lo = 0.5 * c if upper_x else 0.0
         u_hi = c if upper_x else 0.5 * c
@@ -205,8 +223,9 @@ def _grid_surface(terrain, x, y):
         u_hi, w_lo, w_hi,
     )  # fmt: skip
     return Surface(
-        height, -hx * k, -hy * k, k, read_turf(t, 0, 1), state, max(0.25, float(calm)) * c, patch
-    )
+        height, -hx * k, -hy * k, k, _zone_turf(terrain, zone), state, max(0.25, float(calm)) * c,
+        patch,
+    )  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy")

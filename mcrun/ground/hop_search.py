@@ -5,7 +5,7 @@ import math
 
 from numba import njit
 
-from mcrun.ground.grid import _cell_at, _grid_height, _in_cells, _locate
+from mcrun.ground.grid import _calm, _cell_at, _grid_height, _in_cells, _locate
 from mcrun.physics.bounce import hop
 from mcrun.physics.constants import G_MPS2
 
@@ -26,7 +26,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     its first root (``_marched_hop`` where that finds none: a track that leaves the grid)."""
     vh = math.sqrt(vx * vx + vy * vy)
     ix, iy, _, _, _, _, _, _, _ = _cell_at(terrain, x, y)
-    reach_m = float(terrain.calm[iy, ix]) * terrain.cell_m
+    reach_m = float(_calm(terrain, ix, iy)) * terrain.cell_m
     if (hop_time > 0.0) & (vh * hop_time <= reach_m):
         x1, y1, z1, vz1 = hop(x, y, z, vx, vy, vz, hop_time)
         return x1, y1, z1, vz1, hop_time
@@ -39,7 +39,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
         <= 0.0
     ):
         return x, y, z, vz, 0.0
-    ny, nx = terrain.height_m.shape
+    ny, nx = terrain.ny, terrain.nx
     h = terrain.height_m
     fx0 = _in_cells(terrain, x - terrain.x0_m)
     fy0 = _in_cells(terrain, -y - terrain.y0_m)
@@ -51,7 +51,7 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     for _ in range(MAX_HOP_STEPS):
         # When the track leaves cell (ix, iy), unless at the grid's edge (extended beyond it),
         # or the square of r cells around it, all of its plane, where the cell is calm.
-        r = int(terrain.calm[iy, ix])
+        r = int(_calm(terrain, ix, iy))
         tx = math.inf
         if (dfx > 0.0) & (ix + r < nx - 2):
             tx = (ix + r + 1 - fx0) / dfx
@@ -66,10 +66,11 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
         # The gap at t_in + s: c0 + c1 s + c2 s^2, the cell's height h00 + a u + b w + e u w.
         u = fx0 + dfx * t_in - ix
         w = fy0 + dfy * t_in - iy
-        h00 = h[iy, ix]
-        a = h[iy, ix + 1] - h00
-        b = h[iy + 1, ix] - h00
-        e = h[iy + 1, ix + 1] - h[iy, ix + 1] - h[iy + 1, ix] + h00
+        i = iy * nx + ix
+        h00 = h[i]
+        a = h[i + 1] - h00
+        b = h[i + nx] - h00
+        e = h[i + nx + 1] - h[i + 1] - h[i + nx] + h00
         c0 = z + (vz - 0.5 * G_MPS2 * t_in) * t_in - (h00 + a * u + b * w + e * u * w)
         c1 = vz - G_MPS2 * t_in - (a * dfx + b * dfy + e * (u * dfy + w * dfx))
         c2 = -0.5 * G_MPS2 - e * dfx * dfy
@@ -120,7 +121,7 @@ def _marched_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     the crossing inside it (Illinois' false position, to a nanometre)."""
     vh = math.sqrt(vx * vx + vy * vy)
     ix, iy, _, _, _ = _locate(terrain, x, y)
-    reach_m = float(terrain.calm[iy, ix]) * terrain.cell_m
+    reach_m = float(_calm(terrain, ix, iy)) * terrain.cell_m
     dt = 0.5 * hop_time if hop_time > 0.0 else 1e-3
     if vh > 0.0:
         dt = min(dt, max(0.25 * terrain.cell_m, reach_m) / vh)

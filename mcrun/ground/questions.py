@@ -8,9 +8,11 @@ the loop once for each (``question``: an ``overload`` picks the answer by the ty
 terrains; run as Python (``NUMBA_DISABLE_JIT=1``), the same answer is picked by the value.
 """
 
+import functools
 import math
 
 from numba import njit, types
+from numba.core import errors
 from numba.extending import overload
 
 from mcrun.ground.grid import (
@@ -28,6 +30,7 @@ from mcrun.ground.grid import (
 )
 from mcrun.ground.hop_search import _grid_hop
 from mcrun.ground.plane import plane_surface
+from mcrun.ground.terrain import borrowed, is_view
 from mcrun.physics.bounce import hop
 from mcrun.status import OK
 
@@ -37,18 +40,38 @@ def _flat(terrain):
     return terrain is None or isinstance(terrain, types.NoneType)
 
 
+def _unviewed(terrain):
+    """Whether ``terrain`` (a value, or its Numba type) is a Terrain that the grid's answers
+    read through its view (``borrowed``), not the view itself or a Plane's None."""
+    return not (_flat(terrain) or is_view(terrain))
+
+
 def question(answers):
     """A question to the ground: ``answers(terrain, ...)`` returns the function that answers it
-    on this kind of ground (``_flat``), called with the same arguments. Compiled, it is an
-    ``overload``, inlined, that picks the answer by the type of ``terrain`` once; as Python
-    (``NUMBA_DISABLE_JIT=1``), the answer is picked at each call."""
+    on this kind of ground (``_flat``), called with the same arguments; the grid's answers take
+    the Terrain's view (``terrain.TerrainView``). Compiled, it is an ``overload``, inlined, that
+    picks the answer by the type of ``terrain`` once, and a kernel asks of the view it borrowed
+    (``borrowed``, where it is given a Terrain); called from Python, or as Python
+    (``NUMBA_DISABLE_JIT=1``), a question asked of a Terrain is asked of its view and the answer
+    is picked at each call."""
 
-    def ask(*args):
-        return answers(*args)(*args)
+    def ask(terrain, *args):
+        if _unviewed(terrain):
+            terrain = borrowed(terrain)
+        return answers(terrain, *args)(terrain, *args)
+
+    @functools.wraps(answers)
+    def typed(terrain, *args):
+        if _unviewed(terrain):
+            raise errors.TypingError(
+                f"{answers.__name__}: compiled code asks the ground of a Terrain's view: pass "
+                f"ground.borrowed(terrain), not {terrain}"
+            )
+        return answers(terrain, *args)
 
     ask.__name__ = ask.__qualname__ = answers.__name__
     ask.__doc__ = answers.__doc__
-    overload(ask, inline="always")(answers)
+    overload(ask, inline="always")(typed)
     return ask
 
 

@@ -1,12 +1,12 @@
 """A hole's ground on a regular grid (``Terrain``), built from its arrays (``make_terrain``),
-with each cell's calm reach (``calm_cells``), what a zone is for the Rules, and the kernel's
-borrowed view of it (``borrowed``)."""
+with each cell's calm reach (``calm_cells``), what a zone is for the Rules, and the view of it
+a kernel borrows (``TerrainView``, ``borrowed``)."""
 
 from typing import NamedTuple
 
 import numpy as np
 from numba import njit, types
-from numba.core import cgutils
+from numba.core import errors
 from numba.extending import intrinsic, overload
 
 from mcrun.physics.turf import Turf
@@ -116,39 +116,71 @@ def read_turf(a, first, step):
 assert len(Turf._fields) == 9  # (read_turf's fields)
 
 
+# Fields of a zone's turf in ``Terrain.turf`` and in a view's flat ``turf``.
+TURF_FIELDS = len(Turf._fields)
+
+
+class TerrainView(NamedTuple):
+    """A Terrain as a kernel reads it (``borrowed``): its numbers, its nodes along x and y, and
+    its arrays flat, row by row: node [iy, ix] of ``height_m`` and ``zone`` at iy * nx + ix,
+    cell [iy, ix] of ``calm`` at iy * (nx - 1) + ix, zone z's turf field j at
+    z * TURF_FIELDS + j. Compiled, each is a pointer to the Terrain's own memory, which Numba
+    neither counts references to nor passes as the several fields of an array; as Python, the
+    array's flat view."""
+
+    x0_m: float
+    y0_m: float
+    cell_m: float
+    nx: int  # nodes along x (the grid's columns)
+    ny: int  # nodes along y (its rows)
+    height_m: object
+    zone: object
+    turf: object
+    penalty: object
+    calm: object
+
+
+def is_view(terrain):
+    """Whether ``terrain`` (a value, or its Numba type) is a kernel's TerrainView."""
+    return getattr(terrain, "instance_class", type(terrain)) is TerrainView
+
+
 def borrowed(terrain):
-    """The same Terrain (or None), its arrays borrowed: compiled, views of the same memory that
-    Numba counts no references to. Each call that passes a Terrain counts a reference to each
-    of its five arrays in and out, an atomic operation each: 9 % of a real-ground kernel's
-    samples, which a task's borrowed Terrain spares (``engine.batch``). The caller must keep
-    the Terrain alive while its borrowed view is in use, and nothing may keep the view beyond
-    that (a kernel call's arguments live as long as the call). As Python, ``terrain`` itself."""
-    return terrain
+    """The kernel's view of a Terrain (``TerrainView``; None stays None, a view stays itself).
+    Compiled, its arrays are pointers to the Terrain's memory: a call that passes it passes ten
+    numbers, where a Terrain is 46 (each array its data pointer, shape, strides and four more)
+    and a call of Numba's reference count for each array, in and out. A batch's task borrows
+    its Terrain once (``engine.batch``), and the ground's questions answer on the view. The
+    caller must keep the Terrain alive while its view is in use, and nothing may keep the view
+    beyond that (a kernel call's arguments live as long as the call). As Python, the arrays'
+    flat views."""
+    if terrain is None or is_view(terrain):
+        return terrain
+    ny, nx = terrain.height_m.shape
+    return TerrainView(
+        terrain.x0_m, terrain.y0_m, terrain.cell_m, nx, ny, terrain.height_m.ravel(),
+        terrain.zone.ravel(), terrain.turf.ravel(), terrain.penalty, terrain.calm.ravel(),
+    )  # fmt: skip
 
 
 @overload(borrowed, inline="always")
 def _borrowed(terrain):
-    if terrain is None or isinstance(terrain, types.NoneType):
+    if terrain is None or isinstance(terrain, types.NoneType) or is_view(terrain):
         return lambda terrain: terrain
-    return lambda terrain: Terrain(
-        terrain.x0_m, terrain.y0_m, terrain.cell_m, _borrowed_array(terrain.height_m),
-        _borrowed_array(terrain.zone), _borrowed_array(terrain.turf),
-        _borrowed_array(terrain.penalty), _borrowed_array(terrain.calm),
+    return lambda terrain: TerrainView(
+        terrain.x0_m, terrain.y0_m, terrain.cell_m, terrain.height_m.shape[1],
+        terrain.height_m.shape[0], _data(terrain.height_m), _data(terrain.zone),
+        _data(terrain.turf), _data(terrain.penalty), _data(terrain.calm),
     )  # fmt: skip
 
 
 @intrinsic
-def _borrowed_array(typingctx, array):
-    """The array, of the same type, without its meminfo (Numba's reference count, which it
-    then skips) or parent (the Python object, which a kernel never returns)."""
+def _data(typingctx, array):
+    """A pointer to the data of a C-contiguous array (its element [i, j] at i * shape[1] + j)."""
+    if not isinstance(array, types.Array) or array.layout != "C":
+        raise errors.TypingError(f"a Terrain's arrays are C-contiguous, not {array}")
 
     def codegen(context, builder, signature, args):
-        owned = context.make_array(array)(context, builder, value=args[0])
-        view = context.make_array(array)(context, builder)
-        view.meminfo = cgutils.get_null_value(view.meminfo.type)
-        view.parent = cgutils.get_null_value(view.parent.type)
-        for field in ("nitems", "itemsize", "data", "shape", "strides"):
-            setattr(view, field, getattr(owned, field))
-        return view._getvalue()
+        return context.make_array(array)(context, builder, value=args[0]).data
 
-    return array(array), codegen
+    return types.CPointer(array.dtype)(array), codegen
