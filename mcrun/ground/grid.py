@@ -59,9 +59,24 @@ def _cell_at(terrain, x, y):
     iy = cell_index(fy, ny_ - 2)
     tx = min(max(fx - ix, 0.0), 1.0)
     ty = min(max(fy - iy, 0.0), 1.0)
+    h00, h10, h01, h11 = _corners(terrain, ix, iy)
+    return ix, iy, tx, ty, inside, h00, h10, h01, h11
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _corners(terrain, ix, iy):
+    """The heights of the four nodes of cell (ix, iy): (h00, h10, h01, h11), h10 the next along
+    x, h01 the next along y."""
     h = terrain.height_m
-    i = iy * nx_ + ix
-    return ix, iy, tx, ty, inside, h[i], h[i + 1], h[i + nx_], h[i + nx_ + 1]
+    i = iy * terrain.nx + ix
+    j = i + terrain.nx  # (the node above)
+    return h[i], h[i + 1], h[j], h[j + 1]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _cell_height(tx, ty, h00, h10, h01, h11):
+    """The bilinear height at fractions (tx, ty) across a cell of these node heights."""
+    return (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -95,24 +110,16 @@ def _calm(terrain, ix, iy):
 def _grid_height(terrain, x, y):
     """Bilinear height (m) of the grid at core-frame (x, y)."""
     ix, iy, tx, ty, _ = _locate(terrain, x, y)
-    h = terrain.height_m
-    i = iy * terrain.nx + ix
-    j = i + terrain.nx  # (the node above)
-    return (h[i] * (1.0 - tx) + h[i + 1] * tx) * (1.0 - ty) + (
-        h[j] * (1.0 - tx) + h[j + 1] * tx
-    ) * ty
+    h00, h10, h01, h11 = _corners(terrain, ix, iy)
+    return _cell_height(tx, ty, h00, h10, h01, h11)
 
 
 @njit(cache=True, error_model="numpy")
 def _grid_gradient(terrain, x, y):
     """(dh/dx, dh/dy) of the bilinear grid at core-frame (x, y), y to the LEFT."""
     ix, iy, tx, ty, _ = _locate(terrain, x, y)
-    h = terrain.height_m
-    i = iy * terrain.nx + ix
-    j = i + terrain.nx  # (the node above)
-    dx = (h[i + 1] - h[i]) * (1.0 - ty) + (h[j + 1] - h[j]) * ty
-    dy = (h[j] - h[i]) * (1.0 - tx) + (h[j + 1] - h[i + 1]) * tx
-    return _in_cells(terrain, dx), -_in_cells(terrain, dy)
+    h00, h10, h01, h11 = _corners(terrain, ix, iy)
+    return _cell_slope(terrain, tx, ty, h00, h10, h01, h11)
 
 
 @njit(cache=True, error_model="numpy")
@@ -135,7 +142,7 @@ def _state_of(inside, kind):
 @njit(cache=True, error_model="numpy", inline="always")
 def _grid_flight_check(terrain, x, y, z):
     ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
-    height = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
+    height = _cell_height(tx, ty, h00, h10, h01, h11)
     kind = terrain.penalty[_nearest_zone(terrain, ix, iy, tx, ty)]
     state = _state_of(inside, kind)
     return z - height, state
@@ -190,15 +197,15 @@ def _grid_calm_reach(terrain, x, y):
 def _grid_surface(terrain, x, y):
     """``surface`` on the grid: one look-up of the cell for all of it."""
     ix, iy, tx, ty, inside, h00, h10, h01, h11 = _cell_at(terrain, x, y)
-    height = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty
+    height = _cell_height(tx, ty, h00, h10, h01, h11)
     hx, hy = _cell_slope(terrain, tx, ty, h00, h10, h01, h11)
     k = 1.0 / math.sqrt(1.0 + hx * hx + hy * hy)
     upper_x = tx >= 0.5
     upper_y = ty >= 0.5
+    zone = _nearest_zone(terrain, ix, iy, tx, ty)
     zones = terrain.zone
     i = iy * terrain.nx + ix
     j = i + terrain.nx  # (the node above)
-    zone = zones[(j if upper_y else i) + (1 if upper_x else 0)]
     kind = terrain.penalty[zone]
     state = _state_of(inside, kind)
     calm = _calm(terrain, ix, iy)

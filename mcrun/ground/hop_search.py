@@ -5,7 +5,7 @@ import math
 
 from numba import njit
 
-from mcrun.ground.grid import _calm, _cell_at, _grid_height, _in_cells, _locate
+from mcrun.ground.grid import _calm, _cell_at, _corners, _grid_height, _in_cells, _locate
 from mcrun.physics.bounce import hop
 from mcrun.physics.constants import G_MPS2
 
@@ -40,7 +40,6 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
     ):
         return x, y, z, vz, 0.0
     ny, nx = terrain.ny, terrain.nx
-    h = terrain.height_m
     fx0 = _in_cells(terrain, x - terrain.x0_m)
     fy0 = _in_cells(terrain, -y - terrain.y0_m)
     dfx = _in_cells(terrain, vx)
@@ -66,11 +65,10 @@ def _grid_hop(terrain, x, y, z, vx, vy, vz, hop_time):
         # The gap at t_in + s: c0 + c1 s + c2 s^2, the cell's height h00 + a u + b w + e u w.
         u = fx0 + dfx * t_in - ix
         w = fy0 + dfy * t_in - iy
-        i = iy * nx + ix
-        h00 = h[i]
-        a = h[i + 1] - h00
-        b = h[i + nx] - h00
-        e = h[i + nx + 1] - h[i + 1] - h[i + nx] + h00
+        h00, h10, h01, h11 = _corners(terrain, ix, iy)
+        a = h10 - h00
+        b = h01 - h00
+        e = h11 - h10 - h01 + h00
         c0 = z + (vz - 0.5 * G_MPS2 * t_in) * t_in - (h00 + a * u + b * w + e * u * w)
         c1 = vz - G_MPS2 * t_in - (a * dfx + b * dfy + e * (u * dfy + w * dfx))
         c2 = -0.5 * G_MPS2 - e * dfx * dfy
