@@ -64,13 +64,18 @@ def _cell_at(terrain, x, y):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _corners(terrain, ix, iy):
-    """The heights of the four nodes of cell (ix, iy): (h00, h10, h01, h11), h10 the next along
-    x, h01 the next along y."""
-    h = terrain.height_m
+def _four_nodes(terrain, values, ix, iy):
+    """The values (a per-node array of the view: ``height_m``, ``zone``) at the four nodes of
+    cell (ix, iy): (v00, v10, v01, v11), v10 the next along x, v01 the next along y."""
     i = iy * terrain.nx + ix
     j = i + terrain.nx  # (the node above)
-    return h[i], h[i + 1], h[j], h[j + 1]
+    return values[i], values[i + 1], values[j], values[j + 1]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _corners(terrain, ix, iy):
+    """The heights of the four nodes of cell (ix, iy): (h00, h10, h01, h11)."""
+    return _four_nodes(terrain, terrain.height_m, ix, iy)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -203,9 +208,7 @@ def _grid_surface(terrain, x, y):
     upper_x = tx >= 0.5
     upper_y = ty >= 0.5
     zone = _nearest_zone(terrain, ix, iy, tx, ty)
-    zones = terrain.zone
-    i = iy * terrain.nx + ix
-    j = i + terrain.nx  # (the node above)
+    z00, z10, z01, z11 = _four_nodes(terrain, terrain.zone, ix, iy)
     kind = terrain.penalty[zone]
     state = _state_of(inside, kind)
     calm = _calm(terrain, ix, iy)
@@ -214,7 +217,7 @@ def _grid_surface(terrain, x, y):
     u_hi = c
     w_lo = 0.0
     w_hi = c
-    if (zones[i] != zones[i + 1]) | (zones[i] != zones[j]) | (zones[i] != zones[j + 1]):
+    if (z00 != z10) | (z00 != z01) | (z00 != z11):
         # The quarter of the cell nearest the node whose zone is that of (x, y).
         u_lo = 0.5 * c if upper_x else 0.0
         u_hi = c if upper_x else 0.5 * c
