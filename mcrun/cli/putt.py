@@ -6,17 +6,32 @@ import math
 import sys
 
 from mcrun.cli.options import whole
-from mcrun.putting import PUTTERS, putt
+from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_stimp, putt
+from mcrun.putting.greens import STIMP_RANGE_FT
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
+
+DEFAULT_STIMP = "11ft"
 
 
 def _slope_tan(text):
     """A slope as rise over run: a percentage ("2%") or a fraction ("0.02"), or an angle with
-    its unit ("1.1deg", "0.02rad")."""
+    its unit ("1.1deg", "0.02rad"); an angle beyond the steepest slope allowed is refused as it
+    is (its tangent would wrap round)."""
     if any(unit in text.lower() for unit in ("deg", "rad", "°")):
-        return math.tan(parse_quantity(text, "angle", "--slope"))
+        angle = parse_quantity(text, "angle", "--slope")
+        if not 0.0 <= angle <= math.atan(MAX_SLOPE_TAN):
+            raise InputError(
+                f"--slope {text}: allowed: 0 to {100 * MAX_SLOPE_TAN:g} % "
+                f"({math.degrees(math.atan(MAX_SLOPE_TAN)):.1f} deg)"
+            )
+        return math.tan(angle)
     return parse_quantity(text, "fraction", "--slope")
+
+
+def _stimp_m(text):
+    """The --stimp reading (m), within the Stimp readings of a green."""
+    return check_stimp(parse_quantity(text, "length", "--stimp"), f"--stimp {text}")
 
 
 def _cmd_putt(args):
@@ -31,9 +46,10 @@ def _cmd_putt(args):
     args.direction = "0" if args.direction is None else args.direction
     args.putter = "tour" if args.putter is None else args.putter
     args.seed = "0" if args.seed is None else args.seed
+    args.stimp = DEFAULT_STIMP if args.stimp is None else args.stimp
     result = putt(
         parse_quantity(args.distance, "length", "--distance"),
-        parse_quantity(args.stimp, "length", "--stimp"),
+        _stimp_m(args.stimp),
         _slope_tan(args.slope),
         parse_quantity(args.direction, "angle", "--direction") * 180.0 / math.pi,
         putter=args.putter,
@@ -63,6 +79,7 @@ def _cmd_green(args):
     """The expected-putts map of a hole's green: a table, a picture, a few lines."""
     from mcrun.cli import Interrupted, write_all_or_nothing
     from mcrun.hole.hole import load_hole
+    from mcrun.physics.turf import stimp_from_rho_g
     from mcrun.putting.green import GreenError, green_of_hole
     from mcrun.putting.green_map import expected_putts_map
     from mcrun.putting.on_hole import check_putting
@@ -74,7 +91,8 @@ def _cmd_green(args):
             raise InputError(f"--{name}: is for a plane green; with --hole the green is the hole's")
     if args.output is None:
         raise InputError("--hole: give -o FILE.parquet for the map (and --plot FILE.png)")
-    hole = check_putting(load_hole(args.hole))
+    hole = check_putting(load_hole(args.hole), green=False)  # the green: below, at its speed
+    stimp_m = None if args.stimp is None else _stimp_m(args.stimp)
     destination = aim.check_output(args.output, args.force, "-o", (".parquet",), ".parquet")
     if args.plot is not None:
         from mcrun.report import style
@@ -90,12 +108,17 @@ def _cmd_green(args):
     seed = spec["seed"] if args.seed is None else whole(args.seed, "--seed", 0)
     putter = spec["putter"] if args.putter is None else args.putter
     try:
-        green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"])
+        green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"],
+                              stimp_m)  # fmt: skip
     except GreenError as err:
         raise InputError(str(err)) from None
-    print(f"putt: the green of {hole.source}: {green.area_m2():.0f} m^2, Stimp "
-          f"{green.stimp_m / 0.3048:.1f} ft; map {resolution:g} m, putter {putter}, {n} putts "
-          f"a read, seed {seed}", file=sys.stderr, flush=True)  # fmt: skip
+    speed = f"Stimp {green.stimp_m / 0.3048:.1f} ft"
+    if stimp_m is not None:
+        hole_ft = stimp_from_rho_g(hole.turf["green"].rho_g) / 0.3048
+        speed += f" (--stimp; the hole's green: {hole_ft:.1f} ft)"
+    print(f"putt: the green of {hole.source}: {green.area_m2():.0f} m^2, {speed}; map "
+          f"{resolution:g} m, putter {putter}, {n} putts a read, seed {seed}", file=sys.stderr,
+          flush=True)  # fmt: skip
     bar = _bar()
     try:
         result = expected_putts_map(green, putter, n, seed, resolution, progress=bar)
@@ -110,6 +133,7 @@ def _cmd_green(args):
     provenance = {
         "hole": hole.source, "putter": putter, "n": n, "seed": seed,
         "resolution_m": resolution, "green_cell_m": green.cell_m, "stimp_m": green.stimp_m,
+        "stimp_from": "hole" if stimp_m is None else "--stimp",
         "pin_xy_m": list(green.pin_xy_m), "sweep_change": result.sweep_change,
         "elapsed_s": round(result.elapsed_s, 3), "file": "putts",
         "attribution": hole.attribution or "",
@@ -168,14 +192,18 @@ def register(subparsers):
         "(ball to hole), counter-clockwise seen from above: 0 downhill, 90 falls to the left "
         "(the putt breaks left), 180 uphill, 270 falls to the right. With --hole: the "
         "expected-putts map of the hole's green (every point read and valued by N putts; its "
-        "settings default to the hole's [hole.putting]) to -o FILE.parquet, and --plot PNG.",
-        epilog="examples: mcrun putt --distance 10ft --stimp 11ft --slope 2%% --direction 90; "
+        "settings default to the hole's [hole.putting]; --stimp, where given, in place of the "
+        "hole's green's speed) to -o FILE.parquet, and --plot PNG.",
+        epilog="examples: mcrun putt --distance 10ft --stimp 11ft --slope 2% --direction 90; "
         "mcrun putt --hole green.toml -o putts.parquet --plot putts.png",
         allow_abbrev=False,
     )
     p.add_argument("--distance", help="to the hole, e.g. 10ft, 3m")
-    p.add_argument("--stimp", default="11ft", help="the green's Stimpmeter reading (11ft)")
-    p.add_argument("--slope", help="the green's slope: 2%%, 0.02 or 1.1deg (0%%)")
+    lo, hi = STIMP_RANGE_FT
+    p.add_argument("--stimp", help=f"the green's Stimpmeter reading, {lo:g}ft to {hi:g}ft "
+                   f"({DEFAULT_STIMP}; with --hole: the hole's green's)")  # fmt: skip
+    p.add_argument("--slope", help=f"the green's slope, 0 to {100 * MAX_SLOPE_TAN:g}%%: 2%%, "
+                   "0.02 or 1.1deg (0%%)")  # fmt: skip
     p.add_argument("--direction", help="the fall line, degrees from the putt's line (0)")
     p.add_argument("--putter", choices=list(PUTTERS), help="(tour)")
     p.add_argument("-n", metavar="N", help="holings-out (2000; a map: the hole's, 200)")

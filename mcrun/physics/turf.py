@@ -42,8 +42,12 @@ def rho_g_from_stimp(stimp_m):
 
 
 def stimp_from_rho_g(rho_g):
-    """Stimpmeter reading (m) of a green with rolling resistance rho_g."""
-    return 1.4 * STIMP_LAUNCH_SPEED_MPS**2 / (2.0 * rho_g * G_MPS2)
+    """Stimpmeter reading (m) of a green with rolling resistance rho_g: infinite for rho_g 0 (no
+    rolling resistance: the ball never stops on the level). Accepts arrays."""
+    rho_g = np.asarray(rho_g, dtype=float)
+    with np.errstate(divide="ignore"):
+        stimp_m = 1.4 * STIMP_LAUNCH_SPEED_MPS**2 / (2.0 * rho_g * G_MPS2)
+    return float(stimp_m) if stimp_m.ndim == 0 else stimp_m
 
 
 # Penner (2002) eq. (5): e(v) measured on relatively soft turf (Penner 2001).

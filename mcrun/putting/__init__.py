@@ -12,13 +12,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcrun.putting.cup import HOLE_RADIUS_M
-from mcrun.putting.greens import plane_green, stopping_slope
+from mcrun.putting.greens import STIMP_RANGE_FT, STIMP_RANGE_M, plane_green, stopping_slope
 from mcrun.putting.holeout import MAX_PUTTS, hole_out_batch
 from mcrun.putting.putter import PUTTERS, Putter, putter_errors
 from mcrun.putting.read import Read, centre_line_rad, read_putt
 from mcrun.quantities import InputError
+from mcrun.strokes.baseline import FOOT_M
 
-__all__ = ["MAX_PUTTS", "PUTTERS", "PuttResult", "Putter", "Read", "putt"]
+__all__ = ["MAX_PUTTS", "PUTTERS", "PuttResult", "Putter", "Read", "check_stimp", "putt"]
 
 MAX_DISTANCE_M = 100.0
 MAX_SLOPE_TAN = 0.2
@@ -47,6 +48,19 @@ def _rate(flags):
     return p, math.sqrt(p * (1.0 - p) / n)
 
 
+def check_stimp(stimp_m, what=None):
+    """``stimp_m`` (m), a Stimp reading within ``greens.STIMP_RANGE_M``; InputError (one line,
+    beginning with ``what``, default "Stimp <reading> ft") otherwise."""
+    lo, hi = STIMP_RANGE_M
+    if not lo <= stimp_m <= hi:
+        raise InputError(
+            f"{what or f'Stimp {stimp_m / FOOT_M:g} ft'}: allowed: "
+            f"{STIMP_RANGE_FT[0]:g} ft to {STIMP_RANGE_FT[1]:g} ft (a green's Stimpmeter "
+            "reading; real greens run at about 5 to 16 ft)"
+        )
+    return stimp_m
+
+
 def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, seed=0,
          read=True):  # fmt: skip
     """Hole out a putt of ``distance_m`` (m) on a plane green of Stimp ``stimp_m`` (m), slope
@@ -67,8 +81,7 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
             f"distance {distance_m:g} m: allowed: beyond the hole's radius "
             f"({HOLE_RADIUS_M * 1000:.0f} mm) up to {MAX_DISTANCE_M:g} m"
         )
-    if not stimp_m > 0 or not math.isfinite(stimp_m):
-        raise InputError(f"Stimp {stimp_m:g} m: allowed: a positive reading")
+    check_stimp(stimp_m)
     if not 0.0 <= slope_tan <= MAX_SLOPE_TAN:
         raise InputError(f"slope {100 * slope_tan:g} %: allowed: 0 to {100 * MAX_SLOPE_TAN:g} %")
     rest = stopping_slope(stimp_m)

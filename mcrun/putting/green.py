@@ -8,6 +8,13 @@ analytic shape) at that spacing, over the box of the green that holds the pin pl
 (``hole.zones.rasterize`` at the green's spacing). The green's speed is the rolling resistance
 of the hole's green turf (``[hole.turf.green] rho_g``; its Stimp reading is
 ``physics.turf.stimp_from_rho_g``): the approach's roll and the putts roll on one green.
+
+A green to putt on is refused (``GreenError``, one line) where its speed is outside the Stimp
+readings of ``greens.STIMP_RANGE_FT`` (rho_g 0, no rolling resistance, an infinite Stimp, among
+them), and where a ball can rest nowhere on it: every point of every cell of its grid that touches
+a node of the green is steeper than its stopping slope (tan(beta) > rho_g, the roll's own test of
+a ball at rest, ``roll.roll_core``), so that every putt and every ball played onto it would run
+off it.
 """
 
 import math
@@ -17,10 +24,19 @@ import numpy as np
 
 from mcrun.hole.errors import HoleError
 from mcrun.hole.zones import ZONE_INDEX, contains, rasterize
-from mcrun.physics.turf import stimp_from_rho_g
+from mcrun.physics.turf import rho_g_from_stimp, stimp_from_rho_g
+from mcrun.putting.greens import STIMP_RANGE_FT, STIMP_RANGE_M
 from mcrun.putting.roll import Surface
+from mcrun.strokes.baseline import FOOT_M
 
-__all__ = ["DEFAULT_GREEN_CELL_M", "Green", "GreenError", "green_of_hole"]
+__all__ = [
+    "DEFAULT_GREEN_CELL_M",
+    "Green",
+    "GreenError",
+    "check_green_speed",
+    "green_of_hole",
+    "least_slope",
+]
 
 DEFAULT_GREEN_CELL_M = 0.25
 MARGIN_CELLS = 2
@@ -65,13 +81,59 @@ class Green:
         return head.tobytes() + s.height_m.tobytes() + s.on_green.tobytes()
 
 
-def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None):
+# The rolling resistance of a green to putt on: that of the Stimp readings allowed.
+RHO_G_RANGE = (float(rho_g_from_stimp(STIMP_RANGE_M[1])), float(rho_g_from_stimp(STIMP_RANGE_M[0])))
+
+
+def check_green_speed(hole):
+    """``hole``, whose green turf's rho_g is that of a green to putt on (``RHO_G_RANGE``, a
+    Stimp of ``greens.STIMP_RANGE_FT``); GreenError naming the hole's file and the field
+    otherwise."""
+    rho_g = float(hole.turf["green"].rho_g)
+    lo, hi = RHO_G_RANGE
+    if not lo <= rho_g <= hi:
+        stimp_ft = stimp_from_rho_g(rho_g) / FOOT_M
+        raise GreenError(
+            f"{hole.source}: 'turf.green.rho_g' = {rho_g:g} (a Stimp of {stimp_ft:.3g} ft): "
+            f"allowed for a green to putt on: {lo:.4f} to {hi:.4f}, a Stimp of "
+            f"{STIMP_RANGE_FT[0]:g} ft to {STIMP_RANGE_FT[1]:g} ft"
+        )
+    return hole
+
+
+def least_slope(surface):
+    """The least slope (tan) anywhere on the green's grid ``surface``: over every cell with a node
+    of the green, the least gradient of its bilinear height (exact: the gradient's x part
+    varies along y only, its y part along x only, each linearly). inf without such a cell."""
+    h = surface.height_m
+    on = surface.on_green != 0
+    if h.shape[0] < 2 or h.shape[1] < 2:
+        return math.inf
+    gx = np.diff(h, axis=1) / surface.cell_m  # (ny, nx - 1): along the cell's lower/upper edges
+    gy = np.diff(h, axis=0) / surface.cell_m  # (ny - 1, nx): along its left/right edges
+
+    def least(a, b):  # the least |a + t (b - a)| over t in [0, 1]
+        return np.where(a * b <= 0.0, 0.0, np.minimum(np.abs(a), np.abs(b)))
+
+    sx = least(gx[:-1, :], gx[1:, :])  # (ny - 1, nx - 1)
+    sy = least(gy[:, :-1], gy[:, 1:])
+    touches = on[:-1, :-1] | on[:-1, 1:] | on[1:, :-1] | on[1:, 1:]
+    if not touches.any():
+        return math.inf
+    return float(np.hypot(sx, sy)[touches].min())
+
+
+def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None, stimp_m=None):
     """The Green of ``hole`` (a ``mcrun.hole.Hole``): the green that holds its pin, on a grid of
     ``cell_m`` (default ``DEFAULT_GREEN_CELL_M``, or the hole's own cell where that is finer),
     its heights from the hole's ground or from ``elevation``, a survey of the green alone (any
-    file ``mcrun.hole.elevation`` reads; ``elevation_crs`` where it does not say). GreenError
-    (one line) when the pin is on no green of the hole's zones, or the survey does not cover
-    the green."""
+    file ``mcrun.hole.elevation`` reads; ``elevation_crs`` where it does not say); its speed the
+    hole's green turf's, or the Stimp reading ``stimp_m`` (m) where given. GreenError (one
+    line) when the pin is on no green of the hole's zones, the survey does not cover the green,
+    the green's speed is not a green's (``check_green_speed``) or a ball can rest nowhere on it
+    (``least_slope`` above its stopping slope, rho_g)."""
+    if stimp_m is None:
+        check_green_speed(hole)
     cell = min(DEFAULT_GREEN_CELL_M, hole.cell_m) if cell_m is None else float(cell_m)
     px, py = hole.pin_xy
     polygons = [p for kind, p in hole.zones if kind == "green" and contains(p, px, py)]
@@ -102,7 +164,20 @@ def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None):
     else:
         height = hole._heights(x0, y0, cell, nx, ny)
     surface = Surface(np.ascontiguousarray(height, dtype=float), on, float(x0), float(y0), cell)
-    return Green(surface, (float(px), float(py)), float(hole.turf["green"].rho_g), hole.source)
+    if stimp_m is None:
+        rho_g = float(hole.turf["green"].rho_g)
+        speed = (f"'turf.green.rho_g' = {rho_g:g}, a Stimp of "
+                 f"{stimp_from_rho_g(rho_g) / FOOT_M:.1f} ft")  # fmt: skip
+    else:
+        rho_g, speed = float(rho_g_from_stimp(stimp_m)), f"--stimp {stimp_m / FOOT_M:g} ft"
+    least = least_slope(surface)
+    if least > rho_g:
+        raise GreenError(
+            f"{hole.source}: the green is steeper than its stopping slope everywhere (at least "
+            f"{100 * least:.1f} %, against {100 * rho_g:.1f} % for {speed}): a ball can rest "
+            "nowhere on it, so no putt on it can be valued"
+        )
+    return Green(surface, (float(px), float(py)), rho_g, hole.source)
 
 
 def _surveyed(hole, path, crs, x0, y0, cell, nx, ny, on):

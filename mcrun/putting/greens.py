@@ -18,11 +18,25 @@ import numpy as np
 from mcrun.physics.turf import rho_g_from_stimp
 from mcrun.strokes.baseline import FOOT_M
 
-__all__ = ["TOUR_GREENS_SEED", "plane_green", "stopping_slope", "tour_greens"]
+__all__ = [
+    "STIMP_RANGE_FT",
+    "STIMP_RANGE_M",
+    "TOUR_GREENS_SEED",
+    "plane_green",
+    "stopping_slope",
+    "tour_greens",
+]
 
 TOUR_GREENS_SEED = 20020  # the calibration's greens
 TOUR_STIMP_FT = (11.0, 12.0)
 TOUR_SLOPE_PCT = (1.0, 3.0)
+# The Stimp readings a green to putt on may have: real greens run at about 5 ft (slow, as the
+# paper's 6 ft) to 16 ft (the fastest tournament greens), so 3 to 20 ft is a generous range.
+# Outside it the putting model is asked about no green that exists: a Stimp of 1e6 ft is a green
+# with no rolling resistance (a ball rolls off whatever the pace), of 0.1 ft one on which no putt
+# reaches the hole.
+STIMP_RANGE_FT = (3.0, 20.0)
+STIMP_RANGE_M = (STIMP_RANGE_FT[0] * FOOT_M, STIMP_RANGE_FT[1] * FOOT_M)
 
 
 def plane_green(slope_tan, direction_rad, stimp_m, n=1):

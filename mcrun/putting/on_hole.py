@@ -6,20 +6,25 @@ green, pin, putter and settings, kept in memory and in a cache folder.
 (``putting = "physics"``). The cache folder is ``$MCRUN_CACHE_DIR/greens`` (default
 ``~/.cache/mcrun/greens``); a map is stored under a hash of everything it depends on (the
 green's heights and nodes, the pin, the speed, the putter, n, seed, resolution and the map's
-code version ``MAP_VERSION``), so that an edit of any of them builds a new map. A folder that
-cannot be written is skipped: the map is then built in each process.
+code version ``MAP_VERSION``), so that an edit of any of them builds a new map; the putter by
+its name and its parameters, so that a putter of the same name recalibrated builds one too. A
+folder that cannot be written is skipped: the map is then built in each process. A file there
+that cannot be read as a map (truncated, emptied, damaged) is built again and replaced, with a
+warning on stderr.
 """
 
+import dataclasses
 import hashlib
 import os
 import sys
 import weakref
+import zipfile
 from pathlib import Path
 
 import numpy as np
 
 from mcrun.putting.green import green_of_hole
-from mcrun.putting.green_map import GreenMap, expected_putts_map
+from mcrun.putting.green_map import POLAR_ANGLES, POLAR_RADII_M, GreenMap, expected_putts_map
 from mcrun.putting.putter import PUTTERS
 
 __all__ = ["MAP_VERSION", "cache_folder", "check_putting", "map_of_hole"]
@@ -33,14 +38,19 @@ _ARRAYS = ("expected_putts", "expected_putts_se", "p_one_putt", "p_three_putt", 
            "read_pace_m", "polar_expected", "polar_p_one", "polar_p_three")  # fmt: skip
 
 
-def check_putting(hole):
-    """``hole``, whose ``[hole.putting] putter`` is one of ``PUTTERS``; GreenError (a HoleError:
-    one line) otherwise."""
+def check_putting(hole, green=True):
+    """``hole``, whose ``[hole.putting] putter`` is one of ``PUTTERS`` and, where its green is
+    valued by its map (``putting = "physics"``) and ``green``, whose green can be putted on
+    (``putting.green.green_of_hole``: its speed a green's, somewhere a ball can rest); GreenError
+    (a HoleError: one line) otherwise."""
     from mcrun.putting.green import GreenError
 
-    name = hole.putting["putter"]
+    spec = hole.putting
+    name = spec["putter"]
     if name not in PUTTERS:
         raise GreenError(f"{hole.source}: 'putting.putter' = {name!r}: choose {', '.join(PUTTERS)}")
+    if green and spec["model"] == "physics":
+        green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"])
     return hole
 
 
@@ -53,7 +63,8 @@ def cache_folder():
 def _key(green, spec):
     h = hashlib.sha256()
     h.update(green.key())
-    h.update(repr((MAP_VERSION, spec["putter"], spec["n"], spec["seed"],
+    putter = dataclasses.astuple(PUTTERS[spec["putter"]])  # its name and its parameters
+    h.update(repr((MAP_VERSION, putter, spec["n"], spec["seed"],
                    spec["resolution_m"])).encode())  # fmt: skip
     return h.hexdigest()[:32]
 
@@ -73,18 +84,7 @@ def map_of_hole(hole, progress=None):
     if key in _MEMORY:
         return _MEMORY[key]
     path = cache_folder() / f"{key}.npz"
-    found = None
-    try:
-        with np.load(path) as data:
-            found = GreenMap(
-                green=green, x0_m=float(data["x0_m"]), y0_m=float(data["y0_m"]),
-                resolution_m=float(spec["resolution_m"]),
-                **{name: data[name] for name in _ARRAYS},
-                putter=PUTTERS[spec["putter"]], n=spec["n"], seed=spec["seed"],
-                sweep_change=float(data["sweep_change"]), elapsed_s=float(data["elapsed_s"]),
-            )  # fmt: skip
-    except (OSError, KeyError, ValueError):
-        found = None
+    found = _cached_map(path, green, spec)
     if found is None:
         if progress is None:
             print(f"mcrun: computing the expected-putts map of {green.source}'s green "
@@ -103,3 +103,38 @@ def map_of_hole(hole, progress=None):
             pass
     _MEMORY[key] = found
     return found
+
+
+def _cached_map(path, green, spec):
+    """The GreenMap stored at ``path``; None where there is none, and where the file cannot be
+    read as one (truncated, emptied, damaged: zip's checksums catch a changed byte), which is
+    said on stderr: the map is then built again and the file replaced."""
+    try:
+        with np.load(path) as data:
+            arrays = {name: np.asarray(data[name], dtype=float) for name in _ARRAYS}
+            scalars = {name: float(data[name])
+                       for name in ("x0_m", "y0_m", "sweep_change", "elapsed_s")}  # fmt: skip
+    except (FileNotFoundError, NotADirectoryError, PermissionError):
+        return None  # none, or a folder that cannot be read: skipped as one not written
+    except (OSError, EOFError, KeyError, ValueError, TypeError, NotImplementedError,
+            zipfile.BadZipFile) as err:  # fmt: skip
+        _damaged(path, err)
+        return None
+    polar = (len(POLAR_RADII_M), POLAR_ANGLES)
+    grids = {arrays[name].shape for name in _ARRAYS if not name.startswith("polar_")}
+    polars = {arrays[name].shape for name in _ARRAYS if name.startswith("polar_")}
+    if len(grids) != 1 or len(next(iter(grids))) != 2 or polars != {polar}:
+        _damaged(path, "its arrays' shapes disagree")
+        return None
+    return GreenMap(
+        green=green, x0_m=scalars["x0_m"], y0_m=scalars["y0_m"],
+        resolution_m=float(spec["resolution_m"]), **arrays, putter=PUTTERS[spec["putter"]],
+        n=spec["n"], seed=spec["seed"], sweep_change=scalars["sweep_change"],
+        elapsed_s=scalars["elapsed_s"],
+    )  # fmt: skip
+
+
+def _damaged(path, why):
+    why = " ".join(str(why).split()) or type(why).__name__
+    print(f"mcrun: warning: the expected-putts map cached in {path} cannot be read ({why}): "
+          "building it again", file=sys.stderr, flush=True)  # fmt: skip

@@ -1,0 +1,257 @@
+"""Bad input to putting (``mcrun putt``, a hole's green valued by its map): each ends with one
+line on stderr naming the file and the field and what is allowed, exit code 2 and nothing
+written; a damaged cached map is built again with a warning."""
+
+import math
+
+import numpy as np
+import pytest
+
+from mcrun.cli import COMMAND_MODULES, main
+from mcrun.hole.hole import load_hole
+from mcrun.physics.turf import stimp_from_rho_g
+from mcrun.putting import green as putting_green
+from mcrun.putting import on_hole
+from mcrun.putting.putter import PUTTERS, Putter
+from mcrun.putting.roll import Surface, grid_slope
+from mcrun.results.output import read_provenance
+from mcrun.strokes.baseline import FOOT_M
+
+HOLE = """
+length_m = 12.0
+width_m = 12.0
+margin_m = 4.0
+surface = "green"
+shape = {{ kind = "tilted_plane", slope_deg = {slope_deg}, fall_line_deg = 180.0 }}
+putting = {{ model = "{model}", resolution_m = 2.0, n = 20 }}
+
+[turf.green]
+rho_g = {rho_g}
+"""
+
+SCENARIO = """
+[scenario]
+name = "chip"
+shots = 20
+seed = 1
+
+[hole]
+file = "hole.toml"
+start = [2.0, 0.0]
+
+[launch]
+ball_speed = "14 mph"
+launch_angle = "30 deg"
+spin = "3000 rpm"
+"""
+
+RHO_11FT = 0.0713
+
+
+def _hole(tmp_path, slope_deg=1.0, rho_g=RHO_11FT, model="physics"):
+    path = tmp_path / "hole.toml"
+    path.write_text(HOLE.format(slope_deg=slope_deg, rho_g=rho_g, model=model))
+    return path
+
+
+def _one_line(capsys, *says):
+    captured = capsys.readouterr()
+    err = captured.err
+    assert err.count("\n") == 1 and err.startswith("mcrun: error: "), err
+    for text in says:
+        assert text in err, err
+    return captured
+
+
+def _written(tmp_path):
+    return sorted(p.name for p in tmp_path.iterdir() if p.name not in ("hole.toml", "s.toml"))
+
+
+# --- 1. a green with no rolling resistance -------------------------------------------------------
+
+
+def test_stimp_of_a_green_without_rolling_resistance_is_infinite():
+    assert stimp_from_rho_g(0.0) == math.inf
+    assert stimp_from_rho_g(0.131) == pytest.approx(1.82, abs=0.01)
+    np.testing.assert_array_equal(stimp_from_rho_g(np.array([0.0, 0.5])) > 0, [True, True])
+
+
+@pytest.mark.parametrize("rho_g", [0.0, 1e-6, 0.03, 0.5])
+def test_putt_refuses_a_green_whose_speed_is_not_a_green_s(tmp_path, capsys, rho_g):
+    hole = _hole(tmp_path, rho_g=rho_g)
+    assert main(["putt", "--hole", str(hole), "-o", str(tmp_path / "m.parquet")]) == 2
+    _one_line(capsys, "hole.toml: 'turf.green.rho_g' = ", "allowed for a green to putt on",
+              "3 ft to 20 ft")  # fmt: skip
+    assert _written(tmp_path) == []
+
+
+@pytest.mark.parametrize("command", [["run", "s.toml", "-o", "run"], ["aim", "s.toml"]])
+def test_a_run_refuses_a_putted_green_with_no_rolling_resistance(tmp_path, capsys, monkeypatch,
+                                                                 command):  # fmt: skip
+    _hole(tmp_path, rho_g=0.0)
+    (tmp_path / "s.toml").write_text(SCENARIO)
+    monkeypatch.chdir(tmp_path)
+    assert main(command) == 2
+    _one_line(capsys, "s.toml [hole]: 'turf.green.rho_g' = 0 ")
+    assert _written(tmp_path) == []
+
+
+def test_a_green_without_rolling_resistance_is_a_hole_s_where_it_is_not_putted_on(tmp_path):
+    """Under the baseline's putts (``putting = "table"``) the green's turf is any turf."""
+    hole = on_hole.check_putting(load_hole(_hole(tmp_path, rho_g=0.0, model="table")))
+    assert hole.turf["green"].rho_g == 0.0
+    lo, hi = putting_green.RHO_G_RANGE
+    assert lo == pytest.approx(0.0392, abs=1e-4) and hi == pytest.approx(0.2614, abs=1e-4)
+
+
+# --- 2. a damaged cached map ---------------------------------------------------------------------
+
+
+def _damage(path, how):
+    raw = path.read_bytes()
+    if how == "truncated":
+        path.write_bytes(raw[: len(raw) // 2])
+    elif how == "empty":
+        path.write_bytes(b"")
+    else:  # a byte flipped in the middle of the arrays
+        b = bytearray(raw)
+        b[len(b) // 2] ^= 0xFF
+        path.write_bytes(bytes(b))
+
+
+@pytest.mark.parametrize("how", ["truncated", "empty", "flipped"])
+def test_a_damaged_cached_map_is_built_again_with_a_warning(tmp_path, capsys, monkeypatch, how):
+    monkeypatch.setenv("MCRUN_CACHE_DIR", str(tmp_path / "cache"))
+    hole = load_hole(_hole(tmp_path))
+    on_hole._MEMORY.clear()  # built here, in this test's cache folder
+    built = on_hole.map_of_hole(hole)
+    (path,) = (tmp_path / "cache" / "greens").glob("*.npz")
+    _damage(path, how)
+    on_hole._MEMORY.clear()
+    capsys.readouterr()
+    again = on_hole.map_of_hole(hole)
+    err = capsys.readouterr().err
+    warning = [line for line in err.splitlines() if line.startswith("mcrun: warning:")]
+    assert len(warning) == 1 and str(path) in warning[0] and "building it again" in warning[0]
+    np.testing.assert_array_equal(again.expected_putts, built.expected_putts)
+    on_hole._MEMORY.clear()  # the file was replaced: read back without a word
+    read = on_hole.map_of_hole(hole)
+    assert "mcrun:" not in capsys.readouterr().err
+    np.testing.assert_array_equal(read.expected_putts, built.expected_putts)
+
+
+def test_the_cache_key_holds_the_putter_s_parameters(tmp_path, monkeypatch):
+    from mcrun.putting.green import green_of_hole
+
+    hole = load_hole(_hole(tmp_path))
+    spec = hole.putting
+    green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"])
+    key = on_hole._key(green, spec)
+    monkeypatch.setitem(PUTTERS, "tour", Putter("tour", 2.0, PUTTERS["tour"].speed_sd_pct))
+    assert on_hole._key(green, spec) != key
+
+
+# --- 3. a green steeper than its stopping slope everywhere ---------------------------------------
+
+
+def test_least_slope_is_the_green_s_least_gradient():
+    least_slope = putting_green.least_slope
+    xs = np.arange(0.0, 5.01, 0.5)
+    x, y = np.meshgrid(xs, xs)
+    on = np.ones(x.shape, np.uint8)
+    plane = Surface(0.05 * x - 0.02 * y, on, 0.0, 0.0, 0.5)
+    assert least_slope(plane) == pytest.approx(math.hypot(0.05, 0.02))
+    bowl = Surface(((x - 2.25) ** 2 + (y - 1.75) ** 2) / 20.0, on, 0.0, 0.0, 0.5)
+    assert least_slope(bowl) == 0.0  # its bottom at a cell's centre, between nodes
+    # Off centre: the bilinear surface's least slope, as the roll's own slope finds it on a
+    # fine sample of the green.
+    bowl = Surface(((x - 2.3) ** 2 + (y - 1.6) ** 2) / 20.0, on, 0.0, 0.0, 0.5)
+    fine = np.linspace(0.0, 5.0, 201)
+    sampled = min(grid_slope(a, b, bowl)[0] for a in fine for b in fine)
+    assert least_slope(bowl) == pytest.approx(sampled, abs=1e-12)
+    assert sampled > 0.01
+    assert least_slope(Surface(x, np.zeros(x.shape, np.uint8), 0.0, 0.0, 0.5)) == math.inf
+
+
+def test_putt_refuses_a_green_on_which_no_ball_can_rest(tmp_path, capsys):
+    hole = _hole(tmp_path, slope_deg=10.0)  # 17.6 %, the Stimp 11 ft green's stopping slope 7.1 %
+    assert main(["putt", "--hole", str(hole), "-o", str(tmp_path / "m.parquet"),
+                 "--plot", str(tmp_path / "m.png")]) == 2  # fmt: skip
+    _one_line(capsys, "hole.toml: the green is steeper than its stopping slope everywhere",
+              "17.6 %", "7.1 %", "'turf.green.rho_g' = 0.0713")  # fmt: skip
+    assert _written(tmp_path) == []
+
+
+@pytest.mark.parametrize("command", [["run", "s.toml", "-o", "run"],
+                                     ["play", "tour", "s.toml", "-o", "p.parquet"],
+                                     ["play", "tour", "hole.toml", "-o", "p.parquet"]])  # fmt: skip
+def test_runs_and_play_refuse_a_green_on_which_no_ball_can_rest(tmp_path, capsys, monkeypatch,
+                                                               command):  # fmt: skip
+    _hole(tmp_path, slope_deg=10.0)
+    (tmp_path / "s.toml").write_text(SCENARIO)
+    monkeypatch.chdir(tmp_path)
+    assert main(command) == 2
+    source = "hole.toml" if command[2] == "hole.toml" else "s.toml [hole]"
+    _one_line(capsys, f"{source}: the green is steeper than its stopping slope everywhere")
+    assert _written(tmp_path) == []
+
+
+def test_the_library_green_can_be_putted_on():
+    from mcrun.run import scenario as sc
+
+    hole = load_hole(sc.library_folder() / "holes" / "riverside-18-green.toml")
+    assert on_hole.check_putting(hole) is hole
+
+
+# --- 4. a Stimp reading or a slope out of range ----------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "options, says",
+    [
+        (["--stimp", "1e6ft"], "--stimp 1e6ft: allowed: 3 ft to 20 ft"),
+        (["--stimp", "2ft"], "--stimp 2ft: allowed: 3 ft to 20 ft"),
+        (["--stimp", "7m"], "--stimp 7m: allowed: 3 ft to 20 ft"),
+        (["--slope", "1e6deg"], "--slope 1e6deg: allowed: 0 to 20 % (11.3 deg)"),
+        (["--slope", "12deg"], "--slope 12deg: allowed: 0 to 20 % (11.3 deg)"),
+        (["--slope", "-1deg"], "--slope -1deg: allowed: 0 to 20 %"),
+    ],
+)
+def test_putt_refuses_a_stimp_or_slope_no_green_has(capsys, options, says):
+    assert main(["putt", "--distance", "10ft", "-n", "20", *options]) == 2
+    captured = _one_line(capsys, says)
+    assert captured.out == ""
+
+
+def test_putt_refuses_a_hole_s_stimp_out_of_range(tmp_path, capsys):
+    hole = _hole(tmp_path)
+    assert main(["putt", "--hole", str(hole), "-o", str(tmp_path / "m.parquet"),
+                 "--stimp", "1e6ft"]) == 2  # fmt: skip
+    _one_line(capsys, "--stimp 1e6ft: allowed: 3 ft to 20 ft")
+    assert _written(tmp_path) == []
+
+
+# --- 5. %% in the help ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("command", sorted(COMMAND_MODULES))
+def test_no_help_prints_a_doubled_percent_sign(capsys, command):
+    assert main([command, "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "%%" not in out
+    if command == "putt":
+        assert "--slope 2% --direction 90" in out and "3ft to 20ft" in out
+
+
+# --- 6. --stimp with --hole ----------------------------------------------------------------------
+
+
+def test_putt_on_a_hole_applies_stimp_and_says_so(tmp_path, capsys, monkeypatch):
+    hole = _hole(tmp_path, slope_deg=10.0)  # no rest at 11 ft; at 4 ft (7.1 % -> 19.6 %) there is
+    out = tmp_path / "m.parquet"
+    assert main(["putt", "--hole", str(hole), "-o", str(out), "--stimp", "4ft"]) == 0
+    err = capsys.readouterr().err
+    assert "Stimp 4.0 ft (--stimp; the hole's green: 11.0 ft)" in err
+    provenance = read_provenance(out)
+    assert provenance["stimp_m"] == pytest.approx(4 * FOOT_M)
+    assert provenance["stimp_from"] == "--stimp"
