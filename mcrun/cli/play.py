@@ -6,32 +6,80 @@ import contextlib
 import sys
 
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
-from mcrun.cli.options import whole
+from mcrun.cli.options import local_cores, local_workers, whole
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
 
+# Top-level tables or keys of a scenario file (a hole file has the hole's keys, or a [hole]).
+_SCENARIO_KEYS = ("scenario", "launch", "club", "group", "sweep", "weather", "models")
+# The names of ``plan_play``'s arguments on this command line.
+OPTION_NAMES = {"n": "-n", "plays": "--plays", "coarse_m": "--coarse", "fine_m": "--fine"}
+
+
+def _is_hole_file(spec):
+    """Whether ``spec`` is a hole TOML file (not a scenario, nor a library name): a file the
+    hole reader reads whose top level has none of a scenario's tables."""
+    import tomllib
+    from pathlib import Path
+
+    from mcrun.hole.errors import HoleError
+    from mcrun.hole.hole import read_hole_file
+
+    try:
+        read_hole_file(spec)
+        with Path(spec).open("rb") as f:
+            top = tomllib.load(f)
+    except (HoleError, OSError, tomllib.TOMLDecodeError, UnicodeDecodeError):
+        return False  # a library name, or a file the scenario reader explains
+    return not any(key in top for key in _SCENARIO_KEYS)
+
 
 def _hole_of(spec):
-    """The Hole of a hole TOML file, or of a scenario (a file or a library name) with a [hole]."""
-    from mcrun.hole.errors import HoleError
-    from mcrun.hole.hole import load_hole, read_hole_file
+    """The Hole of a hole TOML file (its own errors said as they are: no green, a pin off the
+    green), or of a scenario (a file or a library name) with a [hole]."""
+    from mcrun.hole.hole import load_hole
     from mcrun.putting.on_hole import check_putting
     from mcrun.run import scenario as sc
 
-    try:
-        table, _ = read_hole_file(spec)
-        if "scenario" not in table and "launch" not in table:
-            return check_putting(load_hole(spec))
-    except HoleError:
-        pass
+    if _is_hole_file(spec):
+        return check_putting(load_hole(spec))
     scenario = sc.load(spec)
     if scenario.hole is None:
         raise InputError(f"HOLE {spec}: a scenario without a [hole]: give a hole file")
-    return scenario.hole
+    return check_putting(scenario.hole)
+
+
+def _workers(args):
+    """The workers of ``--dask local`` (given, else the cores); 0 without --dask (the shots are
+    flown on this process's threads)."""
+    if args.dask is None:
+        if args.workers is not None:
+            raise InputError(
+                f"--workers {args.workers}: is for --dask local (without it the shots are "
+                "flown on this process's threads): give --dask local --workers N"
+            )
+        return 0
+    from mcrun.run import distributed
+
+    distributed._dask()  # installed, else one line: pip install 'mcrun[dask]'
+    workers = local_workers(args.workers)
+    return local_cores() if workers is None else workers
+
+
+def _score_line(result):
+    """The plays' score distribution: against par, or by strokes where the par is not known."""
+    if result.hole.par is None:
+        shares = result.stroke_shares()
+        listed = ", ".join(f"{k} strokes {100 * v:.1f} %" for k, v in shares.items())
+        return (f"{len(result.scores):,} plays: {listed}; mean {result.scores.mean():.3f} "
+                "(the hole's par is not known)")  # fmt: skip
+    shares = result.score_shares()
+    listed = ", ".join(f"{k} {100 * v:.1f} %" for k, v in shares.items())
+    return f"{len(result.scores):,} plays: {listed}; mean {result.scores.mean():.3f}"
 
 
 def _cmd_play(args):
-    from mcrun.play import load_player, play_hole
+    from mcrun.play import load_player, plan_play, solve_planned
     from mcrun.run import aim
 
     if args.output is not None:
@@ -41,8 +89,7 @@ def _cmd_play(args):
 
         style.require_matplotlib("play --plot")
         aim.check_output(args.plot, args.force, "--plot", (".png",), ".png")
-    player = load_player(args.player)
-    hole = _hole_of(args.hole)
+    workers = _workers(args)
     n = whole(args.n, "-n", 2)
     plays = whole(args.plays, "--plays", 1)
     coarse = parse_quantity(args.coarse, "length", "--coarse")
@@ -51,43 +98,58 @@ def _cmd_play(args):
         if not 1.0 <= value <= 50.0:
             raise InputError(f"{name} {value:g} m: allowed: 1 m to 50 m")
     seed = None if args.seed is None else whole(args.seed, "--seed", 0)
-    others = []
+    player = load_player(args.player)
+    hole = _hole_of(args.hole)
+    players = [player]
     if args.vs is not None:
-        others.append(load_player(args.vs))
+        players.append(load_player(args.vs))
     if args.longer is not None:
         from mcrun.play.player import longer
 
         yards = parse_quantity(args.longer, "length", "--longer") / 0.9144
         if not -100.0 <= yards <= 100.0:
             raise InputError(f"--longer {args.longer}: allowed: -100 yd to 100 yd")
-        others.append(longer(player, 0, yards))
+        players.append(longer(player, 0, yards))
+    # Every player's solve planned and checked before any is flown: one that would not fit
+    # beside those before it (whose results are kept) is refused before the first starts.
+    compile_if_needed("plane")  # the plans fly each club on the level
+    from mcrun.run.aim import available_memory
+
+    memory = available_memory()
+    plans = []
+    for one in players:
+        left = None if memory is None else memory - sum(p.bytes for p in plans)
+        plans.append(plan_play(one, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
+                               plays=plays, workers=workers, memory=left,
+                               names=OPTION_NAMES))  # fmt: skip
     print(f"play: {hole.name or hole.source} (par {hole.par or '?'}, {hole.length_m:.0f} m) as "
-          f"{player.name} ({len(player.clubs)} clubs); {n} shots an action",
+          f"{player.name} ({len(player.clubs)} clubs); {n:,} shots an action",
           file=sys.stderr, flush=True)  # fmt: skip
+    for planned in plans:
+        print(planned.line(), file=sys.stderr, flush=True)
     compile_if_needed("terrain")  # said apart from the solver's own time
     from tqdm import tqdm
 
-    bar = tqdm(unit="action", file=sys.stderr, leave=False, dynamic_ncols=True)
+    results = []
     with contextlib.ExitStack() as stack:
         client = None
         if args.dask is not None:
-            from distributed import Client
-
             from mcrun.run import distributed
 
-            workers = None if args.workers is None else whole(args.workers, "--workers", 1)
             cluster = stack.enter_context(distributed.local_cluster(workers))
-            client = stack.enter_context(Client(cluster))
+            client = stack.enter_context(distributed._dask().Client(cluster))
         try:
-            result = play_hole(player, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
-                               plays=plays, progress=lambda k: bar.update(k - bar.n),
-                               client=client)  # fmt: skip
-            others = [play_hole(o, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
-                                plays=plays, client=client) for o in others]  # fmt: skip
+            for planned in plans:
+                bar = tqdm(total=len(planned.actions), unit="action", file=sys.stderr,
+                           leave=False, dynamic_ncols=True)  # fmt: skip
+                try:
+                    results.append(solve_planned(planned, client=client,
+                                                 progress=lambda k, bar=bar: bar.update(k - bar.n)))
+                finally:
+                    bar.close()
         except KeyboardInterrupt:
             raise Interrupted("nothing was written") from None
-        finally:
-            bar.close()
+    result, others = results[0], results[1:]
     tr, s = result.transitions, result.solution
     print(f"{result.lattice.size:,} states (every {coarse:g} m, every {fine:g} m near the pin), "
           f"{len(tr.actions)} actions, {tr.shots_flown:,} shots; solved in {s.sweeps} sweeps, "
@@ -97,9 +159,7 @@ def _cmd_play(args):
           f"(seed {result.seed}); best: {best[1]}")  # fmt: skip
     for name, (value, saved) in result.savings().items():
         print(f"against {name}: {value:.3f}, the best saves {saved:.3f}")
-    shares = result.score_shares()
-    listed = ", ".join(f"{k} {100 * v:.1f} %" for k, v in shares.items())
-    print(f"{len(result.scores):,} plays: {listed}; mean {result.scores.mean():.3f}")
+    print(_score_line(result))
     for o in others:
         other = o.player
         print(f"{other.name}: {o.tee_value:.3f} +- {o.tee_se:.3f} from the tee (best: "
@@ -167,7 +227,11 @@ def register(subparsers):
     p.add_argument("--vs", metavar="PLAYER2", help="a second player on the same hole")
     p.add_argument("--longer", metavar="YD", help="and the player with a driver YD longer: 10yd")
     p.add_argument("--dask", choices=["local"], help="fly the shots on a local Dask cluster")
-    p.add_argument("--workers", metavar="W", help="its workers (default: the cores)")
+    p.add_argument(
+        "--workers",
+        metavar="W",
+        help="its workers (default: the cores; at most 4 a core, as many as the memory holds)",
+    )
     p.add_argument("-o", "--output", metavar="FILE", help="every state and action (.parquet)")
     p.add_argument("--plot", metavar="PNG", help="the picture")
     p.add_argument("--force", action="store_true", help="replace existing outputs")

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from mcrun.cli import Interrupted, compile_if_needed, kernels_of
+from mcrun.cli.options import local_workers
 from mcrun.quantities import InputError
 from mcrun.results import stats
 from mcrun.run import local, plan, sampling
@@ -147,7 +148,7 @@ def _run_on_dask(args):
         args.scenario,
         scheduler=args.scheduler if args.scheduler else args.dask,
         scheduler_file=args.scheduler_file,
-        workers=args.workers,
+        workers=local_workers(args.workers),
         **_run_options(args),
     )
 
@@ -311,7 +312,10 @@ def _add_dask_options(p):
         "--scheduler-file", metavar="PATH", help="an existing cluster's scheduler file"
     )
     group.add_argument(
-        "--workers", metavar="N", help="worker processes of --dask local (default: the cores)"
+        "--workers",
+        metavar="N",
+        help="worker processes of --dask local (default: the cores; at most 4 a core, as many "
+        "as the memory holds)",
     )
 
 

@@ -5,31 +5,39 @@ hole's ground).
 
 The parts: the player (``player``: a bag, its spread, lies, part power; ``calibration``: the
 Tour bag's spread), the states (``lattice``), the actions and their shots (``transitions``),
-the values and the policy (``solve``), the score distribution (``episodes``). ``play_hole`` is
-the entry point from Python; ``mcrun play`` prints its result.
+the values and the policy (``solve``), the score distribution (``episodes``), and the solve
+checked and sized before it runs (``plan``: ``plan_play``, whose ``PlayPlan.play`` runs it).
+``play_hole`` is the entry point from Python; ``mcrun play`` plans every player it solves
+before it solves any, says each plan, and prints the results.
 """
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 
 from mcrun.play.episodes import MAX_STROKES, play_policy
-from mcrun.play.lattice import (
-    DEFAULT_COARSE_M,
-    DEFAULT_FINE_M,
-    DEFAULT_FINE_WITHIN_M,
-    lattice,
-)
-from mcrun.play.player import Player, PlayerError, load_player, on_hole
+from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M, DEFAULT_FINE_WITHIN_M
+from mcrun.play.plan import PlayPlan, plan_play
+from mcrun.play.player import Player, PlayerError, load_player
 from mcrun.play.solve import solve
 from mcrun.play.transitions import AIMS, fly
 from mcrun.putting.on_hole import map_of_hole
 from mcrun.strokes.baseline import LIES, tour_baseline
 
-__all__ = ["DEFAULT_N", "PlayResult", "Player", "PlayerError", "load_player", "play_hole"]
+__all__ = [
+    "DEFAULT_N",
+    "PlayPlan",
+    "PlayResult",
+    "Player",
+    "PlayerError",
+    "load_player",
+    "plan_play",
+    "play_hole",
+    "solve_planned",
+]
 
 DEFAULT_N = 100
 DEFAULT_PLAYS = 4000
@@ -89,11 +97,19 @@ class PlayResult:
         return out
 
     def score_shares(self):
-        """{name: share} of the plays' scores against par (``SCORE_NAMES``)."""
+        """{name: share} of the plays' scores against par (``SCORE_NAMES``); where the hole's
+        par is not known, against the expected score from the tee rounded (see
+        ``stroke_shares``)."""
         par = self.hole.par or round(self.tee_value)
         d = self.scores - par
         counts = (d <= -2, d == -1, d == 0, d == 1, d >= 2)
         return {name: float(c.mean()) for name, c in zip(SCORE_NAMES, counts, strict=True)}
+
+    def stroke_shares(self):
+        """{strokes: share} of the plays' scores, fewest first: the distribution without a
+        par."""
+        values, counts = np.unique(self.scores, return_counts=True)
+        return {int(v): float(c) / len(self.scores) for v, c in zip(values, counts, strict=True)}
 
     def states_frame(self):
         """One row per state: x_m, y_m, lie, expected_strokes, its se, the best action."""
@@ -153,17 +169,23 @@ def play_hole(player, hole, n=DEFAULT_N, seed=None, coarse_m=DEFAULT_COARSE_M,
     ``coarse_m`` and every ``fine_m`` within ``fine_within_m`` of the pin; the policy played
     ``plays`` times. A ball on the green is worth the hole's putting (its map under
     ``putting = "physics"``, else the baseline's putts). ``client``: a Dask client whose
-    workers fly the shots (the same solution, bit for bit)."""
+    workers fly the shots (the same solution, bit for bit). ``progress(k)``: called with the
+    actions flown so far. What cannot be solved is refused before a shot is flown on the hole
+    (``plan.plan_play``: PlayerError, one line)."""
+    planned = plan_play(player, hole, n=n, seed=seed, coarse_m=coarse_m, fine_m=fine_m,
+                        fine_within_m=fine_within_m, plays=plays)  # fmt: skip
+    return solve_planned(planned, progress=progress, client=client)
+
+
+def solve_planned(planned, progress=None, client=None):
+    """The ``PlayResult`` of a ``PlayPlan`` (``plan.plan_play``): its actions flown, the values
+    solved, the policy played."""
     started = time.perf_counter()
-    if not (isinstance(n, int) and n >= 2):
-        raise PlayerError(f"n {n!r}: allowed: a whole number of at least 2")
-    scenario = on_hole(player, hole)
-    if seed is not None:
-        scenario = replace(scenario, seed=int(seed))
-    base = tour_baseline()
-    lat = lattice(hole, base, coarse_m, fine_m, fine_within_m)
-    tr = fly(scenario, lat, n, player.spread, putting=map_of_hole(hole), baseline=base,
-             progress=progress, speed=player.speed, client=client)  # fmt: skip
+    player, hole, scenario, lat, n = (planned.player, planned.hole, planned.scenario,
+                                      planned.lattice, planned.n)  # fmt: skip
+    tr = fly(scenario, lat, n, player.spread, putting=map_of_hole(hole),
+             baseline=planned.baseline, progress=progress, speed=player.speed, client=client,
+             planned=(planned.actions, planned.jobs))  # fmt: skip
     solution = solve(lat, tr)
     if solution.change > 1e-3 or not np.isfinite(solution.values[0]):
         worst = int(np.argmax(solution.values))
@@ -181,9 +203,9 @@ def play_hole(player, hole, n=DEFAULT_N, seed=None, coarse_m=DEFAULT_COARSE_M,
     line_rows = row_aim == AIMS.index(("line", 0.0))
     allowed = line_rows | ((row_aim == AIMS.index(("pin", 0.0))) & ~np.isin(key, key[line_rows]))
     fairway = solve(lat, tr, allowed=allowed, start_values=solution.values)
-    scores = play_policy(lat, tr, solution, plays, scenario.seed)
+    scores = play_policy(lat, tr, solution, planned.plays, scenario.seed)
     return PlayResult(player, hole, lat, tr, solution, fairway, scores, n, scenario.seed,
-                      time.perf_counter() - started)  # fmt: skip
+                      planned.planned_s + time.perf_counter() - started)  # fmt: skip
 
 
 __all__ += ["MAX_STROKES", "SCORE_NAMES"]

@@ -32,6 +32,7 @@ __all__ = [
     "TOUR_SPREAD",
     "Player",
     "PlayerError",
+    "check_dispersion",
     "load_player",
     "longer",
     "on_hole",
@@ -73,6 +74,17 @@ PLAYERS = {
 }
 
 
+# A club's dispersion: its first DISPERSION_SHOTS shots must differ in some launch value; the
+# keys that give those values, by how the club's launch is given (``Point.mode``).
+DISPERSION_SHOTS = 64
+DISPERSION_KEYS = {
+    "ball": "launch.ball_speed, launch.launch_angle, launch.spin, launch.spin_axis and "
+    "launch.azimuth are all constant",
+    "club": "club.speed, club.loft, club.spin_axis and club.azimuth are all constant",
+    "file": "every shot of its launch.file is the same",
+}
+
+
 class PlayerError(InputError):
     """A player that cannot be used; one line."""
 
@@ -97,14 +109,17 @@ class Player:
         return self.speed[club] if self.speed else 1.0
 
 
-def load_player(spec, putter="tour", spread=None):
+def load_player(spec, putter="tour", spread=None, straight=False):
     """The Player of a preset (``PLAYERS``: tour, scratch, bogey), a player file or a library
     scenario's name (``pga-tour-bag``: the Tour player, its spreads ``TOUR_SPREAD``);
-    ``spread``: one factor for every club, or a tuple (default 1, the file's own dispersion)."""
+    ``spread``: one factor for every club, or a tuple (default 1, the file's own dispersion).
+    A club whose every shot is the same (no dispersion: ``check_dispersion``) is refused
+    (PlayerError), unless ``straight`` (a bag of straight shots, for tests from first
+    principles: a model player has a dispersion)."""
     if str(spec) in PLAYERS:
         name = str(spec)
         bag, speed, preset = PLAYERS[name]
-        player = load_player(bag, putter, preset if spread is None else spread)
+        player = load_player(bag, putter, preset if spread is None else spread, straight)
         return Player(name, player.scenario, player.clubs, player.spread, putter,
                       player.source, (speed,) * len(player.clubs))  # fmt: skip
     scenario = sc.load(spec)
@@ -124,7 +139,34 @@ def load_player(spec, putter="tour", spread=None):
     if len(spread) != len(clubs) or not all(0.0 < v <= 10.0 for v in spread):
         raise PlayerError(f"{scenario.path}: spread {spread}: allowed: one factor in (0, 10] "
                           f"or one per club ({len(clubs)})")  # fmt: skip
+    if not straight:
+        check_dispersion(scenario, clubs)
     return Player(scenario.name, scenario, clubs, spread, putter, str(scenario.path))
+
+
+def check_dispersion(scenario, clubs):
+    """PlayerError (one line naming the file, the club and its launch's keys) for a club of
+    the player's ``scenario`` whose first ``DISPERSION_SHOTS`` shots are all the same in every
+    launch value its spread scales (``calibration.SPREAD_COLUMNS``: ball speed, launch angle,
+    spin, spin axis, azimuth): a bag without dispersion hits every shot exactly where it is
+    aimed, and its solution (holes in one from wherever a pin is in reach) is no player's."""
+    import numpy as np
+
+    from mcrun.engine.schema import COLUMN
+    from mcrun.play.calibration import SPREAD_COLUMNS
+    from mcrun.run import sampling
+
+    columns = [COLUMN[name] for name in SPREAD_COLUMNS]
+    for point, club in zip(scenario.points, clubs, strict=True):
+        inputs, _ = sampling.sample(scenario, point, 0, DISPERSION_SHOTS)
+        values = inputs[:, columns]
+        if np.all(values == values[0]):
+            raise PlayerError(
+                f"{scenario.path}: club {club!r}: every shot is the same "
+                f"({DISPERSION_KEYS[point.mode]}): a player needs a dispersion: allowed is a "
+                "launch with at least one of them a distribution with a spread (sd > 0), e.g. "
+                '{ dist = "normal", mean = "0 deg", sd = "1.5 deg" } for its azimuth'
+            )
 
 
 def longer(player, club, yards, n=2000):

@@ -33,7 +33,7 @@ from mcrun.play.player import LIE_LAUNCH, PART_POWERS, PITCH_LOFT_DEG
 from mcrun.run import sampling, starts
 from mcrun.strokes.baseline import HOLE_RADIUS_M, LIES
 
-__all__ = ["AIMS", "KINDS", "Action", "Transitions", "fly"]
+__all__ = ["AIMS", "KINDS", "Action", "Option", "Transitions", "fly", "options_of", "plan_actions"]
 
 PLAY, GREEN, WATER, RESTART, FAILED = range(5)
 KINDS = ("play", "green", "water", "restart", "failed")
@@ -108,19 +108,39 @@ def _lie_launch(batch, rows_lie, n):
         view[:] = centre + (view - centre) * factors[:, 2, None]
 
 
-def _level_total(inputs):
+@dataclass(frozen=True)
+class Option:
+    """A club at a power, its ``n`` shots' kernel inputs, and what they do on the level (the
+    plane's ground, the club's own turf and weather): the mean total, the mean carry and the
+    longest total of its shots (m)."""
+
+    club: int
+    power: float
+    inputs: np.ndarray
+    total_m: float
+    carry_m: float
+    longest_m: float
+
+
+def _on_the_level(inputs):
+    """(mean total, mean carry, longest total) m of ``inputs`` flown on the plane."""
     out = simulate_batch(np.asfortranarray(inputs.copy()))
-    return float(np.nanmean(out[:, _OUT["total_m"]]))
+    total, carry = out[:, _OUT["total_m"]], out[:, _OUT["carry_m"]]
+    if not np.isfinite(total).any():
+        return math.nan, math.nan, math.nan
+    return float(np.nanmean(total)), float(np.nanmean(carry)), float(np.nanmax(total))
 
 
-def _options(scenario, n, spread, speed):
-    """(club, power, inputs, mean total m) of every full club and the wedge's part powers."""
+def options_of(scenario, n, spread, speed=None):
+    """The ``Option`` of every full club of the player's ``scenario`` (each at its ``spread``
+    and ball speed factor ``speed``, default 1) and of the wedge's part powers."""
+    speed = speed or (1.0,) * len(spread)
     options = []
     last = len(scenario.points) - 1
     for club in range(len(scenario.points)):
         for power in (1.0, *(PART_POWERS if club == last else ())):
             inputs = _shots(scenario, club, n, power, spread[club], speed[club])
-            options.append((club, power, inputs, _level_total(inputs)))
+            options.append(Option(club, power, inputs, *_on_the_level(inputs)))
     return options
 
 
@@ -249,19 +269,16 @@ def _batch_task(scenario, club, inputs, xy, points, lies, n, putting, baseline):
     return _batch(scenario, club, inputs, xy, points, lies, n, putting, baseline)
 
 
-def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None,
-        speed=None, client=None):  # fmt: skip
-    """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``,
-    each club's launch at its ``spread``, its ball speed times its ``speed`` (default 1).
-    ``client``: a ``dask.distributed.Client`` whose workers fly the batches (the same shots,
-    bit for bit, put back in order)."""
-    hole = scenario.hole
-    options = _options(scenario, n, spread, speed or (1.0,) * len(spread))
+def plan_actions(hole, lat, options, chunk_rows=256):
+    """(actions, jobs) of the ``options`` (``options_of``) over the states of ``lat`` on
+    ``hole``: every action (an option and an aim) with the states it fits, and the jobs that
+    fly them, (rows, action, club, inputs, aim points) of up to ``chunk_rows`` states each."""
     px, py = hole.pin_xy
     dist = np.hypot(px - lat.xy[:, 0], py - lat.xy[:, 1])
-    shortest = min(range(len(options)), key=lambda k: options[k][3])
+    shortest = min(range(len(options)), key=lambda k: options[k].total_m)
     actions, jobs = [], []
-    for k, (club, power, inputs, total) in enumerate(options):
+    for k, option in enumerate(options):
+        total = option.total_m
         fits = total <= dist + np.maximum(OVERSHOOT_M, 0.1 * dist)
         if k == shortest:
             fits[:] = True
@@ -271,10 +288,25 @@ def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, p
             if chosen.size == 0:
                 continue
             a = len(actions)
-            actions.append(Action(club, power, aim, total))
+            actions.append(Action(option.club, option.power, aim, total))
             for c in range(0, chosen.size, chunk_rows):
                 rows = chosen[c : c + chunk_rows]
-                jobs.append((rows, a, club, inputs, points[rows]))
+                jobs.append((rows, a, option.club, option.inputs, points[rows]))
+    return actions, jobs
+
+
+def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None,
+        speed=None, client=None, planned=None):  # fmt: skip
+    """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``,
+    each club's launch at its ``spread``, its ball speed times its ``speed`` (default 1).
+    ``client``: a ``dask.distributed.Client`` whose workers fly the batches (the same shots,
+    bit for bit, put back in order). ``planned``: the (actions, jobs) of ``plan_actions``
+    (of ``options_of(scenario, n, spread, speed)``), when the caller has them.
+    ``progress(k)``: called with the actions flown so far, of ``len(actions)``."""
+    if planned is None:
+        options = options_of(scenario, n, spread, speed)
+        planned = plan_actions(scenario.hole, lat, options, chunk_rows)
+    actions, jobs = planned
     if client is None:
         parts = []
         for rows, action, club, inputs, points in jobs:
@@ -291,26 +323,34 @@ def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, p
         futures = [client.submit(_batch_task, shared[0], club, inputs, lat.xy[rows], points,
                                  lat.lie[rows], n, shared[1], shared[2], pure=False)
                    for rows, _, club, inputs, points in jobs]  # fmt: skip
+        if progress is not None:  # as the tasks finish, in any order: the share done
+            from distributed import as_completed
+
+            for done, _ in enumerate(as_completed(futures), start=1):
+                progress(len(actions) * done // len(futures))
         parts = client.gather(futures)
-        if progress is not None:
-            progress(len(actions))
     flown = sum(len(job[0]) for job in jobs) * n
     rows_state = np.concatenate([job[0] for job in jobs])
     rows_action = np.concatenate([np.full(len(job[0]), job[1]) for job in jobs])
     order = np.lexsort((rows_action, rows_state))
-    arrays = [np.concatenate([p[j].reshape(len(job[0]), n) for p, job in zip(parts, jobs,
-                                                                          strict=True)])[order]
-              .ravel() for j in range(5)]  # fmt: skip
+    arrays = []
+    for j in range(5):
+        arrays.append(
+            np.concatenate(
+                [p[j].reshape(len(job[0]), n) for p, job in zip(parts, jobs, strict=True)]
+            )[order].ravel()
+        )
+    del parts  # (the shots are in ``arrays`` now: memory_bytes counts both at once)
     return Transitions(
         actions=actions,
         row_state=rows_state[order].astype(np.int64),
         row_action=rows_action[order].astype(np.int64),
         row_start=np.arange(len(order) + 1, dtype=np.int64) * n,
-        kind=arrays[0].astype(np.int8),
-        lie=arrays[1].astype(np.int8),
-        x=arrays[2].astype(np.float64),
-        y=arrays[3].astype(np.float64),
-        const=arrays[4].astype(np.float64),
+        kind=arrays[0].astype(np.int8, copy=False),
+        lie=arrays[1].astype(np.int8, copy=False),
+        x=arrays[2].astype(np.float64, copy=False),
+        y=arrays[3].astype(np.float64, copy=False),
+        const=arrays[4].astype(np.float64, copy=False),
         n=int(n),
         shots_flown=flown,
     )

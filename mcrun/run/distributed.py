@@ -127,6 +127,9 @@ RETRIES = 2
 NUMBA_THREADS_PER_TASK = 1
 CONNECT_TIMEOUT_S = 30
 _SHOWN_FAILURES = 10
+# A local cluster's worker: a process with mcrun, Numba, Dask and a hole's kernel loaded
+# (measured: 270 MB resident).
+WORKER_BYTES = 300_000_000
 
 __all__ = [
     "DEFAULT_CHUNK_SIZE",

@@ -17,12 +17,21 @@ errors, and the shares that finished on the green, in a penalty area, out of bou
 map and that failed; with ``keep_shots``, every shot's outcomes too (start-major: the shots of
 start k are rows k n .. (k + 1) n - 1), for a solver that looks up where each shot stopped.
 
+An argument that cannot be used is refused before anything is flown, in one line naming it
+and what is allowed (``InputError``, a ValueError): a start that is not a point in play, an
+``n`` under 2, a ``point`` that is not an index of the scenario's, an aim that is not a point;
+for ``starts_grid``, a spacing that is not a positive number of metres (or gives more than
+``MAX_GRID_NODES`` places), a ``within_m`` that is not (min, max) with 0 <= min <= max, a zone
+that is not a zone kind. A grid none of whose places fits is empty, and ``play_from`` refuses
+it.
+
 The same on Dask (``client``): the chunks of starts are the tasks, each samples the same shots
 (they depend only on the scenario, its seed and the shot index) and scores its starts, and
 the client puts the chunks back in start order: bit for bit the local result, whatever the
 number of workers.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,7 +42,7 @@ from mcrun.engine.schema import COLUMN
 from mcrun.hole.zones import PENALTY_ZONES, ZONE_KINDS
 from mcrun.quantities import InputError
 from mcrun.results import on_hole
-from mcrun.run import sampling
+from mcrun.run import plan, sampling
 from mcrun.strokes import start_of, tour_baseline
 from mcrun.strokes.expected import FAILED
 
@@ -43,6 +52,9 @@ START_Y = COLUMN["start_y_m"]
 # Starts per batch of the kernel: 256 starts of 200 shots are 51,200 shots, a batch as long
 # as a run's chunk, whose inputs and outcomes take 20 MB.
 DEFAULT_CHUNK_STARTS = 256
+# The most nodes of a grid of starts (``starts_grid``): 10 million places take 160 MB, and
+# their shots far more; a finer grid is a mistake (a spacing of 1 mm).
+MAX_GRID_NODES = 10_000_000
 # The per-start columns of ``StartsResult.frame``, after x_m, y_m and lie.
 SHARES = ("green", "penalty_area", "out_of_bounds", "off_map", "failed")
 
@@ -82,9 +94,17 @@ class StartsResult:
 def check_starts(hole, starts_xy_m, where="starts_xy_m"):
     """``starts_xy_m`` as an (m, 2) float array of places in play on ``hole``; InputError (one
     line: the first bad start, its index and why) otherwise."""
-    starts = np.asarray(starts_xy_m, dtype=float)
-    if starts.ndim != 2 or starts.shape[1] != 2 or len(starts) == 0:
+    try:
+        starts = np.asarray(starts_xy_m, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(
+            f"{where}: cannot read {_shown(starts_xy_m)} as points: allowed is an (m, 2) array "
+            "of [x_m, y_m] (numbers of metres in the hole's frame)"
+        ) from None
+    if starts.ndim != 2 or starts.shape[1] != 2:
         raise InputError(f"{where}: must be (m, 2) points [x_m, y_m], got shape {starts.shape}")
+    if len(starts) == 0:
+        raise InputError(f"{where}: no starts: give at least one [x_m, y_m] place in play")
     bad = ~np.isfinite(starts).all(axis=1)
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
@@ -95,6 +115,35 @@ def check_starts(hole, starts_xy_m, where="starts_xy_m"):
         why = hole.why_not_playable(*starts[k])
         raise InputError(f"{where}[{k}]: {starts[k].tolist()} is {why}: a shot starts in play")
     return starts
+
+
+def _shown(value, most=60):
+    """``value`` as a message shows it: its repr, shortened when long."""
+    text = repr(value)
+    return text if len(text) <= most else f"{text[: most - 3]}..."
+
+
+def _metres(value, name, positive=False):
+    """``value`` as a finite number of metres (> 0 where ``positive``); InputError naming
+    ``name`` otherwise."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if isinstance(value, bool) or not math.isfinite(number) or (positive and number <= 0.0):
+        allowed = "a positive number of metres" if positive else "a finite number of metres"
+        raise InputError(f"{name} {_shown(value)}: allowed: {allowed}")
+    return number
+
+
+def _pair(value, name, allowed="a point (x_m, y_m) in the hole's frame"):
+    """``value`` as two finite numbers of metres; InputError naming ``name`` and what is
+    ``allowed`` otherwise."""
+    try:
+        a, b = value
+        return _metres(a, name), _metres(b, name)
+    except (TypeError, ValueError):  # (InputError is a ValueError)
+        raise InputError(f"{name} {_shown(value)}: allowed: {allowed}") from None
 
 
 def tile(inputs, play, starts_xy_m, aim_xy_m):
@@ -179,15 +228,17 @@ def play_from(
     hole = scenario.hole
     if hole is None:
         raise InputError(f"{scenario.path}: shots from start points need a hole ([hole])")
-    if not 0 <= point < len(scenario.points):
-        raise InputError(f"point must be within [0, {len(scenario.points) - 1}], got {point}")
-    n = int(n)
-    if n < 2:
-        raise InputError(f"n must be an integer >= 2 (a standard error needs two), got {n}")
+    last = len(scenario.points) - 1
+    if isinstance(point, bool) or not isinstance(point, int | np.integer) or not 0 <= point <= last:
+        raise InputError(f"point must be an index of the scenario's points, 0-{last}, got "
+                         f"{_shown(point)}")  # fmt: skip
+    n = plan.positive_int(n, "n", minimum=2)  # (a standard error needs two)
+    chunk_starts = plan.positive_int(chunk_starts, "chunk_starts")
     starts = check_starts(hole, starts_xy_m)
-    aim = tuple(float(v) for v in (hole.pin_xy if aim_xy_m is None else aim_xy_m))
+    aim = tuple(hole.pin_xy) if aim_xy_m is None else _pair(aim_xy_m, "aim_xy_m")
+    aim = tuple(float(v) for v in aim)
     strokes = {"baseline": baseline or tour_baseline(), "lie_of_zone": lie_of_zone}
-    cuts = list(range(0, len(starts), max(int(chunk_starts), 1)))
+    cuts = list(range(0, len(starts), chunk_starts))
     chunks = [starts[c : c + chunk_starts] for c in cuts]
     if client is None:
         parts = []
@@ -255,16 +306,41 @@ def _chunk_task(text, path, seed, point, n, chunk, aim, strokes, keep_shots):
 
 def starts_grid(hole, spacing_m, within_m=None, zones=None):
     """Places in play on ``hole`` every ``spacing_m`` (a square grid in its frame), optionally
-    only those ``within_m`` (min, max) m of the pin and in ``zones`` (zone kinds): (m, 2)."""
+    only those ``within_m`` (min, max) m of the pin and in ``zones`` (zone kinds): (m, 2),
+    empty where none is. InputError (a ValueError, one line naming the argument) for a spacing
+    that is not a positive number of metres or gives more than ``MAX_GRID_NODES`` nodes, a
+    ``within_m`` that is not 0 <= min <= max, or a zone that is not one of ``ZONE_KINDS``."""
+    spacing = _metres(spacing_m, "spacing_m", positive=True)
+    if within_m is not None:
+        allowed = "(min, max) metres from the pin, 0 <= min <= max"
+        lo, hi = _pair(within_m, "within_m", allowed)
+        if not 0.0 <= lo <= hi:
+            raise InputError(f"within_m {_shown(within_m)}: allowed: {allowed}")
+    if zones is not None:
+        zones = [zones] if isinstance(zones, str) else list(zones)
+        unknown = [z for z in zones if z not in ZONE_KINDS]
+        if unknown:
+            raise InputError(
+                f"zones: {_shown(unknown[0])} is not a zone kind; allowed: {', '.join(ZONE_KINDS)}"
+            )
     t = hole.terrain()
     ny, nx = t.zone.shape
-    xs = np.arange(t.x0_m, t.x0_m + (nx - 1) * t.cell_m + 1e-9, spacing_m)
-    ys = np.arange(t.y0_m, t.y0_m + (ny - 1) * t.cell_m + 1e-9, spacing_m)
+    width, height = (nx - 1) * t.cell_m, (ny - 1) * t.cell_m
+    nodes = (math.floor(width / spacing) + 1) * (math.floor(height / spacing) + 1)
+    if nodes > MAX_GRID_NODES:
+        least = math.sqrt(width * height / MAX_GRID_NODES)
+        raise InputError(
+            f"spacing_m {spacing:g}: {nodes:,} places over the hole's map ({width:.0f} m x "
+            f"{height:.0f} m), at most {MAX_GRID_NODES:,}: allowed here: a spacing of at least "
+            f"about {least:.2g} m"
+        )
+    xs = np.arange(t.x0_m, t.x0_m + width + 1e-9, spacing)
+    ys = np.arange(t.y0_m, t.y0_m + height + 1e-9, spacing)
     X, Y = (a.ravel() for a in np.meshgrid(xs, ys))
     keep = hole.in_play_at(X, Y)
     if within_m is not None:
         d = np.hypot(X - hole.pin_xy[0], Y - hole.pin_xy[1])
-        keep &= (d >= within_m[0]) & (d <= within_m[1])
+        keep &= (d >= lo) & (d <= hi)
     if zones is not None:
         codes = [ZONE_KINDS.index(z) for z in zones]
         keep &= np.isin(hole.zone_at(X, Y), codes)
