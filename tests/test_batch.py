@@ -96,17 +96,31 @@ def test_general_lanes_fly_a_quadratic_shot_as_the_quadratic_lanes(inputs):
     n = len(inputs)
     rows = np.asfortranarray(inputs)
     outs = []
-    for fly in (flight_lanes.fly_quadratic, flight_lanes.fly_general):
+    for general in (False, True):
         out = np.full((n, N_OUTCOME), np.nan, order="F")
         kinds = np.array([flight_lanes.flight_kind(rows, i, out) for i in range(n)], dtype=np.int8)
-        landings = np.empty((n, tables.N_LANDING))
-        pending = np.empty(n, dtype=np.int64)
-        no_path, untraced = np.empty((0, 5)), np.full(4, -1.0)
-        fly(rows, kinds, flight_lanes.QUADRATIC, 0, n, aero.QUADRATIC_COEFFICIENTS, out, landings,
-            pending, 0, no_path, untraced, None)  # fmt: skip
+        _fly_quadratic_kind(rows, kinds, out, general)
         outs.append(out[kinds == flight_lanes.QUADRATIC])
     assert len(outs[0]) > 100
     assert same(outs[0], outs[1])
+
+
+@numba.njit(cache=True)
+def _fly_quadratic_kind(rows, kinds, out, general):
+    """The shots of the quadratic kind flown by the quadratic lanes or the general ones. (A
+    function of this module calls them so that its compilation is cached: a lanes' function is
+    a closure over dispatchers, whose cache key is new in every process.)"""
+    n = rows.shape[0]
+    landings = np.empty((n, tables.N_LANDING))
+    pending = np.empty(n, dtype=np.int64)
+    no_path, untraced = np.empty((0, 5)), np.full(4, -1.0)
+    table = aero.QUADRATIC_COEFFICIENTS
+    if general:
+        flight_lanes.fly_general(rows, kinds, flight_lanes.QUADRATIC, 0, n, table, out, landings,
+                                 pending, 0, no_path, untraced, None)  # fmt: skip
+    else:
+        flight_lanes.fly_quadratic(rows, kinds, flight_lanes.QUADRATIC, 0, n, table, out,
+                                   landings, pending, 0, no_path, untraced, None)  # fmt: skip
 
 
 def test_mix_is_real(alone, inputs):
@@ -118,6 +132,7 @@ def test_mix_is_real(alone, inputs):
 
 
 @pytest.mark.parametrize("threads", [1, 2])
+@pytest.mark.determinism
 def test_any_order_and_thread_count(inputs, alone, threads):
     """Reversed rows and another thread count change nothing."""
     previous = numba.get_num_threads()

@@ -180,6 +180,7 @@ def test_workers_run_one_numba_thread(client):
     assert threads and set(threads.values()) == {1} and set(nthreads.values()) == {1}
 
 
+@pytest.mark.determinism
 def test_groups_partition_the_dataset_and_match_the_local_engine(bag):
     """Two groups x two sweep values: shots/group=<name>/part-NNNNN.parquet (the name
     percent-encoded, no group column in the files); shots, summary and trajectories equal the

@@ -118,6 +118,7 @@ def drive(tmp_path_factory):
 
 
 @pytest.mark.skipif(numba.config.NUMBA_NUM_THREADS < 2, reason="needs 2 threads")
+@pytest.mark.determinism
 def test_same_shots_on_1_and_2_threads_and_any_chunk_size(drive, tmp_path):
     """Same seed, same shots bit for bit: 2 threads with chunks of 500 (the fixture) against 1
     thread with chunks of 317 and 2 threads with one chunk per point; trajectories too."""

@@ -133,6 +133,7 @@ def test_the_map_on_a_flat_green_agrees_with_the_plane_s_holing_out(flat_map):
     assert flat_map.sweep_change < 0.01
 
 
+@pytest.mark.determinism
 def test_the_map_is_the_same_on_one_thread_and_on_two(flat_map):
     one = expected_putts_map(disc_green(), n=400, seed=1, resolution_m=1.0, threads=1)
     for name in ("expected_putts", "expected_putts_se", "p_one_putt", "read_aim_deg"):

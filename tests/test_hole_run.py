@@ -213,6 +213,7 @@ def test_hole_shots_read_in_pandas_as_categories(par3):
     assert isinstance(shots["finish_zone"].dtype, pd.CategoricalDtype)
 
 
+@pytest.mark.determinism
 def test_a_hole_run_on_dask_is_the_local_run(tmp_path):
     """The same run on a local Dask cluster: every shot and the zone shares, bit for bit."""
     pytest.importorskip("distributed")

@@ -486,6 +486,7 @@ def test_a_ball_rolling_onto_faster_turf_decelerates_less():
 # -- 7. determinism ---------------------------------------------------------------------------
 
 
+@pytest.mark.determinism
 def test_threads_and_row_order_change_nothing_on_a_terrain():
     """4,200 wedges and irons into a dish of a green with water behind it (more than one task of
     shots): the same outcomes, bit for bit, with 1 and 2 threads and with the rows reversed."""

@@ -189,12 +189,14 @@ def test_cli_warm_up_refuses_a_bad_option_in_one_line(argv, message, capsys):
     assert err.count("\n") == 1
 
 
-def test_locked_saves_restores_numba(tmp_path):
+def test_locked_saves_restores_numba(tmp_path, monkeypatch):
     from numba.core.caching import IndexDataCacheFile
 
     from mcrun.engine import cache_lock
 
-    save = IndexDataCacheFile.save
+    # Numba's own save (the suite's processes save under the lock: conftest.py).
+    save = getattr(IndexDataCacheFile.save, "__wrapped__", IndexDataCacheFile.save)
+    monkeypatch.setattr(IndexDataCacheFile, "save", save)
     with cache_lock.locked_saves() as locked:
         assert locked is cache_lock.available()
         if locked:
@@ -263,3 +265,19 @@ def test_the_general_lanes_kernels_are_compiled_where_a_command_needs_them(tmp_p
         '[[group]]\nname = "a"\n\n[[group]]\nname = "b"\nmodels.aero = "lyu2018"\n'
     )
     assert plan.general_flight(scenario.load(path))
+
+
+def test_the_jobs_compile_every_kernel_once_the_terrain_s_batch_apart():
+    """Each kernel on each ground is in exactly one job; with two processes for both grounds
+    the terrain's batch kernels (the costliest) have a process of their own and its traced
+    ones go with the plane's; with one process, or one ground, one job per ground."""
+    for grounds, processes in ((warmup.GROUNDS, 1), (warmup.GROUNDS, 2), (("terrain",), 2)):
+        planned = warmup.jobs(grounds, warmup.KERNELS, processes)
+        pairs = [(g, k) for job in planned for g, ks in job for k in ks]
+        assert sorted(pairs) == sorted((g, k) for g in grounds for k in warmup.KERNELS)
+    two = warmup.jobs(warmup.GROUNDS, warmup.KERNELS, 2)
+    assert two[0] == (("terrain", ("batch", "batch_general", "traced_general")),)
+    assert two[1] == (("plane", warmup.KERNELS), ("terrain", ("traced", "landed")))
+    assert warmup.jobs(warmup.GROUNDS, ("batch",), 2) == [
+        (("plane", ("batch",)),), (("terrain", ("batch",)),)
+    ]
