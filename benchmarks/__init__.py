@@ -2,7 +2,7 @@
 
 Run it with ``python -m benchmarks`` (full, a few minutes) or ``python -m benchmarks --quick``
 (under a minute, a check before each commit). It writes ``benchmarks/results/latest.json``
-(every number, and the machine it ran on) and ``latest.md`` (the tables of the README); the
+(every number, and the machine it ran on) and ``latest.md`` (the tables of docs/performance.md); the
 quick mode writes ``quick.json`` and ``quick.md`` instead, so that it never replaces the full
 results.
 

@@ -8,8 +8,8 @@ warm-up that is not timed; the figure is nanoseconds a call. A loop that carries
 its chain of waits (each call starts from the last one's result); a loop over lanes of balls
 (2, 4 or 16, each call on the next ball) lets the processor overlap the balls' calls, and the
 compiler vectorise the loop where its body has no branch. Which of the two a part gains from
-is what says how it could be made faster: the README's Performance section (Real survey
-ground) reads these numbers. Prints a Markdown table and writes
+is what says how it could be made faster: docs/performance.md (real survey ground) reads
+these numbers. Prints a Markdown table and writes
 ``benchmarks/results/ground-parts.md``; asserts nothing.
 """
 

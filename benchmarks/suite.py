@@ -81,7 +81,7 @@ def _plain(value):
 
 
 def markdown(results):
-    """The Markdown report: the tables of the README."""
+    """The Markdown report: the tables of docs/performance.md."""
     m = results.get("machine", {})
     suite = results["suite"]
     load = suite.get("load_average_at_start", [math.nan])[0]

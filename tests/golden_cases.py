@@ -9,7 +9,8 @@ delivery, some with their trajectory.
 ``python tests/golden_cases.py [SCENARIO ...]`` writes the file anew (``tests/data/golden/``;
 with names, only those library scenarios' files); do that only
 when a change moves numbers on purpose, and say which and why. ``tests/test_golden.py``
-compares the current tree with it, bit for bit.
+compares the current tree with it: at the tolerance of ``tests/tolerance.py`` on any CPU, bit
+for bit with ``pytest --bit-for-bit`` on the machine that wrote it.
 """
 
 import contextlib

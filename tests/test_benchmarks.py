@@ -1,7 +1,7 @@
 """The benchmark suite (``benchmarks/``), its quick pieces at tiny N.
 
 What is checked is what the suite's numbers rest on, not its timings (no test asserts a time):
-the results have the keys the README's tables are made from, the reference integration
+the results have the keys docs/performance.md's tables are made from, the reference integration
 (DOP853, rtol 1e-12, ``benchmarks/reference.py``) and mcrun's kernel give the same carry and
 total within 1 cm (the issue's accuracy target), and the baselines (``benchmarks/baselines.py``)
 fly the same equations: the same shot carries as far as with mcrun, within 1 cm.

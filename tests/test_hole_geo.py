@@ -29,7 +29,7 @@ def test_the_plane_distance_is_the_geodesic_less_s3_over_6r2(distance_m):
     expected = distance_m**3 / (6.0 * MEAN_RADIUS_M**2)
     assert shortfall == pytest.approx(np.full(shortfall.size, expected), rel=0.02, abs=1e-8)
     if distance_m == 600.0:
-        assert shortfall.max() < 1e-6  # the number the docstring and the README state
+        assert shortfall.max() < 1e-6  # the number the docstring and docs/holes.md state
 
 
 def test_lonlat_to_frame_and_back_within_10_nm():

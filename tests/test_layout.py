@@ -1,4 +1,4 @@
-"""The layers of the package (README "Code layout"): every import of a module of mcrun goes down
+"""The layers of the package (docs/code-layout.md): every import of a module of mcrun goes down
 the layers, never up and never round in a circle, including the imports inside functions."""
 
 import ast

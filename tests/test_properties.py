@@ -351,8 +351,8 @@ def totals(**kwargs):
 )
 def test_total_grows_with_ball_speed(turf, launch_deg, spin_radps):
     """Hit harder, at the same launch and spin, and the ball finishes further (20-90 m/s), from a
-    knuckling line drive to a wedge. (Balls driven into the ground are the exception the README
-    states under Limits: there eq. (8) itself, inside its bound, turns more of a faster ball's
+    knuckling line drive to a wedge. (Balls driven into the ground are the exception docs/limits.md
+    states: there eq. (8) itself, inside its bound, turns more of a faster ball's
     speed upwards.)"""
     t = totals(
         ball_speed_mps=np.linspace(20.0, 90.0, 29),

@@ -1,10 +1,17 @@
-"""The README's example outputs are what the code prints today: every fenced block that starts
-with a ``$ mcrun ...`` line is run (in a folder where ``scenarios/`` is the library, so that the
+"""The documentation's example outputs are what the code prints today: every fenced block of
+README.md and of the pages under docs/ whose first line is a ``$ mcrun ...`` line is run (in a
+folder where ``scenarios/`` is the library and ``tests/data/`` the tests' data, so that the
 default output folders land there) and its lines are compared with what it prints.
 
 In an example, ``...`` stands for any text within a line, and a line of ``...`` alone for any
 number of lines; the time and rate of a run (a number before `` s`` or ``shots/s``) are the
 machine's and are not compared. Everything else, every digit of a result included, is.
+
+A block may hold several commands, each a ``$ mcrun ...`` line followed by what it prints; they
+run in turn in the same folder (a run, then its pictures). A block fenced as ```` ```text ````
+is shown but not run: the way to show a command too slow for the tests. The same commands shown
+in more than one place (a README example that a page of docs/ shows in full) run once, and
+every copy is compared with what they printed.
 """
 
 import re
@@ -17,19 +24,43 @@ from mcrun.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
+PAGES = [README, *sorted((ROOT / "docs").rglob("*.md"))]
+PROMPT = "$ mcrun "
 # A timing: a number (with thousands' commas) before " s" or " shots/s" (the machine's).
 TIMING = re.compile(r"\d[\d,]*(?:\.\d+)?(?= s\b| shots/s)")
+# What each block's commands printed, by the commands: (exit code, output) of each.
+PRINTED = {}
+
+
+def blocks(page):
+    """[(line number, [(argv after ``mcrun``, expected lines)])] of a page's example blocks."""
+    found = []
+    lines = page.read_text(encoding="utf-8").splitlines()
+    k = 0
+    while k < len(lines):
+        if not (lines[k].startswith("```") and k + 1 < len(lines)):
+            k += 1
+            continue
+        end = next(j for j in range(k + 1, len(lines)) if lines[j].startswith("```"))
+        if lines[k + 1].startswith(PROMPT) and lines[k][3:].strip() != "text":
+            steps = []
+            for line in lines[k + 1 : end]:
+                if line.startswith(PROMPT):
+                    steps.append((shlex.split(line[len(PROMPT) :]), []))
+                else:
+                    steps[-1][1].append(line)
+            found.append((k + 2, steps))
+        k = end + 1
+    return found
 
 
 def examples():
-    """[(line number, argv after ``mcrun``, expected lines)] of the README's example blocks."""
-    found = []
-    lines = README.read_text(encoding="utf-8").splitlines()
-    for k, line in enumerate(lines):
-        if line.startswith("$ mcrun ") and k > 0 and lines[k - 1].startswith("```"):
-            end = next(j for j in range(k + 1, len(lines)) if lines[j].startswith("```"))
-            found.append((k + 1, shlex.split(line[len("$ mcrun ") :]), lines[k + 1 : end]))
-    return found
+    """pytest params of every page's example blocks, with ids like ``docs/putting.md:42``."""
+    return [
+        pytest.param(steps, id=f"{page.relative_to(ROOT).as_posix()}:{line}")
+        for page in PAGES
+        for line, steps in blocks(page)
+    ]
 
 
 def pattern(expected):
@@ -45,18 +76,41 @@ def pattern(expected):
     return re.compile("".join(parts).replace("#", r"\d[\d,]*(?:\.\d+)?"))
 
 
-def test_the_readme_has_examples():
-    assert len(examples()) >= 5
+def run_commands(steps, folder, capsys):
+    """Each command of a block run in turn in ``folder``: [(exit code, output)]."""
+    (folder / "scenarios").symlink_to(ROOT / "scenarios")
+    (folder / "tests").mkdir()
+    (folder / "tests" / "data").symlink_to(ROOT / "tests" / "data")
+    printed = []
+    for argv, _ in steps:
+        code = main(argv)
+        printed.append((code, capsys.readouterr().out))
+        if code != 0:
+            break
+    return printed
 
 
-@pytest.mark.parametrize("line, argv, expected", examples(), ids=lambda v: str(v)[:40])
-def test_a_readme_example_prints_what_it_shows(line, argv, expected, tmp_path, monkeypatch,
-                                               capsys):  # fmt: skip
-    (tmp_path / "scenarios").symlink_to(ROOT / "scenarios")
-    monkeypatch.chdir(tmp_path)
-    code = main(argv)
-    out = capsys.readouterr().out
-    assert code == 0, f"README line {line}: mcrun {' '.join(argv)} exited {code}"
-    assert pattern(expected).fullmatch(out), (
-        f"README line {line}: mcrun {' '.join(argv)} printed:\n{out}"
-    )
+def test_the_readme_and_the_docs_have_examples():
+    assert len(blocks(README)) >= 5
+    assert sum(len(blocks(page)) for page in PAGES[1:]) >= 10
+
+
+def test_a_block_fenced_as_text_is_not_run(tmp_path):
+    page = tmp_path / "page.md"
+    page.write_text("```text\n$ mcrun play pga-tour-bag par4-tee-shot\n...\n```\n\n"
+                    "```\n$ mcrun turfs\n...\n$ mcrun models\n...\n```\n")  # fmt: skip
+    assert blocks(page) == [(7, [(["turfs"], ["..."]), (["models"], ["..."])])]
+
+
+@pytest.mark.parametrize("steps", examples())
+def test_an_example_prints_what_it_shows(steps, request, tmp_path, monkeypatch, capsys):
+    where = request.node.callspec.id
+    key = tuple(tuple(argv) for argv, _ in steps)
+    if key not in PRINTED:
+        monkeypatch.chdir(tmp_path)
+        PRINTED[key] = run_commands(steps, tmp_path, capsys)
+    for (argv, expected), (code, out) in zip(steps, PRINTED[key], strict=False):
+        command = f"mcrun {' '.join(argv)}"
+        assert code == 0, f"{where}: {command} exited {code}"
+        assert pattern(expected).fullmatch(out), f"{where}: {command} printed:\n{out}"
+    assert len(PRINTED[key]) == len(steps)

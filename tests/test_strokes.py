@@ -144,7 +144,7 @@ def test_published_checks():
     """The PGA Tour's worked example: 446 yd from the tee 4.100, 116 yd in the fairway 2.825, a
     putt of 16 ft 11 in 1.826. The example uses the Tour's own, later baseline; linear
     interpolation in the full Table 9 gives 4.107, 2.840 and 1.815 (the reference), each within
-    0.02 of the example, as close as the two baselines agree (README, Decisions)."""
+    0.02 of the example, as close as the two baselines agree (docs/strokes.md)."""
     tee = e("tee", 446 * YD)
     fairway = e("fairway", 116 * YD)
     putt = e("green", (16 + 11 / 12) * FT)

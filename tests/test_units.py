@@ -455,7 +455,7 @@ def test_bad_vector_size(size):
     ],
 )
 def test_degree_sign_is_degrees(text, kind, same_as):
-    """``°`` is accepted on purpose (documented in the README): ``10°`` is ``10deg``."""
+    """``°`` is accepted on purpose (documented in docs/shots.md): ``10°`` is ``10deg``."""
     assert parse_quantity(text, kind) == parse_quantity(same_as, kind)
 
 

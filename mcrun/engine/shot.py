@@ -46,8 +46,8 @@ from mcrun.status import (
     TOO_MANY_BOUNCES,
 )
 
-# The default flight step, chosen from the accuracy study (tests/test_accuracy.py, README
-# "Numerical accuracy"): in uniform wind RK4 at 0.2 s puts carry within 4.3 mm of a DOP853
+# The default flight step, chosen from the accuracy study (tests/test_accuracy.py,
+# docs/accuracy.md): in uniform wind RK4 at 0.2 s puts carry within 4.3 mm of a DOP853
 # reference for every model (within 0.8 mm for the quadratic ones); a log or power wind
 # profile, whose shear is singular at the ground, needs 0.02 s for 2 mm.
 DEFAULT_DT_S = 0.2

@@ -54,7 +54,8 @@ MODELS = {
 }
 
 # The model that best predicts measured shots it was not fitted to (cross-validated on the
-# TrackMan 2019 tour averages: benchmarks/calibration.md, README). Before: trackman2019.
+# TrackMan 2019 tour averages: benchmarks/calibration.md, docs/calibration.md). Before:
+# trackman2019.
 DEFAULT_MODEL = "trackman2019_lyu"
 
 SOURCES = {

@@ -66,7 +66,7 @@ PRESETS = {
     # 288.5 yd. The roll-out is nearly all bounces: softness 1.0 gives 25.3 yd, 1.2 gives 12.8,
     # while rho_g 0.20 -> 0.30 takes off 0.5 yd and mu changes nothing (the drive leaves its
     # bounces rolling). Irons and wedges then roll little: PGA 5-iron 6.6 yd, 7-iron 1.8 yd,
-    # PW -0.2 yd (README, "Turf").
+    # PW -0.2 yd (docs/model.md, "Turf").
     "fairway": Turf(mu=0.40, softness=1.1, rho_g=0.20, critical_height_m=0.005, **_PAPER_E),
     # ESTIMATE: rough. rho_g 0.50 (a Stimp of about 0.48 m, 1.6 ft), more friction, and a
     # softer surface (theta_c x 1.5: the ball sinks deeper into long grass).

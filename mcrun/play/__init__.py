@@ -6,7 +6,7 @@ hole's ground).
 The parts: the player (``player``: a bag, its spread, lies, part power; ``calibration``: the
 Tour bag's spread), the states (``lattice``), the actions and their shots (``transitions``),
 the values and the policy (``solve``), the score distribution (``episodes``), and the solve
-checked and sized before it runs (``plan``: ``plan_play``, whose ``PlayPlan.play`` runs it).
+checked and sized before it runs (``plan``: ``plan_play``; ``solve_planned`` runs its plan).
 ``play_hole`` is the entry point from Python; ``mcrun play`` plans every player it solves
 before it solves any, says each plan, and prints the results.
 """

@@ -21,8 +21,8 @@ or refuses in one line (``PlayerError``) what it cannot do, before a shot is flo
   option give (before n shots of each are sampled: ``-n 1e9``), then on the exact rows.
 
 The plan holds what it computed (the lattice, each club's n shots and what they do on the
-level, the actions and their jobs): ``PlayPlan.play`` flies and solves them, bit for bit what
-``play_hole`` gives.
+level, the actions and their jobs): ``mcrun.play.solve_planned`` flies and solves them, bit for
+bit what ``play_hole`` gives.
 """
 
 import math
@@ -113,7 +113,7 @@ def memory_bytes(n_options, n, rows, plays, workers=0, chunk_rows=CHUNK_ROWS):
 @dataclass
 class PlayPlan:
     """A solve planned by ``plan_play``: what it will fly (``states``, ``rows``, ``shots``) and
-    its estimated ``seconds`` and ``bytes``; ``play()`` runs it."""
+    its estimated ``seconds`` and ``bytes``; ``mcrun.play.solve_planned`` runs it."""
 
     player: object
     hole: object

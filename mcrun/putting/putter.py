@@ -7,7 +7,7 @@ error of ``speed_sd_pct``, independently per putt.
 
 Presets (``PUTTERS``):
 
-- "tour": CALIBRATED to the PGA Tour's make rates and average putts (README, "Putting") on
+- "tour": CALIBRATED to the PGA Tour's make rates and average putts (docs/putting.md) on
   Tour-like greens (``mcrun.putting.greens.tour_greens``): start line 1.5 deg, speed 4.7 %. The
   start line's error agrees with the one of A. Gelman and D. Nolan's geometric model fitted to
   professionals' make rates ("A probability model for golf putting", Teaching Statistics 24, 93
@@ -43,7 +43,7 @@ class Putter:
     pace_m: float = DEFAULT_PACE_M
 
 
-# CALIBRATED (README, "Putting"): tests/test_putting.py checks the table.
+# CALIBRATED (docs/putting.md): tests/test_putting.py checks the table.
 TOUR_LINE_SD_DEG = 1.5
 TOUR_SPEED_SD_PCT = 4.7
 SCRATCH_FACTOR = 8.0 / 6.0

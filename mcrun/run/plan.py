@@ -145,7 +145,7 @@ BYTES_PER_TRAJECTORY = 60_000
 # of about 120 columns) and 1.5 kB per further point (measured on 4 and 100 points).
 BYTES_SUMMARY = 100_000
 BYTES_SUMMARY_POINT = 2_000
-# Time: end to end about 4e5 shots/s on two cores (README, Performance: 451,000 for 1e7
+# Time: end to end about 4e5 shots/s on two cores (docs/performance.md: 451,000 for 1e7
 # pga-driver shots), and per point about 1.7 ms of Python (sampling its block, building its
 # table and its summary row: a 100 x 100 sweep of 10 shots a point ran in 17 s).
 SHOTS_PER_S = 4e5

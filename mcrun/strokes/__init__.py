@@ -1,5 +1,5 @@
 """Expected strokes to hole out and strokes gained: the PGA Tour baseline (Broadie 2012) or a
-user's, and the expected strokes left after each shot of a run on a hole (README, Decisions)."""
+user's, and the expected strokes left after each shot of a run on a hole (docs/strokes.md)."""
 
 from mcrun.strokes.baseline import (
     LIES,

@@ -7,7 +7,7 @@ Appendix A, Table 9. A baseline CSV has the columns ``lie,distance_yd,distance_f
 expected_strokes``, one of the two distances per row, ``#`` comment lines anywhere, and at least
 two rows for every lie of ``LIES``.
 
-Where the table has no row (README, Decisions, "Expected strokes and strokes gained"):
+Where the table has no row (docs/strokes.md, "The baseline"):
 
 - between rows: linear in distance; above a lie's last row: the line through its last two rows;
 - off the green, below a lie's first row: the putt from the same distance plus the lie's step
@@ -146,7 +146,7 @@ def _number(text, where, column, allowed):
 
 def load_baseline(path):
     """The Baseline of the CSV at ``path`` (columns ``lie,distance_yd,distance_ft,
-    expected_strokes``; README, Decisions). Raises BaselineError, one line naming the file, the
+    expected_strokes``; docs/strokes.md). Raises BaselineError, one line naming the file, the
     line and column, and what is allowed."""
     name = str(path)
     # A str or Path, or an importlib.resources Traversable (the package's table).

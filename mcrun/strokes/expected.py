@@ -1,7 +1,7 @@
 """Expected strokes left after each shot of a run on a hole, the strokes gained by it, and per
 point their means with standard errors and the part of each outcome in them.
 
-The rules (README, Decisions, "Expected strokes and strokes gained"):
+The rules (docs/strokes.md):
 
 - the next shot's lie is that of the zone the ball finished in (``LIE_OF_ZONE``: fringe and a
   tee other than the start are played as fairway, a bunker as sand), which ``lie_of_zone``
