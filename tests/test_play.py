@@ -220,6 +220,32 @@ def test_mcrun_play_prints_the_solution(symmetric, tmp_path, capsys):
     assert frame.groupby("state")["best"].sum().max() == 1
 
 
+def test_the_picture_scores_against_par_or_counts_strokes_where_par_is_not_known(symmetric):
+    """The picture's bars: the shares of the plays against par where the hole's par is known,
+    and by their strokes where it is not (rather than against the tee value rounded)."""
+    pytest.importorskip("matplotlib")
+    import matplotlib.pyplot as plt
+
+    from mcrun.play import SCORE_NAMES
+    from mcrun.report.play_plot import play_figure
+
+    _, hole, result = symmetric
+    for par in (4, None):
+        shown = dataclasses.replace(result, hole=dataclasses.replace(hole, par=par))
+        fig = play_figure(shown)
+        bars = fig.axes[1]
+        labels = [t.get_text().replace("\n", " ") for t in bars.get_xticklabels()]
+        heights = [p.get_height() for p in bars.patches]
+        plt.close(fig)
+        assert sum(heights) == pytest.approx(100.0)
+        if par:
+            assert labels == list(SCORE_NAMES)
+        else:
+            shares = shown.stroke_shares()
+            assert labels == [f"{k} strokes" for k in shares]
+            assert heights == pytest.approx([100 * v for v in shares.values()])
+
+
 @pytest.mark.parametrize(
     "argv, says",
     [

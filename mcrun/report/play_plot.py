@@ -47,10 +47,16 @@ def play_figure(result):
             left.text(y, x, result.player.clubs[a.club] + power, fontsize=7, zorder=5)
     left.set_title(f"{result.player.name} on {result.hole.name or result.hole.source}\n"
                    "expected strokes to hole out, and the best aim", fontsize=9)  # fmt: skip
-    shares = result.score_shares()
-    right.bar(range(len(SCORE_NAMES)), [100 * shares[k] for k in SCORE_NAMES], color="0.4")
-    right.set_xticks(range(len(SCORE_NAMES)), [k.replace(" or ", "\nor ") for k in SCORE_NAMES],
-                     fontsize=8)  # fmt: skip
+    if result.hole.par:
+        shares = result.score_shares()
+        labels = [k.replace(" or ", "\nor ") for k in SCORE_NAMES]
+        heights = [100 * shares[k] for k in SCORE_NAMES]
+    else:  # no par to score against: the plays by their strokes
+        shares = result.stroke_shares()
+        labels = [f"{k} strokes" for k in shares]
+        heights = [100 * v for v in shares.values()]
+    right.bar(range(len(labels)), heights, color="0.4")
+    right.set_xticks(range(len(labels)), labels, fontsize=8)
     right.set_ylabel("share of plays (%)")
     title = (f"{len(result.scores):,} plays of the policy from the tee\nmean "
              f"{result.scores.mean():.3f}; expected {result.tee_value:.3f} +- "
