@@ -281,3 +281,8 @@ def test_the_jobs_compile_every_kernel_once_the_terrain_s_batch_apart():
     assert warmup.jobs(warmup.GROUNDS, ("batch",), 2) == [
         (("plane", ("batch",)),), (("terrain", ("batch",)),)
     ]
+    # a failure names every kernel of its job, the terrain's that went with the plane's too
+    assert warmup._describe(two[1]) == (
+        "warming up the batch, traced, landed, batch_general, traced_general kernel(s) on the "
+        "plane and the traced, landed kernel(s) on the terrain failed"
+    )

@@ -17,19 +17,15 @@ OPTION_NAMES = {"n": "-n", "plays": "--plays", "coarse_m": "--coarse", "fine_m":
 
 
 def _is_hole_file(spec):
-    """Whether ``spec`` is a hole TOML file (not a scenario, nor a library name): a file the
-    hole reader reads whose top level has none of a scenario's tables."""
+    """Whether ``spec`` is a hole TOML file (not a scenario, nor a library name): a TOML file
+    whose top level has none of a scenario's tables."""
     import tomllib
     from pathlib import Path
 
-    from mcrun.hole.errors import HoleError
-    from mcrun.hole.hole import read_hole_file
-
     try:
-        read_hole_file(spec)
         with Path(spec).open("rb") as f:
             top = tomllib.load(f)
-    except (HoleError, OSError, tomllib.TOMLDecodeError, UnicodeDecodeError):
+    except (OSError, tomllib.TOMLDecodeError, UnicodeDecodeError):
         return False  # a library name, or a file the scenario reader explains
     return not any(key in top for key in _SCENARIO_KEYS)
 

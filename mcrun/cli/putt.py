@@ -9,6 +9,7 @@ from mcrun.cli.options import whole
 from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_stimp, putt
 from mcrun.putting.greens import STIMP_RANGE_FT
 from mcrun.quantities import InputError
+from mcrun.strokes.baseline import FOOT_M
 from mcrun.units import parse_quantity
 
 DEFAULT_STIMP = "11ft"
@@ -112,9 +113,9 @@ def _cmd_green(args):
                               stimp_m)  # fmt: skip
     except GreenError as err:
         raise InputError(str(err)) from None
-    speed = f"Stimp {green.stimp_m / 0.3048:.1f} ft"
+    speed = f"Stimp {green.stimp_m / FOOT_M:.1f} ft"
     if stimp_m is not None:
-        hole_ft = stimp_from_rho_g(hole.turf["green"].rho_g) / 0.3048
+        hole_ft = stimp_from_rho_g(hole.turf["green"].rho_g) / FOOT_M
         speed += f" (--stimp; the hole's green: {hole_ft:.1f} ft)"
     print(f"putt: the green of {hole.source}: {green.area_m2():.0f} m^2, {speed}; map "
           f"{resolution:g} m, putter {putter}, {n} putts a read, seed {seed}", file=sys.stderr,

@@ -200,21 +200,23 @@ def _choose(values, allowed, what):
     return values
 
 
-def warm_up_job(ground, kernels, *more):
-    """One job of ``warm_up_all``: compile (or load) each of ``kernels`` on ``ground`` in this
-    process, in order, each timed on its own, then those of each further (ground, kernels) pair
-    in ``more``; its cache saves are locked against the other jobs' (``cache_lock``). Returns a
-    list of ``KernelWarmUp``."""
+def warm_up_job(*pairs):
+    """One job of ``warm_up_all``: for each (ground, kernels) pair in turn, compile (or load)
+    each of its kernels on its ground in this process, in order, each timed on its own; its
+    cache saves are locked against the other jobs' (``cache_lock``). Returns a list of
+    ``KernelWarmUp``."""
     from mcrun.engine import cache_lock
 
     done = []
     with cache_lock.locked_saves():
-        for on, some in ((ground, kernels), *more):
-            for kernel in some:
-                was_cached = kernel_cached(on, (kernel,))
+        for ground, kernels in pairs:
+            for kernel in kernels:
+                was_cached = kernel_cached(ground, (kernel,))
                 started = time.perf_counter()
-                _run(on, kernel)
-                done.append(KernelWarmUp(on, kernel, time.perf_counter() - started, was_cached))
+                _run(ground, kernel)
+                done.append(
+                    KernelWarmUp(ground, kernel, time.perf_counter() - started, was_cached)
+                )
     return done
 
 
@@ -285,9 +287,14 @@ def run_jobs(job, arguments, processes):
 
 
 def _describe(args):
-    ground, kernels = (args + (None, None))[:2]
-    if isinstance(ground, str) and isinstance(kernels, tuple):
-        return f"warming up the {', '.join(kernels)} kernel(s) on the {ground} failed"
+    """What a job of ``warm_up_job``'s (ground, kernels) pairs ``args`` did, for its error."""
+    if args and all(
+        isinstance(a, tuple) and len(a) == 2 and isinstance(a[0], str) and isinstance(a[1], tuple)
+        for a in args
+    ):
+        what = " and ".join(f"the {', '.join(kernels)} kernel(s) on the {ground}"
+                            for ground, kernels in args)  # fmt: skip
+        return f"warming up {what} failed"
     return f"warm-up job {args!r} failed"
 
 
@@ -314,7 +321,7 @@ def warm_up_all(grounds=GROUNDS, kernels=KERNELS, processes=None):
         processes = 1
     started = time.perf_counter()
     planned = jobs(grounds, kernels, processes)
-    results = run_jobs(warm_up_job, [(*job[0], *job[1:]) for job in planned], processes)
+    results = run_jobs(warm_up_job, planned, processes)
     order = {(g, k): i for i, (g, k) in enumerate((g, k) for g in grounds for k in kernels)}
     done = tuple(sorted((k for job in results for k in job),
                         key=lambda k: order[(k.ground, k.kernel)]))  # fmt: skip

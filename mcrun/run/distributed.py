@@ -463,7 +463,7 @@ def _worker_kernels_cached(ground, kernels):
 def _worker_warm_up(ground, kernels):
     """On a worker: compile or load the kernels (cache saves locked against the other
     workers'); the seconds it took."""
-    return sum(done.seconds for done in warmup.warm_up_job(ground, kernels))
+    return sum(done.seconds for done in warmup.warm_up_job((ground, kernels)))
 
 
 def warm_workers(client, ground, kernels, say=_say):

@@ -45,6 +45,7 @@ from mcrun.results import on_hole
 from mcrun.run import plan, sampling
 from mcrun.strokes import start_of, tour_baseline
 from mcrun.strokes.expected import FAILED
+from mcrun.units import shown
 
 AZIMUTH = COLUMN["azimuth_rad"]
 START_X = COLUMN["start_x_m"]
@@ -98,7 +99,7 @@ def check_starts(hole, starts_xy_m, where="starts_xy_m"):
         starts = np.asarray(starts_xy_m, dtype=float)
     except (TypeError, ValueError):
         raise InputError(
-            f"{where}: cannot read {_shown(starts_xy_m)} as points: allowed is an (m, 2) array "
+            f"{where}: cannot read {shown(starts_xy_m)} as points: allowed is an (m, 2) array "
             "of [x_m, y_m] (numbers of metres in the hole's frame)"
         ) from None
     if starts.ndim != 2 or starts.shape[1] != 2:
@@ -117,12 +118,6 @@ def check_starts(hole, starts_xy_m, where="starts_xy_m"):
     return starts
 
 
-def _shown(value, most=60):
-    """``value`` as a message shows it: its repr, shortened when long."""
-    text = repr(value)
-    return text if len(text) <= most else f"{text[: most - 3]}..."
-
-
 def _metres(value, name, positive=False):
     """``value`` as a finite number of metres (> 0 where ``positive``); InputError naming
     ``name`` otherwise."""
@@ -132,7 +127,7 @@ def _metres(value, name, positive=False):
         number = math.nan
     if isinstance(value, bool) or not math.isfinite(number) or (positive and number <= 0.0):
         allowed = "a positive number of metres" if positive else "a finite number of metres"
-        raise InputError(f"{name} {_shown(value)}: allowed: {allowed}")
+        raise InputError(f"{name} {shown(value)}: allowed: {allowed}")
     return number
 
 
@@ -143,7 +138,7 @@ def _pair(value, name, allowed="a point (x_m, y_m) in the hole's frame"):
         a, b = value
         return _metres(a, name), _metres(b, name)
     except (TypeError, ValueError):  # (InputError is a ValueError)
-        raise InputError(f"{name} {_shown(value)}: allowed: {allowed}") from None
+        raise InputError(f"{name} {shown(value)}: allowed: {allowed}") from None
 
 
 def tile(inputs, play, starts_xy_m, aim_xy_m):
@@ -231,7 +226,7 @@ def play_from(
     last = len(scenario.points) - 1
     if isinstance(point, bool) or not isinstance(point, int | np.integer) or not 0 <= point <= last:
         raise InputError(f"point must be an index of the scenario's points, 0-{last}, got "
-                         f"{_shown(point)}")  # fmt: skip
+                         f"{shown(point)}")  # fmt: skip
     n = plan.positive_int(n, "n", minimum=2)  # (a standard error needs two)
     chunk_starts = plan.positive_int(chunk_starts, "chunk_starts")
     starts = check_starts(hole, starts_xy_m)
@@ -315,13 +310,13 @@ def starts_grid(hole, spacing_m, within_m=None, zones=None):
         allowed = "(min, max) metres from the pin, 0 <= min <= max"
         lo, hi = _pair(within_m, "within_m", allowed)
         if not 0.0 <= lo <= hi:
-            raise InputError(f"within_m {_shown(within_m)}: allowed: {allowed}")
+            raise InputError(f"within_m {shown(within_m)}: allowed: {allowed}")
     if zones is not None:
         zones = [zones] if isinstance(zones, str) else list(zones)
         unknown = [z for z in zones if z not in ZONE_KINDS]
         if unknown:
             raise InputError(
-                f"zones: {_shown(unknown[0])} is not a zone kind; allowed: {', '.join(ZONE_KINDS)}"
+                f"zones: {shown(unknown[0])} is not a zone kind; allowed: {', '.join(ZONE_KINDS)}"
             )
     t = hole.terrain()
     ny, nx = t.zone.shape
