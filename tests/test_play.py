@@ -337,3 +337,29 @@ def test_ten_more_yards_of_driving():
     after = pattern(more.scenario, 0, 2000, more.spread[0], more.speed_of(0))[0]
     assert abs(after - before - 10.0) < 0.5
     assert more.speed[1:] == (1.0,) * (len(more.clubs) - 1)
+
+
+def test_the_player_putts_with_its_own_putter(symmetric, monkeypatch):
+    """A preset putts with its own putter (scratch: the scratch putter; bogey: the 15-handicap's,
+    the nearest), unless told; on a hole valued by the table (the Tour's putts) any other putter
+    values the green by its map; the solve asks for the map of the player's putter."""
+    import mcrun.play as play
+    from mcrun.putting.on_hole import putting_of
+
+    assert load_player("tour").putter == "tour"
+    assert load_player("scratch").putter == "scratch"
+    assert load_player("bogey").putter == "15-handicap"
+    assert load_player("bogey", putter="tour").putter == "tour"
+    player, hole, _ = symmetric
+    assert putting_of(hole, "tour") == hole.putting and hole.putting["model"] == "table"
+    spec = putting_of(hole, "scratch")
+    assert spec["model"] == "physics" and spec["putter"] == "scratch"
+    asked = []
+
+    def map_of_hole(hole, progress=None, putter=None):
+        asked.append(putter)
+
+    monkeypatch.setattr(play, "map_of_hole", map_of_hole)
+    scratch = dataclasses.replace(player, putter="scratch")
+    play_hole(scratch, hole, n=2, coarse_m=10.0, fine_m=5.0, plays=20)
+    assert asked == ["scratch"]

@@ -7,6 +7,7 @@ import sys
 
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
 from mcrun.cli.options import local_cores, local_workers, whole
+from mcrun.putting.putter import PUTTERS
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
 
@@ -94,7 +95,7 @@ def _cmd_play(args):
         if not 1.0 <= value <= 50.0:
             raise InputError(f"{name} {value:g} m: allowed: 1 m to 50 m")
     seed = None if args.seed is None else whole(args.seed, "--seed", 0)
-    player = load_player(args.player)
+    player = load_player(args.player, putter=args.putter)
     hole = _hole_of(args.hole)
     players = [player]
     if args.vs is not None:
@@ -119,7 +120,8 @@ def _cmd_play(args):
                                plays=plays, workers=workers, memory=left,
                                names=OPTION_NAMES))  # fmt: skip
     print(f"play: {hole.name or hole.source} (par {hole.par or '?'}, {hole.length_m:.0f} m) as "
-          f"{player.name} ({len(player.clubs)} clubs); {n:,} shots an action",
+          f"{player.name} ({len(player.clubs)} clubs, putter {player.putter}); {n:,} shots an "
+          "action",
           file=sys.stderr, flush=True)  # fmt: skip
     for planned in plans:
         print(planned.line(), file=sys.stderr, flush=True)
@@ -189,6 +191,7 @@ def write_play(result, path, force=False):
     frame["state_expected_strokes"] = states["expected_strokes"].to_numpy()[frame["state"]]
     provenance = {
         "player": result.player.name, "player_source": result.player.source,
+        "putter": result.player.putter,
         "spread": list(result.player.spread), "hole": result.hole.source,
         "n": result.n, "seed": result.seed, "states": result.lattice.size,
         "sweeps": result.solution.sweeps, "tee_expected_strokes": result.tee_value,
@@ -220,6 +223,8 @@ def register(subparsers):
     p.add_argument("--coarse", default="8m", help="states' spacing (8m)")
     p.add_argument("--fine", default="3m", help="near the pin (3m)")
     p.add_argument("--plays", default="4000", help="plays of the policy (4000)")
+    p.add_argument("--putter", choices=list(PUTTERS), help="the player's putter on the green "
+                   "(a preset's own: tour, scratch, 15-handicap for bogey; a file's: tour)")
     p.add_argument("--vs", metavar="PLAYER2", help="a second player on the same hole")
     p.add_argument("--longer", metavar="YD", help="and the player with a driver YD longer: 10yd")
     p.add_argument("--dask", choices=["local"], help="fly the shots on a local Dask cluster")

@@ -7,7 +7,7 @@ import sys
 
 from mcrun.cli.options import whole
 from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_stimp, putt
-from mcrun.putting.greens import STIMP_RANGE_FT
+from mcrun.putting.greens import DRIFT_MM_PER_M_BENTGRASS, DRIFT_RANGE_MM_PER_M, STIMP_RANGE_FT
 from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
 from mcrun.units import parse_quantity
@@ -35,6 +35,21 @@ def _stimp_m(text):
     return check_stimp(parse_quantity(text, "length", "--stimp"), f"--stimp {text}")
 
 
+def _drift(text):
+    """The --drift (mm of sideways spread per metre rolled), within ``DRIFT_RANGE_MM_PER_M``."""
+    lo, hi = DRIFT_RANGE_MM_PER_M
+    try:
+        value = float(text.removesuffix("mm/m"))
+    except ValueError:
+        value = math.nan
+    if not lo <= value <= hi:
+        raise InputError(
+            f"--drift {text}: allowed: {lo:g} to {hi:g} (mm per metre rolled; "
+            f"{DRIFT_MM_PER_M_BENTGRASS:g} pure bentgrass, 0 a perfect green)"
+        )
+    return value
+
+
 def _cmd_putt(args):
     if args.hole is not None:
         return _cmd_green(args)
@@ -48,6 +63,7 @@ def _cmd_putt(args):
     args.putter = "tour" if args.putter is None else args.putter
     args.seed = "0" if args.seed is None else args.seed
     args.stimp = DEFAULT_STIMP if args.stimp is None else args.stimp
+    drift = DRIFT_MM_PER_M_BENTGRASS if args.drift is None else _drift(args.drift)
     result = putt(
         parse_quantity(args.distance, "length", "--distance"),
         _stimp_m(args.stimp),
@@ -56,6 +72,7 @@ def _cmd_putt(args):
         putter=args.putter,
         n=whole("2000" if args.n is None else args.n, "-n", 2),
         seed=whole(args.seed, "--seed", 0),
+        drift_mm_per_m=drift,
     )
     r = result.read
     if abs(r.aim_deg) < 0.005:
@@ -64,7 +81,8 @@ def _cmd_putt(args):
         line = f"{abs(r.aim_deg):.2f} deg {'left' if r.aim_deg > 0 else 'right'} of the hole"
     print(
         f"putt: {args.distance} on a plane green, Stimp {args.stimp}, slope {args.slope} "
-        f"falling at {args.direction} deg; putter {args.putter}; n {result.n}, seed {args.seed}"
+        f"falling at {args.direction} deg, drift {drift:g} mm/m; putter {args.putter}; "
+        f"n {result.n}, seed {args.seed}"
     )
     print(f"read: start line {line}, pace {r.pace_m:.2f} m past")
     print(f"make rate:       {100 * result.make_rate:5.1f} % +- {100 * result.make_rate_se:.1f}")
@@ -108,15 +126,17 @@ def _cmd_green(args):
     n = spec["n"] if args.n is None else whole(args.n, "-n", 2)
     seed = spec["seed"] if args.seed is None else whole(args.seed, "--seed", 0)
     putter = spec["putter"] if args.putter is None else args.putter
+    drift = spec["drift_mm_per_m"] if args.drift is None else _drift(args.drift)
     try:
         green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"],
-                              stimp_m)  # fmt: skip
+                              stimp_m, drift)  # fmt: skip
     except GreenError as err:
         raise InputError(str(err)) from None
     speed = f"Stimp {green.stimp_m / FOOT_M:.1f} ft"
     if stimp_m is not None:
         hole_ft = stimp_from_rho_g(hole.turf["green"].rho_g) / FOOT_M
         speed += f" (--stimp; the hole's green: {hole_ft:.1f} ft)"
+    speed += f", drift {drift:g} mm/m"
     print(f"putt: the green of {hole.source}: {green.area_m2():.0f} m^2, {speed}; map "
           f"{resolution:g} m, putter {putter}, {n} putts a read, seed {seed}", file=sys.stderr,
           flush=True)  # fmt: skip
@@ -135,7 +155,8 @@ def _cmd_green(args):
         "hole": hole.source, "putter": putter, "n": n, "seed": seed,
         "resolution_m": resolution, "green_cell_m": green.cell_m, "stimp_m": green.stimp_m,
         "stimp_from": "hole" if stimp_m is None else "--stimp",
-        "pin_xy_m": list(green.pin_xy_m), "sweep_change": result.sweep_change,
+        "drift_mm_per_m": drift, "pin_xy_m": list(green.pin_xy_m),
+        "sweeps": result.sweeps, "sweep_change": result.sweep_change,
         "elapsed_s": round(result.elapsed_s, 3), "file": "putts",
         "attribution": hole.attribution or "",
     }  # fmt: skip
@@ -156,8 +177,9 @@ def _cmd_green(args):
     away = v[v > 0.0]  # (a node at the pin is in the hole)
     print(
         f"expected putts over the green: {away.min():.3f} to {away.max():.3f}, mean "
-        f"{away.mean():.3f} ({len(away)} points, {result.elapsed_s:.1f} s; a second sweep "
-        f"changed a value by {result.sweep_change:.4f} at most)"
+        f"{away.mean():.3f} ({len(away)} points, {result.elapsed_s:.1f} s; settled in "
+        f"{result.sweeps} sweeps after the first: the last changed a value by "
+        f"{result.sweep_change:.4f} at most)"
     )
     print(f"wrote {destination}")
     if args.plot is not None:
@@ -186,8 +208,9 @@ def register(subparsers):
     p = subparsers.add_parser(
         "putt",
         help="a putt on a plane green: make rate, three-putts, average putts, the read",
-        description="Hole out a putt on a plane green N times with a putter's errors in start "
-        "line and speed: the make rate, three-putt rate and average putts (with standard "
+        description="Hole out a putt on a plane green N times with a putter's errors in its "
+        "read of the slope, start line and speed, on a green whose drift turns the rolling "
+        "ball at random: the make rate, three-putt rate and average putts (with standard "
         "errors), and the read (start line and pace past the hole) that minimises the average "
         "putts. DIRECTION is the direction the green falls, in degrees from the putt's line "
         "(ball to hole), counter-clockwise seen from above: 0 downhill, 90 falls to the left "
@@ -206,6 +229,13 @@ def register(subparsers):
     p.add_argument("--slope", help=f"the green's slope, 0 to {100 * MAX_SLOPE_TAN:g}%%: 2%%, "
                    "0.02 or 1.1deg (0%%)")  # fmt: skip
     p.add_argument("--direction", help="the fall line, degrees from the putt's line (0)")
+    p.add_argument(
+        "--drift",
+        metavar="MM_PER_M",
+        help="the green's drift: sideways spread in "
+        f"mm per metre rolled, 0 to {DRIFT_RANGE_MM_PER_M[1]:g} "
+        f"({DRIFT_MM_PER_M_BENTGRASS:g}, pure bentgrass; with --hole: the hole's)",
+    )
     p.add_argument("--putter", choices=list(PUTTERS), help="(tour)")
     p.add_argument("-n", metavar="N", help="holings-out (2000; a map: the hole's, 200)")
     p.add_argument("--seed", metavar="S", help="random seed (0)")

@@ -26,7 +26,9 @@ The ``[hole]`` table of a scenario and a standalone hole TOML file have the same
   ``mcrun.putting.green_map``), or a table ``[hole.putting]`` with ``model`` and the map's
   settings (``PUTTING_KEYS``: ``putter``, ``n``, ``seed``, ``resolution_m``, ``cell_m`` the
   green's grid, finer than the hole's where its ground has the detail; ``elevation``, a survey
-  of the green alone, relative to the TOML's folder, and its ``elevation_crs``).
+  of the green alone, relative to the TOML's folder, and its ``elevation_crs``;
+  ``drift_mm_per_m`` the green's drift, ``putting.greens``: 4.9 pure bentgrass, 0 a perfect
+  green, 13 a patch of Poa annua).
 """
 
 import math
@@ -50,7 +52,14 @@ from mcrun.hole.zones import (
     contains,
     rasterize,
 )
-from mcrun.physics.turf import LIMITS, PRESETS, Turf, check_turf
+from mcrun.physics.turf import (
+    GREEN_DRIFT_MM_PER_M,
+    GREEN_DRIFT_RANGE_MM_PER_M,
+    LIMITS,
+    PRESETS,
+    Turf,
+    check_turf,
+)
 
 M_PER_YD = 0.9144
 DEFAULT_CELL_M = 0.5
@@ -87,7 +96,8 @@ PUTTING_MODELS = ("table", "physics")
 # [hole.putting]: its keys, defaults and what is allowed.
 PUTTING_DEFAULTS = {"model": "table", "putter": "tour", "n": 200, "seed": 0,
                     "resolution_m": 0.5, "cell_m": None, "elevation": None,
-                    "elevation_crs": None}  # fmt: skip
+                    "elevation_crs": None,
+                    "drift_mm_per_m": GREEN_DRIFT_MM_PER_M}  # fmt: skip
 PUTTING_KEYS = tuple(PUTTING_DEFAULTS)
 
 
@@ -153,9 +163,12 @@ class Hole:
         xy = np.concatenate(points)
         return (xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max())
 
-    def terrain_over(self, extent_m):
-        """A ground.Terrain of this hole over ``extent_m`` = (x_min, x_max, y_min, y_max)."""
-        cell = self.cell_m
+    def terrain_over(self, extent_m, cell_m=None):
+        """A ground.Terrain of this hole over ``extent_m`` = (x_min, x_max, y_min, y_max), on a
+        grid of ``cell_m`` (default the hole's): its nodes on multiples of the cell, its zones
+        rasterised and its heights sampled from the hole's ground at that spacing (a green to
+        putt on is this ground at a finer one, ``putting.green``)."""
+        cell = self.cell_m if cell_m is None else float(cell_m)
         x_min, x_max, y_min, y_max = extent_m
         x0 = math.floor(x_min / cell) * cell
         y0 = math.floor(y_min / cell) * cell
@@ -348,6 +361,8 @@ def _putting(table, where, folder):
             raise HoleError(f"{where}: '{name}' = {v!r} must be a whole number 0 or more")
         if key in ("resolution_m", "cell_m"):
             v = _number({name: v}, name, where, 0.05, 5.0)
+        if key == "drift_mm_per_m":
+            v = _number({name: v}, name, where, *GREEN_DRIFT_RANGE_MM_PER_M)
         if key in ("elevation", "elevation_crs") and (not isinstance(v, str) or not v):
             raise HoleError(f"{where}: '{name}' = {v!r} must be a file name (a CRS for _crs)")
         if key == "elevation":

@@ -14,6 +14,11 @@ from mcrun.physics.constants import G_MPS2
 # Stimpmeter: the ball leaves the ramp at 1.83 m/s (USGA); a green of reading S_t (m)
 # decelerates a rolling ball at a = v0^2 / (2 S_t).
 STIMP_LAUNCH_SPEED_MPS = 1.83
+# A green's drift: the sideways spread of a rolling ball, mm per metre rolled (the putting
+# roll's random walk, ``putting.greens``): 4.9 on pure creeping bentgrass (Virginia Tech, Crop
+# Science 2018); allowed from 0 (a perfect green) to twice the worst measured (17 mm/m).
+GREEN_DRIFT_MM_PER_M = 4.9
+GREEN_DRIFT_RANGE_MM_PER_M = (0.0, 34.0)
 
 
 class Turf(NamedTuple):

@@ -167,11 +167,12 @@ def play_hole(player, hole, n=DEFAULT_N, seed=None, coarse_m=DEFAULT_COARSE_M,
     """Solve ``hole`` (a ``mcrun.hole.Hole``) for ``player`` (a ``Player``): ``n`` shots of each
     action from each state (the player's scenario's first n, its seed or ``seed``), states every
     ``coarse_m`` and every ``fine_m`` within ``fine_within_m`` of the pin; the policy played
-    ``plays`` times. A ball on the green is worth the hole's putting (its map under
-    ``putting = "physics"``, else the baseline's putts). ``client``: a Dask client whose
-    workers fly the shots (the same solution, bit for bit). ``progress(k)``: called with the
-    actions flown so far. What cannot be solved is refused before a shot is flown on the hole
-    (``plan.plan_play``: PlayerError, one line)."""
+    ``plays`` times. A ball on the green is worth the player's putts: the map of the hole's
+    green putted by the player's putter (``putting.on_hole.putting_of``), or the baseline's
+    putts where the hole asks for the table and the player putts as the Tour does.
+    ``client``: a Dask client whose workers fly the shots (the same solution, bit for bit).
+    ``progress(k)``: called with the actions flown so far. What cannot be solved is refused
+    before a shot is flown on the hole (``plan.plan_play``: PlayerError, one line)."""
     planned = plan_play(player, hole, n=n, seed=seed, coarse_m=coarse_m, fine_m=fine_m,
                         fine_within_m=fine_within_m, plays=plays)  # fmt: skip
     return solve_planned(planned, progress=progress, client=client)
@@ -183,7 +184,7 @@ def solve_planned(planned, progress=None, client=None):
     started = time.perf_counter()
     player, hole, scenario, lat, n = (planned.player, planned.hole, planned.scenario,
                                       planned.lattice, planned.n)  # fmt: skip
-    tr = fly(scenario, lat, n, player.spread, putting=map_of_hole(hole),
+    tr = fly(scenario, lat, n, player.spread, putting=map_of_hole(hole, putter=player.putter),
              baseline=planned.baseline, progress=progress, speed=player.speed, client=client,
              planned=(planned.actions, planned.jobs))  # fmt: skip
     solution = solve(lat, tr)

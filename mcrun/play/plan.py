@@ -37,6 +37,7 @@ from mcrun.play.episodes import MAX_STROKES
 from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M, DEFAULT_FINE_WITHIN_M, lattice
 from mcrun.play.player import PART_POWERS, PlayerError, on_hole
 from mcrun.play.transitions import options_of, plan_actions
+from mcrun.putting.on_hole import check_putting
 from mcrun.run import plan as run_plan
 from mcrun.run.distributed import WORKER_BYTES
 from mcrun.strokes.baseline import tour_baseline
@@ -290,6 +291,7 @@ def plan_play(player, hole, n=100, seed=None, coarse_m=DEFAULT_COARSE_M, fine_m=
     fine_within_m = _spacing(fine_within_m, names["fine_within_m"])
     workers = _count(workers, "workers", 0)
     check_pin(hole)
+    check_putting(hole, green=True, putter=player.putter)  # its green, where a map values it
     memory = available_memory() if memory is None else memory
     base = tour_baseline()
     lat = lattice(hole, base, coarse_m, fine_m, fine_within_m)

@@ -21,6 +21,7 @@ launch as sampled.
 import dataclasses
 from dataclasses import dataclass
 
+from mcrun.putting.putter import PUTTERS
 from mcrun.quantities import InputError
 from mcrun.run import scenario as sc
 from mcrun.run.scenario.hole_table import Play
@@ -65,12 +66,13 @@ TOUR_SPREAD = (1.654, 1.877, 1.929, 1.235, 1.452, 1.454, 1.424, 1.457, 1.542, 1.
 # strokes-gained reference: a scratch player's 7-iron 26 yd wide over 20 balls (their range,
 # about 3.7 standard deviations: spread 1.34) and driver 70-75 yd wide (spread 2.013 for the
 # driver and the woods); a 15-handicap's 8-iron 43 yd wide (spread 3.344, every club: no
-# published driver pattern, so the irons' factor).
+# published driver pattern, so the irons' factor). Their putters: ``putting.PUTTERS``'s scratch
+# and 15-handicap (the nearest preset to a bogey player's, ESTIMATES).
 _SCRATCH_WOODS = 2.013
 PLAYERS = {
-    "tour": (TOUR_BAG, 1.0, TOUR_SPREAD),
-    "scratch": (TOUR_BAG, 0.8875, (_SCRATCH_WOODS,) * 3 + (1.34,) * 9),
-    "bogey": (TOUR_BAG, 0.7572, (3.344,) * 12),
+    "tour": (TOUR_BAG, 1.0, TOUR_SPREAD, "tour"),
+    "scratch": (TOUR_BAG, 0.8875, (_SCRATCH_WOODS,) * 3 + (1.34,) * 9, "scratch"),
+    "bogey": (TOUR_BAG, 0.7572, (3.344,) * 12, "15-handicap"),
 }
 
 
@@ -109,19 +111,24 @@ class Player:
         return self.speed[club] if self.speed else 1.0
 
 
-def load_player(spec, putter="tour", spread=None, straight=False):
+def load_player(spec, putter=None, spread=None, straight=False):
     """The Player of a preset (``PLAYERS``: tour, scratch, bogey), a player file or a library
     scenario's name (``pga-tour-bag``: the Tour player, its spreads ``TOUR_SPREAD``);
+    ``putter``: a name of ``putting.PUTTERS`` (default the preset's, else the Tour's);
     ``spread``: one factor for every club, or a tuple (default 1, the file's own dispersion).
     A club whose every shot is the same (no dispersion: ``check_dispersion``) is refused
     (PlayerError), unless ``straight`` (a bag of straight shots, for tests from first
     principles: a model player has a dispersion)."""
     if str(spec) in PLAYERS:
         name = str(spec)
-        bag, speed, preset = PLAYERS[name]
+        bag, speed, preset, own_putter = PLAYERS[name]
+        putter = own_putter if putter is None else putter
         player = load_player(bag, putter, preset if spread is None else spread, straight)
         return Player(name, player.scenario, player.clubs, player.spread, putter,
                       player.source, (speed,) * len(player.clubs))  # fmt: skip
+    putter = "tour" if putter is None else putter
+    if putter not in PUTTERS:
+        raise PlayerError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")
     scenario = sc.load(spec)
     if scenario.hole is not None:
         raise PlayerError(

@@ -11,11 +11,29 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mcrun.physics.turf import rho_g_from_stimp
 from mcrun.putting.cup import HOLE_RADIUS_M
-from mcrun.putting.greens import STIMP_RANGE_FT, STIMP_RANGE_M, plane_green, stopping_slope
-from mcrun.putting.holeout import MAX_PUTTS, hole_out_batch
+from mcrun.putting.greens import (
+    DRIFT_MM_PER_M_BENTGRASS,
+    DRIFT_RANGE_MM_PER_M,
+    STIMP_RANGE_FT,
+    STIMP_RANGE_M,
+    drift_sd,
+    stopping_slope,
+)
 from mcrun.putting.putter import PUTTERS, Putter, putter_errors
-from mcrun.putting.read import Read, centre_line_rad, read_putt
+from mcrun.putting.read import (
+    AIM_STEPS_DEG,
+    PACES_M,
+    READ_NODES,
+    Read,
+    read_lines,
+    search,
+    value_read,
+)
+from mcrun.putting.rest import hole_out_values
+from mcrun.putting.roll import DT_S
+from mcrun.putting.stroke import MAX_PUTTS, plane_putt_green, stroke_of
 from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
 
@@ -62,15 +80,16 @@ def check_stimp(stimp_m, what=None):
 
 
 def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, seed=0,
-         read=True):  # fmt: skip
+         read=True, drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
     """Hole out a putt of ``distance_m`` (m) on a plane green of Stimp ``stimp_m`` (m), slope
     ``slope_tan`` (rise over run) falling towards ``direction_deg`` (degrees from the putt's line,
-    counter-clockwise: 0 downhill, 90 falls to the left, 180 uphill), ``n`` times, struck by
-    ``putter`` (a name of ``PUTTERS`` or a ``Putter``) with errors seeded by ``seed``.
+    counter-clockwise: 0 downhill, 90 falls to the left, 180 uphill), drift ``drift_mm_per_m``
+    (``greens``: 4.9 pure bentgrass, 0 a perfect green), ``n`` times, struck by ``putter`` (a
+    name of ``PUTTERS`` or a ``Putter``) with errors seeded by ``seed``.
 
-    With ``read`` the first putt's start line and pace are the ones that minimise the expected
-    putts (``mcrun.putting.read``, on the same errors); without, the putter's own read (over the
-    hole's centre at its pace). Raises InputError for inputs out of range.
+    With ``read`` the first putt's pace and start line are the ones that minimise the expected
+    putts (``mcrun.putting.read``, on the same errors); without, the putter's own read (its pace
+    on the centre line it perceives). Raises InputError for inputs out of range.
     """
     if isinstance(putter, str):
         if putter not in PUTTERS:
@@ -92,24 +111,49 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
         )
     if not math.isfinite(direction_deg):
         raise InputError(f"direction {direction_deg}: allowed: a finite angle in degrees")
+    lo, hi = DRIFT_RANGE_MM_PER_M
+    if not lo <= drift_mm_per_m <= hi:
+        raise InputError(f"drift {drift_mm_per_m:g} mm/m: allowed: {lo:g} to {hi:g} mm/m "
+                         f"({DRIFT_MM_PER_M_BENTGRASS:g}: pure bentgrass)")  # fmt: skip
     if int(n) != n or n < 2:
         raise InputError(f"n {n}: allowed: a whole number of at least 2")
     n = int(n)
-    green = plane_green(slope_tan, math.radians(direction_deg), stimp_m, n)
     try:
-        z = putter_errors(n, seed)
+        z, keys = putter_errors(n, seed)
     except (TypeError, ValueError):
         raise InputError(f"seed {seed!r}: allowed: a whole number 0 or more") from None
+    d = math.radians(direction_deg)
+    green = plane_putt_green(slope_tan, math.cos(d), math.sin(d),
+                             float(rho_g_from_stimp(stimp_m)), drift_sd(drift_mm_per_m),
+                             DT_S)  # fmt: skip
+    stroke = stroke_of(putter)
+    rest_values = hole_out_values(z, keys)
+    putts = np.zeros(n)
+    hx = float(distance_m)
     if read:
-        chosen = read_putt(distance_m, green, putter, z)
+        tried = np.zeros((len(PACES_M) + len(AIM_STEPS_DEG), 3))
+        lines = np.zeros(len(READ_NODES))
+        offset, pace, mean = search(0.0, 0.0, hx, 0.0, green, stroke, z, keys, rest_values,
+                                    np.array(PACES_M), np.radians(AIM_STEPS_DEG), tried, putts,
+                                    lines)[:3]  # fmt: skip
+        tried = tuple((math.degrees(o + _line(hx, p, green, stroke)), float(p), float(m))
+                      for o, p, m in tried)  # fmt: skip
     else:
-        aim = centre_line_rad(distance_m, green, putter.pace_m)
-        chosen = Read(math.degrees(aim), putter.pace_m, float("nan"), ())
-    putts, _ = hole_out_batch(
-        distance_m, green, putter, z, first=(math.radians(chosen.aim_deg), chosen.pace_m)
-    )
+        offset, pace = 0.0, putter.pace_m
+        lines = read_lines(0.0, 0.0, hx, 0.0, pace, green, stroke)
+        mean = value_read(0.0, 0.0, hx, 0.0, pace, offset, lines, green, stroke, z, keys,
+                          rest_values, putts)[0]  # fmt: skip
+        tried = ()
+    chosen = Read(math.degrees(offset + _line(hx, pace, green, stroke)), float(pace),
+                  float(mean), tried, math.degrees(offset))  # fmt: skip
+    putts = np.rint(putts).astype(np.int64)
     make = _rate(putts == 1)
     three = _rate(putts >= 3)
     mean = float(putts.mean())
     mean_se = float(putts.std(ddof=1)) / math.sqrt(n)
     return PuttResult(distance_m, n, *make, *three, mean, mean_se, chosen, putts)
+
+
+def _line(hx, pace, green, stroke):
+    """The centre line (rad) the putter perceives without error at ``pace``."""
+    return float(read_lines(0.0, 0.0, hx, 0.0, pace, green, stroke)[0])

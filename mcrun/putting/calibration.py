@@ -1,19 +1,41 @@
 """The Tour putter's calibration: make rates and average putts on Tour-like greens against the
-PGA Tour's (Broadie; the strokes-gained reference, "Putting", and the green row of its table).
+PGA Tour's (Broadie; the strokes-gained reference, "Putting", and the green row of its table),
+and the Tour's putts on slopes (the reference's "Putting on slopes").
 
 ``calibration_table`` holes out n putts from each distance, each on its own Tour-like green
-(``mcrun.putting.greens.tour_greens``), with the putter's own read, and returns the simulated
-make rate and average putts beside the Tour's, with their standard errors.
+(``greens.tour_greens``, pure bentgrass drift), with the putter's own read, and returns the
+simulated make rate and average putts beside the Tour's, with their standard errors.
+``slope_checks`` measures what the Tour's putts show on slopes:
+
+- uphill against downhill at 8 ft (Broadie, golf.com 2019, ShotLink): uphill putts holed about
+  2.5-5 points more often. Uphill: the green falls within 45 deg of straight back towards the
+  ball; downhill: within 45 deg of straight towards the hole (Tour-like greens otherwise);
+- the leave of a 10-footer (Broadie, golf.com 2020): with a 3 % slope at the hole, the median
+  distance from the hole of a missed putt 1.1 ft straight uphill, 2.1 ft straight downhill
+  (Stimp 11-12 ft); 7 % of Tour players' 10-footers are left short (Tour-like greens).
 """
+
+import math
 
 import numpy as np
 
-from mcrun.putting.greens import TOUR_GREENS_SEED, tour_greens
+from mcrun.putting.greens import (
+    DRIFT_MM_PER_M_BENTGRASS,
+    TOUR_GREENS_SEED,
+    drift_sd,
+    tour_greens,
+)
 from mcrun.putting.holeout import hole_out_batch
 from mcrun.putting.putter import putter_errors
 from mcrun.strokes.baseline import FOOT_M
 
-__all__ = ["TOUR_AVERAGE_PUTTS", "TOUR_MAKE_PCT", "calibration_table"]
+__all__ = [
+    "SLOPE_TARGETS",
+    "TOUR_AVERAGE_PUTTS",
+    "TOUR_MAKE_PCT",
+    "calibration_table",
+    "slope_checks",
+]
 
 # PGA Tour make rate (%) and average putts to hole out, by distance (ft).
 TOUR_MAKE_PCT = {3: 96.0, 5: 77.0, 10: 40.0, 20: 15.0}
@@ -21,17 +43,29 @@ TOUR_AVERAGE_PUTTS = {5: 1.23, 10: 1.61, 20: 1.87, 30: 1.98, 40: 2.06}
 # The tolerances the Tour putter is held to.
 MAKE_TOLERANCE_PCT = 3.0
 PUTTS_TOLERANCE = 0.03
+# The slope checks: (what, Tour's value, lowest allowed, highest allowed).
+SLOPE_TARGETS = {
+    "uphill_minus_downhill_make_pct_8ft": ("8 ft: uphill make rate minus downhill (points)",
+                                           None, 2.5, 5.0),
+    "leave_uphill_ft": ("10 ft, 3 % at the hole, uphill: median leave of a miss (ft)",
+                        1.1, 0.8, 1.4),
+    "leave_downhill_ft": ("10 ft, 3 % at the hole, downhill: median leave of a miss (ft)",
+                          2.1, 1.8, 2.4),
+    "short_pct_10ft": ("10 ft: share left short (%)", 7.0, 5.0, 10.0),
+}  # fmt: skip
 ERRORS_SEED = 7
+SECTOR_DEG = 45.0
 
 
-def calibration_table(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED):
+def calibration_table(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
+                      drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
     """Rows (distance_ft, make_pct, make_se_pct, tour_make_pct, putts, putts_se, tour_putts)
     for every distance of the Tour's two lists (None where the Tour's list has no value)."""
     greens = tour_greens(n, greens_seed)
-    z = putter_errors(n, seed)
+    errors = putter_errors(n, seed)
     rows = []
     for ft in sorted(set(TOUR_MAKE_PCT) | set(TOUR_AVERAGE_PUTTS)):
-        putts, _ = hole_out_batch(ft * FOOT_M, greens, putter, z)
+        putts = hole_out_batch(ft * FOOT_M, greens, putter, errors, drift_sd(drift_mm_per_m)).putts
         made = putts == 1
         rows.append(
             (
@@ -45,3 +79,84 @@ def calibration_table(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED)
             )
         )
     return rows
+
+
+def slope_checks(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
+                 drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
+    """The measures of ``SLOPE_TARGETS`` for ``putter``, n putts each: {key: value}, with the
+    uphill and downhill make rates at 8 ft ("make_uphill_pct_8ft", "make_downhill_pct_8ft") and
+    the standard error of their difference ("..._se")."""
+    drift = drift_sd(drift_mm_per_m)
+    errors = putter_errors(n, seed)
+    out = {}
+    made = {}
+    for name, centre in (("uphill", 180.0), ("downhill", 0.0)):
+        greens = tour_greens(n, greens_seed, (centre - SECTOR_DEG, centre + SECTOR_DEG))
+        made[name] = hole_out_batch(8 * FOOT_M, greens, putter, errors, drift).putts == 1
+        out[f"make_{name}_pct_8ft"] = 100.0 * made[name].mean()
+    out["uphill_minus_downhill_make_pct_8ft"] = (
+        out["make_uphill_pct_8ft"] - out["make_downhill_pct_8ft"]
+    )
+    out["uphill_minus_downhill_make_pct_8ft_se"] = 100.0 * math.sqrt(
+        sum(m.mean() * (1 - m.mean()) for m in made.values()) / n
+    )
+    for name, centre in (("uphill", 180.0), ("downhill", 0.0)):
+        greens = tour_greens(n, greens_seed, (centre, centre), (3.0, 3.0))
+        result = hole_out_batch(10 * FOOT_M, greens, putter, errors, drift)
+        missed = result.putts != 1
+        out[f"leave_{name}_ft"] = float(np.median(result.leave_m()[missed])) / FOOT_M
+    result = hole_out_batch(10 * FOOT_M, tour_greens(n, greens_seed), putter, errors, drift)
+    out["short_pct_10ft"] = 100.0 * result.short().mean()
+    return out
+
+
+# The refit: its holings-out per target (the calibration's seeds) and its steps.
+FIT_N = 12000
+FIT_STEPS = {"line_sd_deg": 0.05, "speed_sd_pct": 0.3, "read_sd_pct": 0.03,
+             "pace_slope_share": 0.05}  # fmt: skip
+
+
+def fit_errors(putter, n=FIT_N):
+    """Each target's error over its tolerance (1: at its edge) for ``putter``, n putts each on
+    the calibration's seeds: {name: (value, normalised error)}."""
+    out = {}
+    for ft, make, _, tour_make, putts, _, tour_putts in calibration_table(putter, n):
+        if tour_make is not None:
+            out[f"make_pct_{ft}ft"] = (make, (make - tour_make) / MAKE_TOLERANCE_PCT)
+        if tour_putts is not None:
+            out[f"putts_{ft}ft"] = (putts, (putts - tour_putts) / PUTTS_TOLERANCE)
+    checks = slope_checks(putter, n)
+    for key, (_, _, lo, hi) in SLOPE_TARGETS.items():
+        centre, half = (lo + hi) / 2.0, (hi - lo) / 2.0
+        out[key] = (checks[key], (checks[key] - centre) / half)
+    return out
+
+
+def refit(start, n=FIT_N, rounds=3, report=print):
+    """The Tour putter refitted to every target at once, from ``start`` (a ``Putter``): a
+    coordinate search, ``rounds`` times over the parameters of ``FIT_STEPS``, each moved a step
+    up or down while the sum of the squared normalised errors (``fit_errors``) falls; on the
+    calibration's seeded errors and greens, so the same start gives the same fit."""
+    import dataclasses
+
+    def loss(p):
+        errors = fit_errors(p, n)
+        return sum(e * e for _, e in errors.values()), errors
+
+    best, (best_loss, errors) = start, loss(start)
+    report(f"start {start}: loss {best_loss:.3f}")
+    for _ in range(rounds):
+        moved = False
+        for name, step in FIT_STEPS.items():
+            for sign in (1.0, -1.0):
+                while True:
+                    value = round(getattr(best, name) + sign * step, 4)
+                    trial = dataclasses.replace(best, **{name: value})
+                    trial_loss, trial_errors = loss(trial)
+                    if trial_loss >= best_loss:
+                        break
+                    best, best_loss, errors, moved = trial, trial_loss, trial_errors, True
+                    report(f"{name} = {value:g}: loss {best_loss:.3f}")
+        if not moved:
+            break
+    return best, best_loss, errors

@@ -1,11 +1,12 @@
 """A hole's green to putt on: its grid of heights (``roll.Surface``), which nodes are the
-green's, the pin and the green's speed.
+green's, the pin, the green's speed and its drift.
 
-The green's grid may be finer than the hole's (``cell_m``, default ``DEFAULT_GREEN_CELL_M``):
-its heights are sampled from the hole's own ground (the elevation file's interpolation, or the
-analytic shape) at that spacing, over the box of the green that holds the pin plus a margin of
-``MARGIN_CELLS`` nodes. A node is the green's where the hole's zones put the green there
-(``hole.zones.rasterize`` at the green's spacing). The green's speed is the rolling resistance
+The green is the hole's own ground (``Hole.terrain_over``: the hole's grid, zones and heights)
+over the box of the green that holds the pin plus a margin of ``MARGIN_CELLS`` nodes, at the
+green's spacing, which may be finer than the hole's (``cell_m``, default
+``DEFAULT_GREEN_CELL_M``): its heights sampled from the hole's ground (the elevation file's
+interpolation, or the analytic shape) at that spacing, a node the green's where the hole's zones
+put the green. The green's speed is the rolling resistance
 of the hole's green turf (``[hole.turf.green] rho_g``; its Stimp reading is
 ``physics.turf.stimp_from_rho_g``): the approach's roll and the putts roll on one green.
 
@@ -23,9 +24,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcrun.hole.errors import HoleError
-from mcrun.hole.zones import ZONE_INDEX, contains, rasterize
+from mcrun.hole.zones import ZONE_INDEX, contains
 from mcrun.physics.turf import rho_g_from_stimp, stimp_from_rho_g
-from mcrun.putting.greens import STIMP_RANGE_FT, STIMP_RANGE_M
+from mcrun.putting.greens import (
+    DRIFT_MM_PER_M_BENTGRASS,
+    STIMP_RANGE_FT,
+    STIMP_RANGE_M,
+    drift_sd,
+)
 from mcrun.putting.roll import Surface
 from mcrun.strokes.baseline import FOOT_M
 
@@ -50,12 +56,19 @@ class GreenError(HoleError):
 @dataclass(frozen=True)
 class Green:
     """A green on a grid (``surface``, the hole's frame: x from the tee towards the pin, y to the
-    right), its pin (m) and rolling resistance ``rho_g``; ``source`` names it in messages."""
+    right), its pin (m), rolling resistance ``rho_g`` and drift (``greens``); ``source`` names
+    it in messages."""
 
     surface: Surface
     pin_xy_m: tuple
     rho_g: float
     source: str
+    drift_mm_per_m: float = DRIFT_MM_PER_M_BENTGRASS
+
+    @property
+    def drift_sd(self):
+        """The rolling ball's heading's random walk (rad per sqrt(m), ``greens.drift_sd``)."""
+        return drift_sd(self.drift_mm_per_m)
 
     @property
     def stimp_m(self):
@@ -75,9 +88,10 @@ class Green:
         return float(self.surface.on_green.sum()) * self.cell_m**2
 
     def key(self):
-        """What the green's maps depend on: its heights, nodes, pin and speed (bytes)."""
+        """What the green's maps depend on: its heights, nodes, pin, speed and drift (bytes)."""
         s = self.surface
-        head = np.array([s.x0_m, s.y0_m, s.cell_m, *self.pin_xy_m, self.rho_g], dtype=float)
+        head = np.array([s.x0_m, s.y0_m, s.cell_m, *self.pin_xy_m, self.rho_g,
+                         self.drift_mm_per_m], dtype=float)  # fmt: skip
         return head.tobytes() + s.height_m.tobytes() + s.on_green.tobytes()
 
 
@@ -123,12 +137,14 @@ def least_slope(surface):
     return float(np.hypot(sx, sy)[touches].min())
 
 
-def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None, stimp_m=None):
+def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None, stimp_m=None,
+                  drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
     """The Green of ``hole`` (a ``mcrun.hole.Hole``): the green that holds its pin, on a grid of
     ``cell_m`` (default ``DEFAULT_GREEN_CELL_M``, or the hole's own cell where that is finer),
     its heights from the hole's ground or from ``elevation``, a survey of the green alone (any
     file ``mcrun.hole.elevation`` reads; ``elevation_crs`` where it does not say); its speed the
-    hole's green turf's, or the Stimp reading ``stimp_m`` (m) where given. GreenError (one
+    hole's green turf's, or the Stimp reading ``stimp_m`` (m) where given; its drift
+    ``drift_mm_per_m``. GreenError (one
     line) when the pin is on no green of the hole's zones, the survey does not cover the green,
     the green's speed is not a green's (``check_green_speed``) or a ball can rest nowhere on it
     (``least_slope`` above its stopping slope, rho_g)."""
@@ -149,20 +165,15 @@ def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None, stimp_m
     x_max, y_max = rings.max(axis=0) + margin
     # Within the hole's grid: the green's heights come from the hole's ground there.
     ex = hole.extent_m
-    x_min, x_max = max(x_min, ex[0]), min(x_max, ex[1])
-    y_min, y_max = max(y_min, ex[2]), min(y_max, ex[3])
-    x0 = math.floor(x_min / cell) * cell
-    y0 = math.floor(y_min / cell) * cell
-    nx = int(math.ceil((x_max - x0) / cell)) + 1
-    ny = int(math.ceil((y_max - y0) / cell)) + 1
-    zone = rasterize(hole.zones, x0, y0, cell, nx, ny, hole.boundary)
-    on = np.ascontiguousarray(zone == GREEN, dtype=np.uint8)
+    box = (max(x_min, ex[0]), min(x_max, ex[1]), max(y_min, ex[2]), min(y_max, ex[3]))
+    ground = hole.terrain_over(box, cell)  # the hole's ground, at the green's spacing
+    x0, y0 = ground.x0_m, ground.y0_m
+    ny, nx = ground.height_m.shape
+    on = np.ascontiguousarray(ground.zone == GREEN, dtype=np.uint8)
     if elevation is not None:
         height = _surveyed(hole, elevation, elevation_crs, x0, y0, cell, nx, ny, on)
-    elif hole._heights is None:
-        height = np.zeros((ny, nx))
     else:
-        height = hole._heights(x0, y0, cell, nx, ny)
+        height = ground.height_m
     surface = Surface(np.ascontiguousarray(height, dtype=float), on, float(x0), float(y0), cell)
     if stimp_m is None:
         rho_g = float(hole.turf["green"].rho_g)
@@ -177,7 +188,7 @@ def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None, stimp_m
             f"{100 * least:.1f} %, against {100 * rho_g:.1f} % for {speed}): a ball can rest "
             "nowhere on it, so no putt on it can be valued"
         )
-    return Green(surface, (float(px), float(py)), rho_g, hole.source)
+    return Green(surface, (float(px), float(py)), rho_g, hole.source, float(drift_mm_per_m))
 
 
 def _surveyed(hole, path, crs, x0, y0, cell, nx, ny, on):

@@ -2,16 +2,16 @@
 at every point, the share of one-putts and of three putts or more.
 
 The value of a point is the expected number of strokes to hole out from there, every putt read
-as well as the putter can (``mcrun.putting.read``: the paces ``read.PACES_M``, each on the line
-that rolls the error-free putt over the hole's centre, then start lines ``read.AIM_STEPS_DEG``
-either side of the best), the later putts valued by the map itself:
+as well as the putter can (``mcrun.putting.read.search``: the paces ``read.PACES_M``, each on the
+centre line the putter perceives, then start lines ``read.AIM_STEPS_DEG`` either side of the
+best), the later putts valued by the map itself:
 
     V(p) = min over reads of  E[ 1 + V(where the putt stopped) ],   V(in the hole) = 0,
 
-over ``n`` putts whose errors (start line, speed) are common to every read and every point
-(common random numbers: the map is smooth, and its differences are the ground's). A putt that
-leaves the green is a chip from where it left: 1 + the baseline's fairway strokes from there
-(the fringe's lie, ``hole.zones``).
+over ``n`` putts whose errors (start line, speed, read, the green's drift: ``putter``,
+``stroke``) are common to every read and every point (common random numbers: the map is smooth,
+and its differences are the ground's). A putt that leaves the green is a chip from where it
+left: 1 + the baseline's fairway strokes from there (the fringe's lie, ``hole.zones``).
 
 The map's points: rings around the hole (``POLAR_RADII_M`` x ``POLAR_ANGLES``, where most
 second putts stop, so that the short putts' values are resolved finely), then the nodes of a
@@ -19,9 +19,11 @@ grid of ``resolution_m`` on the green. A stop point is valued by bilinear interp
 rings within ``R_NEAR_M`` of the hole (a ball within ``TAP_IN_M`` is holed with the next putt),
 on the grid beyond (among its nodes on the green). The points are solved outwards from the hole
 in bands of distance (a Gauss-Seidel sweep: each band reads the values of the bands inside it,
-and the baseline's putts for the points not yet solved); a second sweep, every point with its
-read, says how far the map is from its fixed point (``GreenMap.sweep_change``). Within a band
-the points are independent, so the map is the same whatever the number of threads.
+and the baseline's putts for the points not yet solved); then sweeps of every point with its read,
+each on the last one's values, until no value changes by more than ``SWEEP_TOLERANCE`` (at most
+``MAX_SWEEPS``; ``GreenMap.sweep_change`` is the last sweep's largest change, ``sweeps`` their
+number). Within a band the points are independent, so the map is the same whatever the number
+of threads.
 """
 
 import math
@@ -33,19 +35,21 @@ import numpy as np
 from numba import njit
 
 from mcrun.engine.batch import on_threads
-from mcrun.physics.constants import G_MPS2
-from mcrun.putting.cup import HOLE_RADIUS_M
-from mcrun.putting.holeout import centre_line
 from mcrun.putting.putter import PUTTERS, putter_errors
-from mcrun.putting.read import AIM_STEPS_DEG, PACES_M
-from mcrun.putting.roll import (
-    MAX_TIME_S,
-    ROLLING_FACTOR,
-    STATUS_HOLED,
-    STATUS_STOPPED,
-    grid_height,
-    roll_on,
+from mcrun.putting.read import AIM_STEPS_DEG, PACES_M, READ_NODES, search, value_read
+from mcrun.putting.rest import (
+    CHIP_MAX_M,
+    CHIP_STEP_M,
+    POLAR_ANGLES,
+    POLAR_RADII_M,
+    R_NEAR_M,
+    TAP_IN_M,
+    bilinear,
+    map_value,
+    map_values,
+    polar,
 )
+from mcrun.putting.stroke import PuttGreen, stroke_of
 from mcrun.strokes.baseline import tour_baseline
 
 __all__ = [
@@ -60,171 +64,35 @@ DEFAULT_N = 200
 # The roll's steps on a green: at most MAP_DT_S and half a cell of the green's grid (the
 # plane's closed forms are met within 0.1 mm at these steps: tests/test_green_map.py).
 MAP_DT_S = 0.05
-R_NEAR_M = 1.5
-TAP_IN_M = 0.1
-POLAR_DR_M = 0.1
-POLAR_RADII_M = tuple(round(TAP_IN_M + POLAR_DR_M * k, 10) for k in range(16))  # to 1.6 m
-POLAR_ANGLES = 24
 BAND_M = 0.25
-CHIP_STEP_M = 0.05
-CHIP_MAX_M = 200.0
-
-
-@njit(cache=True, inline="always")
-def _bilinear(values, valid, fx, fy):
-    """Bilinear interpolation of ``values`` at fractional node (fx, fy), among the ``valid``
-    nodes (weights renormalised); (value, total weight)."""
-    ny, nx = values.shape
-    ix = int(math.floor(fx))
-    iy = int(math.floor(fy))
-    tx, ty = fx - ix, fy - iy
-    total, acc = 0.0, 0.0
-    for dy in range(2):
-        for dx in range(2):
-            jx, jy = ix + dx, iy + dy
-            if jx < 0 or jy < 0 or jx >= nx or jy >= ny or valid[jy, jx] == 0:
-                continue
-            w = (tx if dx else 1.0 - tx) * (ty if dy else 1.0 - ty)
-            total += w
-            acc += w * values[jy, jx]
-    return acc, total
-
-
-@njit(cache=True, inline="always")
-def _polar(values, r, dx, dy):
-    """Bilinear interpolation in the rings around the hole (radius and angle) at a point
-    ``r`` (m) from the hole, (dx, dy) from it."""
-    n_rings, n_angles = values.shape
-    fr = (r - TAP_IN_M) / POLAR_DR_M
-    fa = (math.atan2(dy, dx) / (2.0 * math.pi)) * n_angles
-    if fa < 0.0:
-        fa += n_angles
-    j = min(max(int(fr), 0), n_rings - 2)
-    tr = fr - j
-    a0 = int(fa) % n_angles
-    ta = fa - math.floor(fa)
-    a1 = (a0 + 1) % n_angles
-    return ((1 - tr) * ((1 - ta) * values[j, a0] + ta * values[j, a1])
-            + tr * ((1 - ta) * values[j + 1, a0] + ta * values[j + 1, a1]))  # fmt: skip
-
-
-@njit(cache=True)
-def _value_at(x, y, hx, hy, polar_v, polar_p1, grid, grid_v, grid_p1, grid_valid, chip):
-    """(expected strokes, one-putt share) from a ball at rest at (x, y) on the green."""
-    dx, dy = x - hx, y - hy
-    r = math.sqrt(dx * dx + dy * dy)
-    if r <= HOLE_RADIUS_M:
-        return 0.0, 1.0
-    if r < TAP_IN_M:
-        return 1.0, 1.0
-    if r < R_NEAR_M:
-        return _polar(polar_v, r, dx, dy), _polar(polar_p1, r, dx, dy)
-    x0, y0, cell = grid
-    fx, fy = (x - x0) / cell, (y - y0) / cell
-    v, w = _bilinear(grid_v, grid_valid, fx, fy)
-    if w > 1e-9:
-        p, _ = _bilinear(grid_p1, grid_valid, fx, fy)
-        return v / w, p / w
-    return _chip(r, chip), 0.0
-
-
-@njit(cache=True, inline="always")
-def _chip(r, chip):
-    """The baseline's fairway strokes from ``r`` (m): linear in the table ``chip``."""
-    f = min(r / CHIP_STEP_M, chip.shape[0] - 1.000001)
-    k = int(f)
-    return chip[k] + (f - k) * (chip[k + 1] - chip[k])
-
-
-@njit(cache=True)
-def _speed(x, y, hx, hy, pace_m, surface, rho_g):
-    """The start speed that would roll a putt from (x, y) ``pace_m`` past the hole on the
-    straight line, by energy: v^2 = 2 (5/7) g (rho_g (L + pace) + z(end) - z(start)), the
-    ground's heights at the ends (a tenth of the resistance's where the line falls faster)."""
-    length = math.hypot(hx - x, hy - y)
-    ux, uy = (hx - x) / length, (hy - y) / length
-    rise = grid_height(hx + pace_m * ux, hy + pace_m * uy, surface) - grid_height(x, y, surface)
-    k = ROLLING_FACTOR * G_MPS2
-    a = max(rho_g * (length + pace_m) + rise, 0.1 * rho_g * (length + pace_m))
-    return math.sqrt(2.0 * k * a)
-
-
-@njit(cache=True)
-def _score(x, y, aim, speed, surface, rho_g, hx, hy, line_sd, speed_sd, z, dt, ds, polar_v,
-           polar_p1, grid, grid_v, grid_p1, grid_valid, chip):  # fmt: skip
-    """(mean, standard error, one-putt share, share of three or more) of the putts from (x, y)
-    struck on ``aim`` at ``speed``, each putt with its errors ``z[i]``."""
-    n = z.shape[0]
-    base = math.atan2(hy - y, hx - x)
-    total, total2, ones, threes = 0.0, 0.0, 0.0, 0.0
-    for i in range(n):
-        angle = base + aim + line_sd * z[i, 0]
-        v = max(0.0, speed * (1.0 + speed_sd * z[i, 1]))
-        out = roll_on(x, y, v * math.cos(angle), v * math.sin(angle), surface, rho_g, hx, hy,
-                      True, dt, MAX_TIME_S, ds)  # fmt: skip
-        status = out[0]
-        if status == STATUS_HOLED:
-            value, p1_next, holed = 1.0, 1.0, True
-        elif status == STATUS_STOPPED:
-            rest, p1_next = _value_at(out[1], out[2], hx, hy, polar_v, polar_p1, grid, grid_v,
-                                      grid_p1, grid_valid, chip)  # fmt: skip
-            holed = rest == 0.0
-            value = 1.0 + rest
-        else:  # off the green (or never at rest): a chip from where it is
-            value = 1.0 + _chip(math.hypot(out[1] - hx, out[2] - hy), chip)
-            p1_next, holed = 0.0, False
-        total += value
-        total2 += value * value
-        if holed:
-            ones += 1.0
-        else:
-            threes += 1.0 - p1_next
-    mean = total / n
-    var = max(total2 / n - mean * mean, 0.0) * n / max(n - 1, 1)
-    return mean, math.sqrt(var / n), ones / n, threes / n
+# A point's solution: offset, pace, mean, se, p1, p3, start line, then its read's lines.
+_OUT = 7 + len(READ_NODES)
+# The sweeps after the first: until no point's value changes by more than SWEEP_TOLERANCE.
+SWEEP_TOLERANCE = 0.001
+MAX_SWEEPS = 8
 
 
 @njit(cache=True, nogil=True)
-def _solve_points(xs, ys, read, surface, rho_g, hx, hy, line_sd, speed_sd, z, dt, ds, paces,
-                  aim_steps, polar_v, polar_p1, grid, grid_v, grid_p1, grid_valid, chip,
-                  out):  # fmt: skip
-    """Solve each point (xs[k], ys[k]): with ``read``, search the read (the paces, each on its
-    centre line, then the aim steps around the best); without, value the read already in
-    out[k, 0:2] (aim rad, pace m). Writes out[k] = (aim, pace, mean, se, p1, p3)."""
+def _solve_points(xs, ys, read, hx, hy, green, stroke, z, keys, rest, paces, aim_steps, out):
+    """Solve each point (xs[k], ys[k]) for the hole at (hx, hy): with ``read``, search its read
+    (``read.search``) and write out[k] = (offset, pace, mean, se, p1, p3, start line, its
+    ``read.read_lines``...), the offset off the perceived centre line and the start line (the
+    centre line without error plus the offset) in rad; without, value the read already in
+    out[k]."""
+    tried = np.zeros((paces.shape[0] + aim_steps.shape[0], 3))
+    putts = np.zeros(z.shape[0])
     for k in range(xs.shape[0]):
-        x, y = xs[k], ys[k]
-        if math.hypot(hx - x, hy - y) <= HOLE_RADIUS_M:
-            out[k, 0], out[k, 1], out[k, 2], out[k, 3], out[k, 4], out[k, 5] = (
-                0.0, 0.0, 0.0, 0.0, 1.0, 0.0)  # fmt: skip
-            continue
-        if not read:
-            aim, pace = out[k, 0], out[k, 1]
-            speed = _speed(x, y, hx, hy, pace, surface, rho_g)
-            m, se, p1, p3 = _score(x, y, aim, speed, surface, rho_g, hx, hy, line_sd, speed_sd,
-                                   z, dt, ds, polar_v, polar_p1, grid, grid_v, grid_p1,
-                                   grid_valid, chip)  # fmt: skip
+        lines = out[k, 7:]
+        if read:
+            best = search(xs[k], ys[k], hx, hy, green, stroke, z, keys, rest, paces, aim_steps,
+                          tried, putts, lines)  # fmt: skip
+            for j in range(6):
+                out[k, j] = best[j]
+            out[k, 6] = best[0] + lines[0]
+        else:
+            m, se, p1, p3 = value_read(xs[k], ys[k], hx, hy, out[k, 1], out[k, 0], lines, green,
+                                       stroke, z, keys, rest, putts)  # fmt: skip
             out[k, 2], out[k, 3], out[k, 4], out[k, 5] = m, se, p1, p3
-            continue
-        best = (0.0, 0.0, 1e30, 0.0, 0.0, 0.0)
-        for pace in paces:
-            speed = _speed(x, y, hx, hy, pace, surface, rho_g)
-            aim = centre_line(x, y, hx, hy, speed, 0.0, 1.0, 0.0, rho_g, surface, dt, ds)
-            m, se, p1, p3 = _score(x, y, aim, speed, surface, rho_g, hx, hy, line_sd, speed_sd,
-                                   z, dt, ds, polar_v, polar_p1, grid, grid_v, grid_p1,
-                                   grid_valid, chip)  # fmt: skip
-            if m < best[2]:
-                best = (aim, pace, m, se, p1, p3)
-        aim0, pace = best[0], best[1]
-        speed = _speed(x, y, hx, hy, pace, surface, rho_g)
-        for step in aim_steps:
-            aim = aim0 + step
-            m, se, p1, p3 = _score(x, y, aim, speed, surface, rho_g, hx, hy, line_sd, speed_sd,
-                                   z, dt, ds, polar_v, polar_p1, grid, grid_v, grid_p1,
-                                   grid_valid, chip)  # fmt: skip
-            if m < best[2]:
-                best = (aim, pace, m, se, p1, p3)
-        for j in range(6):
-            out[k, j] = best[j]
 
 
 @dataclass
@@ -232,9 +100,11 @@ class GreenMap:
     """Expected putts over a green: on the grid of ``resolution_m`` (node [iy, ix] at
     (x0_m + ix resolution_m, y0_m + iy resolution_m), hole frame), NaN off the green:
     ``expected_putts`` and its standard error, ``p_one_putt``, ``p_three_putt`` (three or more
-    strokes), the read's start line ``read_aim_deg`` (+ left of the hole, as ``mcrun putt``) and
-    pace ``read_pace_m`` (past the hole); the rings around the hole (``polar_*``), the settings
-    and ``sweep_change`` (the largest change of a point's value in the second sweep)."""
+    strokes), the read's start line ``read_aim_deg`` (+ left of the hole, as ``mcrun putt``: the
+    centre line the putter perceives without error, plus the read's offset) and pace
+    ``read_pace_m`` (past the hole); the rings around the hole (``polar_*``), the settings,
+    ``sweeps`` (after the first) and ``sweep_change`` (the largest change of a point's value in
+    the last)."""
 
     green: object
     x0_m: float
@@ -255,6 +125,7 @@ class GreenMap:
     sweep_change: float
     elapsed_s: float
     settings: dict = field(default_factory=dict)
+    sweeps: int = 1
 
     @property
     def valid(self):
@@ -274,10 +145,11 @@ class GreenMap:
         y = np.ascontiguousarray(np.atleast_1d(np.asarray(y_m, dtype=float)))
         hx, hy = self.green.pin_xy_m
         valid = np.ascontiguousarray(self.valid, dtype=np.uint8)
-        return _values(x, y, hx, hy, self.polar_expected, self.polar_p_one,
-                       self.polar_p_three, (self.x0_m, self.y0_m, self.resolution_m),
-                       np.nan_to_num(self.expected_putts), np.nan_to_num(self.p_one_putt),
-                       np.nan_to_num(self.p_three_putt), valid, _chip_table())  # fmt: skip
+        rest = map_values(self.polar_expected, self.polar_p_one,
+                          (self.x0_m, self.y0_m, self.resolution_m),
+                          np.nan_to_num(self.expected_putts), np.nan_to_num(self.p_one_putt),
+                          valid, _chip_table())  # fmt: skip
+        return _values(x, y, hx, hy, rest, self.polar_p_three, np.nan_to_num(self.p_three_putt))
 
     def frame(self):
         """The map as a DataFrame, one row per node on the green: x_m, y_m (hole frame),
@@ -302,24 +174,23 @@ class GreenMap:
 
 
 @njit(cache=True)
-def _values(x, y, hx, hy, polar_v, polar_p1, polar_p3, grid, grid_v, grid_p1, grid_p3,
-            grid_valid, chip):  # fmt: skip
+def _values(x, y, hx, hy, rest, polar_p3, grid_p3):
+    """(expected putts, one-putt share, share of three or more) at each (x[k], y[k])."""
     n = x.shape[0]
     v = np.empty(n)
     p1 = np.empty(n)
     p3 = np.empty(n)
-    x0, y0, cell = grid
+    x0, y0, cell = rest.grid
     for k in range(n):
-        v[k], p1[k] = _value_at(x[k], y[k], hx, hy, polar_v, polar_p1, grid, grid_v, grid_p1,
-                                grid_valid, chip)  # fmt: skip
+        v[k], p1[k] = map_value(x[k], y[k], hx, hy, rest)
         dx, dy = x[k] - hx, y[k] - hy
         r = math.hypot(dx, dy)
         if r < TAP_IN_M:
             p3[k] = 0.0
         elif r < R_NEAR_M:
-            p3[k] = _polar(polar_p3, r, dx, dy)
+            p3[k] = polar(polar_p3, r, dx, dy)
         else:
-            p, w = _bilinear(grid_p3, grid_valid, (x[k] - x0) / cell, (y[k] - y0) / cell)
+            p, w = bilinear(grid_p3, rest.grid_valid, (x[k] - x0) / cell, (y[k] - y0) / cell)
             p3[k] = p / w if w > 1e-9 else 1.0
     return v, p1, p3
 
@@ -348,11 +219,12 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
     threads = numba.get_num_threads() if threads is None else int(threads)
     surface = green.surface
     hx, hy = green.pin_xy_m
-    rho_g = green.rho_g
-    z = np.ascontiguousarray(putter_errors(n, seed)[:, 0, :])
-    line_sd = math.radians(putter.line_sd_deg)
-    speed_sd = putter.speed_sd_pct / 100.0
-    dt, ds = MAP_DT_S, surface.cell_m / 2.0
+    z, keys = putter_errors(n, seed)
+    z = np.ascontiguousarray(z[:, :1, :])
+    keys = np.ascontiguousarray(keys[:, :1])
+    putt_green = PuttGreen(surface, 0.0, 1.0, 0.0, float(green.rho_g), float(green.drift_sd),
+                           MAP_DT_S, surface.cell_m / 2.0)  # fmt: skip
+    stroke = stroke_of(putter)
     paces = np.array(PACES_M, dtype=float)
     aim_steps = np.radians(np.array(AIM_STEPS_DEG, dtype=float))
     chip = _chip_table()
@@ -366,7 +238,7 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
     polar_v = np.ascontiguousarray(base.expected("green", np.broadcast_to(radii[:, None],
                                                                          px.shape)))  # fmt: skip
     polar_p1 = np.zeros(px.shape)
-    polar_out = np.zeros(px.shape + (6,))
+    polar_out = np.zeros(px.shape + (_OUT,))
 
     # The grid of the map, over the green's grid.
     xs_g, ys_g = green.nodes_xy()
@@ -381,26 +253,27 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
                                            0.0))  # fmt: skip
     grid_p1 = np.zeros(mx.shape)
     grid_valid = np.ascontiguousarray(on, dtype=np.uint8)
-    grid_out = np.full(mx.shape + (6,), np.nan)
+    grid_out = np.full(mx.shape + (_OUT,), np.nan)
+    # The values the solves read: these arrays, updated in place as the points are solved.
+    rest = map_values(polar_v, polar_p1, grid, grid_v, grid_p1, grid_valid, chip)
 
     total = px.size + int(on.sum())
     done = 0
 
     def solve(xs, ys, read, out):
         """``_solve_points`` of the points (xs, ys) into ``out``, in slices on threads."""
-        args = (surface, rho_g, hx, hy, line_sd, speed_sd, z, dt, ds, paces, aim_steps, polar_v,
-                polar_p1, grid, grid_v, grid_p1, grid_valid, chip)  # fmt: skip
         cuts = np.linspace(0, xs.size, min(xs.size, 4 * threads) + 1).astype(np.int64)
 
         def work(k):
             a, b = cuts[k], cuts[k + 1]
-            _solve_points(xs[a:b], ys[a:b], read, *args, out[a:b])
+            _solve_points(xs[a:b], ys[a:b], read, hx, hy, putt_green, stroke, z, keys, rest,
+                          paces, aim_steps, out[a:b])  # fmt: skip
 
         on_threads(work, len(cuts) - 1, threads)
 
     # First sweep: the rings, inside out, then the grid in bands of distance.
     for j in range(len(radii)):
-        out = np.zeros((POLAR_ANGLES, 6))
+        out = np.zeros((POLAR_ANGLES, _OUT))
         solve(px[j], py[j], True, out)
         polar_out[j] = out
         polar_v[j], polar_p1[j] = out[:, 2], out[:, 4]
@@ -414,7 +287,7 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
     band = np.floor(r / BAND_M).astype(np.int64)
     edges = np.flatnonzero(np.diff(band)) + 1
     for chosen in np.split(np.arange(r.size), edges):
-        out = np.zeros((chosen.size, 6))
+        out = np.zeros((chosen.size, _OUT))
         solve(mx[iy[chosen], ix[chosen]], my[iy[chosen], ix[chosen]], True, out)
         grid_out[iy[chosen], ix[chosen]] = out
         grid_v[iy[chosen], ix[chosen]] = out[:, 2]
@@ -422,15 +295,26 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
         done += chosen.size
         if progress is not None:
             progress(done, total)
-    # Second sweep: every point with its read, on the first sweep's values.
-    again_polar = polar_out.reshape(-1, 6).copy()
-    solve(px.ravel(), py.ravel(), False, again_polar)
-    again_grid = grid_out[iy, ix].copy()
-    solve(mx[iy, ix], my[iy, ix], False, again_grid)
-    change = max(
-        float(np.abs(again_polar[:, 2] - polar_out.reshape(-1, 6)[:, 2]).max()),
-        float(np.abs(again_grid[:, 2] - grid_out[iy, ix, 2]).max()) if iy.size else 0.0,
-    )
+    # Then sweeps of every point with its read, each on the last one's values (Jacobi: the
+    # values read are the last sweep's, whatever the order and the threads), until they settle.
+    polar_flat = polar_out.reshape(-1, _OUT)
+    sweeps, change = 0, math.inf
+    while change > SWEEP_TOLERANCE and sweeps < MAX_SWEEPS:
+        again_polar = polar_flat.copy()
+        solve(px.ravel(), py.ravel(), False, again_polar)
+        again_grid = grid_out[iy, ix].copy()
+        solve(mx[iy, ix], my[iy, ix], False, again_grid)
+        change = max(
+            float(np.abs(again_polar[:, 2] - polar_flat[:, 2]).max()),
+            float(np.abs(again_grid[:, 2] - grid_out[iy, ix, 2]).max()) if iy.size else 0.0,
+        )
+        polar_flat[:] = again_polar
+        grid_out[iy, ix] = again_grid
+        polar_v[:] = polar_out[..., 2]
+        polar_p1[:] = polar_out[..., 4]
+        grid_v[iy, ix] = again_grid[:, 2]
+        grid_p1[iy, ix] = again_grid[:, 4]
+        sweeps += 1
 
     nan = np.where(on, 1.0, np.nan)
     return GreenMap(
@@ -442,7 +326,7 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
         expected_putts_se=grid_out[..., 3] * nan,
         p_one_putt=grid_out[..., 4] * nan,
         p_three_putt=grid_out[..., 5] * nan,
-        read_aim_deg=-np.degrees(grid_out[..., 0]) * nan,  # the frame's +y is right
+        read_aim_deg=-np.degrees(grid_out[..., 6]) * nan,  # the frame's +y is right
         read_pace_m=grid_out[..., 1] * nan,
         polar_expected=polar_v.copy(),
         polar_p_one=polar_p1.copy(),
@@ -452,7 +336,14 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
         seed=int(seed),
         sweep_change=change,
         elapsed_s=time.perf_counter() - started,
-        settings={"dt_s": dt, "ds_max_m": ds, "band_m": BAND_M, "r_near_m": R_NEAR_M},
+        settings={
+            "dt_s": MAP_DT_S,
+            "ds_max_m": surface.cell_m / 2.0,
+            "band_m": BAND_M,
+            "r_near_m": R_NEAR_M,
+            "sweep_tolerance": SWEEP_TOLERANCE,
+        },
+        sweeps=sweeps,
     )
 
 

@@ -7,21 +7,34 @@ The fall direction is the direction in which the green falls, in degrees from th
 it falls to the right.
 
 Tour-like greens (``tour_greens``): Stimp uniform in 11-12 ft, slope uniform in 1-3 %, fall
-direction uniform all round: the Tour's greens run at Stimp 10-14 ft and typical green slopes are
-1-3 % (the strokes-gained reference, "Putting").
+direction uniform all round (or within a sector: the uphill and downhill putts of the slope
+checks): the Tour's greens run at Stimp 10-14 ft and typical green slopes are 1-3 % (the
+strokes-gained reference, "Putting").
+
+A green's drift (``roll``: the rolling ball's heading takes a random walk) is given as the
+sideways spread it makes, in mm per metre rolled, at ``DRIFT_REFERENCE_M`` (3 m) of roll:
+``DRIFT_MM_PER_M_BENTGRASS`` 4.9 mm/m, measured with a mechanical putter on pure creeping
+bentgrass (Virginia Tech, Crop Science 58 (2018): "directional imprecision" 4.9 mm/m on pure
+bentgrass, 13 mm/m across a patch of Poa annua; the length of the rolls is not given here, so
+the reference length is a choice: ESTIMATE). A walk of standard deviation ``drift_sd`` rad per
+sqrt(m) spreads drift_sd L^1.5 / sqrt(3) sideways after L metres, so at 3 m drift_sd (rad per
+sqrt(m)) equals the spread in m per m: 0.0049 (0.28 deg after a metre).
 """
 
 import math
 
 import numpy as np
 
-from mcrun.physics.turf import rho_g_from_stimp
+from mcrun.physics.turf import GREEN_DRIFT_MM_PER_M, GREEN_DRIFT_RANGE_MM_PER_M, rho_g_from_stimp
 from mcrun.strokes.baseline import FOOT_M
 
 __all__ = [
+    "DRIFT_MM_PER_M_BENTGRASS",
+    "DRIFT_RANGE_MM_PER_M",
     "STIMP_RANGE_FT",
     "STIMP_RANGE_M",
     "TOUR_GREENS_SEED",
+    "drift_sd",
     "plane_green",
     "stopping_slope",
     "tour_greens",
@@ -37,6 +50,16 @@ TOUR_SLOPE_PCT = (1.0, 3.0)
 # reaches the hole.
 STIMP_RANGE_FT = (3.0, 20.0)
 STIMP_RANGE_M = (STIMP_RANGE_FT[0] * FOOT_M, STIMP_RANGE_FT[1] * FOOT_M)
+DRIFT_MM_PER_M_BENTGRASS = GREEN_DRIFT_MM_PER_M
+DRIFT_REFERENCE_M = 3.0
+# 0 (a perfect green) to twice the Greenstester's 17 mm/m (the worst measured above).
+DRIFT_RANGE_MM_PER_M = GREEN_DRIFT_RANGE_MM_PER_M
+
+
+def drift_sd(mm_per_m):
+    """The heading's random walk (rad per sqrt(m)) of a green whose drift spreads a ball
+    ``mm_per_m`` sideways per metre rolled at ``DRIFT_REFERENCE_M``."""
+    return mm_per_m / 1000.0 * math.sqrt(3.0 / DRIFT_REFERENCE_M)
 
 
 def plane_green(slope_tan, direction_rad, stimp_m, n=1):
@@ -56,10 +79,12 @@ def stopping_slope(stimp_m):
     return float(rho_g_from_stimp(stimp_m))
 
 
-def tour_greens(n, seed=TOUR_GREENS_SEED):
-    """n Tour-like greens (arrays as ``plane_green``), seeded."""
+def tour_greens(n, seed=TOUR_GREENS_SEED, directions_deg=(0.0, 360.0), slope_pct=TOUR_SLOPE_PCT):
+    """n Tour-like greens (arrays as ``plane_green``), seeded: the fall direction uniform in
+    ``directions_deg`` (from the putt's line: 0 downhill, 180 uphill), the slope in
+    ``slope_pct``."""
     rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence(seed)))
     stimp_m = rng.uniform(*TOUR_STIMP_FT, n) * FOOT_M
-    slope_tan = rng.uniform(*TOUR_SLOPE_PCT, n) / 100.0
-    direction = rng.uniform(0.0, 2.0 * math.pi, n)
+    slope_tan = rng.uniform(*slope_pct, n) / 100.0
+    direction = np.radians(rng.uniform(*directions_deg, n))
     return slope_tan, np.cos(direction), np.sin(direction), rho_g_from_stimp(stimp_m)

@@ -1,32 +1,40 @@
-"""The putter: the player who strikes the putt, as a pace and two error sizes.
+"""The putter: the player who strikes the putt, as a pace and three error sizes.
 
-A putter aims to finish ``pace_m`` past the hole (default 0.43 m, 17 in: the rule of thumb for a
-makeable putt, Pelz, Putting Bible (2000), as quoted in the strokes-gained reference) and misses
-the start line it chose by a normal error of ``line_sd_deg`` and its speed by a relative normal
-error of ``speed_sd_pct``, independently per putt.
+A putter reads the green (``stroke``: it perceives the green tilted by a plane it misreads, each
+component of that plane's fall vector a normal error of ``read_sd_pct`` % of slope), chooses a
+pace, ``pace_m`` past the hole (default 0.43 m, 17 in: the rule of thumb for a makeable putt,
+Pelz, Putting Bible (2000), as quoted in the strokes-gained reference; ``pace_slope_share`` of
+the slope beyond the hole allowed for) and the start line that rolls over the hole's centre on
+the green it perceives, then misses the start line by a normal error of ``line_sd_deg`` and its
+speed by a relative normal error of ``speed_sd_pct``, independently per putt. The green adds its
+drift while the ball rolls (``greens``).
 
 Presets (``PUTTERS``):
 
-- "tour": CALIBRATED to the PGA Tour's make rates and average putts (docs/putting.md) on
-  Tour-like greens (``mcrun.putting.greens.tour_greens``): start line 1.5 deg, speed 4.7 %. The
-  start line's error agrees with the one of A. Gelman and D. Nolan's geometric model fitted to
-  professionals' make rates ("A probability model for golf putting", Teaching Statistics 24, 93
-  (2002): 1.5 deg).
+- "tour": CALIBRATED (``calibration``; the table in docs/putting.md, checked by
+  tests/test_putting.py) to the PGA Tour's make rates and average putts on Tour-like greens and
+  to the Tour's putts on slopes (uphill against downhill at 8 ft, the leaves of a 10-footer
+  uphill and downhill, the share left short), all at once (``calibration.refit``): start line
+  1.0 deg, speed 3.3 %, read 0.4 % of slope, pace slope share 0.4. Where the Tour putter had
+  no read error (1.5 deg and 4.7 %), a downhill 8-footer was holed 10 points more often than an
+  uphill one, against the Tour's 2.5-5 points fewer. Karlsen and Nilsson (2008) put green
+  reading at 60 % of a good player's distance variance, technique 34 %; here the read's share
+  of a 10-footer's speed variance depends on the slope.
 - "scratch", "15-handicap": ESTIMATES scaled from the Tour's. Broadie (Every Shot Counts, 2014;
   the strokes-gained reference): amateurs of 0-9 handicap make half their putts from about 6 ft
   where the Tour does from 8 ft. A make rate of short putts is set by the start line's error
   against the hole's angular width, which falls as 1/distance: so the 50 % distance scales as
   1/line_sd, and a scratch player's line error is the Tour's times 8/6. The 15-handicap's is the
   Tour's times 8/4.5 (50 % from about 4.5 ft: an extrapolation, no published figure). Their
-  speed errors are scaled by the same factors (the one published comparison is of make rates;
-  this is an estimate).
+  speed and read errors are scaled by the same factors (the one published comparison is of make
+  rates; this is an estimate).
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
-from mcrun.putting.holeout import MAX_PUTTS
+from mcrun.putting.stroke import MAX_PUTTS
 
 __all__ = ["DEFAULT_PACE_M", "PUTTERS", "Putter", "putter_errors"]
 
@@ -35,36 +43,50 @@ DEFAULT_PACE_M = 0.43  # 17 in past the hole
 
 @dataclass(frozen=True)
 class Putter:
-    """Pace (m past the hole) and the standard deviations of start line (deg) and speed (%)."""
+    """Pace (m past the hole) and the standard deviations of start line (deg), speed (%) and
+    the read of the slope (%: each component of the fall vector of the tilt the putter
+    misreads, ``stroke``)."""
 
     name: str
     line_sd_deg: float
     speed_sd_pct: float
+    read_sd_pct: float = 0.0
     pace_m: float = DEFAULT_PACE_M
+    pace_slope_share: float = 1.0
 
 
 # CALIBRATED (docs/putting.md): tests/test_putting.py checks the table.
-TOUR_LINE_SD_DEG = 1.5
-TOUR_SPEED_SD_PCT = 4.7
+TOUR_LINE_SD_DEG = 1.0
+TOUR_SPEED_SD_PCT = 3.3
+TOUR_READ_SD_PCT = 0.4
+TOUR_PACE_SLOPE_SHARE = 0.4
 SCRATCH_FACTOR = 8.0 / 6.0
 HIGH_HANDICAP_FACTOR = 8.0 / 4.5
 
+
+def scaled(name, factor):
+    """The Tour putter with every error ``factor`` times larger."""
+    return Putter(name, TOUR_LINE_SD_DEG * factor, TOUR_SPEED_SD_PCT * factor,
+                  TOUR_READ_SD_PCT * factor, DEFAULT_PACE_M, TOUR_PACE_SLOPE_SHARE)  # fmt: skip
+
+
 PUTTERS = {
-    "tour": Putter("tour", TOUR_LINE_SD_DEG, TOUR_SPEED_SD_PCT),
-    "scratch": Putter(
-        "scratch", TOUR_LINE_SD_DEG * SCRATCH_FACTOR, TOUR_SPEED_SD_PCT * SCRATCH_FACTOR
-    ),
-    "15-handicap": Putter(
-        "15-handicap",
-        TOUR_LINE_SD_DEG * HIGH_HANDICAP_FACTOR,
-        TOUR_SPEED_SD_PCT * HIGH_HANDICAP_FACTOR,
-    ),
+    "tour": scaled("tour", 1.0),
+    "scratch": scaled("scratch", SCRATCH_FACTOR),
+    "15-handicap": scaled("15-handicap", HIGH_HANDICAP_FACTOR),
 }
 
 
 def putter_errors(n, seed):
-    """Standard normal errors (n, MAX_PUTTS, 2) of start line and speed for n holings-out, from
-    ``numpy.random.SeedSequence(seed)``: the same seed, the same errors (common random numbers
-    for every aim and pace a read tries)."""
+    """The errors of n holings-out, from ``numpy.random.SeedSequence(seed)``: standard normals
+    (n, MAX_PUTTS, 4) of each putt's start line, speed and read (x, y), and the keys (n, MAX_PUTTS)
+    uint64 of its drift on the green (``roll.drift_step``). The same seed, the same errors
+    (common random numbers for every read a search tries). The normals come in antithetic
+    pairs (holing-out n // 2 + i has the errors of i negated): every error's mean is 0 exactly,
+    so a sample does not lean to one side of the hole or one pace."""
     rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence(seed)))
-    return rng.standard_normal((n, MAX_PUTTS, 2))
+    z = rng.standard_normal((n, MAX_PUTTS, 4))
+    half = n // 2
+    z[half : 2 * half] = -z[:half]
+    keys = rng.integers(0, 2**64, size=(n, MAX_PUTTS), dtype=np.uint64, endpoint=False)
+    return z, keys

@@ -28,13 +28,26 @@ Two grounds, one roll:
 
 Integration: classical Runge-Kutta (RK4) in time steps ``dt_s``; the last step before the ball
 stops is solved in closed form (deceleration taken constant over it).
+
+Two things a real green and a real reader add (``roll_core``'s last arguments):
+
+- the green's drift: a rolling ball's heading takes a random walk, turned after each step of
+  length ds by an angle of mean 0 and standard deviation ``drift_sd`` sqrt(ds) (rad;
+  ``drift_sd`` in rad per sqrt(m)), uniform (a walk of many steps is normal whatever its
+  steps' law, and a uniform costs one draw), drawn from ``key`` (a counter-based generator,
+  SplitMix64: the same key, the same walk). The sideways spread of a walk after L metres is
+  drift_sd L^1.5 / sqrt(3): ``putting.greens.DRIFT_SD_BENTGRASS`` makes it the 4.9 mm per metre
+  measured at 3 m on pure bentgrass;
+- a read: the slope as a putter perceives it, the green's with a misread tilt added
+  (``tilt_x``, ``tilt_y``: the fall vector, slope times fall direction, of a plane added to the
+  green; the roll of a read is an error-free roll on that green, without drift).
 """
 
 import math
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
+from numba import njit, uint64
 
 from mcrun.physics.constants import G_MPS2
 from mcrun.putting.cup import HOLE_RADIUS_M, capture_speed_mps
@@ -50,6 +63,7 @@ __all__ = [
     "NO_SURFACE",
     "STATUS_STOPPED",
     "Surface",
+    "drift_step",
     "roll",
     "roll_core",
     "roll_on",
@@ -82,6 +96,42 @@ class Surface(NamedTuple):
 
 # A plane green asks no grid: the empty surface.
 NO_SURFACE = Surface(np.zeros((0, 0)), np.zeros((0, 0), dtype=np.uint8), 0.0, 0.0, 1.0)
+
+
+_GOLDEN = uint64(0x9E3779B97F4A7C15)
+_MIX1 = uint64(0xBF58476D1CE4E5B9)
+_MIX2 = uint64(0x94D049BB133111EB)
+
+
+@njit(cache=True, inline="always")
+def _uniform(key):
+    """SplitMix64: the next state of ``key`` and a uniform number in (0, 1) from it."""
+    key = key + _GOLDEN
+    z = key
+    z = (z ^ (z >> uint64(30))) * _MIX1
+    z = (z ^ (z >> uint64(27))) * _MIX2
+    z = z ^ (z >> uint64(31))
+    return key, ((z >> uint64(11)) + 0.5) * (1.0 / 9007199254740992.0)
+
+
+@njit(cache=True, inline="always")
+def drift_step(key):
+    """The next state of ``key`` and a number of mean 0 and variance 1 (uniform)."""
+    key, u = _uniform(key)
+    return key, (u - 0.5) * 3.4641016151377544  # sqrt(12)
+
+
+@njit(cache=True, inline="always")
+def _tilted(slope_tan, fall_x, fall_y, tilt_x, tilt_y):
+    """The slope (tan, fall direction) with the fall vector (tilt_x, tilt_y) added."""
+    if tilt_x == 0.0 and tilt_y == 0.0:
+        return slope_tan, fall_x, fall_y
+    gx = slope_tan * fall_x + tilt_x
+    gy = slope_tan * fall_y + tilt_y
+    s = math.sqrt(gx * gx + gy * gy)
+    if s > 0.0:
+        return s, gx / s, gy / s
+    return 0.0, 1.0, 0.0
 
 
 @njit(cache=True)
@@ -153,6 +203,25 @@ def _accel(vx, vy, slope_tan, fall_x, fall_y, rho_g):
     return k * (sin_b * fall_x - rho_g * cos_b * ux), k * (sin_b * fall_y - rho_g * cos_b * uy)
 
 
+@njit(cache=True, inline="always")
+def _pull(slope_tan, fall_x, fall_y, rho_g):
+    """What ``_accel`` takes of a slope, once per step: gravity along the plane (x, y) and the
+    rolling resistance's deceleration (m/s^2)."""
+    cos_b = 1.0 / math.sqrt(1.0 + slope_tan * slope_tan)
+    k = ROLLING_FACTOR * G_MPS2
+    g = k * slope_tan * cos_b
+    return g * fall_x, g * fall_y, k * rho_g * cos_b
+
+
+@njit(cache=True, inline="always")
+def _accel_of(vx, vy, gx, gy, resist, fall_x, fall_y):
+    """``_accel`` from ``_pull``'s numbers."""
+    speed = math.sqrt(vx * vx + vy * vy)
+    if speed > 1e-9:
+        return gx - resist * vx / speed, gy - resist * vy / speed
+    return gx - resist * fall_x, gy - resist * fall_y
+
+
 @njit(cache=True)
 def _entry(x0, y0, x1, y1, hx, hy):
     """Where the segment (x0, y0) -> (x1, y1), starting outside the cup's circle, enters it: the
@@ -181,10 +250,12 @@ def roll(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, h
     (with ``cup``) or runs past ``max_time_s``.
 
     Returns (status, x_m, y_m, time_s, closest_m, closest_x_m, closest_y_m): the ``STATUS_*``,
-    where it ended, when, and the point of its path closest to the hole's centre.
+    where it ended, when, and (without ``cup``) the point of its path closest to the hole's
+    centre.
     """
     return roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m,
-                     hole_y_m, cup, dt_s, max_time_s, NO_SURFACE, 0.0)  # fmt: skip
+                     hole_y_m, cup, dt_s, max_time_s, NO_SURFACE, 0.0, 0.0, 0.0, 0.0,
+                     uint64(0))  # fmt: skip
 
 
 @njit(cache=True)
@@ -194,14 +265,17 @@ def roll_on(x_m, y_m, vx_mps, vy_mps, surface, rho_g, hole_x_m, hole_y_m, cup, d
     of at most ``dt_s`` and ``ds_max_m``; it also ends ``STATUS_OFF_GREEN``, where the ball
     reached a node that is not the green's (the position: that point)."""
     return roll_core(x_m, y_m, vx_mps, vy_mps, 0.0, 1.0, 0.0, rho_g, hole_x_m, hole_y_m, cup,
-                     dt_s, max_time_s, surface, ds_max_m)  # fmt: skip
+                     dt_s, max_time_s, surface, ds_max_m, 0.0, 0.0, 0.0, uint64(0))  # fmt: skip
 
 
 @njit(cache=True, inline="always")
 def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x_m, hole_y_m,
-              cup, dt_s, max_time_s, surface, ds_max_m):  # fmt: skip
+              cup, dt_s, max_time_s, surface, ds_max_m, tilt_x, tilt_y, drift_sd,
+              key):  # fmt: skip
     """The one roll of ``roll`` (an empty ``surface``, ``NO_SURFACE``: the plane of slope_tan,
-    fall_x, fall_y) and of ``roll_on`` (a grid), for what asks of either ground."""
+    fall_x, fall_y) and of ``roll_on`` (a grid), for what asks of either ground: the ground
+    tilted by the fall vector (``tilt_x``, ``tilt_y``) (a read; 0, 0: the ground as it is), the
+    heading's random walk ``drift_sd`` (rad per sqrt(m); 0: none) drawn from ``key``."""
     grid = surface.height_m.shape[0] > 0
     x, y, vx, vy, t = x_m, y_m, vx_mps, vy_mps, 0.0
     best = math.hypot(x - hole_x_m, y - hole_y_m)
@@ -215,7 +289,9 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
             s_tan, fx, fy = grid_slope(x + vx * h / 2.0, y + vy * h / 2.0, surface)
         else:
             s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
-        ax, ay = _accel(vx, vy, s_tan, fx, fy, rho_g)
+        s_tan, fx, fy = _tilted(s_tan, fx, fy, tilt_x, tilt_y)
+        gx, gy, resist = _pull(s_tan, fx, fy, rho_g)
+        ax, ay = _accel_of(vx, vy, gx, gy, resist, fx, fy)
         # The step in which the ball stops: along its motion it slows at -a.v_hat.
         decel = -(ax * vx + ay * vy) / speed if speed > 1e-9 else 0.0
         if speed > 1e-9 and decel > 0.0 and speed <= decel * h:
@@ -226,14 +302,20 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
             h = t_stop
         else:
             k1x, k1y = ax, ay
-            k2x, k2y = _accel(vx + h / 2 * k1x, vy + h / 2 * k1y, s_tan, fx, fy, rho_g)
-            k3x, k3y = _accel(vx + h / 2 * k2x, vy + h / 2 * k2y, s_tan, fx, fy, rho_g)
-            k4x, k4y = _accel(vx + h * k3x, vy + h * k3y, s_tan, fx, fy, rho_g)
+            k2x, k2y = _accel_of(vx + h / 2 * k1x, vy + h / 2 * k1y, gx, gy, resist, fx, fy)
+            k3x, k3y = _accel_of(vx + h / 2 * k2x, vy + h / 2 * k2y, gx, gy, resist, fx, fy)
+            k4x, k4y = _accel_of(vx + h * k3x, vy + h * k3y, gx, gy, resist, fx, fy)
             v1x = vx + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x)
             v1y = vy + h / 6 * (k1y + 2 * k2y + 2 * k3y + k4y)
             # position: RK4 of dx/dt = v with the stages' velocities
             x1 = x + h / 6 * (vx + 2 * (vx + h / 2 * k1x) + 2 * (vx + h / 2 * k2x) + vx + h * k3x)
             y1 = y + h / 6 * (vy + 2 * (vy + h / 2 * k1y) + 2 * (vy + h / 2 * k2y) + vy + h * k3y)
+            if drift_sd > 0.0:  # the heading's random walk over the step's length
+                key, w = drift_step(key)
+                turn = drift_sd * math.sqrt(speed * h) * w  # the step's length, to O(h^2)
+                # cos and sin of a turn under a degree, to 1e-10
+                cos_t, sin_t = 1.0 - 0.5 * turn * turn, turn * (1.0 - turn * turn / 6.0)
+                v1x, v1y = cos_t * v1x - sin_t * v1y, sin_t * v1x + cos_t * v1y
         # The cup: the centre's path enters the rim's circle in this step.
         outside = (x - hole_x_m) ** 2 + (y - hole_y_m) ** 2 > HOLE_RADIUS_M**2
         if outside:
@@ -243,16 +325,18 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
                 at_rim = speed + s * (speed1 - speed)
                 if cup and at_rim < capture_speed_mps(offset):
                     return 1, hole_x_m, hole_y_m, t + s * h, 0.0, hole_x_m, hole_y_m
-        # The closest approach to the hole's centre along this step.
-        dx, dy = x1 - x, y1 - y
-        seg2 = dx * dx + dy * dy
-        f = 0.0
-        if seg2 > 0.0:
-            f = min(1.0, max(0.0, ((hole_x_m - x) * dx + (hole_y_m - y) * dy) / seg2))
-        px, py = x + f * dx, y + f * dy
-        dist = math.hypot(px - hole_x_m, py - hole_y_m)
-        if dist < best:
-            best, bx, by = dist, px, py
+        # The closest approach to the hole's centre along this step (a read's roll, without
+        # the cup, asks it; a putt's roll does not).
+        if not cup:
+            dx, dy = x1 - x, y1 - y
+            seg2 = dx * dx + dy * dy
+            f = 0.0
+            if seg2 > 0.0:
+                f = min(1.0, max(0.0, ((hole_x_m - x) * dx + (hole_y_m - y) * dy) / seg2))
+            px, py = x + f * dx, y + f * dy
+            dist = math.hypot(px - hole_x_m, py - hole_y_m)
+            if dist < best:
+                best, bx, by = dist, px, py
         x, y, vx, vy, t = x1, y1, v1x, v1y, t + h
         if grid and not on_green(x, y, surface):
             return STATUS_OFF_GREEN, x, y, t, best, bx, by
@@ -261,10 +345,11 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
                 s_tan, fx, fy = grid_slope(x, y, surface)
             else:
                 s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
-            if s_tan <= rho_g:
+            if _tilted(s_tan, fx, fy, tilt_x, tilt_y)[0] <= rho_g:
                 return 0, x, y, t, best, bx, by
     if grid:
         s_tan, fx, fy = grid_slope(x, y, surface)
     else:
         s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+    s_tan = _tilted(s_tan, fx, fy, tilt_x, tilt_y)[0]
     return (2 if s_tan > rho_g else 3), x, y, t, best, bx, by
