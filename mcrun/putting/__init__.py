@@ -1,6 +1,9 @@
-"""Putting on a plane green: the roll (``roll``), the cup (``cup``), the putter (``putter``),
-holing out (``holeout``), the read (``read``), plane and Tour-like greens (``greens``) and the
-Tour putter's calibration (``calibration``).
+"""Putting: the roll (``roll``), the cup (``cup``), the putter (``putter``), a putt struck with
+its read, errors and the green's drift (``stroke``), the read's search (``read``), what a ball
+at rest is worth (``rest``), holing out on plane greens (``holeout``), Tour-like greens and a
+green's drift (``greens``) and the Tour putter's calibration (``calibration``); a hole's green
+(``green``), its expected-putts map (``green_map``) and the map a hole's scores ask for
+(``on_hole``).
 
 ``putt`` is the entry point from Python: a putt of a given length on a plane green, read and
 holed out n times; ``mcrun putt`` prints its result.

@@ -1,5 +1,5 @@
-"""Plane greens: one putt's green from its slope, fall direction and Stimp reading, and the
-reproducible sample of "Tour-like greens" the Tour putter is calibrated on.
+"""Plane greens: the reproducible sample of "Tour-like greens" the Tour putter is calibrated on,
+a green's stopping slope, the Stimp readings a green may have and its drift.
 
 The fall direction is the direction in which the green falls, in degrees from the putt's line
 (from the ball to the hole), counter-clockwise seen from above: 0 the putt is straight downhill,
@@ -35,7 +35,6 @@ __all__ = [
     "STIMP_RANGE_M",
     "TOUR_GREENS_SEED",
     "drift_sd",
-    "plane_green",
     "stopping_slope",
     "tour_greens",
 ]
@@ -62,25 +61,14 @@ def drift_sd(mm_per_m):
     return mm_per_m / 1000.0 * math.sqrt(3.0 / DRIFT_REFERENCE_M)
 
 
-def plane_green(slope_tan, direction_rad, stimp_m, n=1):
-    """One plane green, repeated n times, as the arrays (slope_tan, fall_x, fall_y, rho_g) of
-    ``mcrun.putting.holeout.hole_out``."""
-    ones = np.ones(n)
-    return (
-        slope_tan * ones,
-        math.cos(direction_rad) * ones,
-        math.sin(direction_rad) * ones,
-        float(rho_g_from_stimp(stimp_m)) * ones,
-    )
-
-
 def stopping_slope(stimp_m):
     """The steepest slope (as tan) on which a ball rests on a green of this Stimp: rho_g."""
     return float(rho_g_from_stimp(stimp_m))
 
 
 def tour_greens(n, seed=TOUR_GREENS_SEED, directions_deg=(0.0, 360.0), slope_pct=TOUR_SLOPE_PCT):
-    """n Tour-like greens (arrays as ``plane_green``), seeded: the fall direction uniform in
+    """n Tour-like greens, seeded: the arrays (slope_tan, fall_x, fall_y, rho_g) of
+    ``holeout.hole_out_batch``, the fall direction (in the putt's frame) uniform in
     ``directions_deg`` (from the putt's line: 0 downhill, 180 uphill), the slope in
     ``slope_pct``."""
     rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence(seed)))

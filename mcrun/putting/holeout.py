@@ -1,5 +1,5 @@
 """Holing out on plane greens: n putts of one length, each on its own plane green (the arrays of
-``greens.plane_green`` or ``greens.tour_greens``), putted with the putter's own read
+``greens.tour_greens``), putted with the putter's own read
 (``stroke.hole_out_from``) until the ball drops. The Tour putter's calibration and its slope
 checks (``calibration``) are made of these.
 """
