@@ -223,8 +223,9 @@ def own_read(x, y, hx, hy, pace_m, green, stroke, z):
 def hole_out_from(x, y, hx, hy, green, stroke, z, keys, k0):
     """Putt from (x, y) with the putter's own read, the k-th putt with the errors z[k] and the
     drift's keys[k], from k = k0 until the ball drops: (putts, status of the first, its rest x,
-    y). The putts are MAX_PUTTS - k0 where the ball is not down by then, or never rests (it
-    runs off a plane steeper than its stopping slope)."""
+    y). The putts are MAX_PUTTS - k0 where the ball is not down by then, never rests (it runs
+    off a plane steeper than its stopping slope) or leaves a grid's green (a chip, which holing
+    out does not play: the map values it, ``rest``)."""
     first_status, fx, fy = -1, x, y
     for k in range(k0, MAX_PUTTS):
         if math.hypot(hx - x, hy - y) <= HOLE_RADIUS_M:  # at rest over the hole: in
