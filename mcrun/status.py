@@ -19,6 +19,12 @@ OFF_MAP = 7  # it left the hole's grid, where the ground is not known
 
 HOLE_STATUSES = (IN_PENALTY_AREA, OUT_OF_BOUNDS_STATUS, OFF_MAP)
 
+# A putt's roll (``putting.roll``) ends OK (at rest on the green), NOT_STOPPED (still rolling at
+# its time cap: on a slope steeper than its stopping slope, or not), or one of these. They are
+# not a shot's (``NAMES``): no putt's status is written to a run's Parquet.
+HOLED = 8  # it dropped in the cup
+OFF_GREEN = 9  # it left the green (or its grid): a chip from where it left
+
 NAMES = {
     OK: "ok",
     INVALID_INPUT: "invalid_input",

@@ -29,7 +29,7 @@ from mcrun.putting.roll import (
     MAX_TIME_S,
     NO_SURFACE,
     STATUS_HOLED,
-    STATUS_NO_REST,
+    STATUS_NOT_STOPPED,
     STATUS_STOPPED,
     roll,
     roll_core,
@@ -93,7 +93,7 @@ def test_on_a_slope_steeper_than_the_stopping_slope_the_ball_never_rests():
     a putt on a plane 0.1 % steeper never rests, 1 % less steep it stops."""
     rho_g = float(rho_g_from_stimp(14 * FOOT_M))
     assert 3.0 < math.degrees(math.atan(rho_g)) < 3.3
-    assert _roll(1.0, 0.0, rho_g + 0.001, math.pi / 2, rho_g)[0] == STATUS_NO_REST
+    assert _roll(1.0, 0.0, rho_g + 0.001, math.pi / 2, rho_g)[0] == STATUS_NOT_STOPPED
     assert _roll(1.0, 0.0, rho_g - 0.01, math.pi / 2, rho_g)[0] == STATUS_STOPPED
 
 

@@ -51,14 +51,14 @@ from numba import njit, uint64
 
 from mcrun.physics.constants import G_MPS2
 from mcrun.putting.cup import HOLE_RADIUS_M, capture_speed_mps
+from mcrun.status import HOLED, NOT_STOPPED, OFF_GREEN, OK
 
 __all__ = [
     "DT_S",
     "MAX_TIME_S",
     "ROLL_STATUS",
-    "STATUS_CAP",
     "STATUS_HOLED",
-    "STATUS_NO_REST",
+    "STATUS_NOT_STOPPED",
     "STATUS_OFF_GREEN",
     "NO_SURFACE",
     "STATUS_STOPPED",
@@ -74,12 +74,17 @@ ROLLING_FACTOR = 5.0 / 7.0  # a uniform sphere rolling without slipping, I = (2/
 DT_S = 0.004
 MAX_TIME_S = 60.0
 
-STATUS_STOPPED = 0  # at rest on the green
-STATUS_HOLED = 1  # dropped in the cup
-STATUS_NO_REST = 2  # still moving at the cap on a plane steeper than the stopping slope
-STATUS_CAP = 3  # still moving at the cap
-STATUS_OFF_GREEN = 4  # left the green (or its grid): a chip from where it left
-ROLL_STATUS = ("stopped", "holed", "no rest", "cap", "off the green")
+# The roll's statuses are the project's (``mcrun.status``).
+STATUS_STOPPED = OK  # at rest on the green
+STATUS_HOLED = HOLED  # dropped in the cup
+STATUS_NOT_STOPPED = NOT_STOPPED  # still moving at the cap (a slope too steep to rest on, or not)
+STATUS_OFF_GREEN = OFF_GREEN  # left the green (or its grid): a chip from where it left
+ROLL_STATUS = {
+    OK: "stopped",
+    HOLED: "holed",
+    NOT_STOPPED: "not stopped",
+    OFF_GREEN: "off the green",
+}
 
 
 class Surface(NamedTuple):
@@ -324,7 +329,7 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
                 speed1 = math.sqrt(v1x * v1x + v1y * v1y)
                 at_rim = speed + s * (speed1 - speed)
                 if cup and at_rim < capture_speed_mps(offset):
-                    return 1, hole_x_m, hole_y_m, t + s * h, 0.0, hole_x_m, hole_y_m
+                    return STATUS_HOLED, hole_x_m, hole_y_m, t + s * h, 0.0, hole_x_m, hole_y_m
         # The closest approach to the hole's centre along this step (a read's roll, without
         # the cup, asks it; a putt's roll does not).
         if not cup:
@@ -346,10 +351,5 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
             else:
                 s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
             if _tilted(s_tan, fx, fy, tilt_x, tilt_y)[0] <= rho_g:
-                return 0, x, y, t, best, bx, by
-    if grid:
-        s_tan, fx, fy = grid_slope(x, y, surface)
-    else:
-        s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
-    s_tan = _tilted(s_tan, fx, fy, tilt_x, tilt_y)[0]
-    return (2 if s_tan > rho_g else 3), x, y, t, best, bx, by
+                return STATUS_STOPPED, x, y, t, best, bx, by
+    return STATUS_NOT_STOPPED, x, y, t, best, bx, by
