@@ -253,6 +253,8 @@ def test_mcrun_putt_prints_the_make_rate_and_the_read(capsys):
         (["--distance", "1cm"], "distance"),
         (["--distance", "10ft", "-n", "1"], "-n"),
         (["--distance", "10ft", "--stimp", "-3ft"], "Stimp"),
+        (["--distance", "10ft", "--drift", "40"], "--drift 40: allowed: 0 to 34"),
+        (["--distance", "10ft", "--drift", "lots"], "--drift lots: allowed"),
     ],
 )
 def test_mcrun_putt_refuses_bad_input_in_one_line(options, says, capsys):
