@@ -194,24 +194,22 @@ def on_green(x_m, y_m, surface):
     return surface.on_green[iy, ix] != 0
 
 
-@njit(cache=True)
-def _accel(vx, vy, slope_tan, fall_x, fall_y, rho_g):
-    """The acceleration (m/s^2) of a ball rolling at (vx, vy) on a slope (Penner 2002)."""
-    cos_b = 1.0 / math.sqrt(1.0 + slope_tan * slope_tan)
-    sin_b = slope_tan * cos_b
-    k = ROLLING_FACTOR * G_MPS2
-    speed = math.sqrt(vx * vx + vy * vy)
-    if speed > 1e-9:
-        ux, uy = vx / speed, vy / speed
-    else:  # a ball at rest starts down the fall line
-        ux, uy = fall_x, fall_y
-    return k * (sin_b * fall_x - rho_g * cos_b * ux), k * (sin_b * fall_y - rho_g * cos_b * uy)
+@njit(cache=True, inline="always")
+def _slope(x_m, y_m, surface, slope_tan, fall_x, fall_y, tilt_x, tilt_y):
+    """The slope at (x_m, y_m) as the roll takes it: the grid's (``grid_slope``) or, on
+    ``NO_SURFACE``, the plane's, tilted by (``tilt_x``, ``tilt_y``) (``_tilted``)."""
+    if surface.height_m.shape[0] > 0:
+        s_tan, fx, fy = grid_slope(x_m, y_m, surface)
+    else:
+        s_tan, fx, fy = slope_at(x_m, y_m, slope_tan, fall_x, fall_y)
+    return _tilted(s_tan, fx, fy, tilt_x, tilt_y)
 
 
 @njit(cache=True, inline="always")
 def _pull(slope_tan, fall_x, fall_y, rho_g):
-    """What ``_accel`` takes of a slope, once per step: gravity along the plane (x, y) and the
-    rolling resistance's deceleration (m/s^2)."""
+    """What a slope does to a rolling ball (Penner 2002), taken once per step: gravity along
+    the plane (5/7) g sin(beta) times the fall direction (x, y), and the rolling resistance's
+    deceleration (5/7) g rho_g cos(beta) (m/s^2)."""
     cos_b = 1.0 / math.sqrt(1.0 + slope_tan * slope_tan)
     k = ROLLING_FACTOR * G_MPS2
     g = k * slope_tan * cos_b
@@ -219,8 +217,9 @@ def _pull(slope_tan, fall_x, fall_y, rho_g):
 
 
 @njit(cache=True, inline="always")
-def _accel_of(vx, vy, gx, gy, resist, fall_x, fall_y):
-    """``_accel`` from ``_pull``'s numbers."""
+def _accel(vx, vy, gx, gy, resist, fall_x, fall_y):
+    """The acceleration (m/s^2) of a ball rolling at (vx, vy) under ``_pull``'s (gx, gy,
+    resist): the resistance against its motion (a ball at rest starts down the fall line)."""
     speed = math.sqrt(vx * vx + vy * vy)
     if speed > 1e-9:
         return gx - resist * vx / speed, gy - resist * vy / speed
@@ -288,15 +287,12 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
     while t < max_time_s:
         speed = math.sqrt(vx * vx + vy * vy)
         h = dt_s
-        if grid:
-            if ds_max_m > 0.0 and speed * h > ds_max_m:
-                h = ds_max_m / speed
-            s_tan, fx, fy = grid_slope(x + vx * h / 2.0, y + vy * h / 2.0, surface)
-        else:
-            s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
-        s_tan, fx, fy = _tilted(s_tan, fx, fy, tilt_x, tilt_y)
+        if grid and ds_max_m > 0.0 and speed * h > ds_max_m:
+            h = ds_max_m / speed
+        s_tan, fx, fy = _slope(x + vx * h / 2.0, y + vy * h / 2.0, surface, slope_tan, fall_x,
+                               fall_y, tilt_x, tilt_y)  # fmt: skip
         gx, gy, resist = _pull(s_tan, fx, fy, rho_g)
-        ax, ay = _accel_of(vx, vy, gx, gy, resist, fx, fy)
+        ax, ay = _accel(vx, vy, gx, gy, resist, fx, fy)
         # The step in which the ball stops: along its motion it slows at -a.v_hat.
         decel = -(ax * vx + ay * vy) / speed if speed > 1e-9 else 0.0
         if speed > 1e-9 and decel > 0.0 and speed <= decel * h:
@@ -307,9 +303,9 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
             h = t_stop
         else:
             k1x, k1y = ax, ay
-            k2x, k2y = _accel_of(vx + h / 2 * k1x, vy + h / 2 * k1y, gx, gy, resist, fx, fy)
-            k3x, k3y = _accel_of(vx + h / 2 * k2x, vy + h / 2 * k2y, gx, gy, resist, fx, fy)
-            k4x, k4y = _accel_of(vx + h * k3x, vy + h * k3y, gx, gy, resist, fx, fy)
+            k2x, k2y = _accel(vx + h / 2 * k1x, vy + h / 2 * k1y, gx, gy, resist, fx, fy)
+            k3x, k3y = _accel(vx + h / 2 * k2x, vy + h / 2 * k2y, gx, gy, resist, fx, fy)
+            k4x, k4y = _accel(vx + h * k3x, vy + h * k3y, gx, gy, resist, fx, fy)
             v1x = vx + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x)
             v1y = vy + h / 6 * (k1y + 2 * k2y + 2 * k3y + k4y)
             # position: RK4 of dx/dt = v with the stages' velocities
@@ -346,10 +342,6 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
         if grid and not on_green(x, y, surface):
             return STATUS_OFF_GREEN, x, y, t, best, bx, by
         if vx == 0.0 and vy == 0.0:
-            if grid:
-                s_tan, fx, fy = grid_slope(x, y, surface)
-            else:
-                s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
-            if _tilted(s_tan, fx, fy, tilt_x, tilt_y)[0] <= rho_g:
+            if _slope(x, y, surface, slope_tan, fall_x, fall_y, tilt_x, tilt_y)[0] <= rho_g:
                 return STATUS_STOPPED, x, y, t, best, bx, by
     return STATUS_NOT_STOPPED, x, y, t, best, bx, by
