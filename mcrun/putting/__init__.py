@@ -36,7 +36,13 @@ from mcrun.putting.read import (
 )
 from mcrun.putting.rest import hole_out_values
 from mcrun.putting.roll import DT_S
-from mcrun.putting.stroke import MAX_PUTTS, plane_putt_green, stroke_of
+from mcrun.putting.stroke import (
+    MAX_PUTTS,
+    centre_line,
+    pace_speed_mps,
+    plane_putt_green,
+    stroke_of,
+)
 from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
 
@@ -139,7 +145,8 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
         offset, pace, mean = search(0.0, 0.0, hx, 0.0, green, stroke, z, keys, rest_values,
                                     np.array(PACES_M), np.radians(AIM_STEPS_DEG), tried, putts,
                                     lines)[:3]  # fmt: skip
-        tried = tuple((math.degrees(o + _line(hx, p, green, stroke)), float(p), float(m))
+        centre = {p: _line(hx, p, green, stroke) for p in PACES_M}
+        tried = tuple((math.degrees(o + centre[p]), float(p), float(m))
                       for o, p, m in tried)  # fmt: skip
     else:
         offset, pace = 0.0, putter.pace_m
@@ -147,7 +154,7 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
         mean = value_read(0.0, 0.0, hx, 0.0, pace, offset, lines, green, stroke, z, keys,
                           rest_values, putts)[0]  # fmt: skip
         tried = ()
-    chosen = Read(math.degrees(offset + _line(hx, pace, green, stroke)), float(pace),
+    chosen = Read(math.degrees(offset + lines[0]), float(pace),
                   float(mean), tried, math.degrees(offset))  # fmt: skip
     putts = np.rint(putts).astype(np.int64)
     make = _rate(putts == 1)
@@ -158,5 +165,7 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
 
 
 def _line(hx, pace, green, stroke):
-    """The centre line (rad) the putter perceives without error at ``pace``."""
-    return float(read_lines(0.0, 0.0, hx, 0.0, pace, green, stroke)[0])
+    """The centre line (rad) the putter perceives without error at ``pace`` (``lines[0]`` of
+    ``read.read_lines``)."""
+    speed = pace_speed_mps(0.0, 0.0, hx, 0.0, pace, stroke.pace_slope_share, green, 0.0, 0.0)
+    return float(centre_line(0.0, 0.0, hx, 0.0, speed, green, 0.0, 0.0))
