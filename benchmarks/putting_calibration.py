@@ -16,11 +16,13 @@ from pathlib import Path
 
 from benchmarks.common import publish
 from mcrun.putting.calibration import (
+    DISTANCES_FT,
     FIT_N,
     SLOPE_TARGETS,
     calibration_table,
     refit,
     slope_checks,
+    tour_holeouts,
 )
 from mcrun.putting.putter import PUTTERS
 
@@ -54,8 +56,9 @@ def main(argv=None):
         "| ft | make, simulated | make, Tour | average putts, simulated | average putts, Tour |",
         "|---|---|---|---|---|",
     ]
+    holeouts = tour_holeouts(tour, args.n)
     for ft, make, make_se, tour_make, putts, putts_se, tour_putts in calibration_table(
-        tour, args.n
+        tour, args.n, holeouts=holeouts
     ):
         lines.append(
             f"| {ft} | {make:.1f} % ({make_se:.1f}) | "
@@ -64,7 +67,7 @@ def main(argv=None):
             + (f"{tour_putts:g}" if tour_putts is not None else "")
             + " |"
         )
-    checks = slope_checks(tour, args.n)
+    checks = slope_checks(tour, args.n, ten_ft=holeouts[10])
     lines += ["", "| on slopes | simulated | Tour | held to |", "|---|---|---|---|"]
     for key, (what, value, lo, hi) in SLOPE_TARGETS.items():
         shown = "2.5-5 (about 5 % relative)" if value is None else f"{value:g}"
@@ -75,9 +78,8 @@ def main(argv=None):
                      f"{checks['uphill_minus_downhill_make_pct_8ft_se']:.1f})")  # fmt: skip
         lines.append(f"| {what} | {checks[key]:.2f}{extra} | {shown} | {lo:g} to {hi:g} |")
     lines += ["", f"The presets on the same greens ({args.n // 5:,} holings-out):", ""]
-    distances = [row[0] for row in calibration_table(tour, 2)]
-    lines += ["| ft | " + " | ".join(str(d) for d in distances) + " |",
-              "|---|" + "---|" * len(distances)]  # fmt: skip
+    lines += ["| ft | " + " | ".join(str(d) for d in DISTANCES_FT) + " |",
+              "|---|" + "---|" * len(DISTANCES_FT)]  # fmt: skip
     for name in ("scratch", "15-handicap"):
         rows = calibration_table(PUTTERS[name], args.n // 5)
         lines.append(f"| {name}: make | " + " | ".join(f"{r[1]:.1f} %" for r in rows) + " |")

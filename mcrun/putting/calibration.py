@@ -35,11 +35,13 @@ __all__ = [
     "TOUR_MAKE_PCT",
     "calibration_table",
     "slope_checks",
+    "tour_holeouts",
 ]
 
 # PGA Tour make rate (%) and average putts to hole out, by distance (ft).
 TOUR_MAKE_PCT = {3: 96.0, 5: 77.0, 10: 40.0, 20: 15.0}
 TOUR_AVERAGE_PUTTS = {5: 1.23, 10: 1.61, 20: 1.87, 30: 1.98, 40: 2.06}
+DISTANCES_FT = tuple(sorted(set(TOUR_MAKE_PCT) | set(TOUR_AVERAGE_PUTTS)))
 # The tolerances the Tour putter is held to.
 MAKE_TOLERANCE_PCT = 3.0
 PUTTS_TOLERANCE = 0.03
@@ -57,15 +59,26 @@ ERRORS_SEED = 7
 SECTOR_DEG = 45.0
 
 
-def calibration_table(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
-                      drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
-    """Rows (distance_ft, make_pct, make_se_pct, tour_make_pct, putts, putts_se, tour_putts)
-    for every distance of the Tour's two lists (None where the Tour's list has no value)."""
+def tour_holeouts(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
+                  drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
+    """{distance_ft: ``holeout.HoleOut``} of n putts from each of ``DISTANCES_FT`` on Tour-like
+    greens, with the putter's own read."""
     greens = tour_greens(n, greens_seed)
     errors = putter_errors(n, seed)
+    drift = drift_sd(drift_mm_per_m)
+    return {ft: hole_out_batch(ft * FOOT_M, greens, putter, errors, drift) for ft in DISTANCES_FT}
+
+
+def calibration_table(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
+                      drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS, holeouts=None):  # fmt: skip
+    """Rows (distance_ft, make_pct, make_se_pct, tour_make_pct, putts, putts_se, tour_putts)
+    for every distance of the Tour's two lists (None where the Tour's list has no value), from
+    ``holeouts`` (``tour_holeouts``'s, made here where not given)."""
+    if holeouts is None:
+        holeouts = tour_holeouts(putter, n, seed, greens_seed, drift_mm_per_m)
     rows = []
-    for ft in sorted(set(TOUR_MAKE_PCT) | set(TOUR_AVERAGE_PUTTS)):
-        putts = hole_out_batch(ft * FOOT_M, greens, putter, errors, drift_sd(drift_mm_per_m)).putts
+    for ft in DISTANCES_FT:
+        putts = holeouts[ft].putts
         made = putts == 1
         rows.append(
             (
@@ -82,10 +95,11 @@ def calibration_table(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
 
 
 def slope_checks(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
-                 drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
+                 drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS, ten_ft=None):  # fmt: skip
     """The measures of ``SLOPE_TARGETS`` for ``putter``, n putts each: {key: value}, with the
     uphill and downhill make rates at 8 ft ("make_uphill_pct_8ft", "make_downhill_pct_8ft") and
-    the standard error of their difference ("..._se")."""
+    the standard error of their difference ("..._se"). ``ten_ft``: ``tour_holeouts``'s 10 ft,
+    where it was made already."""
     drift = drift_sd(drift_mm_per_m)
     errors = putter_errors(n, seed)
     out = {}
@@ -105,8 +119,9 @@ def slope_checks(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
         result = hole_out_batch(10 * FOOT_M, greens, putter, errors, drift)
         missed = result.putts != 1
         out[f"leave_{name}_ft"] = float(np.median(result.leave_m()[missed])) / FOOT_M
-    result = hole_out_batch(10 * FOOT_M, tour_greens(n, greens_seed), putter, errors, drift)
-    out["short_pct_10ft"] = 100.0 * result.short().mean()
+    if ten_ft is None:
+        ten_ft = hole_out_batch(10 * FOOT_M, tour_greens(n, greens_seed), putter, errors, drift)
+    out["short_pct_10ft"] = 100.0 * ten_ft.short().mean()
     return out
 
 
@@ -120,12 +135,15 @@ def fit_errors(putter, n=FIT_N):
     """Each target's error over its tolerance (1: at its edge) for ``putter``, n putts each on
     the calibration's seeds: {name: (value, normalised error)}."""
     out = {}
-    for ft, make, _, tour_make, putts, _, tour_putts in calibration_table(putter, n):
+    holeouts = tour_holeouts(putter, n)
+    for ft, make, _, tour_make, putts, _, tour_putts in calibration_table(
+        putter, n, holeouts=holeouts
+    ):
         if tour_make is not None:
             out[f"make_pct_{ft}ft"] = (make, (make - tour_make) / MAKE_TOLERANCE_PCT)
         if tour_putts is not None:
             out[f"putts_{ft}ft"] = (putts, (putts - tour_putts) / PUTTS_TOLERANCE)
-    checks = slope_checks(putter, n)
+    checks = slope_checks(putter, n, ten_ft=holeouts[10])
     for key, (_, _, lo, hi) in SLOPE_TARGETS.items():
         centre, half = (lo + hi) / 2.0, (hi - lo) / 2.0
         out[key] = (checks[key], (checks[key] - centre) / half)
