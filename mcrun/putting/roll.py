@@ -195,17 +195,6 @@ def on_green(x_m, y_m, surface):
 
 
 @njit(cache=True, inline="always")
-def _slope(x_m, y_m, surface, slope_tan, fall_x, fall_y, tilt_x, tilt_y):
-    """The slope at (x_m, y_m) as the roll takes it: the grid's (``grid_slope``) or, on
-    ``NO_SURFACE``, the plane's, tilted by (``tilt_x``, ``tilt_y``) (``_tilted``)."""
-    if surface.height_m.shape[0] > 0:
-        s_tan, fx, fy = grid_slope(x_m, y_m, surface)
-    else:
-        s_tan, fx, fy = slope_at(x_m, y_m, slope_tan, fall_x, fall_y)
-    return _tilted(s_tan, fx, fy, tilt_x, tilt_y)
-
-
-@njit(cache=True, inline="always")
 def _pull(slope_tan, fall_x, fall_y, rho_g):
     """What a slope does to a rolling ball (Penner 2002), taken once per step: gravity along
     the plane (5/7) g sin(beta) times the fall direction (x, y), and the rolling resistance's
@@ -287,10 +276,13 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
     while t < max_time_s:
         speed = math.sqrt(vx * vx + vy * vy)
         h = dt_s
-        if grid and ds_max_m > 0.0 and speed * h > ds_max_m:
-            h = ds_max_m / speed
-        s_tan, fx, fy = _slope(x + vx * h / 2.0, y + vy * h / 2.0, surface, slope_tan, fall_x,
-                               fall_y, tilt_x, tilt_y)  # fmt: skip
+        if grid:
+            if ds_max_m > 0.0 and speed * h > ds_max_m:
+                h = ds_max_m / speed
+            s_tan, fx, fy = grid_slope(x + vx * h / 2.0, y + vy * h / 2.0, surface)
+        else:
+            s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+        s_tan, fx, fy = _tilted(s_tan, fx, fy, tilt_x, tilt_y)
         gx, gy, resist = _pull(s_tan, fx, fy, rho_g)
         ax, ay = _accel(vx, vy, gx, gy, resist, fx, fy)
         # The step in which the ball stops: along its motion it slows at -a.v_hat.
@@ -342,6 +334,10 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
         if grid and not on_green(x, y, surface):
             return STATUS_OFF_GREEN, x, y, t, best, bx, by
         if vx == 0.0 and vy == 0.0:
-            if _slope(x, y, surface, slope_tan, fall_x, fall_y, tilt_x, tilt_y)[0] <= rho_g:
+            if grid:
+                s_tan, fx, fy = grid_slope(x, y, surface)
+            else:
+                s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+            if _tilted(s_tan, fx, fy, tilt_x, tilt_y)[0] <= rho_g:
                 return STATUS_STOPPED, x, y, t, best, bx, by
     return STATUS_NOT_STOPPED, x, y, t, best, bx, by
