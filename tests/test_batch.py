@@ -19,6 +19,7 @@ from mcrun.engine.backend import simulate_batch, simulate_traced
 from mcrun.engine.rolling import roll_out
 from mcrun.engine.schema import COLUMN, N_INPUT, N_OUTCOME
 from mcrun.engine.shot import default_dt_s
+from mcrun.executor import Executor
 from mcrun.physics import aero
 from mcrun.physics.flight import WIND_PROFILES, FlightParams, QuadraticContext
 from mcrun.physics.roll import roll_out_short
@@ -245,3 +246,20 @@ def test_the_shot_loop_steps_through_as_python(inputs, tmp_path):
     assert same(as_python["plane"], simulate_batch(rows))
     assert same(as_python["terrain"], on_terrain)
     assert {0.0, 1.0} <= set(np.unique(on_terrain[:, -1]))  # ok and invalid_input
+
+
+@pytest.mark.determinism
+def test_a_batch_is_the_same_on_every_thread_on_one_and_as_tasks(inputs):
+    """The engine's batch on every thread, on one, and cut into tasks of the executor (each
+    part's shots on the task's own thread): bit for bit."""
+    whole = simulate_batch(inputs)
+    previous = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        one = simulate_batch(inputs)
+    finally:
+        numba.set_num_threads(previous)
+    cuts = range(0, len(inputs), 150)
+    parts = Executor(threads=2).map(lambda a: simulate_batch(inputs[a : a + 150]), cuts)
+    assert same(whole, one)
+    assert same(whole, np.concatenate(parts))

@@ -404,3 +404,23 @@ def test_on_the_library_s_green_below_the_hole_is_cheaper_than_above():
                    putts[name], np.zeros(len(READ_NODES)))  # fmt: skip
         gap = putts["above"] - putts["below"]
         assert gap.mean() > (0.0 if d < 5.0 else 2.0 * gap.std(ddof=1) / math.sqrt(n)), d
+
+
+def test_a_hole_s_scores_never_build_its_green_s_map(monkeypatch):
+    """Scoring shots on a hole whose green its map values (``results.on_hole.scores``) has no
+    side effect: the map is the run layer's to prepare (``run.plan.putting_of``); without it the
+    scoring is refused, and no map is built."""
+    from mcrun.engine.schema import N_OUTCOME
+    from mcrun.putting import on_hole as putting_on_hole
+    from mcrun.results import on_hole
+    from mcrun.run import scenario as sc
+
+    hole = load_hole(sc.library_folder() / "holes" / "riverside-18-green.toml")
+
+    def built(*args, **kwargs):
+        raise AssertionError("a map was built while scoring")
+
+    monkeypatch.setattr(putting_on_hole, "expected_putts_map", built)
+    outcomes = np.zeros((4, N_OUTCOME), order="F")
+    with pytest.raises(ValueError, match="map_of_hole"):
+        on_hole.scores(hole, outcomes)

@@ -265,7 +265,7 @@ def test_sigterm_stops_a_run_as_ctrl_c_does(tmp_path):
 STARTING_THREAD_SIGTERM = """\
 import os, signal, threading, time
 from mcrun import exits
-from mcrun.engine import batch
+from mcrun import executor
 
 bootstrap = threading.Thread._bootstrap_inner
 sent = []
@@ -278,7 +278,7 @@ def late_bootstrap(self):
 threading.Thread._bootstrap_inner = late_bootstrap
 try:
     with exits.sigterm_interrupts():
-        batch.on_threads(lambda k: time.sleep(0.01), 4, threads=2)
+        executor.on_threads(lambda k: time.sleep(0.01), 4, threads=2)
 except exits.Terminated:
     print("terminated", flush=True)
 time.sleep(1)  # every thread has started by now: the interpreter would wait for one left out

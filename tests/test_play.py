@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from mcrun.cli import main
+from mcrun.executor import Executor
 from mcrun.hole.hole import load_hole
 from mcrun.play import load_player, play_hole
 from mcrun.play.calibration import (
@@ -135,6 +136,21 @@ def test_the_solution_is_the_same_on_one_thread_and_on_two(symmetric):
     one = solve(result.lattice, result.transitions, threads=1)
     np.testing.assert_array_equal(one.values, result.solution.values)
     np.testing.assert_array_equal(one.best_row, result.solution.best_row)
+
+
+@pytest.mark.determinism
+def test_the_transitions_are_the_same_on_one_thread_and_on_two(symmetric):
+    """The jobs flown on one thread and as tasks on two (each job's shots put in their rows'
+    places as it finishes, in whatever order): the solve's transitions, bit for bit."""
+    player, hole, result = symmetric
+    scenario = on_hole(player, hole)
+    fields = ("row_state", "row_action", "row_start", "kind", "lie", "x", "y", "const")
+    for threads in (1, 2):
+        again = fly(scenario, result.lattice, result.n, player.spread, chunk_rows=7,
+                    baseline=tour_baseline(), speed=player.speed,
+                    executor=Executor(threads=threads))  # fmt: skip
+        for name in fields:
+            np.testing.assert_array_equal(getattr(again, name), getattr(result.transitions, name))
 
 
 def test_the_tee_value_is_what_its_plays_average(symmetric):

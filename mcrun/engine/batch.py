@@ -24,19 +24,16 @@ rows.
 Frames as in ``engine.shot``: user frame in and out, the core's (y to the LEFT) inside.
 """
 
-import concurrent.futures
-import threading
-
-import numba
 import numpy as np
 from numba import njit
 
-from mcrun import exits, ground
+from mcrun import ground
 from mcrun.engine.bounce_lanes import bounce_all
 from mcrun.engine.flight_lanes import GENERAL, QUADRATIC, flight_kind, fly_general, fly_quadratic
 from mcrun.engine.schema import N_INPUT, N_OUTCOME
 from mcrun.engine.shot import TRAJECTORY_DT_S, from_start
 from mcrun.engine.tables import IN, LANDING, LANES, N_LANDING, NO_SHOTS, TRACER
+from mcrun.executor import on_threads
 from mcrun.physics import aero
 from mcrun.physics.aero import LANE_MODELS, QUADRATIC_COEFFICIENTS
 from mcrun.physics.flight import WIND_UNIFORM
@@ -46,7 +43,6 @@ __all__ = [
     "N_LANDING",
     "TASK_SHOTS",
     "TRAJECTORY_DT_S",
-    "on_threads",
     "simulate_batch",
     "simulate_landed",
     "simulate_traced",
@@ -176,67 +172,16 @@ def simulate_batch(inputs, out=None, table=QUADRATIC_COEFFICIENTS, terrain=None)
 
 
 def _run(inputs, table, out, terrain):
-    """The batch's tasks on ``numba.get_num_threads()`` threads (of the pool ``_threads``),
+    """The batch's tasks on ``numba.get_num_threads()`` threads (``executor.on_threads``),
     each thread taking the next task until none is left; on this thread alone when the batch
-    is one task. The kernel releases the GIL, so the threads run at once; each task's shots
-    are its own, so neither the thread count nor the order of the tasks changes a bit. (A
-    ``prange`` loop would do the same, at the price of Numba's parallel pipeline at every
-    compile: 8 s of the plane's cold start.)"""
+    is one task or is itself a task of a batch of tasks (a job of a solve, an aim). The kernel
+    releases the GIL, so the threads run at once; each task's shots are its own, so neither
+    the thread count nor the order of the tasks changes a bit. (A ``prange`` loop would do the
+    same, at the price of Numba's parallel pipeline at every compile: 8 s of the plane's cold
+    start.)"""
     task = _batch_task_general if needs_general(inputs) else _batch_task
     tasks = (inputs.shape[0] + TASK_SHOTS - 1) // TASK_SHOTS
     on_threads(lambda k: task(inputs, k, table, out, terrain), tasks)
-
-
-def on_threads(work, tasks, threads=None):
-    """``work(k)`` for every k in range(``tasks``) on ``threads`` threads (default
-    ``numba.get_num_threads()``) of the kernels' pool (``_threads``), each thread taking the
-    next k until none is left; on this thread alone when one thread or one task. ``work`` should
-    release the GIL (a ``nogil`` kernel) and the tasks be independent: then neither the thread
-    count nor their order changes a bit."""
-    threads = min(numba.get_num_threads() if threads is None else int(threads), tasks)
-    if threads <= 1:
-        for k in range(tasks):
-            work(k)
-        return
-    todo = iter(range(tasks))
-    lock = threading.Lock()
-    stopped = threading.Event()
-
-    def take():
-        while not stopped.is_set():
-            with lock:
-                k = next(todo, None)
-            if k is None:
-                return
-            work(k)
-
-    pool = _threads()
-    running = []
-    try:
-        # The pool starts its threads as work is submitted. Ctrl-C or SIGTERM while a thread
-        # starts would leave that thread out of the pool's list, and the interpreter would wait
-        # for it forever at exit: they wait until the threads have started.
-        with exits.interrupts_deferred():
-            running.extend(pool.submit(take) for _ in range(threads))
-        for each in running:
-            each.result()
-    finally:  # (Ctrl-C: the threads finish the task they hold, and take no other)
-        stopped.set()
-        concurrent.futures.wait(running)
-
-
-_POOL = []
-
-
-def _threads():
-    """The pool of threads the batches run on, as many as Numba may use (made once)."""
-    if not _POOL:
-        _POOL.append(
-            concurrent.futures.ThreadPoolExecutor(
-                max_workers=numba.config.NUMBA_NUM_THREADS, thread_name_prefix="mcrun-kernel"
-            )
-        )
-    return _POOL[0]
 
 
 @njit(cache=True, error_model="numpy")

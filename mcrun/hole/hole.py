@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from numba import njit
 
 from mcrun.ground import IN_PLAY, PENALTY_AREA, Terrain, make_terrain
 from mcrun.hole.errors import HoleError
@@ -99,6 +100,20 @@ PUTTING_DEFAULTS = {"model": "table", "putter": "tour", "n": 200, "seed": 0,
                     "elevation_crs": None,
                     "drift_mm_per_m": GREEN_DRIFT_MM_PER_M}  # fmt: skip
 PUTTING_KEYS = tuple(PUTTING_DEFAULTS)
+
+
+@njit(cache=True, nogil=True)
+def _zones_at(zone, x0_m, y0_m, cell_m, x_m, y_m, out):
+    """``Hole.zone_at`` of the points (x_m, y_m) into ``out``: the zone of the nearest node of
+    the grid ``zone`` (its node [0, 0] at (x0_m, y0_m)), -1 off the grid (or not a number)."""
+    ny, nx = zone.shape
+    for i in range(x_m.size):
+        ix = np.rint((x_m[i] - x0_m) / cell_m)
+        iy = np.rint((y_m[i] - y0_m) / cell_m)
+        if ix >= 0 and ix < nx and iy >= 0 and iy < ny:
+            out[i] = zone[int(iy), int(ix)]
+        else:
+            out[i] = -1
 
 
 @dataclass
@@ -187,12 +202,10 @@ class Hole:
         """Zone index (``zones.ZONE_KINDS``) at (x_m, y_m): that of the nearest node of the
         terrain, as the ground's; -1 off the grid. Vectorised."""
         t = self.terrain()
-        ny, nx = t.zone.shape
-        ix = np.rint((np.asarray(x_m, float) - t.x0_m) / t.cell_m)
-        iy = np.rint((np.asarray(y_m, float) - t.y0_m) / t.cell_m)
-        on = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
-        out = np.full(on.shape, -1, dtype=np.int8)
-        out[on] = t.zone[iy[on].astype(np.int64), ix[on].astype(np.int64)]
+        x, y = np.broadcast_arrays(np.asarray(x_m, float), np.asarray(y_m, float))
+        out = np.empty(x.shape, dtype=np.int8)
+        _zones_at(t.zone, t.x0_m, t.y0_m, t.cell_m, np.ascontiguousarray(x).ravel(),
+                  np.ascontiguousarray(y).ravel(), out.reshape(-1))  # fmt: skip
         return out
 
     def in_play_at(self, x_m, y_m):

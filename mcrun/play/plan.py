@@ -29,6 +29,7 @@ import math
 import time
 from dataclasses import dataclass, replace
 
+import numba
 import numpy as np
 
 from mcrun.engine.schema import N_INPUT, N_OUTCOME
@@ -67,11 +68,12 @@ MIN_CARRY_M = 1.0
 REACH_MARGIN = 1.5
 # Memory (bytes), by what a solve holds (``memory_bytes``), from the arrays it makes:
 # - per shot kept: its kind and lie (int8), where it rests and its putts (3 float64) = 26 B,
-#   held twice while the transitions are put in order, with one column (16 B) being copied;
+#   each put in its place as its job finishes, and a margin (the order of the rows, the
+#   solve's arrays);
 SHOT_BYTES = 72
-# - per shot of the batch being flown (``chunk_rows`` states x n shots at a time, on each Dask
-#   worker): the kernel's inputs and outcomes (float64) and the classification's arrays (about
-#   a dozen more a shot);
+# - per shot of a job being flown (``chunk_rows`` states x n shots, one a thread or one on each
+#   Dask worker): the kernel's inputs and outcomes (float64) and the classification's arrays
+#   (about a dozen more a shot);
 BATCH_SHOT_BYTES = 8 * (N_INPUT + N_OUTCOME) + 112
 # - per row (a state and an action): its indices, Q and its standard error for the best and the
 #   fairway's policy, and the row of -o's table (a dozen columns, strings among them);
@@ -94,11 +96,12 @@ PLAYS_PER_S = 5e5
 PROBE_SHOTS = 64
 
 
-def memory_bytes(n_options, n, rows, plays, workers=0, chunk_rows=CHUNK_ROWS):
+def memory_bytes(n_options, n, rows, plays, workers=0, chunk_rows=CHUNK_ROWS, threads=None):
     """The memory (bytes) a solve of ``n_options`` options (clubs and powers) of ``n`` shots
     each over ``rows`` rows (states x the actions that fit them) holds at most, its policy
-    played ``plays`` times, its batches flown on this process's threads or on ``workers`` local
-    Dask workers (0: threads, or a cluster elsewhere). Checked once: Riverside 2 at -n 5000
+    played ``plays`` times, its jobs flown on ``threads`` threads of this process (default
+    ``numba.get_num_threads()``) or on ``workers`` local Dask workers (0: threads, or a cluster
+    elsewhere). Checked once: Riverside 2 at -n 5000
     --coarse 20m --fine 10m --plays 1e8 (30 million shots), estimated 16 GB, peaked at 12.6 GB
     resident."""
     sampling = n * (n_options * OPTION_SHOT_BYTES + SAMPLING_SHOT_BYTES)
@@ -107,7 +110,8 @@ def memory_bytes(n_options, n, rows, plays, workers=0, chunk_rows=CHUNK_ROWS):
     if workers:
         tasks = math.ceil(rows / chunk_rows)
         dask = workers * (WORKER_BYTES + batch) + tasks * n * 2 * OPTION_SHOT_BYTES
-    return int(sampling + (0 if workers else batch) + dask + rows * n * SHOT_BYTES
+    threads = numba.get_num_threads() if threads is None else int(threads)
+    return int(sampling + (0 if workers else threads * batch) + dask + rows * n * SHOT_BYTES
                + rows * ROW_BYTES + plays * PLAY_BYTES)  # fmt: skip
 
 

@@ -10,7 +10,7 @@ V(s) = min over the actions a that fit s of Q(s, a), Q(s, a) = the mean over its
 - ``RESTART``: 1 + 1 + V(s) (stroke and distance);
 
 its ``FAILED`` shots left out. Starting from the baseline's strokes at every state, the sweeps
-(every row from the last sweep's values, rows on the kernels' threads, ``batch.on_threads``:
+(every row from the last sweep's values, rows on the kernels' threads, ``executor.on_threads``:
 the same values whatever their number) go on until no value moves by more than
 ``TOLERANCE`` (``SolveResult.sweeps``, ``change``). A standard error of Q is that of the mean
 of its shots' costs at the solution (the values themselves are taken as known).
@@ -24,7 +24,7 @@ import numba
 import numpy as np
 from numba import njit
 
-from mcrun.engine.batch import on_threads
+from mcrun.executor import on_threads
 from mcrun.play.lattice import TABLE_STEP_M, stacked, value_at
 from mcrun.play.transitions import GREEN, PLAY, RESTART, WATER
 

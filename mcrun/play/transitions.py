@@ -26,6 +26,7 @@ import numpy as np
 from mcrun import status
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import COLUMN, OUTCOME_FIELDS
+from mcrun.executor import Executor
 from mcrun.hole.zones import MOWN_ZONES, ZONE_KINDS
 from mcrun.play.calibration import spread_inputs
 from mcrun.play.lattice import GREEN_LIE, LIE_CODE_OF_ZONE
@@ -41,6 +42,7 @@ KINDS = ("play", "green", "water", "restart", "failed")
 AIMS = (("pin", 0.0), ("pin", -2.0), ("pin", 2.0), ("pin", -4.0), ("pin", 4.0),
         ("line", 0.0), ("line", -3.0), ("line", 3.0))  # fmt: skip
 OVERSHOOT_M = 20.0
+DROP_BLOCK = 8  # the metres behind a yellow area's reference point tried at once
 BALL_SPEED = COLUMN["ball_speed_mps"]
 SPIN = COLUMN["spin_radps"]
 LAUNCH = COLUMN["launch_angle_rad"]
@@ -201,13 +203,22 @@ def _drops(hole, rx, ry, area):
         dx, dy = rx[yellow] - px, ry[yellow] - py
         d0 = np.maximum(np.hypot(dx, dy), 1e-9)
         ux, uy = dx / d0, dy / d0
+        # Every metre behind, up to 100 m (none in play: the first), a block of them at a time.
         behind = np.arange(1.0, 101.0)
-        bx = px + ux[:, None] * (d0[:, None] + behind)
-        by = py + uy[:, None] * (d0[:, None] + behind)
-        playable = hole.in_play_at(bx, by)
-        first = np.argmax(playable, axis=1)
-        rows = np.arange(len(first))
-        x[yellow], y[yellow] = bx[rows, first], by[rows, first]
+        first = np.zeros(len(d0), dtype=np.int64)
+        left = np.arange(len(d0))
+        for a in range(0, len(behind), DROP_BLOCK):
+            steps = behind[a : a + DROP_BLOCK]
+            bx = px + ux[left, None] * (d0[left, None] + steps)
+            by = py + uy[left, None] * (d0[left, None] + steps)
+            playable = hole.in_play_at(bx, by)
+            found = playable.any(axis=1)
+            first[left[found]] = a + np.argmax(playable[found], axis=1)
+            left = left[~found]
+            if left.size == 0:
+                break
+        x[yellow] = px + ux * (d0 + behind[first])
+        y[yellow] = py + uy * (d0 + behind[first])
         zone = hole.zone_at(x[yellow], y[yellow])
         code = LIE_CODE_OF_ZONE[np.maximum(zone, 0)]
         lie[yellow] = np.where(code >= 0, code, LIES.index("rough"))
@@ -249,24 +260,16 @@ def _classify(hole, out, putting, baseline):
     return kind, lie, x, y, const
 
 
-def _batch(scenario, club, inputs, xy, points, lies, n, putting, baseline):
-    """The classified shots (kind, lie, x, y, const) of ``inputs`` (one club's n shots) struck
-    from the starts ``xy`` at the aim points ``points``, from their ``lies``."""
+def _batch(scenario, putting, baseline, n, job):
+    """A job of ``fly`` (a task of the executor): the classified shots (kind, lie, x, y, const)
+    of its club's n shots ``inputs`` struck from its states ``xy`` (their ``lies``) at its aim
+    ``points``."""
+    club, inputs, xy, points, lies = job
     hole = scenario.hole
     batch = starts.tile(inputs, scenario.points[club].play, xy, (points[:, 0], points[:, 1]))
     _lie_launch(batch, lies, n)
     out = simulate_batch(batch, terrain=hole.terrain())
     return _classify(hole, out, putting, baseline)
-
-
-def _batch_task(scenario, club, inputs, xy, points, lies, n, putting, baseline):
-    """A Dask task: ``_batch`` on one Numba thread."""
-    import numba
-
-    from mcrun.run.distributed import NUMBA_THREADS_PER_TASK
-
-    numba.set_num_threads(NUMBA_THREADS_PER_TASK)
-    return _batch(scenario, club, inputs, xy, points, lies, n, putting, baseline)
 
 
 def plan_actions(hole, lat, options, chunk_rows=256):
@@ -296,61 +299,60 @@ def plan_actions(hole, lat, options, chunk_rows=256):
 
 
 def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None,
-        speed=None, client=None, planned=None):  # fmt: skip
+        speed=None, client=None, planned=None, executor=None):  # fmt: skip
     """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``,
     each club's launch at its ``spread``, its ball speed times its ``speed`` (default 1).
-    ``client``: a ``dask.distributed.Client`` whose workers fly the batches (the same shots,
-    bit for bit, put back in order). ``planned``: the (actions, jobs) of ``plan_actions``
-    (of ``options_of(scenario, n, spread, speed)``), when the caller has them.
-    ``progress(k)``: called with the actions flown so far, of ``len(actions)``."""
+    The jobs (``plan_actions``) are the tasks of ``executor`` (a ``mcrun.executor.Executor``;
+    default one on this process's threads, or on the workers of ``client``, a
+    ``dask.distributed.Client``): each job's shots go to their rows' places as it finishes,
+    so that the transitions are the same, bit for bit, whatever ran them. ``planned``: the
+    (actions, jobs) of ``plan_actions`` (of ``options_of(scenario, n, spread, speed)``), when
+    the caller has them. ``progress(k)``: called with the actions flown so far (the share of
+    the jobs done), of ``len(actions)``."""
     if planned is None:
         options = options_of(scenario, n, spread, speed)
         planned = plan_actions(scenario.hole, lat, options, chunk_rows)
     actions, jobs = planned
-    if client is None:
-        parts = []
-        for rows, action, club, inputs, points in jobs:
-            parts.append(_batch(scenario, club, inputs, lat.xy[rows], points, lat.lie[rows], n,
-                                putting, baseline))  # fmt: skip
-            if progress is not None:
-                progress(action + 1)
-    else:
+    executor = executor or Executor(client=client)
+    if executor.on_dask:
         from mcrun.run.distributed import warm_workers
         from mcrun.run.plan import kernels_of
 
-        warm_workers(client, *kernels_of(scenario))
-        shared = client.scatter([scenario, putting, baseline], broadcast=True)
-        futures = [client.submit(_batch_task, shared[0], club, inputs, lat.xy[rows], points,
-                                 lat.lie[rows], n, shared[1], shared[2], pure=False)
-                   for rows, _, club, inputs, points in jobs]  # fmt: skip
-        if progress is not None:  # as the tasks finish, in any order: the share done
-            from distributed import as_completed
-
-            for done, _ in enumerate(as_completed(futures), start=1):
-                progress(len(actions) * done // len(futures))
-        parts = client.gather(futures)
-    flown = sum(len(job[0]) for job in jobs) * n
-    rows_state = np.concatenate([job[0] for job in jobs])
-    rows_action = np.concatenate([np.full(len(job[0]), job[1]) for job in jobs])
+        warm_workers(executor.client, *kernels_of(scenario))
+    # The rows in their order (by state, then action), and where each job's rows go in it.
+    sizes = [len(job[0]) for job in jobs]
+    rows_state = np.concatenate([job[0] for job in jobs]).astype(np.int64)
+    rows_action = np.repeat(np.array([job[1] for job in jobs], dtype=np.int64), sizes)
     order = np.lexsort((rows_action, rows_state))
-    arrays = []
-    for j in range(5):
-        arrays.append(
-            np.concatenate(
-                [p[j].reshape(len(job[0]), n) for p, job in zip(parts, jobs, strict=True)]
-            )[order].ravel()
-        )
-    del parts  # (the shots are in ``arrays`` now: memory_bytes counts both at once)
+    place = np.empty_like(order)
+    place[order] = np.arange(len(order))
+    offsets = np.r_[0, np.cumsum(sizes)].astype(np.int64)
+    # (kind, lie, x, y, const) of every row's n shots
+    shots = (np.empty((len(order), n), dtype=np.int8), np.empty((len(order), n), dtype=np.int8),
+             *(np.empty((len(order), n)) for _ in range(3)))  # fmt: skip
+
+    def done(k, part):
+        where = place[offsets[k] : offsets[k + 1]]
+        for column, values in zip(shots, part, strict=True):
+            column[where] = values.reshape(len(where), n)
+
+    def said(finished):
+        progress(len(actions) * finished // len(jobs))
+
+    items = [(club, inputs, lat.xy[rows], points, lat.lie[rows])
+             for rows, _, club, inputs, points in jobs]  # fmt: skip
+    executor.map(_batch, items, shared=(scenario, putting, baseline, n), done=done,
+                 progress=None if progress is None else said, name="job")  # fmt: skip
     return Transitions(
         actions=actions,
-        row_state=rows_state[order].astype(np.int64),
-        row_action=rows_action[order].astype(np.int64),
+        row_state=rows_state[order],
+        row_action=rows_action[order],
         row_start=np.arange(len(order) + 1, dtype=np.int64) * n,
-        kind=arrays[0].astype(np.int8, copy=False),
-        lie=arrays[1].astype(np.int8, copy=False),
-        x=arrays[2].astype(np.float64, copy=False),
-        y=arrays[3].astype(np.float64, copy=False),
-        const=arrays[4].astype(np.float64, copy=False),
+        kind=shots[0].reshape(-1),
+        lie=shots[1].reshape(-1),
+        x=shots[2].reshape(-1),
+        y=shots[3].reshape(-1),
+        const=shots[4].reshape(-1),
         n=int(n),
-        shots_flown=flown,
+        shots_flown=int(sum(sizes)) * n,
     )

@@ -34,7 +34,7 @@ import numba
 import numpy as np
 from numba import njit
 
-from mcrun.engine.batch import on_threads
+from mcrun.executor import on_threads
 from mcrun.putting.putter import PUTTERS, putter_errors
 from mcrun.putting.read import AIM_STEPS_DEG, PACES_M, READ_NODES, search, value_read
 from mcrun.putting.rest import (

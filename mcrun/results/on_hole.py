@@ -22,7 +22,6 @@ import pyarrow as pa
 from mcrun import status as status_codes
 from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.hole.zones import PENALTY_ZONES, ZONE_KINDS
-from mcrun.putting.on_hole import map_of_hole
 from mcrun.strokes import OUTCOMES, PUTTING_COLUMNS, point_strokes, score_shots, start_of
 
 OFF_MAP = "off_map"
@@ -97,15 +96,20 @@ def _zones(hole, x, y, status=None):
 def scores(hole, outcomes, strokes=None, finish=None, start_xy_m=TEE):
     """``strokes.score_shots`` of the kernel's ``outcomes`` (n, N_OUTCOME) on ``hole``, struck
     from ``start_xy_m`` (hole frame, m: one (x, y), or an x and a y array with one start a
-    shot; default the tee) (``strokes``: its keyword arguments, the baseline and lies;
-    ``finish``: the finish zones, when already known)."""
+    shot; default the tee) (``strokes``: its keyword arguments, the baseline and lies, and
+    ``putting``, the green's map where the hole's putting is physics: the run layer prepares
+    it, ``putting.on_hole.map_of_hole``, and nothing here computes it; ``finish``: the finish
+    zones, when already known)."""
     column = {name: outcomes[:, k] for name, k in _COLUMN.items()}
     fx, fy = column["final_x_m"], column["final_y_m"]
     if finish is None:
         finish = _zones(hole, fx, fy, column["status"])
     strokes = dict(strokes or {})
-    if "putting" not in strokes:
-        strokes["putting"] = map_of_hole(hole)
+    if "putting" not in strokes and hole.putting["model"] == "physics":
+        raise ValueError(
+            f"{hole.source}: its green is valued by its expected-putts map: the run layer "
+            "prepares it (putting.on_hole.map_of_hole) and passes it as strokes['putting']"
+        )
     if not _at_tee(start_xy_m):
         strokes["start_lie"], strokes["start_distance_m"] = start_of(hole, start_xy_m, True)
     return score_shots(

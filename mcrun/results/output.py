@@ -230,15 +230,18 @@ class ShotsWriter(_ParquetWriter):
     their Arrow types (default float64). With ``path`` None nothing is opened: ``table`` then
     builds the chunks' tables for a writer elsewhere (the parts of ``mcrun.run.distributed``).
     ``hole``: the ``Hole`` the shots were played on (None: a plane), for its columns;
-    ``starts_xy_m``: where each point's shots were struck on it ((x, y) m; default the tee).
+    ``starts_xy_m``: where each point's shots were struck on it ((x, y) m; default the tee);
+    ``putting``: the green's expected-putts map where the hole's putting is physics (prepared
+    by the run layer, ``putting.on_hole.map_of_hole``).
     """
 
     def __init__(self, path, input_names, groups, labels, metadata, input_types=None, hole=None,
-                 starts_xy_m=None):  # fmt: skip
+                 starts_xy_m=None, putting=None):  # fmt: skip
         self.path = None if path is None else Path(path)
         self.input_names = tuple(input_names)
         self.input_types = {n: (input_types or {}).get(n, pa.float64()) for n in input_names}
         self.hole = hole
+        self.putting = putting
         self.starts_xy_m = [on_hole_columns.TEE] * len(groups) if starts_xy_m is None else [
             tuple(xy) for xy in starts_xy_m
         ]  # fmt: skip
@@ -326,7 +329,7 @@ class ShotsWriter(_ParquetWriter):
         )
         if self.hole is not None:
             columns += on_hole_columns.shot_columns(
-                self.hole, outcomes, start_xy_m=self.starts_xy_m[point]
+                self.hole, outcomes, {"putting": self.putting}, self.starts_xy_m[point]
             ).values()
         return pa.Table.from_arrays(columns, schema=self.schema)
 

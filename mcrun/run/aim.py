@@ -11,7 +11,8 @@ paired differences, far smaller than either value's.
 
 The search is coarse to fine: aims ``coarse_m`` apart over the region, then, around the best
 so far, aims a third as far apart, until they are ``resolution_m`` apart; each round flies the
-club's shots once per new aim.
+club's shots once per new aim, its aims the tasks of the executor (``mcrun.executor``: an aim's
+shots on one thread, the round's aims on all of them).
 
 Before the search, ``check`` refuses what it cannot do in one line naming the option (a value
 that is not a finite number, fewer than two shots, more than ``MAX_AIMS`` aims of a club, a
@@ -41,6 +42,8 @@ import pandas as pd
 
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import COLUMN, FINAL_X, FINAL_Y, N_INPUT, N_OUTCOME
+from mcrun.executor import Executor
+from mcrun.putting.on_hole import map_of_hole
 from mcrun.quantities import InputError
 from mcrun.results import on_hole, output
 from mcrun.run import plan, sampling
@@ -191,11 +194,14 @@ def aims_per_club(half_width_m, coarse_m, resolution_m, offsets_m=None):
     return coarse + 1 + NEW_AIMS_PER_ROUND * rounds
 
 
-def memory_bytes(clubs, n, aims):
+def memory_bytes(clubs, n, aims, threads=None):
     """The memory (bytes) an aim search of ``clubs`` clubs of ``n`` shots and ``aims`` aims each
-    holds at most: one club's inputs, outcomes and scoring at a time, and every aim's score of
-    every shot, kept for the table's paired differences."""
-    return 8 * n * (N_INPUT + N_OUTCOME + SCORING_COLUMNS) + 8 * n * clubs * aims
+    holds at most: one club's inputs, and the inputs, outcomes and scoring of an aim on each of
+    ``threads`` threads (default ``numba.get_num_threads()``) at a time, and every aim's score
+    of every shot, kept for the table's paired differences."""
+    threads = numba.get_num_threads() if threads is None else int(threads)
+    return (8 * n * N_INPUT + 8 * n * threads * (N_INPUT + N_OUTCOME + SCORING_COLUMNS)
+            + 8 * n * clubs * aims)  # fmt: skip
 
 
 def available_memory():
@@ -333,11 +339,14 @@ def _bearing(offset_m, distance_m):
     return math.atan2(offset_m, distance_m)
 
 
-def _scores(hole, inputs, azimuth, bearing, play, terrain, out, strokes):
-    """Per-shot expected strokes after the shot of ``inputs`` (sampled about ``play``'s aim)
-    aimed on ``bearing``, and how many of the shots left the hole's map."""
-    inputs[:, AZIMUTH] = azimuth + (bearing - play.aim_rad)
-    simulate_batch(inputs, out, terrain=terrain)
+def _scores(hole, terrain, strokes, job):
+    """An aim (a task of the executor): per-shot expected strokes after the shots ``inputs``
+    (sampled about ``play``'s aim) aimed on ``bearing``, and how many of them left the hole's
+    map; ``job`` = (inputs, bearing, play)."""
+    inputs, bearing, play = job
+    inputs = inputs.copy(order="F")
+    inputs[:, AZIMUTH] += bearing - play.aim_rad
+    out = simulate_batch(inputs, terrain=terrain)
     scored = on_hole.scores(hole, out, strokes, start_xy_m=play.start_m)
     off_map = int((scored["outcome"] == "off_map").sum())
     return scored["expected_strokes_after"].to_numpy(), off_map
@@ -389,32 +398,34 @@ def search(
     line = _line_rad(hole, start)
     if centre_m is None:
         centre_m = distance * math.tan(scenario.points[0].play.aim_rad - line)
-    strokes = {"baseline": baseline or tour_baseline(), "lie_of_zone": lie_of_zone}
+    strokes = {"baseline": baseline or tour_baseline(), "lie_of_zone": lie_of_zone,
+               "putting": map_of_hole(hole)}  # fmt: skip
+    executor = Executor()
     clubs = []
     flown = 0
     for point in scenario.points:
         inputs, _ = sampling.sample(scenario, point, 0, n)
-        azimuth = inputs[:, AZIMUTH].copy()
-        out = np.empty((n, N_OUTCOME), order="F")
         aims = ClubAims(point.label or point.group or "shot", reference_m=centre_m)
 
-        def fly(offset, aims=aims, inputs=inputs, azimuth=azimuth, out=out, play=point.play):
-            if offset not in aims.scores:
-                aims.scores[offset], aims.off_map[offset] = _scores(
-                    hole, inputs, azimuth, line + _bearing(offset, distance), play,
-                    terrain, out, strokes,
-                )  # fmt: skip
-            return aims.scores[offset]
+        def fly(offsets, aims=aims, inputs=inputs, play=point.play):
+            """The aims of ``offsets`` not flown yet, each a task of the executor."""
+            todo = [o for o in dict.fromkeys(round(o, 9) for o in offsets) if o not in aims.scores]
+            jobs = [(inputs, line + _bearing(o, distance), play) for o in todo]
+            for o, (scores, off_map) in zip(
+                todo, executor.map(_scores, jobs, shared=(hole, terrain, strokes), name="aim"),
+                strict=True,
+            ):  # fmt: skip
+                aims.scores[o], aims.off_map[o] = scores, off_map
 
         if offsets_m is not None:
             todo = [float(o) for o in offsets_m]
         else:
             todo = list(centre_m + np.arange(-half_width_m, half_width_m + 1e-9, coarse_m))
-        reference = fly(round(centre_m, 9))
+        fly([centre_m, *todo])
+        reference = aims.scores[round(centre_m, 9)]
         step = coarse_m
         while True:
-            for offset in todo:
-                fly(round(offset, 9))
+            fly(todo)
             if progress is not None:
                 progress(f"{aims.club}: {len(aims.scores)} aims flown, {step:g} m apart")
             if offsets_m is not None or step <= resolution_m + 1e-9:

@@ -17,9 +17,10 @@ once per worker process), draws its chunk with ``sampling.sample`` (the draws of
 depend only on the scenario, the seed and i, so whichever worker runs it, and however often,
 gives the same numbers), runs ``batch.simulate_batch`` with one Numba thread, writes its part
 of the dataset and returns its ``stats.PointStats`` (counts by status, means and co-moments) to
-the client. The scenario text travels once, as the result of a small task the chunks depend on
-(so a lost copy is recomputed, not lost); a scenario that resamples a measured-shots file needs
-the scenario file and that file at the same path on every worker.
+the client. The chunks are the tasks of the executor (``mcrun.executor``, as every batch of
+tasks is); the scenario text travels once, in the run's job, as the result of a small task the
+chunks depend on (so a lost copy is recomputed, not lost); a scenario that resamples a
+measured-shots file needs the scenario file and that file at the same path on every worker.
 
 Layout. A Dask run folder holds:
 
@@ -115,6 +116,7 @@ from mcrun import exits
 from mcrun import status as status_codes
 from mcrun.engine import warmup
 from mcrun.engine.backend import simulate_batch
+from mcrun.executor import NUMBA_THREADS_PER_TASK, Executor
 from mcrun.quantities import InputError
 from mcrun.results import location, output, stats
 from mcrun.results.output import SHOTS_DIR, SUCCESS_FILE, TRAJECTORIES_DIR
@@ -124,7 +126,6 @@ from mcrun.run import scenario as scenario_module
 
 DEFAULT_CHUNK_SIZE = plan.DEFAULT_CHUNK_SIZE
 RETRIES = 2
-NUMBA_THREADS_PER_TASK = 1
 CONNECT_TIMEOUT_S = 30
 _SHOWN_FAILURES = 10
 # A local cluster's worker: a process with mcrun, Numba, Dask and a hole's kernel loaded
@@ -304,6 +305,7 @@ def _shots_builder(job):
             {name: pa.type_for_alias(kind) for name, kind in job["input_types"].items()},
             hole=scenario.hole,
             starts_xy_m=plan.starts_of(scenario.points),
+            putting=plan.putting_of(scenario),
         )
     return builder
 
@@ -347,11 +349,6 @@ def run_chunk(chunk, point, start, stop, job):
         traj_path = f"{job['root']}/{TRAJECTORIES_DIR}/{output.part_name(chunk)}"
         _write_parquet(fs, traj_path, output.trajectory_table(paths, schema), local)
     return ChunkResult(chunk, point, start, stop, shots_path, traj_path, point_stats)
-
-
-def _job_of(job):
-    """The job itself: a task the chunks depend on, so its data is recomputed if lost."""
-    return job
 
 
 # --- the cluster -------------------------------------------------------------------------------
@@ -709,58 +706,43 @@ def _error_text(err):
     return " ".join(f"{type(err).__name__}: {err}".split())
 
 
+def _chunk_of(chunk_task, job, chunk):
+    """A chunk as a task of the executor: ``chunk_task`` (``run_chunk``) of its shots."""
+    return chunk_task(chunk.index, chunk.point, chunk.start, chunk.stop, job)
+
+
 def _execute(client, chunk_task, job, chunks, drivers, total, retries, progress):
-    """Submit the chunks, merge their statistics in chunk order as they finish; return
-    (PointStats per point, ChunkResult per chunk without its statistics)."""
+    """The chunks as the tasks of the executor on the client's workers (``mcrun.executor``),
+    their statistics merged in chunk order as they finish; return (PointStats per point,
+    ChunkResult per chunk without its statistics)."""
     from tqdm import tqdm
 
-    distributed = _dask()
-    job_future = client.submit(_job_of, job, key=f"mcrun-job-{job['id']}")
-    futures = client.map(
-        chunk_task,
-        [c.index for c in chunks],
-        [c.point for c in chunks],
-        [c.start for c in chunks],
-        [c.stop for c in chunks],
-        job=job_future,
-        key=[f"mcrun-chunk-{job['id']}-{c.index:05d}" for c in chunks],
-        retries=retries,
-        pure=False,
-    )
-    index_of = {f.key: k for k, f in enumerate(futures)}
     merged = [stats.PointStats(d) for d in drivers]
     pending = {}  # chunk -> PointStats, finished ahead of an earlier chunk
-    following = 0  # the next chunk to merge
+    following = [0]  # the next chunk to merge
     results = [None] * len(chunks)
     failed = []
     show = bool(progress) and sys.stderr.isatty()
-    try:
-        with tqdm(
-            total=total, unit="shot", unit_scale=True, disable=not show, smoothing=0.1
-        ) as bar:
-            bar.set_description(f"dask: {len(chunks)} tasks")
-            for future in distributed.as_completed(futures):
-                k = index_of[future.key]
-                chunk = chunks[k]
-                if future.status == "finished":
-                    result = future.result()
-                    results[k] = result._replace(stats=None)
-                    if not failed:  # the run fails anyway: keep no statistics
-                        pending[k] = result.stats
-                        while following in pending:
-                            merged[chunks[following].point].merge(pending.pop(following))
-                            following += 1
-                    bar.update(chunk.stop - chunk.start)
-                else:
-                    err = future.exception() if future.status == "error" else None
-                    failed.append((chunk, err or RuntimeError(f"the task was {future.status}")))
-                    pending.clear()
-                future.release()
-    except BaseException:
-        client.cancel([*futures, job_future])
-        raise
-    finally:
-        job_future.release()
+    with tqdm(total=total, unit="shot", unit_scale=True, disable=not show, smoothing=0.1) as bar:
+        bar.set_description(f"dask: {len(chunks)} tasks")
+
+        def done(k, result):
+            results[k] = result._replace(stats=None)
+            if not failed:  # the run fails anyway: keep no statistics
+                pending[k] = result.stats
+                while following[0] in pending:
+                    merged[chunks[following[0]].point].merge(pending.pop(following[0]))
+                    following[0] += 1
+            bar.update(chunks[k].stop - chunks[k].start)
+
+        def failure(k, err):
+            failed.append((chunks[k], err))
+            pending.clear()
+
+        Executor(client=client, retries=retries).map(
+            functools.partial(_chunk_of, chunk_task), chunks, shared=(job,), done=done,
+            failed=failure, name="chunk", key=f"mcrun-chunk-{job['id']}",
+        )  # fmt: skip
     if failed:
         failed.sort(key=lambda item: item[0].index)
         shown = "; ".join(f"{_describe_chunk(c)}: {_error_text(e)}" for c, e in failed[:3])

@@ -123,6 +123,7 @@ def run_scenario(
                 dict.fromkeys(the_plan.integer_columns, pa.int64()),
                 hole=the_plan.scenario.hole,
                 starts_xy_m=plan.starts_of(points),
+                putting=plan.putting_of(the_plan.scenario),
             )
             traj_writer = None
             if the_plan.trajectories_every is not None:

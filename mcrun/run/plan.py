@@ -36,6 +36,7 @@ from mcrun.engine.backend import simulate_traced
 from mcrun.engine.batch import general_flight as general_flight_of
 from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
 from mcrun.engine.warmup import general, warm_up
+from mcrun.putting.on_hole import map_of_hole
 from mcrun.quantities import DRIVER_COLUMNS, InputError
 from mcrun.results import geometry, output, reader, stats
 from mcrun.results import on_hole as on_hole_results
@@ -200,6 +201,14 @@ def terrain_of(scenario):
     """The ground the kernel plays the scenario's shots on: its hole's Terrain, or None (each
     shot's own plane)."""
     return None if scenario.hole is None else scenario.hole.terrain()
+
+
+def putting_of(scenario):
+    """The expected-putts map the shots on the scenario's hole are scored with where its green
+    is valued by one (``[hole.putting] model = "physics"``), built or read from its cache here,
+    before a shot is scored (``putting.on_hole.map_of_hole``); None on a plane or where the
+    baseline's table values the green."""
+    return None if scenario.hole is None else map_of_hole(scenario.hole)
 
 
 @dataclass(frozen=True)

@@ -25,10 +25,10 @@ for ``starts_grid``, a spacing that is not a positive number of metres (or gives
 that is not a zone kind. A grid none of whose places fits is empty, and ``play_from`` refuses
 it.
 
-The same on Dask (``client``): the chunks of starts are the tasks, each samples the same shots
-(they depend only on the scenario, its seed and the shot index) and scores its starts, and
-the client puts the chunks back in start order: bit for bit the local result, whatever the
-number of workers.
+The chunks are the tasks of the executor (``mcrun.executor``): on this process's threads, a
+chunk on each, or on Dask (``client``). Each samples the same shots (they depend only on the
+scenario, its seed and the shot index) and scores its starts, and its results go back to its
+place in start order: bit for bit the same result whatever the threads or the workers.
 """
 
 import math
@@ -39,7 +39,9 @@ import pandas as pd
 
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import COLUMN
+from mcrun.executor import Executor
 from mcrun.hole.zones import PENALTY_ZONES, ZONE_KINDS
+from mcrun.putting.on_hole import map_of_hole
 from mcrun.quantities import InputError
 from mcrun.results import on_hole
 from mcrun.run import plan, sampling
@@ -171,9 +173,10 @@ def _mean_se(values):
     return np.where(count > 0, mean, np.nan), np.where(count > 1, se, np.nan)
 
 
-def play_chunk(scenario, point_index, n, starts_xy_m, aim_xy_m, strokes, keep_shots=False):
+def play_chunk(scenario, point_index, n, aim_xy_m, strokes, keep_shots, starts_xy_m):
     """The per-start results (a dict of arrays of len(starts_xy_m)) of one chunk of starts, and
-    its shots' outcomes when ``keep_shots``: one kernel batch and one scoring pass."""
+    its shots' outcomes when ``keep_shots``: one kernel batch and one scoring pass (a task of
+    the executor)."""
     point = scenario.points[point_index]
     hole = scenario.hole
     inputs, _ = sampling.sample(scenario, point, 0, n)
@@ -232,17 +235,30 @@ def play_from(
     starts = check_starts(hole, starts_xy_m)
     aim = tuple(hole.pin_xy) if aim_xy_m is None else _pair(aim_xy_m, "aim_xy_m")
     aim = tuple(float(v) for v in aim)
-    strokes = {"baseline": baseline or tour_baseline(), "lie_of_zone": lie_of_zone}
+    strokes = {"baseline": baseline or tour_baseline(), "lie_of_zone": lie_of_zone,
+               "putting": map_of_hole(hole)}  # fmt: skip
     cuts = list(range(0, len(starts), chunk_starts))
     chunks = [starts[c : c + chunk_starts] for c in cuts]
-    if client is None:
-        parts = []
-        for chunk in chunks:
-            parts.append(play_chunk(scenario, point, n, chunk, aim, strokes, keep_shots))
-            if progress is not None:
-                progress(sum(len(c) for c in chunks[: len(parts)]), len(starts))
+    executor = Executor(client=client)
+    if executor.on_dask:
+        from mcrun.run.distributed import warm_workers
+        from mcrun.run.plan import kernels_of
+
+        warm_workers(client, *kernels_of(scenario))  # each worker's compile said, not silent
+        task, shared = _chunk_task, (scenario.text, str(scenario.path), scenario.seed)
     else:
-        parts = _on_dask(client, scenario, point, n, chunks, aim, strokes, keep_shots)
+        task, shared = play_chunk, (scenario,)
+    parts = [None] * len(chunks)
+    said = [0]
+
+    def done(k, part):
+        parts[k] = part
+        said[0] += len(chunks[k])
+        if progress is not None:
+            progress(said[0], len(starts))
+
+    executor.map(task, chunks, shared=(*shared, point, n, aim, strokes, keep_shots), done=done,
+                 name="chunk of starts")  # fmt: skip
     lie, distance = start_of(hole, (starts[:, 0], starts[:, 1]))
     base = strokes["baseline"]
     merged = {key: np.concatenate([p[0][key] for p in parts]) for key in parts[0][0]}
@@ -260,43 +276,13 @@ def play_from(
     )
 
 
-def _on_dask(client, scenario, point, n, chunks, aim, strokes, keep_shots):
-    """``play_chunk`` of every chunk as a Dask task (the scenario travels as its text and is
-    read once per worker), gathered in chunk order, once every worker has the kernel
-    (``distributed.warm_workers``)."""
-    from mcrun.run.distributed import warm_workers
-    from mcrun.run.plan import kernels_of
+def _chunk_task(text, path, seed, point, n, aim, strokes, keep_shots, chunk):
+    """A chunk of starts on a Dask worker: ``play_chunk`` on the scenario rebuilt from its text
+    (read once per worker)."""
+    from mcrun.run.distributed import scenario_on_worker
 
-    warm_workers(client, *kernels_of(scenario))  # each worker's compile said, not silent
-    text, path, seed = scenario.text, str(scenario.path), scenario.seed
-    futures = [
-        client.submit(
-            _chunk_task,
-            text,
-            path,
-            seed,
-            point,
-            n,
-            chunk,
-            aim,
-            strokes,
-            keep_shots,
-            pure=False,
-        )  # fmt: skip
-        for chunk in chunks
-    ]
-    return client.gather(futures)
-
-
-def _chunk_task(text, path, seed, point, n, chunk, aim, strokes, keep_shots):
-    """A Dask task: ``play_chunk`` on the scenario rebuilt from its text, one Numba thread."""
-    import numba
-
-    from mcrun.run.distributed import NUMBA_THREADS_PER_TASK, scenario_on_worker
-
-    numba.set_num_threads(NUMBA_THREADS_PER_TASK)
     scenario = scenario_on_worker(text, path, seed)
-    return play_chunk(scenario, point, n, chunk, aim, strokes, keep_shots)
+    return play_chunk(scenario, point, n, aim, strokes, keep_shots, chunk)
 
 
 def starts_grid(hole, spacing_m, within_m=None, zones=None):
