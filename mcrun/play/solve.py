@@ -34,11 +34,12 @@ TOLERANCE = 1e-6
 MAX_SWEEPS = 500
 
 
-@njit(cache=True, nogil=True)
-def _q_rows(first, last, values, row_state, row_start, kind, lie, x, y, const, state_lie,
+@njit(cache=True, nogil=True, error_model="numpy")
+def _q_rows(rows, first, last, values, row_state, row_start, kind, lie, x, y, const, state_lie,
             g_x0, g_y0, g_cell, g_index, reach, px, py, table, q, q_se):  # fmt: skip
-    """Q (and its standard error) of rows first .. last - 1 from ``values``."""
-    for r in range(first, last):
+    """Q (and its standard error) of the rows ``rows[first:last]`` from ``values``."""
+    for j in range(first, last):
+        r = rows[j]
         s = row_state[r]
         total, total2, count = 0.0, 0.0, 0
         for i in range(row_start[r], row_start[r + 1]):
@@ -98,7 +99,9 @@ class SolveResult:
 
 def solve(lat, tr, allowed=None, start_values=None, threads=None):
     """Value iteration of the transitions ``tr`` over the lattice ``lat``; ``allowed``: a mask
-    of the rows a policy may choose (default all: the best policy)."""
+    of the rows a policy may choose (default all: the best policy). The sweeps compute the Q of
+    those rows alone; the others' Q, for the result, once at the end from the values the last
+    sweep read (as a sweep of every row would have)."""
     started = time.perf_counter()
     threads = numba.get_num_threads() if threads is None else int(threads)
     n_states = lat.size
@@ -114,23 +117,31 @@ def solve(lat, tr, allowed=None, start_values=None, threads=None):
     q_se = np.empty(len(tr.row_state))
     best_v = np.empty(n_states)
     best_row = np.empty(n_states, dtype=np.int64)
-    bounds = np.linspace(0, len(q), min(threads * 8, max(len(q), 1)) + 1).astype(np.int64)
     args = (tr.row_state, tr.row_start, tr.kind, tr.lie, tr.x, tr.y, tr.const, lat.lie,
             *grids, lat.pin_xy[0], lat.pin_xy[1], lat.table)  # fmt: skip
+
+    def rows_q(rows, v):
+        """Q of ``rows`` from the values ``v``, in slices on the threads."""
+        bounds = np.linspace(0, len(rows), min(threads * 8, max(len(rows), 1)) + 1)
+        bounds = bounds.astype(np.int64)
+        on_threads(lambda k: _q_rows(rows, bounds[k], bounds[k + 1], v, *args, q, q_se),
+                   len(bounds) - 1, threads)  # fmt: skip
+
+    # The sweeps ask the rows the policy may choose; the others' Q, once, from the values the
+    # last sweep read.
+    chosen = np.flatnonzero(allowed)
     sweeps, change = 0, math.inf
     while sweeps < MAX_SWEEPS:
-
-        def work(k, v=values):
-            _q_rows(bounds[k], bounds[k + 1], v, *args, q, q_se)
-
-        on_threads(work, len(bounds) - 1, threads)
+        rows_q(chosen, values)
         _best(q, tr.row_state, allowed, n_states, best_v, best_row)
         # A state no allowed row fits keeps its value (the tee's lattice always has one).
         new = np.where(best_row >= 0, best_v, values)
         change = float(np.max(np.abs(new - values)))
-        values = new
+        read, values = values, new
         sweeps += 1
         if change <= TOLERANCE:
             break
+    if len(chosen) < len(q):
+        rows_q(np.flatnonzero(~allowed), read)
     return SolveResult(values, best_row.copy(), q, q_se, sweeps, change,
                        time.perf_counter() - started)  # fmt: skip
