@@ -265,11 +265,9 @@ def _batch(scenario, putting, baseline, n, job):
     of its club's n shots ``inputs`` struck from its states ``xy`` (their ``lies``) at its aim
     ``points``."""
     club, inputs, xy, points, lies = job
-    hole = scenario.hole
-    batch = starts.tile(inputs, scenario.points[club].play, xy, (points[:, 0], points[:, 1]))
-    _lie_launch(batch, lies, n)
-    out = simulate_batch(batch, terrain=hole.terrain())
-    return _classify(hole, out, putting, baseline)
+    out = starts.flown_from(scenario, club, inputs, xy, (points[:, 0], points[:, 1]),
+                            launch=lambda batch: _lie_launch(batch, lies, n))  # fmt: skip
+    return _classify(scenario.hole, out, putting, baseline)
 
 
 def plan_actions(hole, lat, options, chunk_rows=256):

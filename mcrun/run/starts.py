@@ -161,6 +161,17 @@ def tile(inputs, play, starts_xy_m, aim_xy_m):
     return out
 
 
+def flown_from(scenario, point_index, inputs, starts_xy_m, aim_xy_m, launch=None):
+    """The kernel's outcomes ((m n, N_OUTCOME), start-major) of ``inputs`` (n shots sampled
+    about the aim of the scenario's point ``point_index``) struck from each of ``starts_xy_m``
+    (m, 2) at ``aim_xy_m`` on the scenario's hole (``plan.terrain_of``); ``launch(batch)``:
+    changes the tiled inputs in place before they fly (a lie's, ``mcrun.play``)."""
+    batch = tile(inputs, scenario.points[point_index].play, starts_xy_m, aim_xy_m)
+    if launch is not None:
+        launch(batch)
+    return simulate_batch(batch, terrain=plan.terrain_of(scenario))
+
+
 def _mean_se(values):
     """Per row of (m, n) values: the mean and standard error of the finite ones."""
     ok = np.isfinite(values)
@@ -180,8 +191,7 @@ def play_chunk(scenario, point_index, n, aim_xy_m, strokes, keep_shots, starts_x
     point = scenario.points[point_index]
     hole = scenario.hole
     inputs, _ = sampling.sample(scenario, point, 0, n)
-    batch = tile(inputs, point.play, starts_xy_m, aim_xy_m)
-    out = simulate_batch(batch, terrain=hole.terrain())
+    out = flown_from(scenario, point_index, inputs, starts_xy_m, aim_xy_m)
     m = len(starts_xy_m)
     x0 = np.repeat(starts_xy_m[:, 0], n)
     y0 = np.repeat(starts_xy_m[:, 1], n)
