@@ -43,6 +43,7 @@ class Config:
     step_rate_n: int
     e2e_sizes: tuple  # the end-to-end figure
     e2e_repeats: int
+    phases_n: int  # the run_phases figure: shots of each scenario
     cold_start: bool  # the start-up figure
     warm_repeats: int
     repeats: int  # rounds of each timed variant (best of)
@@ -63,6 +64,7 @@ FULL = Config(
     step_rate_n=100_000,
     e2e_sizes=(100_000, 1_000_000, 10_000_000),
     e2e_repeats=2,
+    phases_n=2_000_000,
     cold_start=True,
     warm_repeats=3,
     repeats=5,
@@ -80,6 +82,7 @@ QUICK = replace(
     step_rate_n=20_000,
     e2e_sizes=(100_000,),
     e2e_repeats=1,
+    phases_n=200_000,
     cold_start=False,
     repeats=2,
     budget_s=3.0,

@@ -73,6 +73,52 @@ def test_zone_shares_are_the_shots_counts(par3):
     assert 0.5 < row["p_finish_green"] < 0.95  # a tour 6-iron at a 168 m green
 
 
+def test_the_summary_s_expected_strokes_are_the_shots_as_the_strokes_module_sums_them(par3):
+    """The summary's expected strokes, streamed chunk by chunk as the shots are made
+    (``on_hole.HoleTally``), against ``strokes.point_strokes`` of the shots read back: each
+    outcome's count exactly, the means and parts within 1e-12 (the tally's sums are exact,
+    numpy's pairwise ones to rounding)."""
+    from mcrun.strokes import OUTCOMES, point_strokes
+
+    shots, summary, _ = par3
+    row = summary.iloc[0]
+    after = shots["expected_strokes_after"].to_numpy(float)
+    outcome = np.where(shots["finish_zone"].isna(), "failed",
+                       shots["finish_zone"].astype(object)).astype(object)  # fmt: skip
+    outcome[~np.isfinite(after)] = "failed"
+    full = point_strokes(
+        pd.DataFrame({
+            "outcome": outcome,
+            "expected_strokes_after": after,
+            "strokes_gained": shots["strokes_gained"].to_numpy(float),
+            "lie_cost_strokes": np.zeros(len(shots)),
+            "expected_strokes_start": shots["strokes_gained"] + 1.0 + after,
+        })
+    )  # fmt: skip
+    assert row["n_scored"] == full["n_scored"]
+    for name in ("expected_strokes_after_mean", "expected_strokes_after_se",
+                 "strokes_gained_mean", "strokes_gained_se", "expected_strokes_start"):  # fmt: skip
+        assert row[name] == pytest.approx(full[name], rel=1e-12, abs=1e-15), name
+    for name in OUTCOMES:
+        assert row[f"p_outcome_{name}"] == full[f"p_{name}"], name
+        part = full[f"expected_strokes_after_part_{name}"]
+        assert row[f"expected_strokes_after_part_{name}"] == pytest.approx(part, rel=1e-12), name
+
+
+def test_the_summary_streamed_in_chunks_is_the_summary_of_one(par3, tmp_path):
+    """The same run cut into chunks of 700 shots: every count and share of the summary the same,
+    the exact means the same to the bit, the standard errors within 1e-12."""
+    _, summary, _ = par3
+    again = local.run_scenario("par3-over-water", n=3000, out_dir=tmp_path / "run",
+                               progress=False, chunk_size=700).summary()  # fmt: skip
+    for name in summary.columns:
+        if name.endswith("_se"):
+            assert again.loc[0, name] == pytest.approx(summary.loc[0, name], rel=1e-12), name
+        elif (name.startswith(("p_", "n_", "expected_strokes", "strokes_gained"))
+              and not name.startswith(("p50", "p90"))):  # fmt: skip
+            assert again.loc[0, name] == summary.loc[0, name], name
+
+
 def test_shot_columns_on_a_hole(par3):
     """Each shot's zones are the terrain's at its landing and finish; its distance to the pin
     and its lon/lat follow from its finish in the hole's frame; the summary's target is the

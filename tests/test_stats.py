@@ -165,3 +165,36 @@ def test_point_stats_counts_failures_and_ignores_them():
     assert point.status_counts[NOT_STOPPED] == 1 and point.status_counts[INVALID_INPUT] == 1
     assert point.mean("carry_m") == pytest.approx(110.0, rel=1e-15)
     assert math.sqrt(point.covariance("carry_m", "carry_m")) == pytest.approx(10.0, rel=1e-15)
+
+
+def test_an_exact_sum_is_math_fsum_whatever_the_chunks_and_their_order():
+    """``ExactSum``: the correctly rounded sum (``math.fsum``) of values of every sign and
+    magnitude, whatever the chunks they come in and the order the chunks are merged in."""
+    rng = np.random.default_rng(3)
+    values = rng.normal(0.0, 1.0, 20_000) * 10.0 ** rng.integers(-300, 300, 20_000)
+    values = np.concatenate([values, [1e300, 1.0, -1e300, 5e-324, -0.0, 0.0], -values[:500]])
+    whole = stats.ExactSum()
+    whole.add(values)
+    assert whole.value() == math.fsum(values)
+    cuts = np.sort(rng.choice(len(values), 30, replace=False))
+    parts = []
+    for chunk in np.split(values, cuts):
+        part = stats.ExactSum()
+        part.add(chunk)
+        parts.append(part)
+    merged = stats.ExactSum()
+    for k in rng.permutation(len(parts)):
+        merged.merge(parts[k])
+    assert merged.value() == math.fsum(values)
+    assert stats.ExactSum().value() == 0.0
+
+
+def test_running_moments_give_the_mean_and_its_standard_error_chunk_by_chunk():
+    rng = np.random.default_rng(4)
+    values = rng.normal(3.0, 0.5, 10_001)
+    moments = stats.RunningMoments()
+    for chunk in np.array_split(values, 7):
+        moments.add(chunk)
+    mean, se = moments.mean_se()
+    assert mean == math.fsum(values) / len(values)
+    assert se == pytest.approx(values.std(ddof=1) / math.sqrt(len(values)), rel=1e-12)

@@ -16,18 +16,19 @@ scores both read.
 import math
 
 import numpy as np
-import pandas as pd
 import pyarrow as pa
 
 from mcrun import status as status_codes
 from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.hole.zones import PENALTY_ZONES, ZONE_KINDS
-from mcrun.strokes import OUTCOMES, PUTTING_COLUMNS, point_strokes, score_shots, start_of
+from mcrun.results import stats
+from mcrun.strokes import OUTCOMES, PUTTING_COLUMNS, score_shots, start_of
 
 OFF_MAP = "off_map"
 ZONE_NAMES = (*ZONE_KINDS, OFF_MAP)
 _ZONE_DICTIONARY = pa.array(ZONE_NAMES, pa.string())
 _COLUMN = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
+_PENALTY_CODES = [ZONE_NAMES.index(z) for z in PENALTY_ZONES]
 
 # Where a hole's shots are struck unless a point says otherwise: the tee, the frame's origin.
 TEE = (0.0, 0.0)
@@ -135,7 +136,7 @@ def shot_columns(hole, outcomes, strokes=None, start_xy_m=TEE):
     fx, fy = column["final_x_m"], column["final_y_m"]
     px, py = hole.pin_xy
     lon, lat = hole.to_lonlat(fx, fy)
-    plon, plat = hole.to_lonlat(column["penalty_x_m"], column["penalty_y_m"])
+    plon, plat = _lonlat_where_finite(hole, column["penalty_x_m"], column["penalty_y_m"])
     finish = _zones(hole, fx, fy, column["status"])
     scored = scores(hole, outcomes, strokes, finish, start_xy_m)
     landing_x, landing_y = landing_xy(outcomes, start_xy_m)
@@ -153,6 +154,16 @@ def shot_columns(hole, outcomes, strokes=None, start_xy_m=TEE):
         },
         **{name: pa.array(scored[name].to_numpy(float)) for name in PUTTING if name in scored},
     }
+
+
+def _lonlat_where_finite(hole, x, y):
+    """``hole.to_lonlat`` of the points where x and y are numbers (NaN elsewhere: a shot's
+    penalty position, which most shots have none of), the conversion asked of those alone."""
+    lon, lat = np.full(len(x), np.nan), np.full(len(x), np.nan)
+    known = np.isfinite(x) & np.isfinite(y)
+    if known.any():
+        lon[known], lat[known] = hole.to_lonlat(x[known], y[known])
+    return lon, lat
 
 
 def _at_tee(start_xy_m):
@@ -178,107 +189,115 @@ def wilson(k, n, z=Z95):
     return max(centre - half, 0.0), min(centre + half, 1.0)
 
 
-def zone_shares(columns, putting=False):
-    """The summary's zone columns of one point, whose shots ``columns`` (a
-    ``stats.ShotsColumns``) reads: for the landing and the finish, the share of the shots that
-    landed in each zone (``p_finish_green``) with its 95 % interval (``_lo95``, ``_hi95``)
-    and the count they are out of (``n_landed``); with ``putting`` (a hole whose green is valued
-    by its map), the putting shares of its balls on the green (``_putting_summary``)."""
-    counts = {"landing": np.zeros(len(ZONE_NAMES), np.int64),
-              "finish": np.zeros(len(ZONE_NAMES), np.int64)}  # fmt: skip
-    for table in columns.tables(["landing_zone", "finish_zone"]):
-        for which in counts:
-            zone = table[f"{which}_zone"].combine_chunks()
-            # (A file read back may hold a dictionary of only the zones it has.)
-            to_zone = np.array([ZONE_NAMES.index(z) for z in zone.dictionary.to_pylist()], int)
-            indices = zone.indices.to_numpy(zero_copy_only=False)
+class HoleTally:
+    """The summary's columns of one point on a hole, streamed chunk by chunk from its shots'
+    hole columns as they are made (``shot_columns``), merged in chunk order (a Dask run's
+    tasks return theirs): for the landing and the finish, the count of shots in each zone;
+    the expected strokes after the shot and the strokes gained (exact means, ``ExactSum``, and
+    their standard errors); each outcome's count and the exact sum of its expected strokes;
+    under physics putting, the exact sums of the one-putt and three-putt chances of the balls
+    on the green. ``row`` gives the summary's columns from them."""
+
+    def __init__(self, putting=False):
+        self.putting = bool(putting)
+        self.n_shots = 0
+        self.start = math.nan  # the point's first shot's expected strokes from its start
+        self.zones = {"landing": np.zeros(len(ZONE_NAMES), np.int64),
+                      "finish": np.zeros(len(ZONE_NAMES), np.int64)}  # fmt: skip
+        self.after = stats.RunningMoments()
+        self.gained = stats.RunningMoments()
+        self.outcomes = np.zeros(len(OUTCOMES), np.int64)
+        self.outcome_after = [stats.ExactSum() for _ in OUTCOMES]
+        self.on_green = 0
+        self.one_putt = stats.ExactSum()
+        self.three_putt = stats.ExactSum()
+
+    def update(self, columns, status):
+        """Add a chunk: ``columns`` as ``shot_columns`` made them, ``status`` its shots'
+        status codes (the kernel's)."""
+        after = columns["expected_strokes_after"].to_numpy(zero_copy_only=False)
+        gained = columns["strokes_gained"].to_numpy(zero_copy_only=False)
+        if self.n_shots == 0 and len(after):
+            self.start = float(gained[0] + 1.0 + after[0])
+        self.n_shots += len(after)
+        finish = None
+        for which, tally in self.zones.items():
+            zone = columns[f"{which}_zone"]
+            codes = zone.indices.to_numpy(zero_copy_only=False).astype(np.int64)
             valid = zone.is_valid().to_numpy(zero_copy_only=False)
-            counts[which] += np.bincount(
-                to_zone[indices[valid].astype(int)], minlength=len(ZONE_NAMES)
+            tally += np.bincount(codes[valid], minlength=len(ZONE_NAMES))
+            if which == "finish":
+                finish = np.where(valid, codes, -1)
+        # Each shot's outcome (an index of OUTCOMES, -1: failed), as ``score_shots`` names it.
+        outcome = finish
+        for code, name in (
+            (status_codes.IN_PENALTY_AREA, "water"),
+            (status_codes.OUT_OF_BOUNDS_STATUS, "out_of_bounds"),
+            (status_codes.OFF_MAP, OFF_MAP),
+        ):
+            ended = status == code
+            if code == status_codes.IN_PENALTY_AREA:
+                ended &= ~np.isin(outcome, _PENALTY_CODES)  # the area's kind, when named
+            outcome[ended] = OUTCOMES.index(name)
+        scored = np.isfinite(after)
+        outcome[~scored] = -1
+        self.after.add(after[scored])
+        self.gained.add(gained[scored])
+        self.outcomes += np.bincount(outcome[scored], minlength=len(OUTCOMES))
+        for k in np.unique(outcome[scored]):
+            self.outcome_after[k].add(after[scored & (outcome == k)])
+        if self.putting:
+            one = columns["p_one_putt"].to_numpy(zero_copy_only=False)
+            three = columns["p_three_putt"].to_numpy(zero_copy_only=False)
+            on = np.isfinite(one)
+            self.on_green += int(on.sum())
+            self.one_putt.add(one[on])
+            self.three_putt.add(three[on])
+
+    def merge(self, other):
+        """Add the tally of the chunks that follow this one's."""
+        if self.n_shots == 0:
+            self.start = other.start
+        self.n_shots += other.n_shots
+        for which in self.zones:
+            self.zones[which] += other.zones[which]
+        self.after.merge(other.after)
+        self.gained.merge(other.gained)
+        self.outcomes += other.outcomes
+        for mine, theirs in zip(self.outcome_after, other.outcome_after, strict=True):
+            mine.merge(theirs)
+        self.on_green += other.on_green
+        self.one_putt.merge(other.one_putt)
+        self.three_putt.merge(other.three_putt)
+
+    def row(self):
+        """The summary's columns: ``n_landed`` and the zones' shares with their 95 % intervals
+        (Wilson's), the expected strokes (``strokes.point_strokes``' columns: the mean after
+        the shot and the strokes gained with their standard errors, each outcome's share and
+        part), and under physics putting the balls on the green and their putting shares."""
+        n = int(self.zones["landing"].sum())
+        scored = self.after.n
+        row = {"n_landed": n, "expected_strokes_start": self.start}
+        (row["expected_strokes_after_mean"],
+         row["expected_strokes_after_se"]) = self.after.mean_se()  # fmt: skip
+        row["strokes_gained_mean"], row["strokes_gained_se"] = self.gained.mean_se()
+        row["n_scored"] = scored
+        for k, name in enumerate(OUTCOMES):
+            count = int(self.outcomes[k])
+            p = count / scored if scored else math.nan
+            row[f"p_outcome_{name}"] = p
+            row[f"expected_strokes_after_part_{name}"] = (
+                p * (self.outcome_after[k].value() / count) if count else 0.0
             )
-    n = int(counts["landing"].sum())
-    row = {"n_landed": n, **_strokes_summary(columns)}
-    if putting:
-        row.update(_putting_summary(columns))
-    for which, tally in counts.items():
-        for name, k in zip(ZONE_NAMES, tally, strict=True):
-            lo, hi = wilson(int(k), n)
-            row[f"p_{which}_{name}"] = k / n if n else math.nan
-            row[f"p_{which}_{name}_lo95"] = lo
-            row[f"p_{which}_{name}_hi95"] = hi
-    return row
-
-
-def _strokes_summary(columns):
-    """The summary's expected strokes of one point (``strokes.point_strokes`` of its shots'
-    columns): means with their standard errors, and each outcome's share and part."""
-    names = ["status", "finish_zone", "expected_strokes_after", "strokes_gained",
-             "penalty_strokes"]  # fmt: skip
-    parts = [t.to_pandas() for t in columns.tables(names)]
-    shots = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=names)
-    # The scores as written, with the outcome and lie cost they imply.
-    outcome = _outcome_of(shots)
-    scored = pd.DataFrame(
-        {
-            "outcome": outcome,
-            "expected_strokes_after": shots["expected_strokes_after"].to_numpy(float),
-            "strokes_gained": shots["strokes_gained"].to_numpy(float),
-            "lie_cost_strokes": np.zeros(len(shots)),
-            "expected_strokes_start": (
-                shots["strokes_gained"] + 1.0 + shots["expected_strokes_after"]
-            ).to_numpy(float),
-        }
-    )
-    full = point_strokes(scored)
-    row = {
-        "expected_strokes_start": full["expected_strokes_start"],
-        "expected_strokes_after_mean": full["expected_strokes_after_mean"],
-        "expected_strokes_after_se": full["expected_strokes_after_se"],
-        "strokes_gained_mean": full["strokes_gained_mean"],
-        "strokes_gained_se": full["strokes_gained_se"],
-        "n_scored": full["n_scored"],
-    }
-    for name in OUTCOMES:
-        row[f"p_outcome_{name}"] = full[f"p_{name}"]
-        row[f"expected_strokes_after_part_{name}"] = full[f"expected_strokes_after_part_{name}"]
-    return row
-
-
-def _putting_summary(columns):
-    """Under physics putting: the mean one-putt and three-or-more shares of the point's balls
-    at rest on the green (``p_one_putt_green``, ``p_three_putt_green``) and how many there
-    were (``n_on_green``)."""
-    ones, threes = [], []
-    for table in columns.tables(list(PUTTING)):
-        one = table["p_one_putt"].to_numpy(zero_copy_only=False)
-        three = table["p_three_putt"].to_numpy(zero_copy_only=False)
-        on = np.isfinite(one)
-        ones.append(one[on])
-        threes.append(three[on])
-    n = int(sum(len(v) for v in ones))
-    # math.fsum: exactly rounded, so the same whatever the row groups (local or Dask).
-    return {
-        "n_on_green": n,
-        "p_one_putt_green": math.fsum(np.concatenate(ones)) / n if n else math.nan,
-        "p_three_putt_green": math.fsum(np.concatenate(threes)) / n if n else math.nan,
-    }
-
-
-def _outcome_of(shots):
-    """Each shot's outcome as ``strokes.score_shots`` names it: its finish zone, or its
-    status where that ended it (water, out of bounds, off the map), or failed."""
-    status = shots["status"].to_numpy()
-    zone = shots["finish_zone"].astype(object).to_numpy()
-    outcome = np.where(pd.isna(zone), "failed", zone).astype(object)
-    for code, name in (
-        (status_codes.IN_PENALTY_AREA, "water"),
-        (status_codes.OUT_OF_BOUNDS_STATUS, "out_of_bounds"),
-        (status_codes.OFF_MAP, "off_map"),
-    ):
-        ended = status == code
-        if code == status_codes.IN_PENALTY_AREA:
-            ended = ended & ~np.isin(outcome, PENALTY_ZONES)  # the area's kind, when named
-        outcome[ended] = name
-    scored = np.isfinite(shots["expected_strokes_after"].to_numpy(float))
-    outcome[~scored] = "failed"
-    return outcome
+        if self.putting:
+            m = self.on_green
+            row["n_on_green"] = m
+            row["p_one_putt_green"] = self.one_putt.value() / m if m else math.nan
+            row["p_three_putt_green"] = self.three_putt.value() / m if m else math.nan
+        for which, tally in self.zones.items():
+            for name, k in zip(ZONE_NAMES, tally, strict=True):
+                lo, hi = wilson(int(k), n)
+                row[f"p_{which}_{name}"] = k / n if n else math.nan
+                row[f"p_{which}_{name}_lo95"] = lo
+                row[f"p_{which}_{name}_hi95"] = hi
+        return row

@@ -266,13 +266,22 @@ class ShotsWriter(_ParquetWriter):
                 write_statistics=[c for c in STATISTICS_COLUMNS if c in self.schema.names],
             )
 
-    def write(self, point, start, sampled, outcomes):
+    def hole_columns(self, point, outcomes):
+        """The columns the hole adds to the shots ``outcomes`` of ``point``
+        (``on_hole.shot_columns``); None on a plane."""
+        if self.hole is None:
+            return None
+        return on_hole_columns.shot_columns(
+            self.hole, outcomes, {"putting": self.putting}, self.starts_xy_m[point]
+        )
+
+    def write(self, point, start, sampled, outcomes, hole_columns=None):
         """Append the chunk of ``point`` with shots start.. (``outcomes`` may be reused by the
-        caller once this returns)."""
+        caller once this returns; ``hole_columns``: the hole's, when already made)."""
         if self._pending or outcomes.shape[0] < ROW_GROUP_ROWS:
             # Kept for later: the table must not share the caller's buffer.
             outcomes = np.array(outcomes, order="F")
-        table = self.table(point, start, sampled, outcomes)
+        table = self.table(point, start, sampled, outcomes, hole_columns)
         self._pending.append((point, table))
         self._pending_rows += table.num_rows
         if self._pending_rows >= ROW_GROUP_ROWS:
@@ -295,8 +304,9 @@ class ShotsWriter(_ParquetWriter):
             self._flush()
         super().close(extra_metadata)
 
-    def table(self, point, start, sampled, outcomes):
-        """The chunk of ``point`` with shots start.. as an Arrow table of ``self.schema``."""
+    def table(self, point, start, sampled, outcomes, hole_columns=None):
+        """The chunk of ``point`` with shots start.. as an Arrow table of ``self.schema``
+        (``hole_columns``: the hole's, when already made)."""
         m = outcomes.shape[0]
         columns = [
             pa.array(np.full(m, point, dtype=np.int32)),
@@ -328,9 +338,9 @@ class ShotsWriter(_ParquetWriter):
             pa.DictionaryArray.from_arrays(pa.array(codes.astype(np.int32)), _STATUS_DICTIONARY)
         )
         if self.hole is not None:
-            columns += on_hole_columns.shot_columns(
-                self.hole, outcomes, {"putting": self.putting}, self.starts_xy_m[point]
-            ).values()
+            if hole_columns is None:
+                hole_columns = self.hole_columns(point, outcomes)
+            columns += hole_columns.values()
         return pa.Table.from_arrays(columns, schema=self.schema)
 
 

@@ -156,6 +156,87 @@ class Comoments:
         return self.comoment / (self.n - ddof)
 
 
+class ExactSum:
+    """The sum of many float64 values, exact: each value is its significand (53 bits, split in
+    two halves of 26 and 27 bits) times a power of two, and the halves are added as integers
+    per power; the total is rounded once, to nearest (as ``math.fsum``). So the sum does not
+    depend on the order of the values, on the chunks they come in, or on the order the chunks'
+    sums are merged in: a local run and a Dask run give the same bits. Values must be finite."""
+
+    _OFFSET = 1100  # frexp's exponents are -1073 .. 1024
+    _BLOCK = 1 << 20  # values per bincount: each half's sum stays under 2^53, exact in float64
+
+    def __init__(self):
+        self.parts = {}  # exponent e -> the sum of the significands (integers) times 2^(e-53)
+
+    def add(self, values):
+        values = np.asarray(values, dtype=float).ravel()
+        for a in range(0, values.size, self._BLOCK):
+            m, e = np.frexp(values[a : a + self._BLOCK])
+            significand = np.ldexp(m, 53).astype(np.int64)  # exact: |m| < 1
+            high = significand >> 26
+            low = significand - (high << 26)
+            index = e + self._OFFSET
+            for half, shift in ((high, 26), (low, 0)):
+                sums = np.bincount(index, weights=half, minlength=2 * self._OFFSET)
+                for k in np.flatnonzero(sums):
+                    key = int(k) - self._OFFSET
+                    self.parts[key] = self.parts.get(key, 0) + (int(sums[k]) << shift)
+
+    def merge(self, other):
+        for key, value in other.parts.items():
+            self.parts[key] = self.parts.get(key, 0) + value
+
+    def value(self):
+        """The sum, rounded to the nearest float64 (0.0 for none)."""
+        if not self.parts:
+            return 0.0
+        low = min(self.parts)
+        total = sum(value << (key - low) for key, value in self.parts.items())
+        scale = low - 53
+        # Python's division of integers is rounded correctly: so is the sum.
+        return total / (1 << -scale) if scale < 0 else float(total << scale)
+
+
+class RunningMoments:
+    """Count, exact sum (``ExactSum``) and sum of squared deviations of a stream of values,
+    merged chunk by chunk (Chan's update): the mean exact, the sample standard deviation to
+    rounding."""
+
+    def __init__(self):
+        self.n = 0
+        self.total = ExactSum()
+        self.mean = 0.0
+        self.m2 = 0.0
+
+    def add(self, values):
+        values = np.asarray(values, dtype=float)
+        other = RunningMoments()
+        other.n = int(values.size)
+        if other.n:
+            other.total.add(values)
+            other.mean = float(values.mean())
+            other.m2 = float(((values - other.mean) ** 2).sum())
+        self.merge(other)
+
+    def merge(self, other):
+        if other.n == 0:
+            return
+        n = self.n + other.n
+        delta = other.mean - self.mean
+        self.mean += delta * other.n / n
+        self.m2 += other.m2 + delta * delta * self.n * other.n / n
+        self.n = n
+        self.total.merge(other.total)
+
+    def mean_se(self):
+        """(the exact mean, the standard error of the mean) as ``strokes.expected._mean_se``
+        gives them (NaN for no value, and an SE for fewer than two)."""
+        mean = self.total.value() / self.n if self.n else math.nan
+        se = math.sqrt(self.m2 / (self.n - 1)) / math.sqrt(self.n) if self.n > 1 else math.nan
+        return mean, se
+
+
 class PointStats:
     """Streaming statistics of one point: counts by status and co-moments of the ok shots.
 
@@ -163,7 +244,7 @@ class PointStats:
     drivers); the outcome columns are ``QUANTITIES``, final_x_m and the landing state.
     """
 
-    def __init__(self, inputs):
+    def __init__(self, inputs, on_hole=None):
         self.inputs = tuple(inputs)
         self.outcomes = (*QUANTITIES, "final_x_m", "landing_speed_mps", "landing_spin_radps")
         self.columns = (*self.outcomes, *self.inputs)
@@ -171,11 +252,15 @@ class PointStats:
         self.n_shots = 0
         self.status_counts = np.zeros(len(_STATUS_NAMES), dtype=np.int64)
         self.moments = Comoments(len(self.columns))
+        self.on_hole = on_hole  # a run on a hole: its ``on_hole.HoleTally``
 
-    def update(self, outcomes, sampled):
+    def update(self, outcomes, sampled, hole_columns=None):
         """Add a chunk: ``outcomes`` (m, N_OUTCOME) as ``batch.simulate_batch`` writes it and
-        ``sampled`` a mapping of input name -> (m,) array (at least ``self.inputs``)."""
+        ``sampled`` a mapping of input name -> (m,) array (at least ``self.inputs``); on a
+        hole, its shots' ``hole_columns`` (``on_hole.shot_columns``) too."""
         codes = outcomes[:, _STATUS].astype(np.int64)
+        if self.on_hole is not None:
+            self.on_hole.update(hole_columns, codes)
         self.n_shots += len(codes)
         self.status_counts += np.bincount(codes, minlength=len(_STATUS_NAMES))[: len(_STATUS_NAMES)]
         ok = codes == status_codes.OK
@@ -194,6 +279,8 @@ class PointStats:
         self.n_shots += other.n_shots
         self.status_counts += other.status_counts
         self.moments.merge(other.moments)
+        if self.on_hole is not None:
+            self.on_hole.merge(other.on_hole)
 
     @property
     def n_ok(self):

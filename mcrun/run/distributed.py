@@ -330,11 +330,13 @@ def run_chunk(chunk, point, start, stop, job):
     )
     terrain = plan.terrain_of(scenario)
     out = simulate_batch(inputs, terrain=terrain)
-    point_stats = stats.PointStats(job["drivers"][point])
-    point_stats.update(out, sampled)
+    point_stats = plan.point_stats(scenario, job["drivers"][point])
+    builder = _shots_builder(job)
+    hole_columns = builder.hole_columns(point, out)  # made once, tallied and written
+    point_stats.update(out, sampled, hole_columns)
     fs = location.filesystem(job["url"])
     local = job["url"] is None
-    table = _shots_builder(job).table(point, start, sampled, out)
+    table = builder.table(point, start, sampled, out, hole_columns)
     if job["partitioned"]:
         table = table.drop_columns("group")
     shots_path = f"{job['root']}/{job['shot_dirs'][point]}/{output.part_name(chunk)}"
@@ -643,7 +645,7 @@ def run_scenario(
             chunk_task,
             job,
             chunks,
-            the_plan.drivers,
+            lambda: [plan.point_stats(the_plan.scenario, d) for d in the_plan.drivers],
             the_plan.shots,
             retries,
             progress,
@@ -711,13 +713,14 @@ def _chunk_of(chunk_task, job, chunk):
     return chunk_task(chunk.index, chunk.point, chunk.start, chunk.stop, job)
 
 
-def _execute(client, chunk_task, job, chunks, drivers, total, retries, progress):
+def _execute(client, chunk_task, job, chunks, stats_of, total, retries, progress):
     """The chunks as the tasks of the executor on the client's workers (``mcrun.executor``),
-    their statistics merged in chunk order as they finish; return (PointStats per point,
-    ChunkResult per chunk without its statistics)."""
+    their statistics merged in chunk order as they finish into ``stats_of()`` (a PointStats
+    per point); return (PointStats per point, ChunkResult per chunk without its
+    statistics)."""
     from tqdm import tqdm
 
-    merged = [stats.PointStats(d) for d in drivers]
+    merged = stats_of()
     pending = {}  # chunk -> PointStats, finished ahead of an earlier chunk
     following = [0]  # the next chunk to merge
     results = [None] * len(chunks)

@@ -196,13 +196,14 @@ def _stream(the_plan, shots_writer, traj_writer, progress):
     # buffers, taken in turn by the full chunks (the last chunk of a point gets its own).
     full = n >= chunk_size
     buffers = [np.empty((chunk_size, N_OUTCOME), order="F") if full else None for _ in range(2)]
-    all_stats = [stats.PointStats(drivers) for drivers in the_plan.drivers]
+    all_stats = [plan.point_stats(scenario, drivers) for drivers in the_plan.drivers]
     chunks = the_plan.chunks()
     terrain = plan.terrain_of(scenario)
 
     def finish(point_stats, point, start, sampled, out):
-        point_stats.update(out, sampled)
-        shots_writer.write(point, start, sampled, out)
+        hole_columns = shots_writer.hole_columns(point, out)  # made once, tallied and written
+        point_stats.update(out, sampled, hole_columns)
+        shots_writer.write(point, start, sampled, out, hole_columns)
 
     writing = None  # the statistics and the write of the chunk before
     with (

@@ -203,6 +203,16 @@ def terrain_of(scenario):
     return None if scenario.hole is None else scenario.hole.terrain()
 
 
+def point_stats(scenario, drivers):
+    """The streaming statistics of a point of the scenario's run (``stats.PointStats``, with
+    its ``on_hole.HoleTally`` on a hole), ``drivers`` its variance drivers' inputs."""
+    hole = scenario.hole
+    tally = None
+    if hole is not None:
+        tally = on_hole_results.HoleTally(hole.putting["model"] == "physics")
+    return stats.PointStats(drivers, tally)
+
+
 def putting_of(scenario):
     """The expected-putts map the shots on the scenario's hole are scored with where its green
     is valued by one (``[hole.putting] model = "physics"``), built or read from its cache here,
@@ -446,9 +456,9 @@ def summary_rows(points, point_stats, shots_of, budget_bytes, on_hole=False):
     """summary.parquet's rows, one per point: its index, group, label and sweep values, then
     ``stats.summarise`` of its streamed ``PointStats`` and of its ok shots, which
     ``shots_of(point index)`` reads (a ``stats.ShotsColumns``) from wherever they were
-    written; ``on_hole``: the run's Hole (or True), and the shares of its zones
-    (``on_hole.zone_shares``), with the putting shares where its green is valued by its map."""
-    putting = getattr(on_hole, "putting", {}).get("model") == "physics"
+    written; ``on_hole``: whether the run is on a hole, whose streamed tally
+    (``on_hole.HoleTally``) gives the shares of its zones, its expected strokes and, where its
+    green is valued by its map, its putting shares."""
     on_hole = on_hole is not None and on_hole is not False
     rows = []
     sweep = _sweep_columns(points)
@@ -463,7 +473,7 @@ def summary_rows(points, point_stats, shots_of, budget_bytes, on_hole=False):
             )
         )
         if on_hole:
-            row.update(on_hole_results.zone_shares(columns, putting))
+            row.update(one.on_hole.row())
         rows.append(row)
     return pd.DataFrame(rows)
 
