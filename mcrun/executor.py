@@ -39,11 +39,20 @@ import numba
 
 from mcrun import exits
 
-__all__ = ["NUMBA_THREADS_PER_TASK", "Executor", "TaskFailed", "in_task", "on_threads", "pool"]
+__all__ = [
+    "NUMBA_THREADS_PER_TASK",
+    "Executor",
+    "TaskFailed",
+    "in_background",
+    "in_task",
+    "on_threads",
+    "pool",
+]
 
 # A Dask worker runs one task on each of its threads, each task's kernels on this many.
 NUMBA_THREADS_PER_TASK = 1
 _POOL = []
+_BACKGROUND = []
 _LOCAL = threading.local()
 
 
@@ -60,6 +69,16 @@ def pool():
             )
         )
     return _POOL[0]
+
+
+def in_background(fn, *args):
+    """``fn(*args)`` on the one thread beside the pool (a stage that must take the results of
+    a batch of tasks in order, as a run's writer does); a ``concurrent.futures.Future``."""
+    if not _BACKGROUND:
+        _BACKGROUND.append(
+            concurrent.futures.ThreadPoolExecutor(max_workers=1, thread_name_prefix="mcrun-writer")
+        )
+    return _BACKGROUND[0].submit(fn, *args)
 
 
 def in_task():

@@ -535,14 +535,15 @@ def interrupt_on_second_chunk(monkeypatch):
 def test_ctrl_c_leaves_nothing(tmp_path, capsys, monkeypatch):
     """Ctrl-C in the middle of a run (raised from the batch call of the second chunk): the API
     re-raises, the command line exits 130 with one line; no file or folder is left behind,
-    not even the runs/ folder it created."""
+    not even the runs/ folder it created. The chunks run as tasks on the threads: those the
+    other threads already hold finish, and none is taken after."""
     monkeypatch.chdir(tmp_path)
     path = write(tmp_path, DRIVE)
     before = listing(tmp_path)
     calls = interrupt_on_second_chunk(monkeypatch)
     with pytest.raises(KeyboardInterrupt):
         run.run_scenario(path, n=600, chunk_size=300, trajectories_every=10, progress=False)
-    assert len(calls) == 2
+    assert 2 <= len(calls) <= 1 + numba.get_num_threads()
     assert listing(tmp_path) == before
     interrupt_on_second_chunk(monkeypatch)
     code, out, err = cli(capsys, "run", str(path), "-n", "600", "--chunk-size", "300")

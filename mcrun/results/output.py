@@ -281,7 +281,10 @@ class ShotsWriter(_ParquetWriter):
         if self._pending or outcomes.shape[0] < ROW_GROUP_ROWS:
             # Kept for later: the table must not share the caller's buffer.
             outcomes = np.array(outcomes, order="F")
-        table = self.table(point, start, sampled, outcomes, hole_columns)
+        self.append(point, self.table(point, start, sampled, outcomes, hole_columns))
+
+    def append(self, point, table):
+        """Append the chunk of ``point`` already made into its ``table`` (``table``)."""
         self._pending.append((point, table))
         self._pending_rows += table.num_rows
         if self._pending_rows >= ROW_GROUP_ROWS:

@@ -1,35 +1,43 @@
-"""The local executor: a run's chunks on this machine's threads, into one shots.parquet.
+"""The local driver: a run's chunks on this machine's threads, into one shots.parquet.
 
-``run_scenario`` streams the chunks of the run's ``plan.Plan`` (every point's sample indices
-in fixed-size chunks) through a pipeline: ``sampling.sample`` draws the chunk's inputs (which
-depend only on the scenario, the seed and the sample index, so neither the chunk size nor the
-thread count changes a number), ``simulate_batch`` runs them in parallel into a preallocated
-buffer, ``stats.PointStats`` folds them into its streaming sums, and ``output.ShotsWriter``
-appends them to shots.parquet as one row group. Memory is one chunk, whatever the number of
-shots. After the last chunk the percentiles are computed exactly from shots.parquet
-(``plan.summary_rows``), summary.parquet is written, and the temporary folder is renamed into
-place.
+``run_scenario`` runs the chunks of the run's ``plan.Plan`` (every point's sample indices in
+fixed-size chunks) as the tasks of the executor (``mcrun.executor``), each on a thread of its
+own: ``sampling.sample`` draws the chunk's inputs (which depend only on the scenario, the seed
+and the sample index, so neither the chunk size nor the thread count changes a number),
+``simulate_batch`` flies them (on the task's thread), the hole's columns are made
+(``ShotsWriter.hole_columns``), a ``stats.PointStats`` of the chunk holds its streaming sums
+and its Parquet table is built. One thread beside them (``executor.in_background``) takes the
+chunks in order: it merges their statistics into the point's (in chunk order, so that they do
+not depend on the timing) and appends their tables to shots.parquet, a row group each. The
+tasks run at most ``AHEAD_PER_THREAD`` chunks a thread ahead of it: the memory is a few chunks,
+whatever the number of shots. After the last chunk the percentiles are computed exactly from
+shots.parquet (``plan.summary_rows``), summary.parquet is written, and the temporary folder is
+renamed into place.
 
 The command line: ``mcrun run``, ``mcrun validate``, ``mcrun scenarios`` (``register``) and
 ``mcrun replay`` (``mcrun.run.replay``). The default output folder of ``mcrun run`` is
 ``runs/<scenario name>-<seed>`` under the current folder.
 """
 
+import concurrent.futures
 import sys
+import threading
 import time
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numba
-import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from mcrun import executor
 from mcrun.engine.backend import simulate_batch
-from mcrun.engine.schema import N_OUTCOME
+from mcrun.executor import on_threads
 from mcrun.quantities import InputError
 from mcrun.results import output, stats
 from mcrun.run import plan, sampling
+
+# The chunks a thread's tasks may run ahead of the writer (each holds its table until written).
+AHEAD_PER_THREAD = 2
 
 
 def _check_threads(threads):
@@ -182,66 +190,98 @@ def run_scenario(
     )
 
 
+class _Stopped(Exception):
+    """A chunk's task stops: another task or the writer failed."""
+
+
 def _stream(the_plan, shots_writer, traj_writer, progress):
-    """The chunked loop; returns the PointStats of every point."""
+    """The chunks as the executor's tasks, written in order beside them; returns the
+    PointStats of every point."""
     from tqdm import tqdm
 
     show = bool(progress) and sys.stderr.isatty()
     scenario, points, n = the_plan.scenario, the_plan.points, the_plan.n
-    chunk_size, every = the_plan.chunk_size, the_plan.trajectories_every
-    # A pipeline of three threads: while the kernel simulates a chunk (on every core, without
-    # the GIL), one thread samples the next chunk and another adds the chunk before to the
-    # statistics and writes it to Parquet (numpy and pyarrow release the GIL too). The
-    # statistics take the chunks in order, so they do not depend on the timing. Two output
-    # buffers, taken in turn by the full chunks (the last chunk of a point gets its own).
-    full = n >= chunk_size
-    buffers = [np.empty((chunk_size, N_OUTCOME), order="F") if full else None for _ in range(2)]
+    every = the_plan.trajectories_every
+    chunks = list(the_plan.chunks())
     all_stats = [plan.point_stats(scenario, drivers) for drivers in the_plan.drivers]
-    chunks = the_plan.chunks()
     terrain = plan.terrain_of(scenario)
+    ahead = AHEAD_PER_THREAD * max(numba.get_num_threads(), 1)
+    done = {}  # chunk index -> (its PointStats, its table, its inputs for the paths)
+    turn = threading.Condition()
+    state = {"written": 0, "failed": None}
 
-    def finish(point_stats, point, start, sampled, out):
-        hole_columns = shots_writer.hole_columns(point, out)  # made once, tallied and written
-        point_stats.update(out, sampled, hole_columns)
-        shots_writer.write(point, start, sampled, out, hole_columns)
+    def fail(err):
+        with turn:
+            if state["failed"] is None:
+                state["failed"] = err
+            turn.notify_all()
 
-    writing = None  # the statistics and the write of the chunk before
-    with (
-        ThreadPoolExecutor(max_workers=1) as sampler,
-        ThreadPoolExecutor(max_workers=1) as writer,
-        tqdm(
-            total=n * len(points), unit="shot", unit_scale=True, disable=not show, smoothing=0.1
-        ) as bar,
-    ):
+    def task(k):
+        """Chunk k: sampled, flown, its columns, statistics and table made."""
+        chunk = chunks[k]
+        try:
+            with turn:
+                while k >= state["written"] + ahead and state["failed"] is None:
+                    turn.wait()
+                if state["failed"] is not None:
+                    raise _Stopped
+            inputs, sampled = sampling.sample(scenario, points[chunk.point], chunk.start,
+                                              chunk.stop, the_plan.input_names)  # fmt: skip
+            out = simulate_batch(inputs, terrain=terrain)
+            hole_columns = shots_writer.hole_columns(chunk.point, out)
+            part = plan.point_stats(scenario, the_plan.drivers[chunk.point])
+            part.update(out, sampled, hole_columns)
+            table = shots_writer.table(chunk.point, chunk.start, sampled, out, hole_columns)
+            with turn:
+                done[k] = (part, table, inputs if traj_writer is not None else None)
+                turn.notify_all()
+        except _Stopped:
+            raise
+        except BaseException as err:
+            fail(err)
+            raise
 
-        def sample_next():
-            chunk = next(chunks, None)
-            if chunk is None:
-                return None, None
-            point = points[chunk.point]
-            args = (scenario, point, chunk.start, chunk.stop, the_plan.input_names)
-            return chunk, sampler.submit(sampling.sample, *args)
+    def write(bar):
+        """The chunks in order: their statistics merged, their tables and paths written."""
+        try:
+            for k, chunk in enumerate(chunks):
+                with turn:
+                    while k not in done and state["failed"] is None:
+                        turn.wait()
+                    if state["failed"] is not None:
+                        return
+                    part, table, inputs = done.pop(k)
+                all_stats[chunk.point].merge(part)
+                shots_writer.append(chunk.point, table)
+                if traj_writer is not None:
+                    plan.add_trajectories(traj_writer, inputs, chunk.point, chunk.start,
+                                          chunk.stop, every, terrain)  # fmt: skip
+                    traj_writer.flush()
+                if len(points) > 1 and chunk.start == 0:
+                    bar.set_description(points[chunk.point].label or f"point {chunk.point}")
+                bar.update(chunk.stop - chunk.start)
+                with turn:
+                    state["written"] = k + 1
+                    turn.notify_all()
+        except BaseException as err:
+            fail(err)
+            raise
 
-        following, sampling_next = sample_next()
-        k = 0
-        while following is not None:
-            _, point, start, stop = following
-            if len(points) > 1 and start == 0:
-                bar.set_description(points[point].label or f"point {point}")
-            inputs, sampled = sampling_next.result()
-            following, sampling_next = sample_next()
-            out = buffers[k % 2] if stop - start == chunk_size else None
-            out = simulate_batch(inputs, out, terrain=terrain)
-            if writing is not None:
-                writing.result()  # frees the other buffer; raises what the write raised
-            writing = writer.submit(finish, all_stats[point], point, start, sampled, out)
-            if traj_writer is not None:
-                plan.add_trajectories(traj_writer, inputs, point, start, stop, every, terrain)
-                traj_writer.flush()
-            bar.update(stop - start)
-            k += 1
-        if writing is not None:
-            writing.result()
+    with tqdm(
+        total=n * len(points), unit="shot", unit_scale=True, disable=not show, smoothing=0.1
+    ) as bar:
+        writing = executor.in_background(write, bar)
+        try:
+            on_threads(task, len(chunks))
+        except _Stopped:
+            pass  # the writer failed: its error is raised below
+        except BaseException as err:
+            fail(err)
+            raise
+        finally:
+            if state["failed"] is not None:
+                concurrent.futures.wait([writing])
+        writing.result()  # raises what the writer raised
     return all_stats
 
 
