@@ -2,12 +2,12 @@
 to end against the kernel alone, on 1 and 2 threads, for pga-driver (the plane) and
 par3-over-water (a hole: zones, lon/lat, expected strokes).
 
-The phases of a chunk (``run.local``'s pipeline, one after the other here so that each is
-timed alone): the sampling; the kernel (on the threads); the hole's columns (zones, lon/lat,
+The phases of a chunk (``run.local``'s task and writer, one after the other here so that each
+is timed alone): the sampling; the kernel (on the threads); the hole's columns (zones, lon/lat,
 expected strokes: ``ShotsWriter.hole_columns``); the streaming statistics (the moments and the
 hole's tally); the Parquet table and its write; then, once, the summary (its exact percentiles
-read back from the file). The run end to end: ``run.local.run_scenario`` in this process (the
-pipeline: the sampling and the writing beside the kernel), after a warm-up; the kernel alone:
+read back from the file). The run end to end: ``run.local.run_scenario`` in this process (its
+chunks the executor's tasks, written in order beside them), after a warm-up; the kernel alone:
 the same chunks, already sampled, through ``simulate_batch``.
 """
 
@@ -151,8 +151,9 @@ def markdown(r):
         "### A run at the kernel's pace: its phases, and the run against the kernel",
         "",
         "Each phase timed alone, in microseconds a shot (the kernel's on the threads, the "
-        "others on one); the run end to end (`run.local.run_scenario`, its pipeline: sampling "
-        "and writing beside the kernel) against the kernel alone on the same chunks.",
+        "others on one); the run end to end (`run.local.run_scenario`: the chunks as the "
+        "executor's tasks, written in order beside them) against the kernel alone on the same "
+        "chunks.",
         "",
         "| scenario | threads | N | " + " | ".join(PHASES) + " | kernel shots/s | run shots/s "
         "| run / kernel |",
