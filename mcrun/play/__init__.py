@@ -23,7 +23,7 @@ from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M, DEFAULT_FINE_WI
 from mcrun.play.plan import PlayPlan, plan_play
 from mcrun.play.player import Player, PlayerError, load_player
 from mcrun.play.solve import solve
-from mcrun.play.transitions import AIMS, fly
+from mcrun.play.transitions import AIMS, OVERSHOOT_M, fly
 from mcrun.putting.on_hole import map_of_hole
 from mcrun.strokes.baseline import LIES, tour_baseline
 
@@ -104,6 +104,27 @@ class PlayResult:
         d = self.scores - par
         counts = (d <= -2, d == -1, d == 0, d == 1, d >= 2)
         return {name: float(c.mean()) for name, c in zip(SCORE_NAMES, counts, strict=True)}
+
+    def second_shots(self):
+        """{"for the green": share, "lay-up": share, "over": share} of the policy's plays
+        (played again, the same plays as ``scores``) by their second stroke: with a club whose
+        mean total on the level reaches within ``transitions.OVERSHOOT_M`` of the pin from
+        where it was struck (the green is in reach: a lay-up aim is not offered), short of
+        that (a lay-up), or none (holed out, or on the green, after one)."""
+        second = np.empty(len(self.scores), dtype=np.int64)
+        play_policy(self.lattice, self.transitions, self.solution, len(self.scores),
+                    self.seed, second_rows=second)  # fmt: skip
+        tr, lat = self.transitions, self.lattice
+        played = second >= 0
+        rows = second[played]
+        total = np.array([tr.actions[a].total_m for a in tr.row_action[rows]])
+        xy = lat.xy[tr.row_state[rows]]
+        distance = np.hypot(xy[:, 0] - self.hole.pin_xy[0], xy[:, 1] - self.hole.pin_xy[1])
+        going = total >= distance - OVERSHOOT_M
+        n = len(second)
+        return {"for the green": float(going.sum()) / n,
+                "lay-up": float((~going).sum()) / n,
+                "over": float((~played).sum()) / n}  # fmt: skip
 
     def stroke_shares(self):
         """{strokes: share} of the plays' scores, fewest first: the distribution without a

@@ -5,8 +5,11 @@ checks"):
 
 - approach clubs (a mean total under ``WOOD_YD``, 235 yd): the mean distance of the finishes
   from the centre of the club's pattern, on the level, equal to the Tour's approach proximity at the
-  club's distance: 20 ft 0 in from 100-125 yd and 27 ft 6 in from 150-175 yd, linear in the
-  distance between and beyond those bands' middles;
+  club's distance from the fairway: 20 ft 0 in from 100-125 yd, 27 ft 6 in from 150-175 yd and
+  50 ft 3 in from over 200 yd (ShotLink season averages, as the Tour publishes them: the
+  strokes-gained reference, and GolfTEC's summary of the same for the 200-plus band), linear in
+  the distance between the bands' middles and beyond the last; the 200-plus band's middle is
+  taken at 225 yd (an ESTIMATE: most of the Tour's long approaches are from 200-250 yd);
 - the driver and the woods (longer): the share of drives within 15 m either side of the pattern's
   centre line (a fairway 30 m, 33 yd, wide, centred) equal to the Tour's 60 % of fairways hit.
 
@@ -30,8 +33,9 @@ from mcrun.strokes.baseline import FOOT_M, YARD_M
 __all__ = ["FAIRWAY_HALF_WIDTH_M", "FAIRWAY_SHARE", "calibrate", "pattern", "proximity_target_ft"]
 
 WOOD_YD = 235.0
-# The Tour's approach proximity (ft) at the middle of two distance bands (yd).
-PROXIMITY_FT = ((112.5, 20.0), (162.5, 27.5))
+# The Tour's approach proximity from the fairway (ft) at the middle of its distance bands (yd):
+# 100-125, 150-175 and over 200 (its middle an ESTIMATE, see above).
+PROXIMITY_FT = ((112.5, 20.0), (162.5, 27.5), (225.0, 50.25))
 FAIRWAY_HALF_WIDTH_M = 15.0
 FAIRWAY_SHARE = 0.60
 SPREAD_COLUMNS = ("ball_speed_mps", "launch_angle_rad", "spin_radps", "spin_axis_rad",
@@ -66,8 +70,12 @@ def pattern(scenario, club, n, factor, speed=1.0):
 
 
 def proximity_target_ft(distance_yd):
-    """The Tour's approach proximity (ft) at ``distance_yd``: linear through ``PROXIMITY_FT``."""
-    (d0, p0), (d1, p1) = PROXIMITY_FT
+    """The Tour's approach proximity (ft) at ``distance_yd``: piecewise linear through
+    ``PROXIMITY_FT``, its first and last pieces carried on beyond its ends."""
+    k = 0
+    while k < len(PROXIMITY_FT) - 2 and distance_yd > PROXIMITY_FT[k + 1][0]:
+        k += 1
+    (d0, p0), (d1, p1) = PROXIMITY_FT[k], PROXIMITY_FT[k + 1]
     return p0 + (p1 - p0) * (distance_yd - d0) / (d1 - d0)
 
 

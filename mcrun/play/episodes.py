@@ -45,16 +45,24 @@ def _nearest_states(lat, x, y, lie):
     return best
 
 
-def play_policy(lat, tr, solution, plays, seed=0):
-    """The strokes (int array of ``plays``) of the solution's policy played from the tee."""
+def play_policy(lat, tr, solution, plays, seed=0, second_rows=None):
+    """The strokes (int array of ``plays``) of the solution's policy played from the tee;
+    ``second_rows``: an int array of ``plays`` that receives the transition row each play's
+    second stroke played (-1 where the play was over after one)."""
     rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence([seed, 25])))
     state = np.zeros(plays, dtype=np.int64)
     strokes = np.zeros(plays, dtype=np.int64)
     done = np.zeros(plays, dtype=bool)
     grids = stacked(lat)
+    if second_rows is not None:
+        second_rows[:] = -1
+    stroke = 0
     while not done.all():
         live = np.flatnonzero(~done)
         rows = solution.best_row[state[live]]
+        stroke += 1
+        if second_rows is not None and stroke == 2:
+            second_rows[live] = rows
         first, n = tr.row_start[rows], tr.n
         shot = first + rng.integers(0, n, len(live))
         for _ in range(8):  # a failed shot is drawn again

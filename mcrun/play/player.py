@@ -55,9 +55,10 @@ LIE_LAUNCH = {
 PART_POWERS = tuple(round(1.0 - 0.05 * k, 2) for k in range(1, 17))  # 0.95 .. 0.2
 PITCH_LOFT_DEG = 16.0
 # CALIBRATED (``mcrun.play.calibration.calibrate``, 4,000 shots a club; tests/test_play.py):
-# the Tour bag's spread per club, Driver .. PW, to the Tour's approach proximity and fairways.
+# the Tour bag's spread per club, Driver .. PW, to the Tour's approach proximity (to over 200 yd)
+# and fairways.
 TOUR_BAG = "pga-tour-bag"
-TOUR_SPREAD = (1.654, 1.877, 1.929, 1.235, 1.452, 1.454, 1.424, 1.457, 1.542, 1.678, 2.101, 2.29)
+TOUR_SPREAD = (1.654, 1.877, 1.929, 1.719, 2.004, 1.939, 1.798, 1.699, 1.624, 1.678, 2.101, 2.29)
 # The presets: (the bag, its ball speed factor, its spread per club). Scratch and bogey are
 # ESTIMATES after the USGA Course Rating definitions (a scratch player drives 250 yd and
 # reaches 470 yd in two; a bogey player drives 200 yd and reaches 370 yd in two): the Tour
