@@ -239,7 +239,7 @@ class HoleTally:
             if code == status_codes.IN_PENALTY_AREA:
                 ended &= ~np.isin(outcome, _PENALTY_CODES)  # the area's kind, when named
             outcome[ended] = OUTCOMES.index(name)
-        scored = np.isfinite(after)
+        scored = np.isfinite(after) & (outcome >= 0)  # (no zone: failed, as no score)
         outcome[~scored] = -1
         self.after.add(after[scored])
         self.gained.add(gained[scored])
