@@ -200,13 +200,14 @@ class Executor:
         on_threads(work, len(items), self.threads)
 
     def _dask(self, task, items, shared, put, progress, failed, name, key):
-        from distributed import as_completed
+        from distributed import Future, as_completed
 
         client = self.client
         prefix = key or f"mcrun-{name.replace(' ', '-')}-{secrets.token_hex(4)}"
         # The shared objects travel once, each as a task of its own (so that a worker that
-        # lost it computes it again), which every task depends on.
-        there = [client.submit(_itself, obj, key=f"{prefix}-shared-{j}", pure=False)
+        # lost it computes it again), which every task depends on; a future given is one.
+        there = [obj if isinstance(obj, Future)
+                 else client.submit(_itself, obj, key=f"{prefix}-shared-{j}", pure=False)
                  for j, obj in enumerate(shared)]  # fmt: skip
         futures = [client.submit(_on_worker, task, *there, item, key=f"{prefix}-{k:05d}",
                                  retries=self.retries, pure=False)

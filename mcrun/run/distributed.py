@@ -708,6 +708,11 @@ def _error_text(err):
     return " ".join(f"{type(err).__name__}: {err}".split())
 
 
+def _job_of(job):
+    """The job itself: a task the chunks depend on, so its data is recomputed if lost."""
+    return job
+
+
 def _chunk_of(chunk_task, job, chunk):
     """A chunk as a task of the executor: ``chunk_task`` (``run_chunk``) of its shots."""
     return chunk_task(chunk.index, chunk.point, chunk.start, chunk.stop, job)
@@ -742,10 +747,16 @@ def _execute(client, chunk_task, job, chunks, stats_of, total, retries, progress
             failed.append((chunks[k], err))
             pending.clear()
 
-        Executor(client=client, retries=retries).map(
-            functools.partial(_chunk_of, chunk_task), chunks, shared=(job,), done=done,
-            failed=failure, name="chunk", key=f"mcrun-chunk-{job['id']}",
-        )  # fmt: skip
+        # The job travels once, as the result of a task the chunks depend on (recomputed if
+        # lost), released once the chunks are done or cancelled.
+        job_future = client.submit(_job_of, job, key=f"mcrun-job-{job['id']}")
+        try:
+            Executor(client=client, retries=retries).map(
+                functools.partial(_chunk_of, chunk_task), chunks, shared=(job_future,),
+                done=done, failed=failure, name="chunk", key=f"mcrun-chunk-{job['id']}",
+            )  # fmt: skip
+        finally:
+            job_future.release()
     if failed:
         failed.sort(key=lambda item: item[0].index)
         shown = "; ".join(f"{_describe_chunk(c)}: {_error_text(e)}" for c, e in failed[:3])
