@@ -56,10 +56,11 @@ G = G_MPS2
 NO_PATH = np.empty((0, 5))
 
 
-def grid(x0, x1, y0, y1, cell, height, zone=None, turfs=("green",), penalty=(ground.IN_PLAY,)):
+def grid(x0, x1, y0, y1, cell, height, zone=None, turfs=("green",), penalty=None):
     """A Terrain over [x0, x1] x [y0, y1] (hole frame, y to the right): node heights
     ``height(X, Y)``, zones ``zone(X, Y)`` (default 0), each zone's turf (a preset name or a
-    Turf) and penalty kind."""
+    Turf) and penalty kind (default: every zone in play)."""
+    penalty = (ground.IN_PLAY,) * len(turfs) if penalty is None else penalty
     xs = x0 + cell * np.arange(round((x1 - x0) / cell) + 1)
     ys = y0 + cell * np.arange(round((y1 - y0) / cell) + 1)
     X, Y = np.meshgrid(xs, ys)
@@ -618,3 +619,17 @@ def test_a_hop_ends_at_the_first_crossing_of_the_surface(height):
         marched = ground.hop_search._marched_hop(terrain, x, y, z, vx, vy, vz, hop_time)
         if min(gap(s) for s in np.linspace(0.05 * t, 0.95 * t, 50)) > 1e-4:
             assert marched[4] == pytest.approx(t, abs=1e-6)
+
+
+def test_a_terrain_needs_a_turf_and_a_penalty_kind_for_every_zone():
+    """Compiled code reads a zone's turf and penalty kind without bounds checks: a terrain whose
+    zones outnumber its turfs or its penalty kinds is refused (it read past its table, and a
+    ball could end "in a penalty area" of garbage)."""
+    h = np.zeros((3, 3))
+    zone = np.array([[0, 1, 1]] * 3, np.int8)
+    turf = np.array([list(PRESETS["fairway"]), list(PRESETS["green"])])
+    with pytest.raises(ValueError, match="a penalty kind for each zone"):
+        ground.make_terrain(0.0, 0.0, 1.0, h, zone, turf, np.array([ground.IN_PLAY], np.int8))
+    with pytest.raises(ValueError, match="zones must be 0 to 0"):
+        ground.make_terrain(0.0, 0.0, 1.0, h, zone, turf[:1], np.array([ground.IN_PLAY], np.int8))
+    ground.make_terrain(0.0, 0.0, 1.0, h, zone, turf, np.array([ground.IN_PLAY] * 2, np.int8))

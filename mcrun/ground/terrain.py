@@ -95,9 +95,22 @@ def make_terrain(x0_m, y0_m, cell_m, height_m, zone, turf, penalty):
     zone = np.ascontiguousarray(zone, dtype=np.int8)
     if height_m.ndim != 2 or height_m.shape != zone.shape or min(height_m.shape) < 2:
         raise ValueError("a terrain needs heights and zones on one grid of at least 2 x 2 nodes")
+    turf = np.ascontiguousarray(turf, dtype=np.float64)
+    penalty = np.ascontiguousarray(penalty, np.int8)
+    # Compiled code reads a zone's turf and penalty kind without bounds checks: every zone of
+    # the grid must have both.
+    if turf.ndim != 2 or turf.shape[1] != TURF_FIELDS or penalty.shape != (turf.shape[0],):
+        raise ValueError(
+            f"a terrain needs a turf ({TURF_FIELDS} fields) and a penalty kind for each zone, "
+            f"got turf {turf.shape} and penalty {penalty.shape}"
+        )
+    if zone.min() < 0 or zone.max() >= turf.shape[0]:
+        raise ValueError(
+            f"a terrain's zones must be 0 to {turf.shape[0] - 1} (one for each turf), got "
+            f"{zone.min()} to {zone.max()}"
+        )
     return Terrain(
-        float(x0_m), float(y0_m), float(cell_m), height_m, zone,
-        np.ascontiguousarray(turf, dtype=np.float64), np.ascontiguousarray(penalty, np.int8),
+        float(x0_m), float(y0_m), float(cell_m), height_m, zone, turf, penalty,
         calm_cells(height_m, zone),
     )  # fmt: skip
 
