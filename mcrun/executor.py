@@ -33,7 +33,6 @@ pool), a green's map (``putting.green_map``), the runs' starts and aims (``run``
 import concurrent.futures
 import secrets
 import threading
-import time
 
 import numba
 
@@ -145,15 +144,12 @@ class Executor:
 
     ``threads``: the threads of this process (default ``numba.get_num_threads()``); ``client``:
     a ``dask.distributed.Client`` whose workers run the tasks instead (``retries`` each).
-    ``busy_s`` adds up the seconds the tasks ran (on every thread; on Dask, as the workers
-    measured them): set to 0 by the caller, read after ``map``.
     """
 
     def __init__(self, threads=None, client=None, retries=0):
         self.threads = numba.get_num_threads() if threads is None else int(threads)
         self.client = client
         self.retries = int(retries)
-        self.busy_s = 0.0
         self._lock = threading.Lock()
 
     @property
@@ -188,10 +184,8 @@ class Executor:
         count = [0]
 
         def work(k):
-            started = time.perf_counter()
             result = task(*shared, items[k])
             with self._lock:  # one result put at a time, and the progress said in order
-                self.busy_s += time.perf_counter() - started
                 put(k, result)
                 count[0] += 1
                 if progress is not None:
@@ -217,9 +211,7 @@ class Executor:
             for finished, future in enumerate(as_completed(futures), start=1):
                 k = index[future.key]
                 if future.status == "finished":
-                    seconds, result = future.result()
-                    self.busy_s += seconds
-                    put(k, result)
+                    put(k, future.result())
                 else:
                     err = future.exception() if future.status == "error" else None
                     err = err or RuntimeError(f"the task was {future.status}")
@@ -247,9 +239,6 @@ def _itself(obj):
 
 
 def _on_worker(task, *args):
-    """A task on a Dask worker, on ``NUMBA_THREADS_PER_TASK`` Numba threads: (seconds it ran,
-    its result)."""
+    """A task on a Dask worker, on ``NUMBA_THREADS_PER_TASK`` Numba threads."""
     numba.set_num_threads(NUMBA_THREADS_PER_TASK)
-    started = time.perf_counter()
-    result = task(*args)
-    return time.perf_counter() - started, result
+    return task(*args)

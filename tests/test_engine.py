@@ -27,6 +27,7 @@ from mcrun.engine import batch
 from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
 from mcrun.results import output, stats
 from mcrun.run import local as run
+from mcrun.run import plan
 from mcrun.status import INVALID_INPUT, OK
 
 REL = 1e-9
@@ -528,7 +529,7 @@ def interrupt_on_second_chunk(monkeypatch):
             raise KeyboardInterrupt
         return real(inputs, out, **kwargs)
 
-    monkeypatch.setattr(run, "simulate_batch", flaky)
+    monkeypatch.setattr(plan, "simulate_batch", flaky)  # (where a run's chunks are flown)
     return calls
 
 

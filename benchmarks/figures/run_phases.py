@@ -60,7 +60,7 @@ def _phases(name, n):
             t3 = time.perf_counter()
             point_stats[point].update(out, sampled, hole_columns)
             t4 = time.perf_counter()
-            writer.write(point, start, sampled, out, hole_columns)
+            writer.append(point, writer.table(point, start, sampled, out, hole_columns))
             t5 = time.perf_counter()
             for phase, s in zip(PHASES, (t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4),
                                 strict=False):  # fmt: skip

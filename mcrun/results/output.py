@@ -275,16 +275,9 @@ class ShotsWriter(_ParquetWriter):
             self.hole, outcomes, {"putting": self.putting}, self.starts_xy_m[point]
         )
 
-    def write(self, point, start, sampled, outcomes, hole_columns=None):
-        """Append the chunk of ``point`` with shots start.. (``outcomes`` may be reused by the
-        caller once this returns; ``hole_columns``: the hole's, when already made)."""
-        if self._pending or outcomes.shape[0] < ROW_GROUP_ROWS:
-            # Kept for later: the table must not share the caller's buffer.
-            outcomes = np.array(outcomes, order="F")
-        self.append(point, self.table(point, start, sampled, outcomes, hole_columns))
-
     def append(self, point, table):
-        """Append the chunk of ``point`` already made into its ``table`` (``table``)."""
+        """Append the chunk of ``point`` made into its ``table`` (``table``: it may hold the
+        chunk's outcomes without a copy, so they are not reused until it is written)."""
         self._pending.append((point, table))
         self._pending_rows += table.num_rows
         if self._pending_rows >= ROW_GROUP_ROWS:

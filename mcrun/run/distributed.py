@@ -115,13 +115,12 @@ import pyarrow.parquet as pq
 from mcrun import exits
 from mcrun import status as status_codes
 from mcrun.engine import warmup
-from mcrun.engine.backend import simulate_batch
 from mcrun.executor import NUMBA_THREADS_PER_TASK, Executor
 from mcrun.quantities import InputError
 from mcrun.results import location, output, stats
 from mcrun.results.output import SHOTS_DIR, SUCCESS_FILE, TRAJECTORIES_DIR
 from mcrun.results.reader import read_shots  # a Dask run's shots, as the local file reads
-from mcrun.run import plan, sampling
+from mcrun.run import plan
 from mcrun.run import scenario as scenario_module
 
 DEFAULT_CHUNK_SIZE = plan.DEFAULT_CHUNK_SIZE
@@ -325,18 +324,13 @@ def run_chunk(chunk, point, start, stop, job):
     """
     numba.set_num_threads(NUMBA_THREADS_PER_TASK)
     scenario = _scenario(job["scenario_text"], job["scenario_path"], job["seed"])
-    inputs, sampled = sampling.sample(
-        scenario, scenario.points[point], start, stop, job["input_names"]
-    )
     terrain = plan.terrain_of(scenario)
-    out = simulate_batch(inputs, terrain=terrain)
-    point_stats = plan.point_stats(scenario, job["drivers"][point])
-    builder = _shots_builder(job)
-    hole_columns = builder.hole_columns(point, out)  # made once, tallied and written
-    point_stats.update(out, sampled, hole_columns)
+    inputs, point_stats, table = plan.made_chunk(
+        scenario, _shots_builder(job), job["drivers"][point], job["input_names"], point, start,
+        stop, terrain,
+    )  # fmt: skip
     fs = location.filesystem(job["url"])
     local = job["url"] is None
-    table = builder.table(point, start, sampled, out, hole_columns)
     if job["partitioned"]:
         table = table.drop_columns("group")
     shots_path = f"{job['root']}/{job['shot_dirs'][point]}/{output.part_name(chunk)}"

@@ -30,11 +30,10 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from mcrun import executor
-from mcrun.engine.backend import simulate_batch
 from mcrun.executor import on_threads
 from mcrun.quantities import InputError
 from mcrun.results import output, stats
-from mcrun.run import plan, sampling
+from mcrun.run import plan
 
 # The chunks a thread's tasks may run ahead of the writer (each holds its table until written).
 AHEAD_PER_THREAD = 2
@@ -225,13 +224,10 @@ def _stream(the_plan, shots_writer, traj_writer, progress):
                     turn.wait()
                 if state["failed"] is not None:
                     raise _Stopped
-            inputs, sampled = sampling.sample(scenario, points[chunk.point], chunk.start,
-                                              chunk.stop, the_plan.input_names)  # fmt: skip
-            out = simulate_batch(inputs, terrain=terrain)
-            hole_columns = shots_writer.hole_columns(chunk.point, out)
-            part = plan.point_stats(scenario, the_plan.drivers[chunk.point])
-            part.update(out, sampled, hole_columns)
-            table = shots_writer.table(chunk.point, chunk.start, sampled, out, hole_columns)
+            inputs, part, table = plan.made_chunk(
+                scenario, shots_writer, the_plan.drivers[chunk.point], the_plan.input_names,
+                chunk.point, chunk.start, chunk.stop, terrain,
+            )  # fmt: skip
             with turn:
                 done[k] = (part, table, inputs if traj_writer is not None else None)
                 turn.notify_all()

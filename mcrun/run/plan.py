@@ -32,7 +32,7 @@ from typing import NamedTuple
 import numpy as np
 import pandas as pd
 
-from mcrun.engine.backend import simulate_traced
+from mcrun.engine.backend import simulate_batch, simulate_traced
 from mcrun.engine.batch import general_flight as general_flight_of
 from mcrun.engine.schema import HOLE_FIELDS, PLANE_FIELDS
 from mcrun.engine.warmup import general, warm_up
@@ -211,6 +211,20 @@ def point_stats(scenario, drivers):
     if hole is not None:
         tally = on_hole_results.HoleTally(hole.putting["model"] == "physics")
     return stats.PointStats(drivers, tally)
+
+
+def made_chunk(scenario, writer, drivers, input_names, point, start, stop, terrain):
+    """Shots ``start .. stop - 1`` of ``point`` as both drivers make a chunk: sampled
+    (``input_names``), flown on ``terrain``, the hole's columns made once
+    (``writer.hole_columns``, an ``output.ShotsWriter``), tallied into the chunk's own
+    streaming statistics (``point_stats`` of the point's ``drivers``) and made into its table
+    (``writer.table``). Returns (inputs, PointStats, table)."""
+    inputs, sampled = sampling.sample(scenario, scenario.points[point], start, stop, input_names)
+    out = simulate_batch(inputs, terrain=terrain)
+    hole_columns = writer.hole_columns(point, out)
+    chunk_stats = point_stats(scenario, drivers)
+    chunk_stats.update(out, sampled, hole_columns)
+    return inputs, chunk_stats, writer.table(point, start, sampled, out, hole_columns)
 
 
 def putting_of(scenario):
