@@ -236,8 +236,10 @@ def test_a_run_with_physics_putting_writes_the_putting_shares(tmp_path, monkeypa
         ('{ model = "physics", putter = "pro" }', "'putting.putter' = 'pro': choose"),
         ('{ model = "physics", n = 1 }', "'putting.n' = 1 must be a whole number"),
         ('{ model = "physics", speed = 2 }', "'putting.speed': unknown key"),
-        ('{ model = "physics", drift_mm_per_m = 40 }',
-         "'putting.drift_mm_per_m' = 40 must be a number in [0, 34]"),
+        (
+            '{ model = "physics", drift_mm_per_m = 40 }',
+            "'putting.drift_mm_per_m' = 40 must be a number in [0, 34]",
+        ),
     ],
 )
 def test_bad_putting_settings_give_one_line(tmp_path, capsys, putting, says):

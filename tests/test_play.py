@@ -11,19 +11,23 @@ import numpy as np
 import pytest
 
 from mcrun.cli import main
+from mcrun.engine.schema import COLUMN
 from mcrun.executor import Executor
 from mcrun.hole.hole import load_hole
 from mcrun.play import load_player, play_hole
 from mcrun.play.calibration import (
     FAIRWAY_SHARE,
     WOOD_YD,
+    calibrate_ground,
+    calibrate_rough,
     pattern,
     proximity_target_ft,
+    rough_ratio,
 )
-from mcrun.play.lattice import lattice
-from mcrun.play.player import TOUR_SPREAD, on_hole
+from mcrun.play.lattice import TEE_LIE, lattice
+from mcrun.play.player import PART_POWERS, TOUR_GROUND, TOUR_ROUGH, TOUR_SPREAD, on_hole
 from mcrun.play.solve import solve
-from mcrun.play.transitions import WATER, fly
+from mcrun.play.transitions import WATER, fly, options_of, plan_actions
 from mcrun.run import scenario as sc
 from mcrun.strokes import tour_baseline
 
@@ -146,9 +150,8 @@ def test_the_transitions_are_the_same_on_one_thread_and_on_two(symmetric):
     scenario = on_hole(player, hole)
     fields = ("row_state", "row_action", "row_start", "kind", "lie", "x", "y", "const")
     for threads in (1, 2):
-        again = fly(scenario, result.lattice, result.n, player.spread, chunk_rows=7,
-                    baseline=tour_baseline(), speed=player.speed,
-                    executor=Executor(threads=threads))  # fmt: skip
+        again = fly(scenario, result.lattice, result.n, player, chunk_rows=7,
+                    baseline=tour_baseline(), executor=Executor(threads=threads))  # fmt: skip
         for name in fields:
             np.testing.assert_array_equal(getattr(again, name), getattr(result.transitions, name))
 
@@ -179,7 +182,7 @@ def test_a_penalty_area_raises_the_values_only_where_shots_can_reach_it():
     for name, hole in (("wet", wet), ("dry", _dry(wet))):
         base = tour_baseline()
         lat = lattice(hole, base, coarse_m=12.0, fine_m=4.0, fine_within_m=24.0)
-        tr = fly(on_hole(player, hole), lat, 20, player.spread, baseline=base)
+        tr = fly(on_hole(player, hole), lat, 20, player, baseline=base)
         values[name] = (lat, solve(lat, tr).values, tr)
     lat, wet_v, tr = values["wet"]
     dry_lat, dry_v, _ = values["dry"]
@@ -212,6 +215,60 @@ def test_the_tour_bag_s_spread_meets_the_tour_s_proximity_and_fairways():
             assert abs(proximity - proximity_target_ft(total)) < 1.5, player.clubs[club]
         else:
             assert abs(share - FAIRWAY_SHARE) < 0.03, player.clubs[club]
+
+
+def test_the_tour_bag_off_the_ground_and_from_the_rough_meets_its_targets():
+    """The Tour bag's ``TOUR_GROUND`` and ``TOUR_ROUGH``/``PITCH_ROUGH`` on the calibration's
+    4,000 shots: the woods off the ground as far (within 0.01 strokes) from Table 9 on the plane
+    as the approach clubs are on average; from the rough, the full shots' proximity within
+    1.5 ft of the fairway's times the Tour's ratio (GolfTEC's 1.51 from 100-125 yd and 1.45
+    from over 200), the pitches' cost over the fairway within 0.01 strokes of Table 9's."""
+    player = load_player("tour")
+    assert player.ground == TOUR_GROUND and player.rough == TOUR_ROUGH
+    assert abs(rough_ratio(112.5) - 30.25 / 20.0) < 1e-12
+    assert abs(rough_ratio(300.0) - 72.75 / 50.25) < 1e-12
+    ground, rows = calibrate_ground(player, fit=False)
+    fitted = [(club, got, target) for club, _, got, target, _ in rows if target is not None]
+    assert [club for club, _, _ in fitted] == ["3-wood", "5-wood"]
+    for club, got, target in fitted:
+        assert abs(got - target) < 0.01, club
+    _, _, rows = calibrate_rough(player, fit=False)
+    assert len(rows) == len(player.clubs) + len(PART_POWERS)
+    checked = 0
+    for club, power, _, what, target, got, _ in rows:
+        if target is None:
+            assert club == "Driver"  # struck from the tee only
+            continue
+        checked += 1
+        tolerance = 1.5 if what == "rough proximity ft" else 0.01
+        assert abs(got - target) < tolerance, (club, power)
+    assert checked == len(rows) - 1
+
+
+def test_the_driver_is_struck_from_the_tee_and_a_wood_off_the_ground_at_its_own_spread():
+    """The Tour bag on Riverside 9: the driver fits the tee only; the 3-wood is two options,
+    one from the tee at its spread and one from every other state at its spread times its
+    ``TOUR_GROUND``, its shots wider."""
+    player = load_player("tour")
+    hole = sc.load("par4-tee-shot").hole
+    lat = lattice(hole, tour_baseline(), 16.0, 8.0, 16.0)
+    options = options_of(on_hole(player, hole), 64, player)
+    driver = [o for o in options if o.club == 0]
+    wood = {o.where: o for o in options if o.club == 1}
+    assert [o.where for o in driver] == ["tee"] and set(wood) == {"tee", "ground"}
+    speed = COLUMN["ball_speed_mps"]  # the ground's deviations TOUR_GROUND[1] times the tee's
+    tee_sd, ground_sd = (wood[w].inputs[:, speed].std() for w in ("tee", "ground"))
+    assert abs(ground_sd / tee_sd - TOUR_GROUND[1]) < 1e-9
+    actions, jobs = plan_actions(hole, lat, options)
+    for rows, a, club, *_ in jobs:
+        where = next(o.where for o in options if o.club == club
+                     and o.total_m == actions[a].total_m)  # fmt: skip
+        tee = lat.lie[rows] == TEE_LIE
+        if where == "tee":
+            assert tee.all()
+        elif where == "ground":
+            assert not tee.any()
+    assert any(club == 0 for _, _, club, *_ in jobs)
 
 
 def test_mcrun_play_prints_the_solution(symmetric, tmp_path, capsys):
@@ -347,7 +404,7 @@ def test_the_scratch_and_bogey_presets_follow_the_usga_definitions(name, drive_y
 def test_ten_more_yards_of_driving():
     """``longer``: the Tour player's driver 10 yd longer on the level (within 0.5 yd), every
     other club unchanged."""
-    from mcrun.play.player import longer
+    from mcrun.play.calibration import longer
 
     player = load_player("tour")
     before = pattern(player.scenario, 0, 2000, player.spread[0], player.speed_of(0))[0]

@@ -279,7 +279,8 @@ def test_the_jobs_compile_every_kernel_once_the_terrain_s_batch_apart():
     assert two[0] == (("terrain", ("batch", "batch_general", "traced_general")),)
     assert two[1] == (("plane", warmup.KERNELS), ("terrain", ("traced", "landed")))
     assert warmup.jobs(warmup.GROUNDS, ("batch",), 2) == [
-        (("plane", ("batch",)),), (("terrain", ("batch",)),)
+        (("plane", ("batch",)),),
+        (("terrain", ("batch",)),),
     ]
     # a failure names every kernel of its job, the terrain's that went with the plane's too
     assert warmup._describe(two[1]) == (

@@ -101,7 +101,7 @@ def _cmd_play(args):
     if args.vs is not None:
         players.append(load_player(args.vs))
     if args.longer is not None:
-        from mcrun.play.player import longer
+        from mcrun.play.calibration import longer
 
         yards = parse_quantity(args.longer, "length", "--longer") / 0.9144
         if not -100.0 <= yards <= 100.0:
@@ -141,8 +141,13 @@ def _cmd_play(args):
                 bar = tqdm(total=len(planned.actions), unit="action", file=sys.stderr,
                            leave=False, dynamic_ncols=True)  # fmt: skip
                 try:
-                    results.append(solve_planned(planned, client=client,
-                                                 progress=lambda k, bar=bar: bar.update(k - bar.n)))
+                    results.append(
+                        solve_planned(
+                            planned,
+                            client=client,
+                            progress=lambda k, bar=bar: bar.update(k - bar.n),
+                        )
+                    )
                 finally:
                     bar.close()
         except KeyboardInterrupt:
@@ -223,8 +228,12 @@ def register(subparsers):
     p.add_argument("--coarse", default="8m", help="states' spacing (8m)")
     p.add_argument("--fine", default="3m", help="near the pin (3m)")
     p.add_argument("--plays", default="4000", help="plays of the policy (4000)")
-    p.add_argument("--putter", choices=list(PUTTERS), help="the player's putter on the green "
-                   "(a preset's own: tour, scratch, 15-handicap for bogey; a file's: tour)")
+    p.add_argument(
+        "--putter",
+        choices=list(PUTTERS),
+        help="the player's putter on the green "
+        "(a preset's own: tour, scratch, 15-handicap for bogey; a file's: tour)",
+    )
     p.add_argument("--vs", metavar="PLAYER2", help="a second player on the same hole")
     p.add_argument("--longer", metavar="YD", help="and the player with a driver YD longer: 10yd")
     p.add_argument("--dask", choices=["local"], help="fly the shots on a local Dask cluster")

@@ -214,9 +214,7 @@ def warm_up_job(*pairs):
                 was_cached = kernel_cached(ground, (kernel,))
                 started = time.perf_counter()
                 _run(ground, kernel)
-                done.append(
-                    KernelWarmUp(ground, kernel, time.perf_counter() - started, was_cached)
-                )
+                done.append(KernelWarmUp(ground, kernel, time.perf_counter() - started, was_cached))
     return done
 
 

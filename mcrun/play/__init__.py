@@ -205,8 +205,8 @@ def solve_planned(planned, progress=None, client=None):
     started = time.perf_counter()
     player, hole, scenario, lat, n = (planned.player, planned.hole, planned.scenario,
                                       planned.lattice, planned.n)  # fmt: skip
-    tr = fly(scenario, lat, n, player.spread, putting=map_of_hole(hole, putter=player.putter),
-             baseline=planned.baseline, progress=progress, speed=player.speed, client=client,
+    tr = fly(scenario, lat, n, player, putting=map_of_hole(hole, putter=player.putter),
+             baseline=planned.baseline, progress=progress, client=client,
              planned=(planned.actions, planned.jobs))  # fmt: skip
     solution = solve(lat, tr)
     if solution.change > 1e-3 or not np.isfinite(solution.values[0]):

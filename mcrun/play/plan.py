@@ -36,7 +36,7 @@ from mcrun.engine.schema import N_INPUT, N_OUTCOME
 from mcrun.hole.zones import ZONE_KINDS, contains
 from mcrun.play.episodes import MAX_STROKES
 from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M, DEFAULT_FINE_WITHIN_M, lattice
-from mcrun.play.player import PART_POWERS, PlayerError, on_hole
+from mcrun.play.player import PlayerError, on_hole
 from mcrun.play.transitions import options_of, plan_actions
 from mcrun.putting.on_hole import check_putting
 from mcrun.run import plan as run_plan
@@ -302,11 +302,11 @@ def plan_play(player, hole, n=100, seed=None, coarse_m=DEFAULT_COARSE_M, fine_m=
     scenario = on_hole(player, hole)
     if seed is not None:
         scenario = replace(scenario, seed=int(seed))
-    options = len(player.clubs) + len(PART_POWERS)
     # The first PROBE_SHOTS shots of each option first: what the bag reaches, and the rows
     # (states x the actions that fit them; exact when n is no more), before n are sampled.
-    flown = options_of(scenario, min(n, PROBE_SHOTS), player.spread, player.speed or None)
+    flown = options_of(scenario, min(n, PROBE_SHOTS), player)
     check_reach(player, hole, flown)
+    options = len(flown)
     exact = n <= PROBE_SHOTS
     for _ in range(2):
         actions, jobs = plan_actions(hole, lat, flown, chunk_rows)
@@ -316,7 +316,7 @@ def plan_play(player, hole, n=100, seed=None, coarse_m=DEFAULT_COARSE_M, fine_m=
             raise _too_big(size, memory, n, plays, rows, options, workers, names, exact)
         if exact:
             break
-        flown = options_of(scenario, n, player.spread, player.speed or None)
+        flown = options_of(scenario, n, player)
         exact = True
     seconds = rows * n / run_plan.SHOTS_PER_S + plays / PLAYS_PER_S
     return PlayPlan(player, hole, scenario, n, plays, lat, base, flown, actions, jobs, workers,

@@ -10,35 +10,57 @@ spin times sqrt(p), launch angle raised by (1 - p) ``PITCH_LOFT_DEG`` (a pitch i
 the face open: a Tour 50-yd pitch launches near 30 deg with 6,000-7,000 rpm, against the
 full wedge's 24 deg and 9,300 rpm).
 
-How a lie changes a launch (``LIE_LAUNCH``, ESTIMATES a user can override): from the rough a
-"flyer" (grass between the face and the ball: less spin, a little less speed) and a wider
-pattern (the ball speed's, azimuth's and spin axis's deviations from their means times
-``spread``); from a bunker less speed and spin (sand taken with the ball) and a wider pattern;
-a recovery shot (under trees) is a punch, at much less speed. Fairway and tee shots are the
-launch as sampled.
+How a lie changes a launch (``LIE_LAUNCH``, ESTIMATES a user can override; ``lie_launch``):
+from the rough a "flyer" (grass between the face and the ball: less spin, a little less speed)
+and a wider pattern (the ball speed's, azimuth's and spin axis's deviations from their means
+times a factor); from a bunker less speed and spin (sand taken with the ball) and a wider
+pattern; a recovery shot (under trees) is a punch, at much less speed. Fairway and tee shots
+are the launch as sampled. The rough's factor is calibrated for the Tour bag's clubs
+(``TOUR_ROUGH``: the Tour's proximity from the rough over that from the fairway) and for the
+wedge's pitches of under ``calibration.SHORT_GAME_YD`` (``PITCH_ROUGH``: the Table 9 cost of
+the rough around the green); a bag of its own takes ``LIE_LAUNCH``'s for its full clubs.
+
+The driver (a club named "Driver") is struck from the tee only (``tee_only``): its launch is a
+teed ball's, and off the ground the Tour plays a fairway wood.
 """
 
 import dataclasses
+import math
 from dataclasses import dataclass
 
+import numpy as np
+
+from mcrun.engine.schema import COLUMN
 from mcrun.putting.putter import PUTTERS
 from mcrun.quantities import InputError
+from mcrun.run import sampling
 from mcrun.run import scenario as sc
 from mcrun.run.scenario.hole_table import Play
+from mcrun.strokes.baseline import LIES
 
 __all__ = [
     "LIE_LAUNCH",
     "PART_POWERS",
     "PITCH_LOFT_DEG",
+    "PITCH_ROUGH",
+    "TOUR_GROUND",
+    "TOUR_ROUGH",
     "TOUR_SPREAD",
     "Player",
     "PlayerError",
+    "SPREAD_COLUMNS",
     "check_dispersion",
+    "club_shots",
+    "lie_launch",
     "load_player",
-    "longer",
     "on_hole",
+    "spread_inputs",
+    "tee_only",
 ]
 
+# The launch values a club's spread scales about their means.
+SPREAD_COLUMNS = ("ball_speed_mps", "launch_angle_rad", "spin_radps", "spin_axis_rad",
+                  "azimuth_rad")  # fmt: skip
 # (ball speed factor, spin factor, spread factor) by the lie the ball is struck from.
 # ESTIMATES: a flyer from the rough carries 20-50 % less spin (the grass between face and
 # ball) and scatters more; a fairway bunker shot loses about a tenth of its speed; a recovery
@@ -59,6 +81,16 @@ PITCH_LOFT_DEG = 16.0
 # and fairways.
 TOUR_BAG = "pga-tour-bag"
 TOUR_SPREAD = (1.654, 1.877, 1.929, 1.719, 2.004, 1.939, 1.798, 1.699, 1.624, 1.678, 2.101, 2.29)
+# CALIBRATED (``mcrun.play.calibration``, 4,000 shots; tests/test_play.py), Driver .. PW: the
+# factor on the Tour bag's spread off the ground (``calibrate_ground``: the woods calibrated off
+# the tee, to Table 9 on the plane); the rough's pattern factor per club (``calibrate_rough``:
+# the Tour's proximity from the rough over that from the fairway; the driver, struck from the
+# tee only, keeps LIE_LAUNCH's), and per part power of the wedge, ``PART_POWERS``' order (under
+# ``SHORT_GAME_YD``: Table 9's cost of the rough; the others as the full clubs).
+TOUR_GROUND = (1.0, 1.441, 1.042) + (1.0,) * 9
+TOUR_ROUGH = (1.6, 1.643, 2.057, 2.165, 2.086, 1.986, 2.005, 1.924, 1.785, 1.588, 1.421, 1.402)
+PITCH_ROUGH = (1.433, 1.437, 1.451, 1.477, 1.514, 1.567, 1.636, 1.719, 1.814, 1.914, 2.33, 2.29,
+               2.172, 2.061, 1.915, 1.962)  # fmt: skip
 # The presets: (the bag, its ball speed factor, its spread per club). Scratch and bogey are
 # ESTIMATES after the USGA Course Rating definitions (a scratch player drives 250 yd and
 # reaches 470 yd in two; a bogey player drives 200 yd and reaches 370 yd in two): the Tour
@@ -68,13 +100,16 @@ TOUR_SPREAD = (1.654, 1.877, 1.929, 1.719, 2.004, 1.939, 1.798, 1.699, 1.624, 1.
 # about 3.7 standard deviations: spread 1.34) and driver 70-75 yd wide (spread 2.013 for the
 # driver and the woods); a 15-handicap's 8-iron 43 yd wide (spread 3.344, every club: no
 # published driver pattern, so the irons' factor). Their putters: ``putting.PUTTERS``'s scratch
-# and 15-handicap (the nearest preset to a bogey player's, ESTIMATES).
+# and 15-handicap (the nearest preset to a bogey player's, ESTIMATES). Off the ground and from
+# the rough they take the Tour bag's factors (ESTIMATES for them).
 _SCRATCH_WOODS = 2.013
 PLAYERS = {
     "tour": (TOUR_BAG, 1.0, TOUR_SPREAD, "tour"),
     "scratch": (TOUR_BAG, 0.8875, (_SCRATCH_WOODS,) * 3 + (1.34,) * 9, "scratch"),
     "bogey": (TOUR_BAG, 0.7572, (3.344,) * 12, "15-handicap"),
 }
+# The clubs struck from the tee only, by name (case aside).
+TEE_ONLY = ("driver",)
 
 
 # A club's dispersion: its first DISPERSION_SHOTS shots must differ in some launch value; the
@@ -106,10 +141,68 @@ class Player:
     putter: str
     source: str
     speed: tuple = ()  # each club's ball speed times this (empty: 1)
+    rough: tuple = ()  # each club's pattern factor from the rough (empty: LIE_LAUNCH's)
+    ground: tuple = ()  # each club's spread off the ground over its spread (empty: 1)
 
     def speed_of(self, club):
         """The ball speed factor of ``club`` (an index)."""
         return self.speed[club] if self.speed else 1.0
+
+    def ground_of(self, club):
+        """The factor on ``club``'s spread (an index) struck from any lie but the tee."""
+        return self.ground[club] if self.ground else 1.0
+
+    def rough_of(self, club, power=1.0):
+        """The rough's pattern factor of ``club`` (an index) at ``power``: the wedge's part
+        powers ``PITCH_ROUGH``'s, a full club its own (``rough``) or ``LIE_LAUNCH``'s."""
+        if power != 1.0:
+            return PITCH_ROUGH[PART_POWERS.index(power)]
+        return self.rough[club] if self.rough else LIE_LAUNCH["rough"][2]
+
+
+def spread_inputs(inputs, factor):
+    """``inputs`` with each ``SPREAD_COLUMNS`` deviation from its mean times ``factor``."""
+    out = np.asfortranarray(inputs.copy())
+    for name in SPREAD_COLUMNS:
+        j = COLUMN[name]
+        centre = out[:, j].mean()
+        out[:, j] = centre + (out[:, j] - centre) * factor
+    return out
+
+
+def club_shots(scenario, club, n, power, spread, speed=1.0):
+    """The kernel inputs of the first n shots of ``club`` (an index of the player's
+    ``scenario``) at its ``spread`` (``spread_inputs``), ball speed times ``speed``, at
+    ``power`` (``PART_POWERS``: ball speed times it, spin times its root, launch angle raised
+    by (1 - power) ``PITCH_LOFT_DEG``)."""
+    inputs, _ = sampling.sample(scenario, scenario.points[club], 0, n)
+    inputs = spread_inputs(inputs, spread)
+    inputs[:, COLUMN["ball_speed_mps"]] *= speed
+    inputs[:, COLUMN["ball_speed_mps"]] *= power
+    inputs[:, COLUMN["spin_radps"]] *= math.sqrt(power)
+    inputs[:, COLUMN["launch_angle_rad"]] += (1.0 - power) * math.radians(PITCH_LOFT_DEG)
+    return inputs
+
+
+def tee_only(club_name):
+    """Whether the club named ``club_name`` is struck from the tee only (``TEE_ONLY``)."""
+    return club_name.strip().lower() in TEE_ONLY
+
+
+def lie_launch(batch, rows_lie, n, rough=None):
+    """``batch`` (starts x n shots, start-major) struck from lies ``rows_lie`` (codes of
+    ``LIES``), in place: speed and spin scaled, the spread of speed, azimuth and spin axis about
+    their means widened (``LIE_LAUNCH``; from the rough by ``rough`` where given)."""
+    factors = np.array([LIE_LAUNCH.get(LIES[k], (1.0, 1.0, 1.0)) for k in rows_lie])
+    if rough is not None:
+        factors[np.asarray(rows_lie) == LIES.index("rough"), 2] = rough
+    m = len(rows_lie)
+    for name, f in (("ball_speed_mps", factors[:, 0]), ("spin_radps", factors[:, 1])):
+        batch[:, COLUMN[name]].reshape(m, n)[:] *= f[:, None]
+    for name in ("ball_speed_mps", "azimuth_rad", "spin_axis_rad"):
+        view = batch[:, COLUMN[name]].reshape(m, n)
+        centre = view.mean(axis=1, keepdims=True)
+        view[:] = centre + (view - centre) * factors[:, 2, None]
 
 
 def load_player(spec, putter=None, spread=None, straight=False):
@@ -126,7 +219,8 @@ def load_player(spec, putter=None, spread=None, straight=False):
         putter = own_putter if putter is None else putter
         player = load_player(bag, putter, preset if spread is None else spread, straight)
         return Player(name, player.scenario, player.clubs, player.spread, putter,
-                      player.source, (speed,) * len(player.clubs))  # fmt: skip
+                      player.source, (speed,) * len(player.clubs), player.rough,
+                      player.ground)  # fmt: skip
     putter = "tour" if putter is None else putter
     if putter not in PUTTERS:
         raise PlayerError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")
@@ -149,21 +243,17 @@ def load_player(spec, putter=None, spread=None, straight=False):
                           f"or one per club ({len(clubs)})")  # fmt: skip
     if not straight:
         check_dispersion(scenario, clubs)
-    return Player(scenario.name, scenario, clubs, spread, putter, str(scenario.path))
+    tour = scenario.name == TOUR_BAG
+    return Player(scenario.name, scenario, clubs, spread, putter, str(scenario.path),
+                  rough=TOUR_ROUGH if tour else (), ground=TOUR_GROUND if tour else ())  # fmt: skip
 
 
 def check_dispersion(scenario, clubs):
     """PlayerError (one line naming the file, the club and its launch's keys) for a club of
     the player's ``scenario`` whose first ``DISPERSION_SHOTS`` shots are all the same in every
-    launch value its spread scales (``calibration.SPREAD_COLUMNS``: ball speed, launch angle,
-    spin, spin axis, azimuth): a bag without dispersion hits every shot exactly where it is
-    aimed, and its solution (holes in one from wherever a pin is in reach) is no player's."""
-    import numpy as np
-
-    from mcrun.engine.schema import COLUMN
-    from mcrun.play.calibration import SPREAD_COLUMNS
-    from mcrun.run import sampling
-
+    launch value its spread scales (``SPREAD_COLUMNS``: ball speed, launch angle, spin, spin
+    axis, azimuth): a bag without dispersion hits every shot exactly where it is aimed, and its
+    solution (holes in one from wherever a pin is in reach) is no player's."""
     columns = [COLUMN[name] for name in SPREAD_COLUMNS]
     for point, club in zip(scenario.points, clubs, strict=True):
         inputs, _ = sampling.sample(scenario, point, 0, DISPERSION_SHOTS)
@@ -175,26 +265,6 @@ def check_dispersion(scenario, clubs):
                 "launch with at least one of them a distribution with a spread (sd > 0), e.g. "
                 '{ dist = "normal", mean = "0 deg", sd = "1.5 deg" } for its azimuth'
             )
-
-
-def longer(player, club, yards, n=2000):
-    """``player`` whose ``club`` (an index) goes ``yards`` further on the level (its mean total):
-    its ball speed factor found by bisection (its other launch values kept)."""
-    from mcrun.play.calibration import pattern
-
-    base = player.speed_of(club)
-    target = pattern(player.scenario, club, n, player.spread[club], base)[0] + yards
-    lo, hi = 0.5 * base, 1.5 * base
-    for _ in range(30):
-        mid = 0.5 * (lo + hi)
-        if pattern(player.scenario, club, n, player.spread[club], mid)[0] < target:
-            lo = mid
-        else:
-            hi = mid
-    speed = list(player.speed or (1.0,) * len(player.clubs))
-    speed[club] = 0.5 * (lo + hi)
-    name = f"{player.name} ({player.clubs[club]} {yards:+g} yd)"
-    return dataclasses.replace(player, name=name, speed=tuple(speed))
 
 
 def on_hole(player, hole):

@@ -25,13 +25,12 @@ import numpy as np
 
 from mcrun import status
 from mcrun.engine.backend import simulate_batch
-from mcrun.engine.schema import COLUMN, OUTCOME_FIELDS
+from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.executor import Executor
 from mcrun.hole.zones import MOWN_ZONES, ZONE_KINDS
-from mcrun.play.calibration import spread_inputs
-from mcrun.play.lattice import GREEN_LIE, LIE_CODE_OF_ZONE
-from mcrun.play.player import LIE_LAUNCH, PART_POWERS, PITCH_LOFT_DEG
-from mcrun.run import sampling, starts
+from mcrun.play.lattice import GREEN_LIE, LIE_CODE_OF_ZONE, TEE_LIE
+from mcrun.play.player import PART_POWERS, club_shots, lie_launch, tee_only
+from mcrun.run import starts
 from mcrun.strokes.baseline import HOLE_RADIUS_M, LIES
 
 __all__ = ["AIMS", "KINDS", "Action", "Option", "Transitions", "fly", "options_of", "plan_actions"]
@@ -43,11 +42,6 @@ AIMS = (("pin", 0.0), ("pin", -2.0), ("pin", 2.0), ("pin", -4.0), ("pin", 4.0),
         ("line", 0.0), ("line", -3.0), ("line", 3.0))  # fmt: skip
 OVERSHOOT_M = 20.0
 DROP_BLOCK = 8  # the metres behind a yellow area's reference point tried at once
-BALL_SPEED = COLUMN["ball_speed_mps"]
-SPIN = COLUMN["spin_radps"]
-LAUNCH = COLUMN["launch_angle_rad"]
-AZIMUTH = COLUMN["azimuth_rad"]
-SPIN_AXIS = COLUMN["spin_axis_rad"]
 _OUT = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
 
 
@@ -86,35 +80,16 @@ class Transitions:
     shots_flown: int
 
 
-def _shots(scenario, club, n, power, spread, speed=1.0):
-    inputs, _ = sampling.sample(scenario, scenario.points[club], 0, n)
-    inputs = spread_inputs(inputs, spread)
-    inputs[:, BALL_SPEED] *= speed
-    inputs[:, BALL_SPEED] *= power
-    inputs[:, SPIN] *= math.sqrt(power)
-    inputs[:, LAUNCH] += (1.0 - power) * math.radians(PITCH_LOFT_DEG)
-    return inputs
-
-
-def _lie_launch(batch, rows_lie, n):
-    """``batch`` (starts x n shots, start-major) struck from lies ``rows_lie``: speed and spin
-    scaled, the spread of speed, azimuth and spin axis about their means widened
-    (``LIE_LAUNCH``)."""
-    factors = np.array([LIE_LAUNCH.get(LIES[k], (1.0, 1.0, 1.0)) for k in rows_lie])
-    m = len(rows_lie)
-    for column, f in ((BALL_SPEED, factors[:, 0]), (SPIN, factors[:, 1])):
-        batch[:, column].reshape(m, n)[:] *= f[:, None]
-    for column in (BALL_SPEED, AZIMUTH, SPIN_AXIS):
-        view = batch[:, column].reshape(m, n)
-        centre = view.mean(axis=1, keepdims=True)
-        view[:] = centre + (view - centre) * factors[:, 2, None]
+FROM = ("any", "tee", "ground")
 
 
 @dataclass(frozen=True)
 class Option:
     """A club at a power, its ``n`` shots' kernel inputs, and what they do on the level (the
     plane's ground, the club's own turf and weather): the mean total, the mean carry and the
-    longest total of its shots (m)."""
+    longest total of its shots (m); its pattern factor from the rough (``Player.rough_of``) and
+    where it is struck from (``FROM``: "any" lie, the "tee" only, or the "ground", every lie but
+    the tee's)."""
 
     club: int
     power: float
@@ -122,6 +97,8 @@ class Option:
     total_m: float
     carry_m: float
     longest_m: float
+    rough: float = 1.6
+    where: str = "any"
 
 
 def _on_the_level(inputs):
@@ -133,16 +110,28 @@ def _on_the_level(inputs):
     return float(np.nanmean(total)), float(np.nanmean(carry)), float(np.nanmax(total))
 
 
-def options_of(scenario, n, spread, speed=None):
-    """The ``Option`` of every full club of the player's ``scenario`` (each at its ``spread``
-    and ball speed factor ``speed``, default 1) and of the wedge's part powers."""
-    speed = speed or (1.0,) * len(spread)
+def options_of(scenario, n, player):
+    """The ``Option`` of every full club of ``player`` (a ``Player``) on its ``scenario`` (the
+    player's own, or one of its holes: ``player.on_hole``), each at its spread, ball speed
+    factor and rough's factor, and of the wedge's part powers. A club struck from the tee only
+    (``player.tee_only``) is an option from the tee; a club with a spread of its own off the
+    ground (``Player.ground``) is two, one from the tee and one from every other lie."""
     options = []
     last = len(scenario.points) - 1
     for club in range(len(scenario.points)):
+        spread, speed = player.spread[club], player.speed_of(club)
+        ground = player.ground_of(club)
+        if tee_only(player.clubs[club]) and club != last:  # (a bag of one club plays it)
+            struck = (("tee", spread),)
+        elif ground != 1.0:
+            struck = (("tee", spread), ("ground", spread * ground))
+        else:
+            struck = (("any", spread),)
         for power in (1.0, *(PART_POWERS if club == last else ())):
-            inputs = _shots(scenario, club, n, power, spread[club], speed[club])
-            options.append(Option(club, power, inputs, *_on_the_level(inputs)))
+            for where, factor in struck:
+                inputs = club_shots(scenario, club, n, power, factor, speed)
+                options.append(Option(club, power, inputs, *_on_the_level(inputs),
+                                      rough=player.rough_of(club, power), where=where))  # fmt: skip
     return options
 
 
@@ -264,16 +253,18 @@ def _batch(scenario, putting, baseline, n, job):
     """A job of ``fly`` (a task of the executor): the classified shots (kind, lie, x, y, const)
     of its club's n shots ``inputs`` struck from its states ``xy`` (their ``lies``) at its aim
     ``points``."""
-    club, inputs, xy, points, lies = job
+    club, inputs, xy, points, lies, rough = job
     out = starts.flown_from(scenario, club, inputs, xy, (points[:, 0], points[:, 1]),
-                            launch=lambda batch: _lie_launch(batch, lies, n))  # fmt: skip
+                            launch=lambda batch: lie_launch(batch, lies, n, rough))  # fmt: skip
     return _classify(scenario.hole, out, putting, baseline)
 
 
 def plan_actions(hole, lat, options, chunk_rows=256):
     """(actions, jobs) of the ``options`` (``options_of``) over the states of ``lat`` on
     ``hole``: every action (an option and an aim) with the states it fits, and the jobs that
-    fly them, (rows, action, club, inputs, aim points) of up to ``chunk_rows`` states each."""
+    fly them, (rows, action, club, inputs, aim points, rough's factor) of up to ``chunk_rows``
+    states each. An option struck from the tee (``Option.where``) fits the tee's states only,
+    one struck from the ground every other."""
     px, py = hole.pin_xy
     dist = np.hypot(px - lat.xy[:, 0], py - lat.xy[:, 1])
     shortest = min(range(len(options)), key=lambda k: options[k].total_m)
@@ -283,6 +274,8 @@ def plan_actions(hole, lat, options, chunk_rows=256):
         fits = total <= dist + np.maximum(OVERSHOOT_M, 0.1 * dist)
         if k == shortest:
             fits[:] = True
+        if option.where != "any":
+            fits &= (lat.lie == TEE_LIE) == (option.where == "tee")
         for aim in range(len(AIMS)):
             points, offered = _aims(hole, lat.xy, aim, total)
             chosen = np.flatnonzero(fits & offered)
@@ -292,23 +285,23 @@ def plan_actions(hole, lat, options, chunk_rows=256):
             actions.append(Action(option.club, option.power, aim, total))
             for c in range(0, chosen.size, chunk_rows):
                 rows = chosen[c : c + chunk_rows]
-                jobs.append((rows, a, option.club, option.inputs, points[rows]))
+                jobs.append((rows, a, option.club, option.inputs, points[rows], option.rough))
     return actions, jobs
 
 
-def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, progress=None,
-        speed=None, client=None, planned=None, executor=None):  # fmt: skip
+def fly(scenario, lat, n, player, putting=None, baseline=None, chunk_rows=256, progress=None,
+        client=None, planned=None, executor=None):  # fmt: skip
     """The Transitions of the player's ``scenario`` on its hole over the states of ``lat``,
-    each club's launch at its ``spread``, its ball speed times its ``speed`` (default 1).
+    the options of ``player`` (``options_of``).
     The jobs (``plan_actions``) are the tasks of ``executor`` (a ``mcrun.executor.Executor``;
     default one on this process's threads, or on the workers of ``client``, a
     ``dask.distributed.Client``): each job's shots go to their rows' places as it finishes,
     so that the transitions are the same, bit for bit, whatever ran them. ``planned``: the
-    (actions, jobs) of ``plan_actions`` (of ``options_of(scenario, n, spread, speed)``), when
+    (actions, jobs) of ``plan_actions`` (of ``options_of(scenario, n, player)``), when
     the caller has them. ``progress(k)``: called with the actions flown so far (the share of
     the jobs done), of ``len(actions)``."""
     if planned is None:
-        options = options_of(scenario, n, spread, speed)
+        options = options_of(scenario, n, player)
         planned = plan_actions(scenario.hole, lat, options, chunk_rows)
     actions, jobs = planned
     executor = executor or Executor(client=client)
@@ -337,8 +330,8 @@ def fly(scenario, lat, n, spread, putting=None, baseline=None, chunk_rows=256, p
     def said(finished):
         progress(len(actions) * finished // len(jobs))
 
-    items = [(club, inputs, lat.xy[rows], points, lat.lie[rows])
-             for rows, _, club, inputs, points in jobs]  # fmt: skip
+    items = [(club, inputs, lat.xy[rows], points, lat.lie[rows], rough)
+             for rows, _, club, inputs, points, rough in jobs]  # fmt: skip
     executor.map(_batch, items, shared=(scenario, putting, baseline, n), done=done,
                  progress=None if progress is None else said, name="job")  # fmt: skip
     return Transitions(
