@@ -16,6 +16,7 @@ from mcrun.executor import Executor
 from mcrun.hole.hole import load_hole
 from mcrun.play import load_player, play_hole
 from mcrun.play.calibration import (
+    AMATEUR_TARGETS,
     FAIRWAY_SHARE,
     WOOD_YD,
     calibrate_ground,
@@ -215,6 +216,24 @@ def test_the_tour_bag_s_spread_meets_the_tour_s_proximity_and_fairways():
             assert abs(proximity - proximity_target_ft(total)) < 1.5, player.clubs[club]
         else:
             assert abs(share - FAIRWAY_SHARE) < 0.03, player.clubs[club]
+
+
+@pytest.mark.parametrize("name", ["scratch", "bogey"])
+def test_the_model_amateurs_spread_meets_their_proximity_and_fairways(name):
+    """The scratch and bogey presets at their spreads and ball speeds, 4,000 shots a club:
+    approach clubs within 4 % of their proximity target (the Tour's line times
+    ``AMATEUR_TARGETS``' ratio), woods within 3 points of their fairways."""
+    player = load_player(name)
+    ratio, share = AMATEUR_TARGETS[name]
+    for club, factor in enumerate(player.spread):
+        wood = pattern(player.scenario, club, 4000, 1.0)[0] >= WOOD_YD
+        total, proximity, got, _ = pattern(player.scenario, club, 4000, factor,
+                                           player.speed_of(club))  # fmt: skip
+        if wood:
+            assert abs(got - share) < 0.03, player.clubs[club]
+        else:
+            target = ratio * proximity_target_ft(total)
+            assert abs(proximity / target - 1.0) < 0.04, player.clubs[club]
 
 
 def test_the_tour_bag_off_the_ground_and_from_the_rough_meets_its_targets():

@@ -124,6 +124,7 @@ COMMAND_MODULES = {
     "aim": "mcrun.cli.aim",
     "putt": "mcrun.cli.putt",
     "play": "mcrun.cli.play",
+    "rate": "mcrun.cli.rate",
     "warm-up": "mcrun.cli.warmup",
 }
 CORE_COMMANDS = ("shot", "bounce", "models", "turfs")

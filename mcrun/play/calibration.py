@@ -38,8 +38,9 @@ at the distance the rough's shot goes:
 
 The pattern is centred (the club's mean distance, the aim's line): a player who chooses the
 club for the distance and aims at the pin; the errors of choosing and aiming are in the
-spread. The proximity and the lateral spread grow in proportion to the spread (tested), so one
-step of the ratio finds it, and a second checks it. ``calibrate(player, n)`` returns the
+spread. The proximity and the lateral spread grow nearly in proportion to the spread (tested),
+so one step of the ratio finds it (the Tour bag's; a few for the amateurs' wider patterns),
+and a further pattern checks it. ``calibrate(player, n)`` returns the
 spreads, ``calibrate_ground`` and then ``calibrate_rough`` (on the player with those) the
 others, by bisection; ``mcrun.play.player`` holds those of the Tour bag (``TOUR_SPREAD``,
 ``TOUR_GROUND``, ``TOUR_ROUGH``, ``PITCH_ROUGH``), and ``tests/test_play.py`` checks them.
@@ -65,6 +66,7 @@ from mcrun.strokes import tour_baseline
 from mcrun.strokes.baseline import FOOT_M, LIES, YARD_M
 
 __all__ = [
+    "AMATEUR_TARGETS",
     "FAIRWAY_HALF_WIDTH_M",
     "FAIRWAY_SHARE",
     "GREEN_RADIUS_M",
@@ -94,6 +96,15 @@ SHORT_GAME_YD = 50.0
 GREEN_RADIUS_M = 13.3
 FAIRWAY_HALF_WIDTH_M = 15.0
 FAIRWAY_SHARE = 0.60
+# The model amateurs' targets (the amateurs reference): (their approach proximity over the
+# Tour's, their fairways hit). Scratch: 31 ft from 100 yd (Shot Scope), 36 ft 8 in from 150 yd
+# in the fairway (Arccos) and 30 ft farther than the Tour from 175-200 yd (Shot Scope): 1.71,
+# 1.43 and 1.82 times the Tour's line here, their mean 1.65; fairways 50 % (Arccos 51, Shot Scope
+# 50). Bogey (a Handicap Index of about 20): 65 ft from 100 yd (Shot Scope): 3.59 times the
+# Tour's, taken at every distance (an ESTIMATE: no other distance is published for 20); fairways
+# 43 % (Arccos 41, Shot Scope 45).
+AMATEUR_TARGETS = {"scratch": (1.65, 0.50), "bogey": (3.59, 0.43)}
+AMATEUR_STEPS = 4
 _OUT = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
 
 
@@ -123,25 +134,33 @@ def proximity_target_ft(distance_yd):
     return p0 + (p1 - p0) * (distance_yd - d0) / (d1 - d0)
 
 
-def calibrate(player, n=4000):
+def calibrate(player, n=4000, ratio=1.0, share=FAIRWAY_SHARE, steps=1):
     """Each club's spread (a tuple in the bag's order) and what it gives: rows (club, total_yd,
-    spread, proximity_ft, target_ft or None, fairway share, target share or None)."""
+    spread, proximity_ft, target_ft or None, fairway share, target share or None). The clubs
+    at the player's ball speeds (``Player.speed``); the approach clubs and the woods told apart
+    at full speed (``WOOD_YD``). ``ratio``: the approach proximity targets times this (a
+    player's against the Tour's); ``share``: the fairways' target (the Tour's 60 %); ``steps``:
+    of the ratio (the Tour bag's one; the amateurs', whose spreads are wider and further from
+    proportional, four)."""
     spreads, rows = [], []
     for club, name in enumerate(player.clubs):
-        total, proximity, share, _ = pattern(player.scenario, club, n, 1.0)
-        if total < WOOD_YD:
-            target = proximity_target_ft(total)
-            factor = target / proximity
-        else:
-            # A normal lateral spread puts a share 2 Phi(w / sd) - 1 within w of its centre:
-            # the spread scales sd by the ratio of the two quantiles.
-            factor = _quantile(share) / _quantile(FAIRWAY_SHARE)
+        wood = pattern(player.scenario, club, n, 1.0)[0] >= WOOD_YD
+        speed = player.speed_of(club)
+        factor = 1.0
+        for _ in range(steps):
+            total, proximity, got, _ = pattern(player.scenario, club, n, factor, speed)
+            if not wood:
+                factor *= ratio * proximity_target_ft(total) / proximity
+            else:
+                # A normal lateral spread puts a share 2 Phi(w / sd) - 1 within w of its
+                # centre: the spread scales sd by the ratio of the two quantiles.
+                factor *= _quantile(got) / _quantile(share)
         factor = round(factor, 3)
-        total, proximity, share, _ = pattern(player.scenario, club, n, factor)
+        total, proximity, got, _ = pattern(player.scenario, club, n, factor, speed)
         spreads.append(factor)
         rows.append((name, total, factor, proximity,
-                     proximity_target_ft(total) if total < WOOD_YD else None, share,
-                     FAIRWAY_SHARE if total >= WOOD_YD else None))  # fmt: skip
+                     None if wood else ratio * proximity_target_ft(total), got,
+                     share if wood else None))  # fmt: skip
     return tuple(spreads), rows
 
 

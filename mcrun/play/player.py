@@ -42,7 +42,9 @@ __all__ = [
     "LIE_LAUNCH",
     "PART_POWERS",
     "PITCH_LOFT_DEG",
+    "BOGEY_SPREAD",
     "PITCH_ROUGH",
+    "SCRATCH_SPREAD",
     "TOUR_GROUND",
     "TOUR_ROUGH",
     "TOUR_SPREAD",
@@ -91,22 +93,23 @@ TOUR_GROUND = (1.0, 1.441, 1.042) + (1.0,) * 9
 TOUR_ROUGH = (1.6, 1.643, 2.057, 2.165, 2.086, 1.986, 2.005, 1.924, 1.785, 1.588, 1.421, 1.402)
 PITCH_ROUGH = (1.433, 1.437, 1.451, 1.477, 1.514, 1.567, 1.636, 1.719, 1.814, 1.914, 2.33, 2.29,
                2.172, 2.061, 1.915, 1.962)  # fmt: skip
-# The presets: (the bag, its ball speed factor, its spread per club). Scratch and bogey are
-# ESTIMATES after the USGA Course Rating definitions (a scratch player drives 250 yd and
-# reaches 470 yd in two; a bogey player drives 200 yd and reaches 370 yd in two): the Tour
-# bag's ball speeds times 0.8875 and 0.7572 (the driver's mean total on the level 250 and 200
-# yd, its 3-wood then 228 and 183 yd). Their dispersion from the shot patterns of the
-# strokes-gained reference: a scratch player's 7-iron 26 yd wide over 20 balls (their range,
-# about 3.7 standard deviations: spread 1.34) and driver 70-75 yd wide (spread 2.013 for the
-# driver and the woods); a 15-handicap's 8-iron 43 yd wide (spread 3.344, every club: no
-# published driver pattern, so the irons' factor). Their putters: ``putting.PUTTERS``'s scratch
-# and 15-handicap (the nearest preset to a bogey player's, ESTIMATES). Off the ground and from
-# the rough they take the Tour bag's factors (ESTIMATES for them).
-_SCRATCH_WOODS = 2.013
+# The presets: (the bag, its ball speed factor, its spread per club, its putter). Scratch and
+# bogey are the USGA Course Rating's model players (a scratch player drives 250 yd and reaches
+# 470 yd in two; a bogey player drives 200 yd and reaches 370 yd in two): the Tour bag's ball
+# speeds times 0.8875 and 0.7572 (the driver's mean total on the level 250 and 200 yd, its
+# 3-wood then 228 and 183 yd). Their spreads CALIBRATED as the Tour's
+# (``calibration.calibrate`` with ``calibration.AMATEUR_TARGETS``, four steps, 4,000 shots a
+# club; tests/test_play.py): approach proximity 1.65 and 3.59 times the Tour's, fairways 50 %
+# and 43 % (the amateurs reference: Shot Scope, Arccos). Their putters:
+# ``putting.PUTTERS``'s scratch and 15-handicap (the nearest preset to a bogey player's,
+# ESTIMATES). Off the ground and from the rough they take the Tour bag's factors (ESTIMATES for
+# them).
+SCRATCH_SPREAD = (2.555, 3.08, 2.993, 2.929, 3.24, 3.11, 2.857, 2.606, 2.6, 2.77, 3.341, 3.618)
+BOGEY_SPREAD = (4.269, 5.636, 5.502, 5.259, 5.242, 5.358, 5.533, 5.664, 5.719, 5.9, 6.49, 6.956)
 PLAYERS = {
     "tour": (TOUR_BAG, 1.0, TOUR_SPREAD, "tour"),
-    "scratch": (TOUR_BAG, 0.8875, (_SCRATCH_WOODS,) * 3 + (1.34,) * 9, "scratch"),
-    "bogey": (TOUR_BAG, 0.7572, (3.344,) * 12, "15-handicap"),
+    "scratch": (TOUR_BAG, 0.8875, SCRATCH_SPREAD, "scratch"),
+    "bogey": (TOUR_BAG, 0.7572, BOGEY_SPREAD, "15-handicap"),
 }
 # The clubs struck from the tee only, by name (case aside).
 TEE_ONLY = ("driver",)

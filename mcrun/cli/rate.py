@@ -1,0 +1,204 @@
+"""``mcrun rate COURSE``: a course rated by simulating the handicap system's model players: every
+hole solved for the scratch and the bogey player, their Course and Bogey Ratings and the Slope
+Rating (``mcrun.play.rating``); a table on screen, a row per hole and player to Parquet."""
+
+import contextlib
+import sys
+from pathlib import Path
+
+from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
+from mcrun.cli.options import whole
+from mcrun.cli.play import OPTION_NAMES, _workers
+from mcrun.quantities import InputError
+from mcrun.units import parse_quantity
+
+FULL_COURSE = 18  # holes: what a Slope Rating and the length rule are of
+MARGIN_M = 60.0  # the ground kept around each hole's line (as the library's hole files)
+CELL_M = 0.5
+
+
+def holes_wanted(spec, count, where="--holes"):
+    """The hole numbers (1-based) of ``spec`` ("1-9", "1,3,10-12"; None: all ``count``)."""
+    if spec is None:
+        return list(range(1, count + 1))
+    numbers = []
+    for part in str(spec).split(","):
+        lo, _, hi = part.strip().partition("-")
+        try:
+            first, last = int(lo), int(hi or lo)
+        except ValueError:
+            raise InputError(f"{where} {spec!r}: allowed: hole numbers 1-{count} as 1-9 or "
+                             "1,3,10-12") from None  # fmt: skip
+        if not 1 <= first <= last <= count:
+            raise InputError(f"{where} {spec!r}: allowed: hole numbers 1-{count} as 1-9 or "
+                             f"1,3,10-12 (the map has {count} holes)")  # fmt: skip
+        numbers.extend(range(first, last + 1))
+    return sorted(set(numbers))
+
+
+def course_holes(path, spec=None, putting=None):
+    """The Holes of the course map ``path`` (a GeoJSON course map, as ``mcrun hole`` reads),
+    those of ``spec`` (``holes_wanted``), in order, each checked as ``mcrun play`` checks a
+    hole; a hole without a par in the map gets one by length (``rating.par_by_length``);
+    ``putting``: the holes' ``[hole.putting]`` settings (``hole.PUTTING_KEYS``: the maps of
+    their greens, for a putter other than the Tour's).
+    Returns (their numbers, the holes, the numbers whose par was taken from their length)."""
+    from mcrun.hole.hole import hole_from_table
+    from mcrun.hole.osm import read_course
+    from mcrun.play.rating import par_by_length
+    from mcrun.putting.on_hole import check_putting
+
+    path = Path(path)
+    course = read_course(path)
+    if not course.holes:
+        raise InputError(f"{path}: no golf=hole lines: a course map needs its holes' lines "
+                         "(tee to green) to be rated")  # fmt: skip
+    numbers, holes, by_length = holes_wanted(spec, len(course.holes)), [], []
+    for number in numbers:
+        table = {"map": path.name, "hole": f"#{number}", "cell_m": CELL_M, "margin_m": MARGIN_M}
+        if putting:
+            table["putting"] = dict(putting)
+        hole = hole_from_table(table, path.parent, f"{path} hole {number}")
+        if hole.par is None:
+            table["par"] = par_by_length(hole.length_m)
+            hole = hole_from_table(table, path.parent, f"{path} hole {number}")
+            by_length.append(number)
+        holes.append(check_putting(hole))
+    return numbers, holes, by_length
+
+
+def _cmd_rate(args):
+    from mcrun.play.rating import BETTER_HALF, EXPECTED, rate
+    from mcrun.run import aim
+
+    if args.output is not None:
+        destination = aim.check_output(args.output, args.force, "-o", (".parquet",), ".parquet")
+    if args.women:
+        raise InputError("--women: the women's model players (210 and 150 yd drives) are not "
+                         "built yet: rate the men's")  # fmt: skip
+    workers = _workers(args)
+    n = whole(args.n, "-n", 2)
+    plays = whole(args.plays, "--plays", 1)
+    coarse = parse_quantity(args.coarse, "length", "--coarse")
+    fine = parse_quantity(args.fine, "length", "--fine")
+    for name, value in (("--coarse", coarse), ("--fine", fine)):
+        if not 1.0 <= value <= 50.0:
+            raise InputError(f"{name} {value:g} m: allowed: 1 m to 50 m")
+    seed = None if args.seed is None else whole(args.seed, "--seed", 0)
+    putting = {}
+    if args.putts is not None:
+        putting["n"] = whole(args.putts, "--putts", 2)
+    if args.green_resolution is not None:
+        resolution = parse_quantity(args.green_resolution, "length", "--green-resolution")
+        if not 0.05 <= resolution <= 5.0:
+            raise InputError(f"--green-resolution {resolution:g} m: allowed: 0.05 m to 5 m")
+        putting["resolution_m"] = resolution
+    numbers, holes, by_length = course_holes(args.course, args.holes, putting)
+    # Every hole planned for both players before the first is flown: a bad hole or a solve too
+    # big is refused up front.
+    compile_if_needed("plane")
+    from mcrun.play import load_player, plan_play
+
+    players = [load_player("scratch"), load_player("bogey")]
+    for player in players:
+        for hole in holes:
+            plan_play(player, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine, plays=plays,
+                      workers=workers, names=OPTION_NAMES)  # fmt: skip
+    length_yd = sum(h.length_m for h in holes) / 0.9144
+    print(f"rate: {args.course}: {len(holes)} holes, {length_yd:,.0f} yd (each hole's line from "
+          f"its tee to its pin); scratch and bogey, {n:,} shots an action", file=sys.stderr,
+          flush=True)  # fmt: skip
+    if by_length:
+        print(f"rate: par by length (the map has none) for hole(s) "
+              f"{', '.join(map(str, by_length))}", file=sys.stderr, flush=True)  # fmt: skip
+    compile_if_needed("terrain")
+    from tqdm import tqdm
+
+    with contextlib.ExitStack() as stack:
+        client = None
+        if args.dask is not None:
+            from mcrun.run import distributed
+
+            cluster = stack.enter_context(distributed.local_cluster(workers))
+            client = stack.enter_context(distributed._dask().Client(cluster))
+        bar = tqdm(total=len(holes) * len(players), unit="solve", file=sys.stderr,
+                   leave=False, dynamic_ncols=True)  # fmt: skip
+        stack.callback(bar.close)
+        try:
+            rating = rate(holes, players, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
+                          plays=plays, client=client, numbers=numbers,
+                          progress=lambda *_: bar.update(1))  # fmt: skip
+        except KeyboardInterrupt:
+            raise Interrupted("nothing was written") from None
+    frame = rating.frame()
+    print(f"{'hole':>4} {'par':>3} {'yd':>5}  {'scratch':>13}  {'bogey':>13}  bogey - scratch")
+    for k, hole in enumerate(holes):
+        s, b = (rating.scores[p.name][k] for p in players)
+        print(f"{s.hole:>4} {hole.par:>3} {hole.length_m / 0.9144:>5.0f}  "
+              f"{s.expected_strokes:6.3f} +- {s.expected_strokes_se:.3f}  "
+              f"{b.expected_strokes:6.3f} +- {b.expected_strokes_se:.3f}  "
+              f"{b.expected_strokes - s.expected_strokes:+.3f}")  # fmt: skip
+    full = len(holes) == FULL_COURSE
+    for reading in (EXPECTED, BETTER_HALF):
+        cr, br = (rating.rating(p.name, reading) for p in players)
+        slope = f", Slope Rating {rating.slope(reading)}" if full else ""
+        print(f"{reading}: Course Rating {cr:.1f}, Bogey Rating {br:.1f}{slope}")
+    if full:
+        print(f"(par {sum(h.par for h in holes)}; the system's length rating: scratch "
+              f"{length_yd / 220 + 40.9:.1f}, bogey {length_yd / 160 + 50.7:.1f})")  # fmt: skip
+    else:
+        print(f"(par {sum(h.par for h in holes)}; the Slope Rating and the length rating are "
+              f"of {FULL_COURSE} holes)")  # fmt: skip
+    if args.output is not None:
+        write_all_or_nothing(lambda: write_rating(rating, frame, destination, args), None,
+                             args.force)  # fmt: skip
+        print(f"wrote {args.output}")
+    return 0
+
+
+def write_rating(rating, frame, path, args):
+    """A row per hole and player to Parquet, with the ratings and the provenance."""
+    from mcrun.play.rating import BETTER_HALF, EXPECTED
+    from mcrun.results import output
+
+    provenance = {"course": str(args.course), "holes": len(rating.holes),
+                  "players": list(rating.players), "seed": rating.seed, "n": whole(args.n, "-n", 2),
+                  "length_yd": rating.length_yd,
+                  "attribution": rating.holes[0].attribution or "", "file": "rating"}  # fmt: skip
+    for reading, key in ((EXPECTED, "expected"), (BETTER_HALF, "better_half")):
+        for player in rating.players[:2]:
+            provenance[f"{player}_rating_{key}"] = round(rating.rating(player, reading), 1)
+        if len(rating.holes) == FULL_COURSE:
+            provenance[f"slope_rating_{key}"] = rating.slope(reading)
+    with output.AtomicFile(path, force=args.force) as target:
+        output.write_table(target.tmp, frame, output.encode_provenance(provenance))
+        target.commit()
+
+
+def register(subparsers):
+    p = subparsers.add_parser(
+        "rate",
+        help="rate a course from its map: Course Rating and Slope by simulating scratch and bogey",
+        description="Rate COURSE (a GeoJSON course map with its holes' lines, as 'mcrun hole' "
+        "reads) by solving every hole for the handicap system's model players, scratch and "
+        "bogey (each hole's line from its first point, the back tee, to its pin): their "
+        "expected strokes per hole, the Course and Bogey Ratings as the expected score and as "
+        "the better half's mean of their rounds, and the Slope Rating.",
+        epilog="example: mcrun rate scenarios/holes/riverside-zagreb.osm.geojson --holes 1-3",
+        allow_abbrev=False,
+    )
+    p.add_argument("course", metavar="COURSE")
+    p.add_argument("--holes", metavar="SPEC", help="the holes to rate: 1-9, 1,3,10-12 (all)")
+    p.add_argument("-n", default="100", metavar="N", help="shots of each action (100)")
+    p.add_argument("--seed", metavar="S", help="random seed (the players')")
+    p.add_argument("--coarse", default="8m", help="states' spacing (8m)")
+    p.add_argument("--fine", default="3m", help="near the pin (3m)")
+    p.add_argument("--plays", default="4000", help="plays of each hole's policy (4000)")
+    p.add_argument("--putts", metavar="N", help="putts a read of the greens' maps (200)")
+    p.add_argument("--green-resolution", metavar="M", help="the greens' maps' spacing (0.5m)")
+    p.add_argument("--women", action="store_true", help="the women's model players (not yet)")
+    p.add_argument("--dask", choices=["local"], help="fly the shots on a local Dask cluster")
+    p.add_argument("--workers", metavar="W", help="workers of --dask local (the cores)")
+    p.add_argument("-o", "--output", metavar="OUT.parquet", help="a row per hole and player")
+    p.add_argument("--force", action="store_true", help="replace an existing output")
+    p.set_defaults(func=_cmd_rate)

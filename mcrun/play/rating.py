@@ -1,0 +1,179 @@
+"""A course rated by simulating the handicap system's model players: each hole solved for the
+scratch and the bogey player (``mcrun.play``), and their Course Rating, Bogey Rating and Slope
+Rating by the system's definitions (the course-rating reference):
+
+- Course Rating (CR) and Bogey Rating (BR): the model player's score on the course, to one
+  decimal, in two readings: the **expected** score (the sum of the holes' expected strokes from
+  the tee; the WHS text's "expected score of a scratch player") and the **better half**, the
+  mean of the better half of the player's 18-hole scores (what the rating measures in practice:
+  a handicap takes the best 8 of 20 differentials). The rounds are drawn from each hole's plays
+  of its policy (``PlayResult.scores``), each hole's shuffled by a seed of its own so that the
+  holes are independent.
+- Slope Rating: 5.381 x (BR - CR) for men, 4.24 x (BR - CR) for women, of the ratings at one
+  decimal, rounded to a whole number and held within 55-155 (113: a course of standard relative
+  difficulty).
+
+A hole's par, where its map does not give one, is taken from its length (``par_by_length``:
+the USGA's guide for men, an ESTIMATE where its ranges overlap); a rating does not use it.
+"""
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mcrun.strokes.baseline import YARD_M
+
+__all__ = [
+    "BETTER_HALF",
+    "EXPECTED",
+    "SLOPE_FACTOR",
+    "SLOPE_RANGE",
+    "CourseRating",
+    "HoleScore",
+    "par_by_length",
+    "rate",
+    "slope_rating",
+]
+
+SLOPE_FACTOR = {"men": 5.381, "women": 4.24}
+SLOPE_RANGE = (55, 155)
+EXPECTED, BETTER_HALF = "expected", "better half"
+ROUNDS = 10_000  # 18-hole rounds drawn from the holes' plays
+# Par by length for men (yd): a hole up to PAR_3_YD is a par 3, up to PAR_4_YD a par 4 (the
+# USGA's guide: par 3 up to 260 yd, par 4 240-490, par 5 450-710; the overlaps split).
+PAR_3_YD, PAR_4_YD = 250.0, 470.0
+
+
+@dataclass(frozen=True)
+class HoleScore:
+    """What a hole's solve for one player leaves (the solve itself is let go: it holds every
+    shot): the expected strokes from the tee and their standard error, the best tee shot, the
+    plays' strokes and the solve's size and time."""
+
+    hole: int  # position in the course, from 1
+    player: str
+    expected_strokes: float
+    expected_strokes_se: float
+    best: str
+    scores: np.ndarray
+    shots: int
+    seconds: float
+
+    @classmethod
+    def of(cls, hole, result):
+        """The HoleScore of hole number ``hole``'s ``PlayResult``."""
+        tr = result.transitions
+        return cls(hole, result.player.name, result.tee_value, result.tee_se,
+                   result.tee_rows()[0][1], np.asarray(result.scores), int(tr.shots_flown),
+                   float(result.seconds))  # fmt: skip
+
+
+@dataclass
+class CourseRating:
+    """The holes (``mcrun.hole.Hole``s, in the course's order) and each player's
+    ``HoleScore``s; ``rounds``: the 18-hole (or however many holes) totals drawn from them."""
+
+    holes: list
+    players: tuple
+    scores: dict  # player -> [HoleScore, one per hole]
+    seed: int
+    women: bool = False
+    rounds: dict = field(default_factory=dict)  # player -> totals
+
+    def __post_init__(self):
+        for player in self.players:
+            self.rounds[player] = course_rounds(self.scores[player], ROUNDS, self.seed)
+
+    @property
+    def length_yd(self):
+        return sum(h.length_m for h in self.holes) / YARD_M
+
+    def rating(self, player, reading=EXPECTED):
+        """The player's rating, unrounded: the expected score or the better half's mean."""
+        if reading == EXPECTED:
+            return float(sum(s.expected_strokes for s in self.scores[player]))
+        totals = np.sort(self.rounds[player])
+        return float(totals[: len(totals) // 2].mean())
+
+    def rating_se(self, player):
+        """The standard error of the expected score (the holes' added as independent)."""
+        return math.sqrt(sum(s.expected_strokes_se**2 for s in self.scores[player]))
+
+    def slope(self, reading=EXPECTED):
+        """The Slope Rating of the first two players' ratings (scratch, bogey) in ``reading``."""
+        scratch, bogey = self.players[:2]
+        return slope_rating(round(self.rating(scratch, reading), 1),
+                            round(self.rating(bogey, reading), 1), self.women)  # fmt: skip
+
+    def frame(self):
+        """One row per hole and player: hole, par, length_m, player, expected_strokes and its
+        _se, best, the plays' mean and their share of each stroke count (``strokes_K``)."""
+        import pandas as pd
+
+        rows = []
+        top = max(int(s.scores.max()) for p in self.players for s in self.scores[p])
+        for player in self.players:
+            for s, hole in zip(self.scores[player], self.holes, strict=True):
+                counts = np.bincount(s.scores.astype(np.int64), minlength=top + 1)
+                row = {"hole": s.hole, "par": hole.par, "length_m": hole.length_m,
+                       "player": player, "expected_strokes": s.expected_strokes,
+                       "expected_strokes_se": s.expected_strokes_se, "best": s.best,
+                       "plays_mean_strokes": float(s.scores.mean()), "shots": s.shots,
+                       "seconds": s.seconds}  # fmt: skip
+                for k in range(1, top + 1):
+                    row[f"strokes_{k}"] = counts[k] / len(s.scores)
+                rows.append(row)
+        return pd.DataFrame(rows)
+
+
+def course_rounds(scores, rounds, seed):
+    """``rounds`` totals over the holes of ``scores`` (HoleScores): round r takes each hole's
+    play drawn by that hole's own shuffle (seeded by ``seed`` and the hole's number)."""
+    total = np.zeros(rounds)
+    for s in scores:
+        rng = np.random.default_rng([seed, s.hole])
+        total += rng.choice(s.scores, size=rounds, replace=True)
+    return total
+
+
+def slope_rating(course_rating, bogey_rating, women=False):
+    """The Slope Rating of a Course and a Bogey Rating: 5.381 (men) or 4.24 (women) times
+    their difference, rounded, within ``SLOPE_RANGE``."""
+    value = round(SLOPE_FACTOR["women" if women else "men"] * (bogey_rating - course_rating))
+    return int(min(max(value, SLOPE_RANGE[0]), SLOPE_RANGE[1]))
+
+
+def par_by_length(length_m):
+    """A man's par of a hole ``length_m`` long (``PAR_3_YD``, ``PAR_4_YD``)."""
+    yd = length_m / YARD_M
+    return 3 if yd <= PAR_3_YD else 4 if yd <= PAR_4_YD else 5
+
+
+def rate(holes, players=("scratch", "bogey"), n=100, seed=None, coarse_m=None, fine_m=None,
+         plays=4000, women=False, progress=None, client=None, numbers=None):  # fmt: skip
+    """The ``CourseRating`` of ``holes`` (``mcrun.hole.Hole``s, in order) for ``players``
+    (presets or Players; the first the scratch player, the second the bogey player): each hole
+    solved for each player (``play.play_hole``: ``n`` shots an action, the states' spacings,
+    ``plays`` plays of each policy), one after another, the shots on ``client``'s workers where
+    given; ``numbers``: the holes' numbers in their course (default 1, 2, ...).
+    ``progress(player, hole_number, result)``: called after each solve."""
+    from mcrun.play import DEFAULT_N, load_player, play_hole
+    from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M
+
+    loaded = [load_player(p) if isinstance(p, str) else p for p in players]
+    scores = {}
+    seed_used = None
+    for player in loaded:
+        scores[player.name] = []
+        for number, hole in zip(numbers or range(1, len(holes) + 1), holes, strict=True):
+            result = play_hole(player, hole, n=n or DEFAULT_N, seed=seed,
+                               coarse_m=coarse_m or DEFAULT_COARSE_M,
+                               fine_m=fine_m or DEFAULT_FINE_M, plays=plays,
+                               client=client)  # fmt: skip
+            seed_used = result.seed
+            scores[player.name].append(HoleScore.of(number, result))
+            if progress is not None:
+                progress(player.name, number, result)
+            del result
+    return CourseRating(list(holes), tuple(p.name for p in loaded), scores, seed_used, women)
