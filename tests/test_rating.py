@@ -90,16 +90,17 @@ def test_an_open_course_is_the_length_and_pars_it_was_made_of(tmp_path):
 @pytest.fixture(scope="module")
 def rated(tmp_path_factory):
     """``mcrun rate`` on a made-up course of a par 3 and a par 4 (its second hole with water
-    from 150 to 175 m), small settings."""
+    from 150 to 185 m), small settings, what the obstacles cost and the picture."""
     folder = tmp_path_factory.mktemp("rate")
     course = folder / "open.geojson"
-    course.write_text(json.dumps(open_course(540, pars=(3, 4), name="two holes")))
+    course.write_text(json.dumps(open_course(540, pars=(3, 4), water={2: (150.0, 185.0)})))
     out = folder / "rating.parquet"
     small = ["-n", "6", "--plays", "300", "--coarse", "20m", "--fine", "6m", "--putts", "8",
              "--green-resolution", "2m"]  # fmt: skip
     printed = io.StringIO()
     with contextlib.redirect_stdout(printed):
-        code = main(["rate", str(course), *small, "-o", str(out)])
+        code = main(["rate", str(course), *small, "--obstacles", "--plot",
+                     str(folder / "rating.png"), "-o", str(out)])  # fmt: skip
     return code, out, course, printed.getvalue()
 
 
@@ -119,6 +120,10 @@ def test_mcrun_rate_rates_a_course_and_writes_a_row_per_hole_and_player(rated):
     cr, br = meta["scratch_rating_expected"], meta["bogey_rating_expected"]
     assert cr == round(s["expected_strokes"].sum(), 1) and br > cr
     assert "slope_rating_expected" not in meta  # a Slope Rating is of 18 holes
+    # the first hole has no obstacles: the same solve again; the water costs the bogey player
+    assert (s.loc[1, "obstacles_strokes"], b.loc[1, "obstacles_strokes"]) == (0.0, 0.0)
+    assert b.loc[2, "obstacles_strokes"] > 0.1
+    assert (out.parent / "rating.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert f"expected: Course Rating {cr:.1f}, Bogey Rating {br:.1f}\n" in printed
 
 

@@ -73,6 +73,11 @@ def _cmd_rate(args):
 
     if args.output is not None:
         destination = aim.check_output(args.output, args.force, "-o", (".parquet",), ".parquet")
+    if args.plot is not None:
+        from mcrun.report import style
+
+        style.require_matplotlib("rate --plot")
+        aim.check_output(args.plot, args.force, "--plot", (".png",), ".png")
     if args.women:
         raise InputError("--women: the women's model players (210 and 150 yd drives) are not "
                          "built yet: rate the men's")  # fmt: skip
@@ -121,23 +126,28 @@ def _cmd_rate(args):
 
             cluster = stack.enter_context(distributed.local_cluster(workers))
             client = stack.enter_context(distributed._dask().Client(cluster))
-        bar = tqdm(total=len(holes) * len(players), unit="solve", file=sys.stderr,
+        solves = len(holes) * len(players) * (2 if args.obstacles else 1)
+        bar = tqdm(total=solves, unit="solve", file=sys.stderr,
                    leave=False, dynamic_ncols=True)  # fmt: skip
         stack.callback(bar.close)
         try:
             rating = rate(holes, players, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
-                          plays=plays, client=client, numbers=numbers,
+                          plays=plays, client=client, numbers=numbers, obstacles=args.obstacles,
                           progress=lambda *_: bar.update(1))  # fmt: skip
         except KeyboardInterrupt:
             raise Interrupted("nothing was written") from None
     frame = rating.frame()
-    print(f"{'hole':>4} {'par':>3} {'yd':>5}  {'scratch':>13}  {'bogey':>13}  bogey - scratch")
+    costs = "  obstacles cost: scratch, bogey" if args.obstacles else ""
+    print(f"{'hole':>4} {'par':>3} {'yd':>5}  {'scratch':>13}  {'bogey':>13}  bogey - scratch"
+          f"{costs}")  # fmt: skip
     for k, hole in enumerate(holes):
         s, b = (rating.scores[p.name][k] for p in players)
+        cost = (f"  {s.obstacles_strokes:+.3f}, {b.obstacles_strokes:+.3f}" if args.obstacles
+                else "")  # fmt: skip
         print(f"{s.hole:>4} {hole.par:>3} {hole.length_m / 0.9144:>5.0f}  "
               f"{s.expected_strokes:6.3f} +- {s.expected_strokes_se:.3f}  "
               f"{b.expected_strokes:6.3f} +- {b.expected_strokes_se:.3f}  "
-              f"{b.expected_strokes - s.expected_strokes:+.3f}")  # fmt: skip
+              f"{b.expected_strokes - s.expected_strokes:+15.3f}{cost}")  # fmt: skip
     full = len(holes) == FULL_COURSE
     for reading in (EXPECTED, BETTER_HALF):
         cr, br = (rating.rating(p.name, reading) for p in players)
@@ -149,10 +159,22 @@ def _cmd_rate(args):
     else:
         print(f"(par {sum(h.par for h in holes)}; the Slope Rating and the length rating are "
               f"of {FULL_COURSE} holes)")  # fmt: skip
-    if args.output is not None:
-        write_all_or_nothing(lambda: write_rating(rating, frame, destination, args), None,
-                             args.force)  # fmt: skip
-        print(f"wrote {args.output}")
+    if args.output is None and args.plot is None:
+        return 0
+    picture = None
+    if args.plot is not None:
+        from mcrun.report import rating_plot
+
+        title = f"{Path(args.course).name}: {len(holes)} holes, {length_yd:,.0f} yd"
+        picture = (args.plot, lambda: rating_plot.rating_figure(rating, title), rating_plot.DPI)
+    write_all_or_nothing(
+        None if args.output is None else lambda: write_rating(rating, frame, destination, args),
+        picture,
+        args.force,
+    )
+    for path in (args.output, args.plot):
+        if path is not None:
+            print(f"wrote {path}")
     return 0
 
 
@@ -196,9 +218,13 @@ def register(subparsers):
     p.add_argument("--plays", default="4000", help="plays of each hole's policy (4000)")
     p.add_argument("--putts", metavar="N", help="putts a read of the greens' maps (200)")
     p.add_argument("--green-resolution", metavar="M", help="the greens' maps' spacing (0.5m)")
+    p.add_argument("--obstacles", action="store_true",
+                   help="solve each hole again without its bunkers, penalty areas and out of "
+                   "bounds: what they cost each player (twice the solves)")  # fmt: skip
     p.add_argument("--women", action="store_true", help="the women's model players (not yet)")
     p.add_argument("--dask", choices=["local"], help="fly the shots on a local Dask cluster")
     p.add_argument("--workers", metavar="W", help="workers of --dask local (the cores)")
     p.add_argument("-o", "--output", metavar="OUT.parquet", help="a row per hole and player")
+    p.add_argument("--plot", metavar="PNG", help="each hole's strokes over par for both players")
     p.add_argument("--force", action="store_true", help="replace an existing output")
     p.set_defaults(func=_cmd_rate)

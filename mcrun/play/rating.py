@@ -13,10 +13,15 @@ Rating by the system's definitions (the course-rating reference):
   decimal, rounded to a whole number and held within 55-155 (113: a course of standard relative
   difficulty).
 
+What a hole's obstacles cost a player (``rate(..., obstacles=True)``): its expected strokes
+less those of the same hole without them (``without_obstacles``: its bunkers and penalty areas
+taken off the map, the ground under them what surrounds them, and no out of bounds).
+
 A hole's par, where its map does not give one, is taken from its length (``par_by_length``:
 the USGA's guide for men, an ESTIMATE where its ranges overlap); a rating does not use it.
 """
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -34,6 +39,7 @@ __all__ = [
     "par_by_length",
     "rate",
     "slope_rating",
+    "without_obstacles",
 ]
 
 SLOPE_FACTOR = {"men": 5.381, "women": 4.24}
@@ -43,6 +49,7 @@ ROUNDS = 10_000  # 18-hole rounds drawn from the holes' plays
 # Par by length for men (yd): a hole up to PAR_3_YD is a par 3, up to PAR_4_YD a par 4 (the
 # USGA's guide: par 3 up to 260 yd, par 4 240-490, par 5 450-710; the overlaps split).
 PAR_3_YD, PAR_4_YD = 250.0, 470.0
+OBSTACLES = ("bunker", "water", "water_yellow")  # zone kinds taken off (and out of bounds)
 
 
 @dataclass(frozen=True)
@@ -59,6 +66,7 @@ class HoleScore:
     scores: np.ndarray
     shots: int
     seconds: float
+    obstacles_strokes: float = math.nan  # less the hole without its obstacles (NaN: not asked)
 
     @classmethod
     def of(cls, hole, result):
@@ -119,7 +127,8 @@ class CourseRating:
                 row = {"hole": s.hole, "par": hole.par, "length_m": hole.length_m,
                        "player": player, "expected_strokes": s.expected_strokes,
                        "expected_strokes_se": s.expected_strokes_se, "best": s.best,
-                       "plays_mean_strokes": float(s.scores.mean()), "shots": s.shots,
+                       "plays_mean_strokes": float(s.scores.mean()),
+                       "obstacles_strokes": s.obstacles_strokes, "shots": s.shots,
                        "seconds": s.seconds}  # fmt: skip
                 for k in range(1, top + 1):
                     row[f"strokes_{k}"] = counts[k] / len(s.scores)
@@ -144,6 +153,13 @@ def slope_rating(course_rating, bogey_rating, women=False):
     return int(min(max(value, SLOPE_RANGE[0]), SLOPE_RANGE[1]))
 
 
+def without_obstacles(hole):
+    """``hole`` without its bunkers and penalty areas (``OBSTACLES``: their polygons taken off
+    the map, so that the ground under them is what surrounds them) and its out of bounds."""
+    zones = [(kind, polygon) for kind, polygon in hole.zones if kind not in OBSTACLES]
+    return dataclasses.replace(hole, zones=zones, boundary=[], _terrain=None)
+
+
 def par_by_length(length_m):
     """A man's par of a hole ``length_m`` long (``PAR_3_YD``, ``PAR_4_YD``)."""
     yd = length_m / YARD_M
@@ -151,29 +167,40 @@ def par_by_length(length_m):
 
 
 def rate(holes, players=("scratch", "bogey"), n=100, seed=None, coarse_m=None, fine_m=None,
-         plays=4000, women=False, progress=None, client=None, numbers=None):  # fmt: skip
+         plays=4000, women=False, progress=None, client=None, numbers=None,
+         obstacles=False):  # fmt: skip
     """The ``CourseRating`` of ``holes`` (``mcrun.hole.Hole``s, in order) for ``players``
     (presets or Players; the first the scratch player, the second the bogey player): each hole
     solved for each player (``play.play_hole``: ``n`` shots an action, the states' spacings,
     ``plays`` plays of each policy), one after another, the shots on ``client``'s workers where
-    given; ``numbers``: the holes' numbers in their course (default 1, 2, ...).
+    given; ``numbers``: the holes' numbers in their course (default 1, 2, ...);
+    ``obstacles``: each hole solved again without its obstacles (``without_obstacles``) for
+    what they cost each player.
     ``progress(player, hole_number, result)``: called after each solve."""
     from mcrun.play import DEFAULT_N, load_player, play_hole
     from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M
 
     loaded = [load_player(p) if isinstance(p, str) else p for p in players]
+    settings = dict(n=n or DEFAULT_N, seed=seed, coarse_m=coarse_m or DEFAULT_COARSE_M,
+                    fine_m=fine_m or DEFAULT_FINE_M, plays=plays, client=client)  # fmt: skip
     scores = {}
     seed_used = None
     for player in loaded:
         scores[player.name] = []
         for number, hole in zip(numbers or range(1, len(holes) + 1), holes, strict=True):
-            result = play_hole(player, hole, n=n or DEFAULT_N, seed=seed,
-                               coarse_m=coarse_m or DEFAULT_COARSE_M,
-                               fine_m=fine_m or DEFAULT_FINE_M, plays=plays,
-                               client=client)  # fmt: skip
+            result = play_hole(player, hole, **settings)
             seed_used = result.seed
-            scores[player.name].append(HoleScore.of(number, result))
+            score = HoleScore.of(number, result)
             if progress is not None:
                 progress(player.name, number, result)
             del result
+            if obstacles:
+                clear = play_hole(player, without_obstacles(hole), **settings)
+                score = dataclasses.replace(
+                    score, obstacles_strokes=score.expected_strokes - clear.tee_value
+                )
+                if progress is not None:
+                    progress(player.name, number, clear)
+                del clear
+            scores[player.name].append(score)
     return CourseRating(list(holes), tuple(p.name for p in loaded), scores, seed_used, women)
