@@ -131,7 +131,6 @@ def test_mcrun_rate_rates_a_course_and_writes_a_row_per_hole_and_player(rated):
     ("args", "message"),
     [
         (["--holes", "3"], "--holes '3': allowed: hole numbers 1-2"),
-        (["--women"], "--women: the women's model players"),
         (["-n", "1"], "-n '1': allowed: a whole number of at least 2"),
         (["--putts", "0"], "--putts '0'"),
     ],
@@ -176,3 +175,30 @@ def test_water_where_the_bogey_player_lands_costs_him_more_and_wider_fairways_co
     assert wet_bogey - open_bogey > wet_scratch - open_scratch + 0.05
     assert wet_bogey > open_bogey
     assert wide_scratch < open_scratch and wide_bogey < open_bogey
+
+
+def test_a_scorecard_moves_each_tee_up_its_line(tmp_path, capsys):
+    """A scorecard (hole,yards) puts each tee that far from the end of its hole's line; a tee
+    set longer than the line, a hole missing from it, a bad row: one line, exit 2."""
+    course = tmp_path / "open.geojson"
+    course.write_text(json.dumps(open_course(540, pars=(3, 4))))
+    card = tmp_path / "white.csv"
+    card.write_text("hole,yards\n1,180\n2,300\n")
+    numbers, holes, _ = course_holes(course, scorecard=card)
+    assert numbers == [1, 2]
+    assert [h.length_m / YARD_M for h in holes] == pytest.approx([180.0, 300.0], abs=0.5)
+    assert [h.par for h in holes] == [3, 4]
+    for text, message in [
+        ("hole,yards\n1,180\n2,400\n", "hole 2: 400 yd is longer than the hole's line"),
+        ("hole,yards\n1,180\n", "no row for hole 2"),
+        ("hole,yards\n1,180\n3,300\n", "row 3: hole 3: allowed: each hole of the map once"),
+        ("hole,yards\n1,far\n", "row 2: hole '1', yards 'far'"),
+        ("hole,length\n1,180\n", "the columns hole,yards"),
+    ]:
+        card.write_text(text)
+        out = tmp_path / "r.parquet"
+        code = main(["rate", str(course), "--holes", "1-2", "--scorecard", str(card), "-o",
+                     str(out)])  # fmt: skip
+        err = capsys.readouterr().err
+        assert code == 2 and message in err and len(err.strip().splitlines()) == 1, err
+        assert not out.exists()

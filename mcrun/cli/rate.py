@@ -6,6 +6,8 @@ import contextlib
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
 from mcrun.cli.options import whole
 from mcrun.cli.play import OPTION_NAMES, _workers
@@ -36,12 +38,70 @@ def holes_wanted(spec, count, where="--holes"):
     return sorted(set(numbers))
 
 
-def course_holes(path, spec=None, putting=None):
+def read_scorecard(path, count):
+    """{hole number: yards} of a scorecard CSV (``hole,yards``: a row per hole, its number the
+    hole's position in the map, 1-``count``, its length in yards along its line of play);
+    InputError naming the file, the row and the field."""
+    import csv
+
+    path = Path(path)
+    try:
+        with path.open(newline="", encoding="utf-8-sig") as f:
+            rows = list(csv.DictReader(f))
+            header = rows[0].keys() if rows else None
+    except OSError as err:
+        raise InputError(f"--scorecard {path}: {err.strerror}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"--scorecard {path}: not a text file: a CSV of hole,yards") from None
+    if not rows or set(header) != {"hole", "yards"}:
+        raise InputError(f"{path}: a scorecard is a CSV with the columns hole,yards and a row "
+                         "per hole")  # fmt: skip
+    yards = {}
+    for k, row in enumerate(rows, start=2):
+        try:
+            hole, length = int(row["hole"]), float(row["yards"])
+        except (TypeError, ValueError):
+            raise InputError(f"{path} row {k}: hole {row['hole']!r}, yards {row['yards']!r}: "
+                             "allowed: a hole number and a length in yards") from None  # fmt: skip
+        if not 1 <= hole <= count or hole in yards:
+            raise InputError(f"{path} row {k}: hole {hole}: allowed: each hole of the map once, "
+                             f"1-{count}")  # fmt: skip
+        if not 50.0 <= length <= 800.0:
+            raise InputError(f"{path} row {k}: yards {length:g}: allowed: 50 to 800")
+        yards[hole] = length
+    return yards
+
+
+def _tee_at(line, yards, where):
+    """The (lon, lat) of the point of a hole's ``line`` (a ``HoleLine``) ``yards`` before its
+    end along it; InputError where the line is shorter."""
+    from mcrun.hole.geo import Frame
+
+    frame = Frame(*line.lonlat[0], 0.0)
+    x, y = frame.to_xy(line.lonlat[:, 0], line.lonlat[:, 1])
+    xy = np.column_stack([x, y])
+    along = np.r_[0.0, np.cumsum(np.hypot(*np.diff(xy, axis=0).T))]
+    back = along[-1] - yards * 0.9144
+    if back < -1.0:
+        raise InputError(f"{where}: {yards:g} yd is longer than the hole's line "
+                         f"({along[-1] / 0.9144:.0f} yd along it from its first point): a tee "
+                         "set on the scorecard must lie on the hole's line")  # fmt: skip
+    back = max(back, 0.0)
+    k = min(int(np.searchsorted(along, back, side="right")) - 1, len(along) - 2)
+    t = (back - along[k]) / (along[k + 1] - along[k])
+    point = xy[k] + t * (xy[k + 1] - xy[k])
+    lon, lat = frame.to_lonlat(point[0], point[1])
+    return [float(lon), float(lat)]
+
+
+def course_holes(path, spec=None, putting=None, scorecard=None):
     """The Holes of the course map ``path`` (a GeoJSON course map, as ``mcrun hole`` reads),
     those of ``spec`` (``holes_wanted``), in order, each checked as ``mcrun play`` checks a
-    hole; a hole without a par in the map gets one by length (``rating.par_by_length``);
-    ``putting``: the holes' ``[hole.putting]`` settings (``hole.PUTTING_KEYS``: the maps of
-    their greens, for a putter other than the Tour's).
+    hole; a hole without a par in the map gets one by its line's length
+    (``rating.par_by_length``); ``putting``: the holes' ``[hole.putting]`` settings
+    (``hole.PUTTING_KEYS``: the maps of their greens, for a putter other than the Tour's);
+    ``scorecard``: a CSV of a tee set (``read_scorecard``): each hole's tee that far from the
+    end of its line, along it (the holes on it, where ``spec`` is None).
     Returns (their numbers, the holes, the numbers whose par was taken from their length)."""
     from mcrun.hole.hole import hole_from_table
     from mcrun.hole.osm import read_course
@@ -53,16 +113,30 @@ def course_holes(path, spec=None, putting=None):
     if not course.holes:
         raise InputError(f"{path}: no golf=hole lines: a course map needs its holes' lines "
                          "(tee to green) to be rated")  # fmt: skip
-    numbers, holes, by_length = holes_wanted(spec, len(course.holes)), [], []
+    yards = None if scorecard is None else read_scorecard(scorecard, len(course.holes))
+    numbers = holes_wanted(spec, len(course.holes))
+    if yards is not None:
+        if spec is None:
+            numbers = sorted(yards)
+        missing = [k for k in numbers if k not in yards]
+        if missing:
+            raise InputError(f"{scorecard}: no row for hole {missing[0]}: the scorecard must "
+                             "give every hole rated")  # fmt: skip
+    holes, by_length = [], []
     for number in numbers:
+        where = f"{path} hole {number}"
         table = {"map": path.name, "hole": f"#{number}", "cell_m": CELL_M, "margin_m": MARGIN_M}
         if putting:
             table["putting"] = dict(putting)
-        hole = hole_from_table(table, path.parent, f"{path} hole {number}")
+        hole = hole_from_table(table, path.parent, where)
         if hole.par is None:
             table["par"] = par_by_length(hole.length_m)
-            hole = hole_from_table(table, path.parent, f"{path} hole {number}")
             by_length.append(number)
+        if yards is not None:
+            table["tee"] = _tee_at(course.hole(f"#{number}"), yards[number],
+                                   f"{scorecard} hole {number}")  # fmt: skip
+        if "par" in table or "tee" in table:
+            hole = hole_from_table(table, path.parent, where)
         holes.append(check_putting(hole))
     return numbers, holes, by_length
 
@@ -78,9 +152,6 @@ def _cmd_rate(args):
 
         style.require_matplotlib("rate --plot")
         aim.check_output(args.plot, args.force, "--plot", (".png",), ".png")
-    if args.women:
-        raise InputError("--women: the women's model players (210 and 150 yd drives) are not "
-                         "built yet: rate the men's")  # fmt: skip
     workers = _workers(args)
     n = whole(args.n, "-n", 2)
     plays = whole(args.plays, "--plays", 1)
@@ -98,7 +169,7 @@ def _cmd_rate(args):
         if not 0.05 <= resolution <= 5.0:
             raise InputError(f"--green-resolution {resolution:g} m: allowed: 0.05 m to 5 m")
         putting["resolution_m"] = resolution
-    numbers, holes, by_length = course_holes(args.course, args.holes, putting)
+    numbers, holes, by_length = course_holes(args.course, args.holes, putting, args.scorecard)
     # Every hole planned for both players before the first is flown: a bad hole or a solve too
     # big is refused up front.
     compile_if_needed("plane")
@@ -110,8 +181,9 @@ def _cmd_rate(args):
             plan_play(player, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine, plays=plays,
                       workers=workers, names=OPTION_NAMES)  # fmt: skip
     length_yd = sum(h.length_m for h in holes) / 0.9144
-    print(f"rate: {args.course}: {len(holes)} holes, {length_yd:,.0f} yd (each hole's line from "
-          f"its tee to its pin); scratch and bogey, {n:,} shots an action", file=sys.stderr,
+    tees = "the back tees" if args.scorecard is None else f"the tees of {args.scorecard}"
+    print(f"rate: {args.course}: {len(holes)} holes, {length_yd:,.0f} yd from {tees} (tee to "
+          f"pin); scratch and bogey, {n:,} shots an action", file=sys.stderr,
           flush=True)  # fmt: skip
     if by_length:
         print(f"rate: par by length (the map has none) for hole(s) "
@@ -184,6 +256,7 @@ def write_rating(rating, frame, path, args):
     from mcrun.results import output
 
     provenance = {"course": str(args.course), "holes": len(rating.holes),
+                  "scorecard": None if args.scorecard is None else str(args.scorecard),
                   "players": list(rating.players), "seed": rating.seed, "n": whole(args.n, "-n", 2),
                   "length_yd": rating.length_yd,
                   "attribution": rating.holes[0].attribution or "", "file": "rating"}  # fmt: skip
@@ -211,6 +284,8 @@ def register(subparsers):
     )
     p.add_argument("course", metavar="COURSE")
     p.add_argument("--holes", metavar="SPEC", help="the holes to rate: 1-9, 1,3,10-12 (all)")
+    p.add_argument("--scorecard", metavar="CSV", help="a tee set: hole,yards (the back tees: "
+                   "each hole line's first point)")  # fmt: skip
     p.add_argument("-n", default="100", metavar="N", help="shots of each action (100)")
     p.add_argument("--seed", metavar="S", help="random seed (the players')")
     p.add_argument("--coarse", default="8m", help="states' spacing (8m)")
@@ -221,7 +296,6 @@ def register(subparsers):
     p.add_argument("--obstacles", action="store_true",
                    help="solve each hole again without its bunkers, penalty areas and out of "
                    "bounds: what they cost each player (twice the solves)")  # fmt: skip
-    p.add_argument("--women", action="store_true", help="the women's model players (not yet)")
     p.add_argument("--dask", choices=["local"], help="fly the shots on a local Dask cluster")
     p.add_argument("--workers", metavar="W", help="workers of --dask local (the cores)")
     p.add_argument("-o", "--output", metavar="OUT.parquet", help="a row per hole and player")
