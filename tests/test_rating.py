@@ -202,3 +202,31 @@ def test_a_scorecard_moves_each_tee_up_its_line(tmp_path, capsys):
         err = capsys.readouterr().err
         assert code == 2 and message in err and len(err.strip().splitlines()) == 1, err
         assert not out.exists()
+
+
+def test_a_rating_on_dask_is_the_local_rating(tmp_path):
+    """Each solve's shots flown on a local Dask cluster of two workers: the same rating, bit
+    for bit (expected strokes, their errors, every play)."""
+    from distributed import Client
+
+    from mcrun.play.rating import rate
+    from mcrun.run import distributed
+
+    path = tmp_path / "open.geojson"
+    path.write_text(json.dumps(open_course(540, pars=(3, 4))))
+    _, holes, _ = course_holes(path, putting={"n": 8, "resolution_m": 2.0})
+    settings = dict(n=6, seed=5, coarse_m=20.0, fine_m=8.0, plays=100)
+    local = rate(holes, **settings)
+    cluster = distributed.local_cluster(2)
+    try:
+        with Client(cluster) as client:
+            there = rate(holes, client=client, **settings)
+    finally:
+        cluster.close()
+    for player in local.players:
+        for a, b in zip(local.scores[player], there.scores[player], strict=True):
+            assert (a.expected_strokes, a.expected_strokes_se) == (
+                b.expected_strokes,
+                b.expected_strokes_se,
+            )
+            np.testing.assert_array_equal(a.scores, b.scores)
