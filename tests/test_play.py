@@ -404,20 +404,13 @@ def test_out_of_bounds_on_the_right_moves_the_tee_shot_left(tmp_path):
                                                       ("bogey", 200.0, 370.0)])  # fmt: skip
 def test_the_scratch_and_bogey_presets_follow_the_usga_definitions(name, drive_yd, reach_yd):
     """USGA Course Rating: a scratch player drives 250 yd and reaches 470 yd in two, a bogey
-    player 200 and 370. The presets' drive on the level within 3 yd of it, and drive plus
-    3-wood at least the reach; the scratch 7-iron's 20-ball width (3.735 standard deviations)
-    within 2 yd of 26 yd, its driver's within 4 yd of 72.5 (the reference's patterns)."""
+    player 200 and 370. The presets' drive on the level, at their spreads, within 3 yd of it,
+    and drive plus 3-wood at least the reach."""
     player = load_player(name)
     drive = pattern(player.scenario, 0, 4000, player.spread[0], player.speed_of(0))
     wood = pattern(player.scenario, 1, 4000, player.spread[1], player.speed_of(1))
     assert abs(drive[0] - drive_yd) < 3.0
     assert drive[0] + wood[0] >= reach_yd
-    if name == "scratch":
-        seven = player.clubs.index("7-iron")
-        iron = pattern(player.scenario, seven, 4000, player.spread[seven],
-                       player.speed_of(seven))  # fmt: skip
-        assert abs(3.735 * iron[3] / 0.9144 - 26.0) < 2.0
-        assert abs(3.735 * drive[3] / 0.9144 - 72.5) < 4.0
 
 
 def test_ten_more_yards_of_driving():

@@ -96,20 +96,20 @@ PITCH_ROUGH = (1.433, 1.437, 1.451, 1.477, 1.514, 1.567, 1.636, 1.719, 1.814, 1.
 # The presets: (the bag, its ball speed factor, its spread per club, its putter). Scratch and
 # bogey are the USGA Course Rating's model players (a scratch player drives 250 yd and reaches
 # 470 yd in two; a bogey player drives 200 yd and reaches 370 yd in two): the Tour bag's ball
-# speeds times 0.8875 and 0.7572 (the driver's mean total on the level 250 and 200 yd, its
-# 3-wood then 228 and 183 yd). Their spreads CALIBRATED as the Tour's
+# speeds times 0.8875 and 0.7698 (the driver's mean total on the level, at their spreads, 248
+# and 200 yd, their 3-woods 224 and 174 yd). Their spreads CALIBRATED as the Tour's
 # (``calibration.calibrate`` with ``calibration.AMATEUR_TARGETS``, four steps, 4,000 shots a
-# club; tests/test_play.py): approach proximity 1.65 and 3.59 times the Tour's, fairways 50 %
-# and 43 % (the amateurs reference: Shot Scope, Arccos). Their putters:
+# club; tests/test_play.py): approach proximity 1.33 and 3.21 times the Tour's (fitted to the
+# amateurs' scores), fairways 50 % and 43 % (the amateurs reference). Their putters:
 # ``putting.PUTTERS``'s scratch and 15-handicap (the nearest preset to a bogey player's,
 # ESTIMATES). Off the ground and from the rough they take the Tour bag's factors (ESTIMATES for
 # them).
-SCRATCH_SPREAD = (2.555, 3.08, 2.993, 2.929, 3.24, 3.11, 2.857, 2.606, 2.6, 2.77, 3.341, 3.618)
-BOGEY_SPREAD = (4.269, 5.636, 5.502, 5.259, 5.242, 5.358, 5.533, 5.664, 5.719, 5.9, 6.49, 6.956)
+SCRATCH_SPREAD = (2.555, 3.08, 2.993, 2.332, 2.613, 2.509, 2.287, 2.1, 2.102, 2.256, 2.75, 3.005)
+BOGEY_SPREAD = (4.095, 5.38, 5.249, 4.763, 4.799, 4.914, 5.03, 5.117, 5.148, 5.325, 5.939, 6.354)
 PLAYERS = {
     "tour": (TOUR_BAG, 1.0, TOUR_SPREAD, "tour"),
     "scratch": (TOUR_BAG, 0.8875, SCRATCH_SPREAD, "scratch"),
-    "bogey": (TOUR_BAG, 0.7572, BOGEY_SPREAD, "15-handicap"),
+    "bogey": (TOUR_BAG, 0.7698, BOGEY_SPREAD, "15-handicap"),
 }
 # The clubs struck from the tee only, by name (case aside).
 TEE_ONLY = ("driver",)
