@@ -205,17 +205,17 @@ def test_a_scorecard_moves_each_tee_up_its_line(tmp_path, capsys):
 
 
 def test_a_rating_on_dask_is_the_local_rating(tmp_path):
-    """Each solve's shots flown on a local Dask cluster of two workers: the same rating, bit
-    for bit (expected strokes, their errors, every play)."""
+    """Each solve's shots flown on a local Dask cluster of two workers (a par 3, small
+    settings): the same rating, bit for bit (expected strokes, their errors, every play)."""
     from distributed import Client
 
     from mcrun.play.rating import rate
     from mcrun.run import distributed
 
     path = tmp_path / "open.geojson"
-    path.write_text(json.dumps(open_course(540, pars=(3, 4))))
+    path.write_text(json.dumps(open_course(200, pars=(3,))))
     _, holes, _ = course_holes(path, putting={"n": 8, "resolution_m": 2.0})
-    settings = dict(n=6, seed=5, coarse_m=20.0, fine_m=8.0, plays=100)
+    settings = dict(n=4, seed=5, coarse_m=20.0, fine_m=8.0, plays=100)
     local = rate(holes, **settings)
     cluster = distributed.local_cluster(2)
     try:
