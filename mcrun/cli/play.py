@@ -75,17 +75,25 @@ def _score_line(result):
     return f"{len(result.scores):,} plays: {listed}; mean {result.scores.mean():.3f}"
 
 
-def _cmd_play(args):
-    from mcrun.play import load_player, plan_play, solve_planned
+def checked_outputs(args, command):
+    """The ``-o`` Parquet destination (None without one) and the ``--plot`` PNG of ``command``
+    ("play", "rate") checked before any work (matplotlib there, nothing overwritten unasked)."""
     from mcrun.run import aim
 
+    destination = None
     if args.output is not None:
         destination = aim.check_output(args.output, args.force, "-o", (".parquet",), ".parquet")
     if args.plot is not None:
         from mcrun.report import style
 
-        style.require_matplotlib("play --plot")
+        style.require_matplotlib(f"{command} --plot")
         aim.check_output(args.plot, args.force, "--plot", (".png",), ".png")
+    return destination
+
+
+def solve_settings(args):
+    """(workers, n, plays, coarse_m, fine_m, seed) of a solving command line (``play``,
+    ``rate``), each checked: one line naming the option otherwise."""
     workers = _workers(args)
     n = whole(args.n, "-n", 2)
     plays = whole(args.plays, "--plays", 1)
@@ -95,6 +103,25 @@ def _cmd_play(args):
         if not 1.0 <= value <= 50.0:
             raise InputError(f"{name} {value:g} m: allowed: 1 m to 50 m")
     seed = None if args.seed is None else whole(args.seed, "--seed", 0)
+    return workers, n, plays, coarse, fine, seed
+
+
+def dask_client(stack, args, workers):
+    """The client of ``--dask local`` (its cluster of ``workers`` closed with ``stack``, a
+    contextlib.ExitStack); None without it."""
+    if args.dask is None:
+        return None
+    from mcrun.run import distributed
+
+    cluster = stack.enter_context(distributed.local_cluster(workers))
+    return stack.enter_context(distributed._dask().Client(cluster))
+
+
+def _cmd_play(args):
+    from mcrun.play import load_player, plan_play, solve_planned
+
+    destination = checked_outputs(args, "play")
+    workers, n, plays, coarse, fine, seed = solve_settings(args)
     player = load_player(args.player, putter=args.putter)
     hole = _hole_of(args.hole)
     players = [player]
@@ -130,12 +157,7 @@ def _cmd_play(args):
 
     results = []
     with contextlib.ExitStack() as stack:
-        client = None
-        if args.dask is not None:
-            from mcrun.run import distributed
-
-            cluster = stack.enter_context(distributed.local_cluster(workers))
-            client = stack.enter_context(distributed._dask().Client(cluster))
+        client = dask_client(stack, args, workers)
         try:
             for planned in plans:
                 bar = tqdm(total=len(planned.actions), unit="action", file=sys.stderr,

@@ -10,7 +10,7 @@ import numpy as np
 
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
 from mcrun.cli.options import whole
-from mcrun.cli.play import OPTION_NAMES, _workers
+from mcrun.cli.play import OPTION_NAMES, checked_outputs, dask_client, solve_settings
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
 
@@ -142,25 +142,10 @@ def course_holes(path, spec=None, putting=None, scorecard=None):
 
 
 def _cmd_rate(args):
-    from mcrun.play.rating import BETTER_HALF, EXPECTED, rate
-    from mcrun.run import aim
+    from mcrun.play.rating import BETTER_HALF, EXPECTED, plan_rating, rate_planned
 
-    if args.output is not None:
-        destination = aim.check_output(args.output, args.force, "-o", (".parquet",), ".parquet")
-    if args.plot is not None:
-        from mcrun.report import style
-
-        style.require_matplotlib("rate --plot")
-        aim.check_output(args.plot, args.force, "--plot", (".png",), ".png")
-    workers = _workers(args)
-    n = whole(args.n, "-n", 2)
-    plays = whole(args.plays, "--plays", 1)
-    coarse = parse_quantity(args.coarse, "length", "--coarse")
-    fine = parse_quantity(args.fine, "length", "--fine")
-    for name, value in (("--coarse", coarse), ("--fine", fine)):
-        if not 1.0 <= value <= 50.0:
-            raise InputError(f"{name} {value:g} m: allowed: 1 m to 50 m")
-    seed = None if args.seed is None else whole(args.seed, "--seed", 0)
+    destination = checked_outputs(args, "rate")
+    workers, n, plays, coarse, fine, seed = solve_settings(args)
     putting = {}
     if args.putts is not None:
         putting["n"] = whole(args.putts, "--putts", 2)
@@ -170,16 +155,11 @@ def _cmd_rate(args):
             raise InputError(f"--green-resolution {resolution:g} m: allowed: 0.05 m to 5 m")
         putting["resolution_m"] = resolution
     numbers, holes, by_length = course_holes(args.course, args.holes, putting, args.scorecard)
-    # Every hole planned for both players before the first is flown: a bad hole or a solve too
-    # big is refused up front.
-    compile_if_needed("plane")
-    from mcrun.play import load_player, plan_play
-
-    players = [load_player("scratch"), load_player("bogey")]
-    for player in players:
-        for hole in holes:
-            plan_play(player, hole, n=n, seed=seed, coarse_m=coarse, fine_m=fine, plays=plays,
-                      workers=workers, names=OPTION_NAMES)  # fmt: skip
+    compile_if_needed("plane")  # the plans fly each club on the level
+    # Every solve planned before the first is flown: a bad hole or one too big is refused here.
+    plans = plan_rating(holes, n=n, seed=seed, coarse_m=coarse, fine_m=fine, plays=plays,
+                        numbers=numbers, obstacles=args.obstacles, workers=workers,
+                        names=OPTION_NAMES)  # fmt: skip
     length_yd = sum(h.length_m for h in holes) / 0.9144
     tees = "the back tees" if args.scorecard is None else f"the tees of {args.scorecard}"
     print(f"rate: {args.course}: {len(holes)} holes, {length_yd:,.0f} yd from {tees} (tee to "
@@ -192,20 +172,14 @@ def _cmd_rate(args):
     from tqdm import tqdm
 
     with contextlib.ExitStack() as stack:
-        client = None
-        if args.dask is not None:
-            from mcrun.run import distributed
-
-            cluster = stack.enter_context(distributed.local_cluster(workers))
-            client = stack.enter_context(distributed._dask().Client(cluster))
-        solves = len(holes) * len(players) * (2 if args.obstacles else 1)
+        client = dask_client(stack, args, workers)
+        solves = sum(len(planned) for planned in plans.values())
         bar = tqdm(total=solves, unit="solve", file=sys.stderr,
                    leave=False, dynamic_ncols=True)  # fmt: skip
         stack.callback(bar.close)
         try:
-            rating = rate(holes, players, n=n, seed=seed, coarse_m=coarse, fine_m=fine,
-                          plays=plays, client=client, numbers=numbers, obstacles=args.obstacles,
-                          progress=lambda *_: bar.update(1))  # fmt: skip
+            rating = rate_planned(holes, plans, client=client,
+                                  progress=lambda *_: bar.update(1))  # fmt: skip
         except KeyboardInterrupt:
             raise Interrupted("nothing was written") from None
     frame = rating.frame()
@@ -213,7 +187,7 @@ def _cmd_rate(args):
     print(f"{'hole':>4} {'par':>3} {'yd':>5}  {'scratch':>13}  {'bogey':>13}  bogey - scratch"
           f"{costs}")  # fmt: skip
     for k, hole in enumerate(holes):
-        s, b = (rating.scores[p.name][k] for p in players)
+        s, b = (rating.scores[p][k] for p in rating.players)
         cost = (f"  {s.obstacles_strokes:+.3f}, {b.obstacles_strokes:+.3f}" if args.obstacles
                 else "")  # fmt: skip
         print(f"{s.hole:>4} {hole.par:>3} {hole.length_m / 0.9144:>5.0f}  "
@@ -222,7 +196,7 @@ def _cmd_rate(args):
               f"{b.expected_strokes - s.expected_strokes:+15.3f}{cost}")  # fmt: skip
     full = len(holes) == FULL_COURSE
     for reading in (EXPECTED, BETTER_HALF):
-        cr, br = (rating.rating(p.name, reading) for p in players)
+        cr, br = (rating.rating(p, reading) for p in rating.players)
         slope = f", Slope Rating {rating.slope(reading)}" if full else ""
         print(f"{reading}: Course Rating {cr:.1f}, Bogey Rating {br:.1f}{slope}")
     if full:
@@ -240,7 +214,7 @@ def _cmd_rate(args):
         title = f"{Path(args.course).name}: {len(holes)} holes, {length_yd:,.0f} yd"
         picture = (args.plot, lambda: rating_plot.rating_figure(rating, title), rating_plot.DPI)
     write_all_or_nothing(
-        None if args.output is None else lambda: write_rating(rating, frame, destination, args),
+        None if args.output is None else lambda: write_rating(rating, frame, destination, args, n),
         picture,
         args.force,
     )
@@ -250,14 +224,14 @@ def _cmd_rate(args):
     return 0
 
 
-def write_rating(rating, frame, path, args):
+def write_rating(rating, frame, path, args, n):
     """A row per hole and player to Parquet, with the ratings and the provenance."""
     from mcrun.play.rating import BETTER_HALF, EXPECTED
     from mcrun.results import output
 
     provenance = {"course": str(args.course), "holes": len(rating.holes),
                   "scorecard": None if args.scorecard is None else str(args.scorecard),
-                  "players": list(rating.players), "seed": rating.seed, "n": whole(args.n, "-n", 2),
+                  "players": list(rating.players), "seed": rating.seed, "n": n,
                   "length_yd": rating.length_yd,
                   "attribution": rating.holes[0].attribution or "", "file": "rating"}  # fmt: skip
     for reading, key in ((EXPECTED, "expected"), (BETTER_HALF, "better_half")):

@@ -37,7 +37,9 @@ __all__ = [
     "CourseRating",
     "HoleScore",
     "par_by_length",
+    "plan_rating",
     "rate",
+    "rate_planned",
     "slope_rating",
     "without_obstacles",
 ]
@@ -166,41 +168,67 @@ def par_by_length(length_m):
     return 3 if yd <= PAR_3_YD else 4 if yd <= PAR_4_YD else 5
 
 
+def plan_rating(holes, players=("scratch", "bogey"), n=100, seed=None, coarse_m=None,
+                fine_m=None, plays=4000, numbers=None, obstacles=False, workers=0,
+                names=None):  # fmt: skip
+    """The plans of ``rate``'s solves, every one checked (``play.plan_play``: PlayerError, one
+    line, for one that cannot be; ``workers`` and ``names`` as it takes them) before any is
+    flown: {(player name, hole number): [the hole's PlayPlan, and the hole's without its
+    obstacles' with ``obstacles``]}, in the order they are solved."""
+    from mcrun.play import DEFAULT_N, load_player, plan_play
+    from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M
+
+    loaded = [load_player(p) if isinstance(p, str) else p for p in players]
+    numbers = list(numbers or range(1, len(holes) + 1))
+    settings = dict(n=n or DEFAULT_N, seed=seed, coarse_m=coarse_m or DEFAULT_COARSE_M,
+                    fine_m=fine_m or DEFAULT_FINE_M, plays=plays, workers=workers,
+                    names=names)  # fmt: skip
+    return {(player.name, number): [plan_play(player, h, **settings)
+                                    for h in ((hole, without_obstacles(hole)) if obstacles
+                                              else (hole,))]
+            for player in loaded
+            for number, hole in zip(numbers, holes, strict=True)}  # fmt: skip
+
+
+def rate_planned(holes, plans, women=False, progress=None, client=None):
+    """The ``CourseRating`` of ``holes`` from their ``plans`` (``plan_rating``), solved one
+    after another (``play.solve_planned``), the shots on ``client``'s workers where given.
+    ``progress(player, hole_number, result)``: called after each solve."""
+    from mcrun.play import solve_planned
+
+    players = tuple(dict.fromkeys(player for player, _ in plans))
+    scores = {player: [] for player in players}
+    seed_used = None
+    for (player, number), planned in plans.items():
+        result = solve_planned(planned[0], client=client)
+        seed_used = result.seed
+        score = HoleScore.of(number, result)
+        if progress is not None:
+            progress(player, number, result)
+        del result
+        if len(planned) > 1:  # the hole without its obstacles
+            clear = solve_planned(planned[1], client=client)
+            score = dataclasses.replace(
+                score, obstacles_strokes=score.expected_strokes - clear.tee_value
+            )
+            if progress is not None:
+                progress(player, number, clear)
+            del clear
+        scores[player].append(score)
+    return CourseRating(list(holes), players, scores, seed_used, women)
+
+
 def rate(holes, players=("scratch", "bogey"), n=100, seed=None, coarse_m=None, fine_m=None,
          plays=4000, women=False, progress=None, client=None, numbers=None,
          obstacles=False):  # fmt: skip
     """The ``CourseRating`` of ``holes`` (``mcrun.hole.Hole``s, in order) for ``players``
     (presets or Players; the first the scratch player, the second the bogey player): each hole
-    solved for each player (``play.play_hole``: ``n`` shots an action, the states' spacings,
-    ``plays`` plays of each policy), one after another, the shots on ``client``'s workers where
-    given; ``numbers``: the holes' numbers in their course (default 1, 2, ...);
-    ``obstacles``: each hole solved again without its obstacles (``without_obstacles``) for
-    what they cost each player.
-    ``progress(player, hole_number, result)``: called after each solve."""
-    from mcrun.play import DEFAULT_N, load_player, play_hole
-    from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M
-
-    loaded = [load_player(p) if isinstance(p, str) else p for p in players]
-    settings = dict(n=n or DEFAULT_N, seed=seed, coarse_m=coarse_m or DEFAULT_COARSE_M,
-                    fine_m=fine_m or DEFAULT_FINE_M, plays=plays, client=client)  # fmt: skip
-    scores = {}
-    seed_used = None
-    for player in loaded:
-        scores[player.name] = []
-        for number, hole in zip(numbers or range(1, len(holes) + 1), holes, strict=True):
-            result = play_hole(player, hole, **settings)
-            seed_used = result.seed
-            score = HoleScore.of(number, result)
-            if progress is not None:
-                progress(player.name, number, result)
-            del result
-            if obstacles:
-                clear = play_hole(player, without_obstacles(hole), **settings)
-                score = dataclasses.replace(
-                    score, obstacles_strokes=score.expected_strokes - clear.tee_value
-                )
-                if progress is not None:
-                    progress(player.name, number, clear)
-                del clear
-            scores[player.name].append(score)
-    return CourseRating(list(holes), tuple(p.name for p in loaded), scores, seed_used, women)
+    solved for each player (``n`` shots an action, the states' spacings, ``plays`` plays of
+    each policy), every solve planned before the first is flown (``plan_rating``), then one
+    after another (``rate_planned``), the shots on ``client``'s workers where given;
+    ``numbers``: the holes' numbers in their course (default 1, 2, ...); ``obstacles``: each
+    hole solved again without its obstacles (``without_obstacles``) for what they cost each
+    player. ``progress(player, hole_number, result)``: called after each solve."""
+    plans = plan_rating(holes, players, n=n, seed=seed, coarse_m=coarse_m, fine_m=fine_m,
+                        plays=plays, numbers=numbers, obstacles=obstacles)  # fmt: skip
+    return rate_planned(holes, plans, women=women, progress=progress, client=client)

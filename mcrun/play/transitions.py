@@ -29,7 +29,7 @@ from mcrun.engine.schema import OUTCOME_FIELDS
 from mcrun.executor import Executor
 from mcrun.hole.zones import MOWN_ZONES, ZONE_KINDS
 from mcrun.play.lattice import GREEN_LIE, LIE_CODE_OF_ZONE, TEE_LIE
-from mcrun.play.player import PART_POWERS, club_shots, lie_launch, tee_only
+from mcrun.play.player import LIE_LAUNCH, PART_POWERS, club_shots, lie_launch, tee_only
 from mcrun.run import starts
 from mcrun.strokes.baseline import HOLE_RADIUS_M, LIES
 
@@ -97,7 +97,7 @@ class Option:
     total_m: float
     carry_m: float
     longest_m: float
-    rough: float = 1.6
+    rough: float = LIE_LAUNCH["rough"][2]
     where: str = "any"
 
 
