@@ -26,7 +26,7 @@ from mcrun.play.calibration import (
     rough_ratio,
 )
 from mcrun.play.lattice import TEE_LIE, lattice
-from mcrun.play.player import PART_POWERS, TOUR_GROUND, TOUR_ROUGH, TOUR_SPREAD, on_hole
+from mcrun.play.player import PART_POWERS, TOUR_GROUND, TOUR_ROUGH, TOUR_SPREAD, WOMEN, on_hole
 from mcrun.play.solve import solve
 from mcrun.play.transitions import WATER, fly, options_of, plan_actions
 from mcrun.run import scenario as sc
@@ -218,18 +218,22 @@ def test_the_tour_bag_s_spread_meets_the_tour_s_proximity_and_fairways():
             assert abs(share - FAIRWAY_SHARE) < 0.03, player.clubs[club]
 
 
-@pytest.mark.parametrize("name", ["scratch", "bogey"])
+@pytest.mark.parametrize("name", ["scratch", "bogey", "scratch-woman", "bogey-woman"])
 def test_the_model_amateurs_spread_meets_their_proximity_and_fairways(name):
     """The scratch and bogey presets at their spreads and ball speeds, 4,000 shots a club:
     approach clubs within 4 % of their proximity target (the Tour's line times
-    ``AMATEUR_TARGETS``' ratio), woods within 3 points of their fairways."""
+    ``AMATEUR_TARGETS``' ratio), woods within 3 points of their fairways. A woman's approach
+    clubs meet her man's targets at her distances (``WOMEN``), her woods take his spreads."""
     player = load_player(name)
-    ratio, share = AMATEUR_TARGETS[name]
+    man = WOMEN.get(name, name)
+    ratio, share = AMATEUR_TARGETS[man]
     for club, factor in enumerate(player.spread):
         wood = pattern(player.scenario, club, 4000, 1.0)[0] >= WOOD_YD
         total, proximity, got, _ = pattern(player.scenario, club, 4000, factor,
                                            player.speed_of(club))  # fmt: skip
-        if wood:
+        if wood and name in WOMEN:
+            assert factor == load_player(man).spread[club], player.clubs[club]
+        elif wood:
             assert abs(got - share) < 0.03, player.clubs[club]
         else:
             target = ratio * proximity_target_ft(total)
@@ -401,11 +405,13 @@ def test_out_of_bounds_on_the_right_moves_the_tee_shot_left(tmp_path):
 
 
 @pytest.mark.parametrize("name, drive_yd, reach_yd", [("scratch", 250.0, 470.0),
-                                                      ("bogey", 200.0, 370.0)])  # fmt: skip
+                                                      ("bogey", 200.0, 370.0),
+                                                      ("scratch-woman", 210.0, 400.0),
+                                                      ("bogey-woman", 150.0, 280.0)])  # fmt: skip
 def test_the_scratch_and_bogey_presets_follow_the_usga_definitions(name, drive_yd, reach_yd):
-    """USGA Course Rating: a scratch player drives 250 yd and reaches 470 yd in two, a bogey
-    player 200 and 370. The presets' drive on the level, at their spreads, within 3 yd of it,
-    and drive plus 3-wood at least the reach."""
+    """USGA Course Rating: a scratch man drives 250 yd and reaches 470 yd in two, a bogey man
+    200 and 370, a scratch woman 210 and 400, a bogey woman 150 and 280. The presets' drive on
+    the level, at their spreads, within 3 yd of it, and drive plus 3-wood at least the reach."""
     player = load_player(name)
     drive = pattern(player.scenario, 0, 4000, player.spread[0], player.speed_of(0))
     wood = pattern(player.scenario, 1, 4000, player.spread[1], player.speed_of(1))

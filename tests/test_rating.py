@@ -5,6 +5,7 @@ and ``mcrun rate`` end to end on a small one with its one-line errors."""
 import contextlib
 import io
 import json
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -19,11 +20,15 @@ from mcrun.play.rating import (
     CourseRating,
     HoleScore,
     course_rounds,
+    length_rating,
     par_by_length,
+    plays_as_yd,
     slope_rating,
 )
 from mcrun.quantities import InputError
 from mcrun.results import output
+
+COURSE = Path(__file__).resolve().parents[1] / "scenarios/holes/riverside-zagreb.osm.geojson"
 
 
 def test_the_slope_rating_is_the_system_s():
@@ -38,6 +43,23 @@ def test_the_slope_rating_is_the_system_s():
 def test_par_by_length_follows_the_guide():
     lengths_yd = (150, 250, 251, 470, 471, 600)
     assert [par_by_length(yd * YARD_M) for yd in lengths_yd] == [3, 3, 4, 4, 5, 5]
+    lengths_yd = (150, 210, 211, 395, 396, 500)
+    assert [par_by_length(yd * YARD_M, women=True) for yd in lengths_yd] == [3, 3, 4, 4, 5, 5]
+
+
+def test_the_length_rating_and_the_plays_as_yardage_are_the_system_s():
+    """The manual's scratch man: 6,000 yd rate 68.2 and 6,400 yd 70.0 (to one decimal); the
+    others' rules (the reference's); 9 holes half the strokes; plays-as turns them round."""
+    assert round(length_rating("scratch", 6000.0), 1) == 68.2
+    assert round(length_rating("scratch", 6400.0), 1) == 70.0
+    assert length_rating("bogey", 6400.0) == pytest.approx(6400 / 160 + 50.7)
+    assert length_rating("scratch-woman", 5400.0) == pytest.approx(5400 / 180 + 40.1)
+    assert length_rating("bogey-woman", 5400.0) == pytest.approx(5400 / 120 + 51.3)
+    assert length_rating("scratch", 3000.0, holes=9) == pytest.approx(3000 / 220 + 40.9 / 2)
+    for player in ("scratch", "bogey", "scratch-woman", "bogey-woman"):
+        for holes in (9, 18):
+            rating = length_rating(player, 6123.0, holes)
+            assert plays_as_yd(player, rating, holes) == pytest.approx(6123.0)
 
 
 def _scores(player, means):
@@ -81,7 +103,7 @@ def test_an_open_course_is_the_length_and_pars_it_was_made_of(tmp_path):
     """18 straight holes adding up to 6,500 yd (within 0.5 %, tee to pin), the pars of the mix,
     read back as a course map."""
     (tmp_path / "open.geojson").write_text(json.dumps(open_course(6500)))
-    numbers, holes, by_length = course_holes(tmp_path / "open.geojson")
+    numbers, holes, by_length, _ = course_holes(tmp_path / "open.geojson")
     assert numbers == list(range(1, 19)) and by_length == []
     assert [h.par for h in holes] == list(PAR_MIX) == list(pars_for(18))
     assert sum(h.length_m for h in holes) / YARD_M == pytest.approx(6500, rel=0.005)
@@ -124,7 +146,31 @@ def test_mcrun_rate_rates_a_course_and_writes_a_row_per_hole_and_player(rated):
     assert (s.loc[1, "obstacles_strokes"], b.loc[1, "obstacles_strokes"]) == (0.0, 0.0)
     assert b.loc[2, "obstacles_strokes"] > 0.1
     assert (out.parent / "rating.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "scratch_plays_as_yd_expected" not in meta  # a length rating is of 9 or 18 holes
     assert f"expected: Course Rating {cr:.1f}, Bogey Rating {br:.1f}\n" in printed
+    assert "(par 7; the length rating and the plays-as yardage are of 9 or 18 holes" in printed
+
+
+def test_mcrun_rate_rates_for_the_women_s_model_players(tmp_path):
+    """``--women``: the women's model players and the women's par by length (a 230-yd hole of
+    a map without par is their par 4, a man's par 3), said in the file's metadata."""
+    course = open_course(230, pars=(3,))
+    for feature in course["features"]:
+        feature["properties"].pop("par", None)
+    (tmp_path / "one.geojson").write_text(json.dumps(course))
+    out = tmp_path / "women.parquet"
+    with contextlib.redirect_stdout(io.StringIO()):
+        code = main(["rate", str(tmp_path / "one.geojson"), "--women", "-n", "6", "--plays",
+                     "300", "--coarse", "20m", "--fine", "6m", "--putts", "8",
+                     "--green-resolution", "2m", "-o", str(out)])  # fmt: skip
+    assert code == 0
+    frame = pd.read_parquet(out)
+    assert list(frame["player"]) == ["scratch-woman", "bogey-woman"]
+    assert list(frame["par"]) == [4, 4]
+    meta = output.read_provenance(out)
+    assert meta["women"] is True and meta["holes"] == 1
+    rating = meta["scratch_woman_rating_expected"]
+    assert rating == round(frame["expected_strokes"].iloc[0], 1)
 
 
 @pytest.mark.parametrize(
@@ -153,28 +199,55 @@ def test_a_map_without_holes_ends_in_one_line(tmp_path, capsys):
     assert code == 2 and "no golf=hole LineString" in err and len(err.strip().splitlines()) == 1
 
 
-def _rate_open(tmp_path, name, **course):
-    """The scratch and bogey expected strokes on a made-up 400-yd par 4 (small settings)."""
+def _rate_open(tmp_path, name, elevation=None, **course):
+    """The scratch and bogey expected strokes on a made-up 400-yd par 4 (small settings), on
+    the ground of ``elevation`` where given."""
     from mcrun.play.rating import rate
 
     path = tmp_path / f"{name}.geojson"
     path.write_text(json.dumps(open_course(400, pars=(4,), **course)))
-    _, holes, _ = course_holes(path, putting={"n": 8, "resolution_m": 2.0})
+    _, holes, *_ = course_holes(path, putting={"n": 8, "resolution_m": 2.0}, elevation=elevation)
     rating = rate(holes, n=12, seed=3, coarse_m=15.0, fine_m=6.0, plays=200)
     return [rating.rating(p) for p in ("scratch", "bogey")]
 
 
-def test_water_where_the_bogey_player_lands_costs_him_more_and_wider_fairways_cost_less(tmp_path):
+@pytest.fixture(scope="module")
+def open_400(tmp_path_factory):
+    """``_rate_open`` of the open hole itself."""
+    return _rate_open(tmp_path_factory.mktemp("open"), "open")
+
+
+def test_water_where_the_bogey_player_lands_costs_him_more_and_wider_fairways_cost_less(
+    tmp_path, open_400
+):
     """The system's obstacles as it says they move a rating: water across the hole from 150 to
     185 m (where the bogey player's drive of 200 yd, 183 m, comes down; the scratch player's
     carries it) raises the bogey player's score more than the scratch player's; fairways 80 m
     wide instead of 40 lower both."""
-    open_scratch, open_bogey = _rate_open(tmp_path, "open")
+    open_scratch, open_bogey = open_400
     wet_scratch, wet_bogey = _rate_open(tmp_path, "wet", water={1: (150.0, 185.0)})
     wide_scratch, wide_bogey = _rate_open(tmp_path, "wide", fairway_width_m=80.0)
     assert wet_bogey - open_bogey > wet_scratch - open_scratch + 0.05
     assert wet_bogey > open_bogey
     assert wide_scratch < open_scratch and wide_bogey < open_bogey
+
+
+def test_a_course_uphill_plays_longer(tmp_path, open_400):
+    """``elevation``: the same 400-yd hole climbing 8 % from its tee to 30 m short of its pin
+    (29 m up; its green level), a lattice of survey points (a CSV of lon, lat, elevation) 10 m
+    apart: both players' scores rise, by more than 0.15 strokes (the same shots flown)."""
+    from mcrun.hole.synthetic import _lonlat
+
+    length = 400 * YARD_M
+    rows = ["lon,lat,elevation"]
+    for x in np.arange(-100.0, length + 101.0, 10.0):
+        for y in np.arange(-100.0, 101.0, 10.0):
+            lon, lat = _lonlat(x, y)
+            rows.append(f"{lon},{lat},{0.08 * min(max(x, 0.0), length - 30.0):.3f}")
+    (tmp_path / "uphill.csv").write_text("\n".join(rows) + "\n")
+    up = _rate_open(tmp_path, "uphill", elevation=tmp_path / "uphill.csv")
+    for flat, climbing in zip(open_400, up, strict=True):
+        assert climbing > flat + 0.15
 
 
 def test_a_scorecard_moves_each_tee_up_its_line(tmp_path, capsys):
@@ -184,7 +257,7 @@ def test_a_scorecard_moves_each_tee_up_its_line(tmp_path, capsys):
     course.write_text(json.dumps(open_course(540, pars=(3, 4))))
     card = tmp_path / "white.csv"
     card.write_text("hole,yards\n1,180\n2,300\n")
-    numbers, holes, _ = course_holes(course, scorecard=card)
+    numbers, holes, *_ = course_holes(course, scorecard=card)
     assert numbers == [1, 2]
     assert [h.length_m / YARD_M for h in holes] == pytest.approx([180.0, 300.0], abs=0.5)
     assert [h.par for h in holes] == [3, 4]
@@ -205,7 +278,7 @@ def test_a_scorecard_moves_each_tee_up_its_line(tmp_path, capsys):
 
 
 def test_a_rating_on_dask_is_the_local_rating(tmp_path):
-    """Each solve's shots flown on a local Dask cluster of two workers (a par 3, small
+    """Each player's hole solved on a worker of a local Dask cluster of two (a par 3, small
     settings): the same rating, bit for bit (expected strokes, their errors, every play)."""
     from distributed import Client
 
@@ -214,7 +287,7 @@ def test_a_rating_on_dask_is_the_local_rating(tmp_path):
 
     path = tmp_path / "open.geojson"
     path.write_text(json.dumps(open_course(200, pars=(3,))))
-    _, holes, _ = course_holes(path, putting={"n": 8, "resolution_m": 2.0})
+    _, holes, *_ = course_holes(path, putting={"n": 8, "resolution_m": 2.0})
     settings = dict(n=4, seed=5, coarse_m=20.0, fine_m=8.0, plays=100)
     local = rate(holes, **settings)
     cluster = distributed.local_cluster(2)
@@ -230,3 +303,102 @@ def test_a_rating_on_dask_is_the_local_rating(tmp_path):
                 b.expected_strokes_se,
             )
             np.testing.assert_array_equal(a.scores, b.scores)
+
+
+def _with_tees(course, tees):
+    """``course`` (a made-up course map) with square tee areas 10 m a side centred at
+    ``tees``: [(hole number, x_m along its line from its tee)] (holes lie HOLE_SPACING_M
+    apart, each from west to east)."""
+    from mcrun.hole.synthetic import HOLE_SPACING_M, _ring
+
+    for number, x in tees:
+        y = (number - 1) * HOLE_SPACING_M
+        ring = _ring([(x - 5, y - 5), (x + 5, y - 5), (x + 5, y + 5), (x - 5, y + 5)])
+        course["features"].append(
+            {
+                "type": "Feature",
+                "properties": {"golf": "tee"},
+                "geometry": {"type": "Polygon", "coordinates": ring},
+            }
+        )
+    return course
+
+
+def test_the_map_s_tee_boxes_are_each_hole_s_from_the_back(tmp_path):
+    """``hole_tees``: each tee area counts for the hole whose line passes nearest, back to
+    front (one drawn 20 m behind the line's start is the back tee); ``--tees K`` takes each
+    hole's K-th from the back, ``forward`` its front one, and a hole with fewer takes its front
+    one and says so."""
+    from mcrun.hole.osm import read_course
+    from mcrun.hole.tees import hole_tees
+
+    course = _with_tees(open_course(540, pars=(3, 4)), [(1, 40.0), (1, -20.0), (2, 60.0)])
+    path = tmp_path / "tees.geojson"
+    path.write_text(json.dumps(course))
+    boxes = hole_tees(read_course(path))
+    assert sorted(boxes) == [1, 2] and [len(boxes[1]), len(boxes[2])] == [3, 2]
+    _, back, *_ = course_holes(path)
+    lengths = [h.length_m for h in back]
+    for tees, moved in [(1, (-20.0, 0.0)), (2, (0.0, 60.0)), (3, (40.0, 60.0)),
+                        ("forward", (40.0, 60.0))]:  # fmt: skip
+        _, holes, _, notes = course_holes(path, tees=tees)
+        expected = [length - x for length, x in zip(lengths, moved, strict=True)]
+        assert [h.length_m for h in holes] == pytest.approx(expected, abs=0.3), tees
+        assert notes == (["hole 2 has 2 tee box(es): its front one"] if tees == 3 else [])
+
+
+def test_riverside_s_tee_boxes(tmp_path):
+    """The library's course map: 66 of its 67 tee areas on 18 holes, two to four a hole, the
+    back one where the hole's line starts (within 2 m), the others farther along it."""
+    from mcrun.hole.geo import Frame
+    from mcrun.hole.osm import read_course
+    from mcrun.hole.tees import hole_tees
+
+    course = read_course(COURSE)
+    boxes = hole_tees(course)
+    assert sorted(boxes) == list(range(1, 19))
+    assert sum(len(t) for t in boxes.values()) == 66
+    assert all(2 <= len(t) <= 4 for t in boxes.values())
+    for number, tees in boxes.items():
+        line = course.hole(f"#{number}")
+        frame = Frame(*line.lonlat[-1], 0.0)
+        to_pin = [float(np.hypot(*frame.to_xy(*tee))) for tee in tees]
+        assert np.hypot(*Frame(*line.lonlat[0], 0.0).to_xy(*tees[0])) < 2.0, number
+        assert to_pin == sorted(to_pin, reverse=True), number
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (["--tees", "front"], "--tees 'front': allowed: back"),
+    (["--tees", "2", "--scorecard", "card.csv"], "--tees and --scorecard: give one tee set"),
+])  # fmt: skip
+def test_a_bad_tee_set_ends_in_one_line(rated, tmp_path, capsys, args, message):
+    out = tmp_path / "r.parquet"
+    code = main(["rate", str(rated[2]), "-o", str(out), *args])
+    err = capsys.readouterr().err
+    assert code == 2 and message in err and len(err.strip().splitlines()) == 1, err
+    assert not out.exists()
+
+
+def test_the_holes_are_numbered_by_their_refs_else_taken_in_the_map_s_order(tmp_path):
+    """``play_order``: holes whose refs are 1-N by their refs, whatever the map's order;
+    without refs in the map's order, said with the walks from each green to the next tee (the
+    library's course: 39-127 m), doubted where one is over 300 m (the made-up course's holes
+    lie side by side, each green about 400 m from the next tee)."""
+    from mcrun.cli.rate import play_order
+    from mcrun.hole.osm import read_course
+
+    course = open_course(1200, pars=(4, 4, 4))
+    lines = [f for f in course["features"] if f["properties"].get("golf") == "hole"]
+    for line, ref in zip(lines, ("2", "3", "1"), strict=True):
+        line["properties"]["ref"] = ref
+    (tmp_path / "refs.geojson").write_text(json.dumps(course))
+    assert play_order(read_course(tmp_path / "refs.geojson")) == ({2: 1, 3: 2, 1: 3}, None)
+    for line in lines:
+        del line["properties"]["ref"]
+    (tmp_path / "none.geojson").write_text(json.dumps(course))
+    order, note = play_order(read_course(tmp_path / "none.geojson"))
+    assert order == {1: 1, 2: 2, 3: 3}
+    assert "hole 2's tee is 4" in note and "the map's order may not be the course's" in note
+    order, note = play_order(read_course(COURSE))
+    assert order == {k: k for k in range(1, 19)}
+    assert note.endswith("taken in its order (each green 39-127 m from the next tee)")

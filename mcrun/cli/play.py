@@ -235,7 +235,8 @@ def register(subparsers):
         "play",
         help="solve a hole for a player: expected strokes, club and aim from everywhere",
         description="Solve HOLE (a hole file, or a scenario with a [hole]) for PLAYER (a "
-        "preset: tour, scratch, bogey; or a player file: a scenario of clubs without a hole): "
+        "preset: tour, scratch, bogey, scratch-woman, bogey-woman; or a player file: a "
+        "scenario of clubs without a hole): "
         "every club and aim flown N times from every state of the hole, value iteration to the "
         "player's expected strokes from everywhere and the best club and aim; the expected "
         "score from the tee, the strokes the decisions save against simple policies, and the "
@@ -254,7 +255,8 @@ def register(subparsers):
         "--putter",
         choices=list(PUTTERS),
         help="the player's putter on the green "
-        "(a preset's own: tour, scratch, 15-handicap for bogey; a file's: tour)",
+        "(a preset's own: tour, scratch, 15-handicap for bogey; a woman's her man's; a "
+        "file's: tour)",
     )
     p.add_argument("--vs", metavar="PLAYER2", help="a second player on the same hole")
     p.add_argument("--longer", metavar="YD", help="and the player with a driver YD longer: 10yd")

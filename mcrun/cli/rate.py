@@ -1,6 +1,7 @@
 """``mcrun rate COURSE``: a course rated by simulating the handicap system's model players: every
-hole solved for the scratch and the bogey player, their Course and Bogey Ratings and the Slope
-Rating (``mcrun.play.rating``); a table on screen, a row per hole and player to Parquet."""
+hole solved for the scratch and the bogey player (men's, or women's with ``--women``), their
+Course and Bogey Ratings, the Slope Rating and the plays-as yardage (``mcrun.play.rating``); a
+table on screen, a row per hole and player to Parquet."""
 
 import contextlib
 import sys
@@ -14,7 +15,9 @@ from mcrun.cli.play import OPTION_NAMES, checked_outputs, dask_client, solve_set
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
 
-FULL_COURSE = 18  # holes: what a Slope Rating and the length rule are of
+FULL_COURSE = 18  # holes: what a Slope Rating is of
+FAR_WALK_M = 300.0  # a green this far from the next hole's tee: the map's order is doubted
+RATED_HOLES = (9, 18)  # what the system rates: a length rating and a plays-as yardage are of these
 MARGIN_M = 60.0  # the ground kept around each hole's line (as the library's hole files)
 CELL_M = 0.5
 
@@ -39,8 +42,8 @@ def holes_wanted(spec, count, where="--holes"):
 
 
 def read_scorecard(path, count):
-    """{hole number: yards} of a scorecard CSV (``hole,yards``: a row per hole, its number the
-    hole's position in the map, 1-``count``, its length in yards along its line of play);
+    """{hole number: yards} of a scorecard CSV (``hole,yards``: a row per hole, its number
+    1-``count`` as ``play_order`` numbers it, its length in yards along its line of play);
     InputError naming the file, the row and the field."""
     import csv
 
@@ -94,20 +97,85 @@ def _tee_at(line, yards, where):
     return [float(lon), float(lat)]
 
 
-def course_holes(path, spec=None, putting=None, scorecard=None):
+def tee_set(spec):
+    """The tee set of ``--tees``: None (the back tees: each hole line's first point), a
+    number K (the K-th tee box of each hole in the map, from the back) or "forward" (each
+    hole's front tee box); InputError otherwise."""
+    text = "back" if spec is None else str(spec).strip().lower()
+    if text in ("back", "forward"):
+        return None if text == "back" else text
+    if text.isascii() and text.isdigit() and 1 <= int(text) <= 9:
+        return int(text)
+    raise InputError(f"--tees {spec!r}: allowed: back (each hole line's first point), forward "
+                     "(each hole's front tee box in the map) or K, 1-9 (the K-th tee box from "
+                     "the back)")  # fmt: skip
+
+
+def _map_tee(tees, number, wanted, notes):
+    """The (lon, lat) of hole ``number``'s tee of set ``wanted`` (``tee_set``) among its tee
+    boxes ``tees`` (``hole.tees.hole_tees``: back first), None for its line's first point;
+    what was taken instead is added to ``notes``."""
+    if not tees:
+        notes.append(f"hole {number} has no tee box in the map: its line's first point")
+        return None
+    if wanted == "forward":
+        return list(tees[-1])
+    if wanted > len(tees):
+        notes.append(f"hole {number} has {len(tees)} tee box(es): its front one")
+    return list(tees[min(wanted, len(tees)) - 1])
+
+
+def play_order(course):
+    """{hole number: its position in the map (1-based)} of ``course`` (an ``osm.Course``), and
+    a note where the map does not number its holes: by their ``ref`` where the refs are 1-N,
+    else in the map's order (said in the note, with how far each green is from the next
+    tee). Chaining each green to the nearest next tee is no better: on the library's course it
+    gives an order whose walk is shorter than the map's and whose holes are 8-13, 18, 1-7,
+    14-17."""
+    from mcrun.hole.geo import Frame
+
+    lines = course.holes
+    refs = [(line.ref or "").strip() for line in lines]
+    if all(r.isascii() and r.isdigit() for r in refs) and sorted(map(int, refs)) == list(
+        range(1, len(lines) + 1)
+    ):
+        return {int(r): k + 1 for k, r in enumerate(refs)}, None
+    frame = Frame(*lines[0].lonlat[0], 0.0)
+    walks = [float(np.hypot(*np.subtract(frame.to_xy(*b.lonlat[0]), frame.to_xy(*a.lonlat[-1]))))
+             for a, b in zip(lines, lines[1:], strict=False)]  # fmt: skip
+    note = "the map does not number its holes 1-N (ref): they are taken in its order"
+    if walks:
+        far = int(np.argmax(walks))
+        note += (f" (each green {min(walks):.0f}-{max(walks):.0f} m from the next tee"
+                 + (f": hole {far + 2}'s tee is {walks[far]:.0f} m from hole {far + 1}'s green, "
+                    "the map's order may not be the course's" if walks[far] > FAR_WALK_M
+                    else "") + ")")  # fmt: skip
+    return {k: k for k in range(1, len(lines) + 1)}, note
+
+
+def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tees=None,
+                 elevation=None, elevation_crs=None):  # fmt: skip
     """The Holes of the course map ``path`` (a GeoJSON course map, as ``mcrun hole`` reads),
     those of ``spec`` (``holes_wanted``), in order, each checked as ``mcrun play`` checks a
     hole; a hole without a par in the map gets one by its line's length
-    (``rating.par_by_length``); ``putting``: the holes' ``[hole.putting]`` settings
+    (``rating.par_by_length``, a woman's with ``women``); ``putting``: the holes'
+    ``[hole.putting]`` settings
     (``hole.PUTTING_KEYS``: the maps of their greens, for a putter other than the Tour's);
     ``scorecard``: a CSV of a tee set (``read_scorecard``): each hole's tee that far from the
-    end of its line, along it (the holes on it, where ``spec`` is None).
-    Returns (their numbers, the holes, the numbers whose par was taken from their length)."""
+    end of its line, along it (the holes on it, where ``spec`` is None); ``tees``: a tee set
+    of the map's tee boxes (``tee_set``; not with a scorecard); ``elevation``: a file of the
+    course's ground heights (``hole.elevation``; its ``elevation_crs``), each hole's relative
+    to its tee (default flat). Returns (their numbers, the
+    holes, the numbers whose par was taken from their length, notes on the tees taken)."""
     from mcrun.hole.hole import hole_from_table
     from mcrun.hole.osm import read_course
+    from mcrun.hole.tees import hole_tees
     from mcrun.play.rating import par_by_length
     from mcrun.putting.on_hole import check_putting
 
+    if tees is not None and scorecard is not None:
+        raise InputError("--tees and --scorecard: give one tee set, from the map or from a "
+                         "scorecard")  # fmt: skip
     path = Path(path)
     course = read_course(path)
     if not course.holes:
@@ -115,6 +183,9 @@ def course_holes(path, spec=None, putting=None, scorecard=None):
                          "(tee to green) to be rated")  # fmt: skip
     yards = None if scorecard is None else read_scorecard(scorecard, len(course.holes))
     numbers = holes_wanted(spec, len(course.holes))
+    position, order_note = play_order(course)
+    boxes = {} if tees is None else hole_tees(course)
+    notes = [] if order_note is None else [order_note]
     if yards is not None:
         if spec is None:
             numbers = sorted(yards)
@@ -125,24 +196,40 @@ def course_holes(path, spec=None, putting=None, scorecard=None):
     holes, by_length = [], []
     for number in numbers:
         where = f"{path} hole {number}"
-        table = {"map": path.name, "hole": f"#{number}", "cell_m": CELL_M, "margin_m": MARGIN_M}
+        table = {"map": path.name, "hole": f"#{position[number]}", "cell_m": CELL_M,
+                 "margin_m": MARGIN_M}  # fmt: skip
         if putting:
             table["putting"] = dict(putting)
+        if elevation is not None:
+            table["elevation"] = str(Path(elevation).resolve())
+            if elevation_crs is not None:
+                table["elevation_crs"] = str(elevation_crs)
         hole = hole_from_table(table, path.parent, where)
         if hole.par is None:
-            table["par"] = par_by_length(hole.length_m)
+            table["par"] = par_by_length(hole.length_m, women)
             by_length.append(number)
         if yards is not None:
-            table["tee"] = _tee_at(course.hole(f"#{number}"), yards[number],
+            table["tee"] = _tee_at(course.hole(f"#{position[number]}"), yards[number],
                                    f"{scorecard} hole {number}")  # fmt: skip
+        elif tees is not None:
+            tee = _map_tee(boxes.get(position[number], []), number, tees, notes)
+            if tee is not None:
+                table["tee"] = tee
         if "par" in table or "tee" in table:
             hole = hole_from_table(table, path.parent, where)
         holes.append(check_putting(hole))
-    return numbers, holes, by_length
+    return numbers, holes, by_length, notes
 
 
 def _cmd_rate(args):
-    from mcrun.play.rating import BETTER_HALF, EXPECTED, plan_rating, rate_planned
+    from mcrun.play.rating import (
+        BETTER_HALF,
+        EXPECTED,
+        MODEL_PLAYERS,
+        length_rating,
+        plan_rating,
+        rate_planned,
+    )
 
     destination = checked_outputs(args, "rate")
     workers, n, plays, coarse, fine, seed = solve_settings(args)
@@ -154,17 +241,28 @@ def _cmd_rate(args):
         if not 0.05 <= resolution <= 5.0:
             raise InputError(f"--green-resolution {resolution:g} m: allowed: 0.05 m to 5 m")
         putting["resolution_m"] = resolution
-    numbers, holes, by_length = course_holes(args.course, args.holes, putting, args.scorecard)
+    tees = tee_set(args.tees)
+    numbers, holes, by_length, notes = course_holes(args.course, args.holes, putting,
+                                                    args.scorecard, args.women, tees,
+                                                    args.elevation, args.elevation_crs)  # fmt: skip
+    players = MODEL_PLAYERS["women" if args.women else "men"]
     compile_if_needed("plane")  # the plans fly each club on the level
     # Every solve planned before the first is flown: a bad hole or one too big is refused here.
-    plans = plan_rating(holes, n=n, seed=seed, coarse_m=coarse, fine_m=fine, plays=plays,
+    plans = plan_rating(holes, players, n=n, seed=seed, coarse_m=coarse, fine_m=fine, plays=plays,
                         numbers=numbers, obstacles=args.obstacles, workers=workers,
                         names=OPTION_NAMES)  # fmt: skip
     length_yd = sum(h.length_m for h in holes) / 0.9144
-    tees = "the back tees" if args.scorecard is None else f"the tees of {args.scorecard}"
-    print(f"rate: {args.course}: {len(holes)} holes, {length_yd:,.0f} yd from {tees} (tee to "
-          f"pin); scratch and bogey, {n:,} shots an action", file=sys.stderr,
-          flush=True)  # fmt: skip
+    if args.scorecard is not None:
+        tees = f"the tees of {args.scorecard}"
+    else:
+        tees = {None: "the back tees", "forward": "the front tee boxes"}.get(
+            tees, f"tee box {tees} from the back"
+        )
+    print(f"rate: {args.course}: {len(holes)} hole{'s' * (len(holes) > 1)}, {length_yd:,.0f} "
+          f"yd from {tees} (tee to pin); {' and '.join(players)}, {n:,} shots an action",
+          file=sys.stderr, flush=True)  # fmt: skip
+    for note in notes:
+        print(f"rate: {note}", file=sys.stderr, flush=True)
     if by_length:
         print(f"rate: par by length (the map has none) for hole(s) "
               f"{', '.join(map(str, by_length))}", file=sys.stderr, flush=True)  # fmt: skip
@@ -173,18 +271,18 @@ def _cmd_rate(args):
 
     with contextlib.ExitStack() as stack:
         client = dask_client(stack, args, workers)
-        solves = sum(len(planned) for planned in plans.values())
-        bar = tqdm(total=solves, unit="solve", file=sys.stderr,
+        bar = tqdm(total=len(plans), unit="hole", file=sys.stderr,
                    leave=False, dynamic_ncols=True)  # fmt: skip
         stack.callback(bar.close)
         try:
-            rating = rate_planned(holes, plans, client=client,
+            rating = rate_planned(holes, plans, args.women, client=client,
                                   progress=lambda *_: bar.update(1))  # fmt: skip
         except KeyboardInterrupt:
             raise Interrupted("nothing was written") from None
     frame = rating.frame()
-    costs = "  obstacles cost: scratch, bogey" if args.obstacles else ""
-    print(f"{'hole':>4} {'par':>3} {'yd':>5}  {'scratch':>13}  {'bogey':>13}  bogey - scratch"
+    scratch, bogey = players
+    costs = f"  obstacles cost: {scratch}, {bogey}" if args.obstacles else ""
+    print(f"{'hole':>4} {'par':>3} {'yd':>5}  {scratch:>13}  {bogey:>13}  {bogey} - {scratch}"
           f"{costs}")  # fmt: skip
     for k, hole in enumerate(holes):
         s, b = (rating.scores[p][k] for p in rating.players)
@@ -193,18 +291,22 @@ def _cmd_rate(args):
         print(f"{s.hole:>4} {hole.par:>3} {hole.length_m / 0.9144:>5.0f}  "
               f"{s.expected_strokes:6.3f} +- {s.expected_strokes_se:.3f}  "
               f"{b.expected_strokes:6.3f} +- {b.expected_strokes_se:.3f}  "
-              f"{b.expected_strokes - s.expected_strokes:+15.3f}{cost}")  # fmt: skip
-    full = len(holes) == FULL_COURSE
+              f"{b.expected_strokes - s.expected_strokes:+{len(bogey) + len(scratch) + 3}.3f}"
+              f"{cost}")  # fmt: skip
+    full, rated = len(holes) == FULL_COURSE, len(holes) in RATED_HOLES
     for reading in (EXPECTED, BETTER_HALF):
-        cr, br = (rating.rating(p, reading) for p in rating.players)
+        cr, br = (rating.rating(p, reading) for p in players)
         slope = f", Slope Rating {rating.slope(reading)}" if full else ""
-        print(f"{reading}: Course Rating {cr:.1f}, Bogey Rating {br:.1f}{slope}")
-    if full:
-        print(f"(par {sum(h.par for h in holes)}; the system's length rating: scratch "
-              f"{length_yd / 220 + 40.9:.1f}, bogey {length_yd / 160 + 50.7:.1f})")  # fmt: skip
+        plays = ", ".join(f"{p} {rating.plays_as_yd(p, reading):,.0f}" for p in players)
+        plays = f"; plays as (yd): {plays}" if rated else ""
+        print(f"{reading}: Course Rating {cr:.1f}, Bogey Rating {br:.1f}{slope}{plays}")
+    if rated:
+        rule = ", ".join(f"{p} {length_rating(p, length_yd, len(holes)):.1f}" for p in players)
+        rule = f"the system's length rating: {rule}"
     else:
-        print(f"(par {sum(h.par for h in holes)}; the Slope Rating and the length rating are "
-              f"of {FULL_COURSE} holes)")  # fmt: skip
+        rule = "the length rating and the plays-as yardage are of 9 or 18 holes"
+    slope = "" if full else f", the Slope Rating of {FULL_COURSE}"
+    print(f"(par {sum(h.par for h in holes)}; {rule}{slope})")
     if args.output is None and args.plot is None:
         return 0
     picture = None
@@ -229,14 +331,19 @@ def write_rating(rating, frame, path, args, n):
     from mcrun.play.rating import BETTER_HALF, EXPECTED
     from mcrun.results import output
 
-    provenance = {"course": str(args.course), "holes": len(rating.holes),
+    provenance = {"course": str(args.course), "holes": len(rating.holes), "women": rating.women,
                   "scorecard": None if args.scorecard is None else str(args.scorecard),
+                  "tees": str(tee_set(args.tees) or "back"),
+                  "elevation": None if args.elevation is None else str(args.elevation),
                   "players": list(rating.players), "seed": rating.seed, "n": n,
                   "length_yd": rating.length_yd,
                   "attribution": rating.holes[0].attribution or "", "file": "rating"}  # fmt: skip
     for reading, key in ((EXPECTED, "expected"), (BETTER_HALF, "better_half")):
         for player in rating.players[:2]:
-            provenance[f"{player}_rating_{key}"] = round(rating.rating(player, reading), 1)
+            name = player.replace("-", "_")
+            provenance[f"{name}_rating_{key}"] = round(rating.rating(player, reading), 1)
+            if len(rating.holes) in RATED_HOLES:
+                provenance[f"{name}_plays_as_yd_{key}"] = round(rating.plays_as_yd(player, reading))
         if len(rating.holes) == FULL_COURSE:
             provenance[f"slope_rating_{key}"] = rating.slope(reading)
     with output.AtomicFile(path, force=args.force) as target:
@@ -250,9 +357,10 @@ def register(subparsers):
         help="rate a course from its map: Course Rating and Slope by simulating scratch and bogey",
         description="Rate COURSE (a GeoJSON course map with its holes' lines, as 'mcrun hole' "
         "reads) by solving every hole for the handicap system's model players, scratch and "
-        "bogey (each hole's line from its first point, the back tee, to its pin): their "
-        "expected strokes per hole, the Course and Bogey Ratings as the expected score and as "
-        "the better half's mean of their rounds, and the Slope Rating.",
+        "bogey, men's or women's (each hole's line from its first point, the back tee, to its "
+        "pin): their expected strokes per hole, the Course and Bogey Ratings as the expected "
+        "score and as the better half's mean of their rounds, the Slope Rating and the "
+        "course's plays-as yardage for each.",
         epilog="example: mcrun rate scenarios/holes/riverside-zagreb.osm.geojson --holes 1-3",
         allow_abbrev=False,
     )
@@ -260,6 +368,16 @@ def register(subparsers):
     p.add_argument("--holes", metavar="SPEC", help="the holes to rate: 1-9, 1,3,10-12 (all)")
     p.add_argument("--scorecard", metavar="CSV", help="a tee set: hole,yards (the back tees: "
                    "each hole line's first point)")  # fmt: skip
+    p.add_argument("--elevation", metavar="FILE", help="the course's ground heights: a GeoTIFF, "
+                   "an ESRI ASCII grid or a CSV of survey points (flat)")  # fmt: skip
+    p.add_argument("--elevation-crs", metavar="CRS",
+                   help="the elevation file's coordinate system where it does not say")  # fmt: skip
+    p.add_argument("--tees", metavar="SET", help="a tee set of the map's tee boxes: forward "
+                   "(each hole's front one) or K (the K-th from the back); back: each hole "
+                   "line's first point (back)")  # fmt: skip
+    p.add_argument("--women", action="store_true",
+                   help="the women's model players (scratch-woman, bogey-woman), the women's "
+                   "Slope and par by length")  # fmt: skip
     p.add_argument("-n", default="100", metavar="N", help="shots of each action (100)")
     p.add_argument("--seed", metavar="S", help="random seed (the players')")
     p.add_argument("--coarse", default="8m", help="states' spacing (8m)")
@@ -270,7 +388,11 @@ def register(subparsers):
     p.add_argument("--obstacles", action="store_true",
                    help="solve each hole again without its bunkers, penalty areas and out of "
                    "bounds: what they cost each player (twice the solves)")  # fmt: skip
-    p.add_argument("--dask", choices=["local"], help="fly the shots on a local Dask cluster")
+    p.add_argument(
+        "--dask",
+        choices=["local"],
+        help="solve on a local Dask cluster, each player's hole a worker's task",
+    )
     p.add_argument("--workers", metavar="W", help="workers of --dask local (the cores)")
     p.add_argument("-o", "--output", metavar="OUT.parquet", help="a row per hole and player")
     p.add_argument("--plot", metavar="PNG", help="each hole's strokes over par for both players")

@@ -106,10 +106,26 @@ PITCH_ROUGH = (1.433, 1.437, 1.451, 1.477, 1.514, 1.567, 1.636, 1.719, 1.814, 1.
 # them).
 SCRATCH_SPREAD = (2.555, 3.08, 2.993, 2.332, 2.613, 2.509, 2.287, 2.1, 2.102, 2.256, 2.75, 3.005)
 BOGEY_SPREAD = (4.095, 5.38, 5.249, 4.763, 4.799, 4.914, 5.03, 5.117, 5.148, 5.325, 5.939, 6.354)
+# The women's model players (a scratch woman drives 210 yd and reaches 400 yd in two; a bogey
+# woman, Handicap Index about 24, 150 and 280): the Tour bag's ball speeds times 0.7765 and
+# 0.628 (drives of 211 and 151 yd on the level at their spreads, 3-woods of 190 and 129). No
+# shot pattern of women amateurs is in our references: each plays as the man of her model
+# (scratch, bogey) would at her distances, an ESTIMATE: her approach clubs CALIBRATED as his
+# (``calibration.calibrate`` with his ``AMATEUR_TARGETS`` at her ball speed: the same ratio
+# to the Tour's proximity at the distance she hits them), her woods at his spreads (the same
+# angular dispersion: she hits more fairways than he does, her drives being shorter); his
+# putter.
+WOMEN = {"scratch-woman": "scratch", "bogey-woman": "bogey"}  # each woman's man, as above
+SCRATCH_WOMAN_SPREAD = (2.555, 3.08, 2.993, 2.148, 2.357, 2.233, 2.121, 2.137, 2.166, 2.285,
+                        2.727, 3.021)  # fmt: skip
+BOGEY_WOMAN_SPREAD = (4.095, 5.38, 5.249, 4.617, 4.57, 4.695, 4.859, 5.012, 5.071, 5.234, 5.76,
+                      6.268)  # fmt: skip
 PLAYERS = {
     "tour": (TOUR_BAG, 1.0, TOUR_SPREAD, "tour"),
     "scratch": (TOUR_BAG, 0.8875, SCRATCH_SPREAD, "scratch"),
     "bogey": (TOUR_BAG, 0.7698, BOGEY_SPREAD, "15-handicap"),
+    "scratch-woman": (TOUR_BAG, 0.7765, SCRATCH_WOMAN_SPREAD, "scratch"),
+    "bogey-woman": (TOUR_BAG, 0.628, BOGEY_WOMAN_SPREAD, "15-handicap"),
 }
 # The clubs struck from the tee only, by name (case aside).
 TEE_ONLY = ("driver",)
@@ -209,7 +225,8 @@ def lie_launch(batch, rows_lie, n, rough=None):
 
 
 def load_player(spec, putter=None, spread=None, straight=False):
-    """The Player of a preset (``PLAYERS``: tour, scratch, bogey), a player file or a library
+    """The Player of a preset (``PLAYERS``: tour, scratch, bogey, scratch-woman,
+    bogey-woman), a player file or a library
     scenario's name (``pga-tour-bag``: the Tour player, its spreads ``TOUR_SPREAD``);
     ``putter``: a name of ``putting.PUTTERS`` (default the preset's, else the Tour's);
     ``spread``: one factor for every club, or a tuple (default 1, the file's own dispersion).

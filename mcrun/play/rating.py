@@ -12,6 +12,12 @@ Rating by the system's definitions (the course-rating reference):
 - Slope Rating: 5.381 x (BR - CR) for men, 4.24 x (BR - CR) for women, of the ratings at one
   decimal, rounded to a whole number and held within 55-155 (113: a course of standard relative
   difficulty).
+- The plays-as yardage: the length whose length rating (``LENGTH_RATING``: for a scratch man
+  length / 220 + 40.9 over 18 holes) is the player's rating, the course's effective playing
+  length as the simulated player finds it.
+
+The model players (``MODEL_PLAYERS``): men's scratch and bogey, women's scratch-woman and
+bogey-woman (the presets of ``mcrun.play.player.PLAYERS``).
 
 What a hole's obstacles cost a player (``rate(..., obstacles=True)``): its expected strokes
 less those of the same hole without them (``without_obstacles``: its bunkers and penalty areas
@@ -32,12 +38,16 @@ from mcrun.strokes.baseline import YARD_M
 __all__ = [
     "BETTER_HALF",
     "EXPECTED",
+    "LENGTH_RATING",
+    "MODEL_PLAYERS",
     "SLOPE_FACTOR",
     "SLOPE_RANGE",
     "CourseRating",
     "HoleScore",
+    "length_rating",
     "par_by_length",
     "plan_rating",
+    "plays_as_yd",
     "rate",
     "rate_planned",
     "slope_rating",
@@ -45,12 +55,19 @@ __all__ = [
 ]
 
 SLOPE_FACTOR = {"men": 5.381, "women": 4.24}
+MODEL_PLAYERS = {"men": ("scratch", "bogey"), "women": ("scratch-woman", "bogey-woman")}
+# A model player's length rating of an 18-hole course: length / YD + STROKES (yd per stroke,
+# strokes): the manual's for the scratch man; for the others third-party implementations' (not
+# confirmed from the manual's own text: the course-rating reference).
+LENGTH_RATING = {"scratch": (220.0, 40.9), "bogey": (160.0, 50.7),
+                 "scratch-woman": (180.0, 40.1), "bogey-woman": (120.0, 51.3)}  # fmt: skip
 SLOPE_RANGE = (55, 155)
 EXPECTED, BETTER_HALF = "expected", "better half"
 ROUNDS = 10_000  # 18-hole rounds drawn from the holes' plays
-# Par by length for men (yd): a hole up to PAR_3_YD is a par 3, up to PAR_4_YD a par 4 (the
-# USGA's guide: par 3 up to 260 yd, par 4 240-490, par 5 450-710; the overlaps split).
-PAR_3_YD, PAR_4_YD = 250.0, 470.0
+# Par by length (yd): a hole up to the first is a par 3, up to the second a par 4 (the USGA's
+# guide: for men par 3 up to 260 yd, par 4 240-490, par 5 450-710; for women par 3 up to 220,
+# par 4 200-420, par 5 370-600; the overlaps split).
+PAR_YD = {"men": (250.0, 470.0), "women": (210.0, 395.0)}
 OBSTACLES = ("bunker", "water", "water_yellow")  # zone kinds taken off (and out of bounds)
 
 
@@ -106,6 +123,11 @@ class CourseRating:
         totals = np.sort(self.rounds[player])
         return float(totals[: len(totals) // 2].mean())
 
+    def plays_as_yd(self, player, reading=EXPECTED):
+        """The course's plays-as yardage for ``player`` (a model player: ``LENGTH_RATING``):
+        the length whose length rating is the player's rating (``plays_as_yd``)."""
+        return plays_as_yd(player, self.rating(player, reading), len(self.holes))
+
     def rating_se(self, player):
         """The standard error of the expected score (the holes' added as independent)."""
         return math.sqrt(sum(s.expected_strokes_se**2 for s in self.scores[player]))
@@ -155,6 +177,20 @@ def slope_rating(course_rating, bogey_rating, women=False):
     return int(min(max(value, SLOPE_RANGE[0]), SLOPE_RANGE[1]))
 
 
+def length_rating(player, length_yd, holes=18):
+    """The system's length rating of model ``player`` (``LENGTH_RATING``) for a course of
+    ``holes`` holes and ``length_yd``: length / YD + STROKES x holes / 18."""
+    yd, strokes = LENGTH_RATING[player]
+    return length_yd / yd + strokes * holes / 18.0
+
+
+def plays_as_yd(player, rating, holes=18):
+    """The length (yd) of ``holes`` holes whose length rating for model ``player`` is
+    ``rating``: ``length_rating`` turned round."""
+    yd, strokes = LENGTH_RATING[player]
+    return (rating - strokes * holes / 18.0) * yd
+
+
 def without_obstacles(hole):
     """``hole`` without its bunkers and penalty areas (``OBSTACLES``: their polygons taken off
     the map, so that the ground under them is what surrounds them) and its out of bounds."""
@@ -162,26 +198,33 @@ def without_obstacles(hole):
     return dataclasses.replace(hole, zones=zones, boundary=[], _terrain=None)
 
 
-def par_by_length(length_m):
-    """A man's par of a hole ``length_m`` long (``PAR_3_YD``, ``PAR_4_YD``)."""
+def par_by_length(length_m, women=False):
+    """A man's (a woman's) par of a hole ``length_m`` long (``PAR_YD``)."""
     yd = length_m / YARD_M
-    return 3 if yd <= PAR_3_YD else 4 if yd <= PAR_4_YD else 5
+    three, four = PAR_YD["women" if women else "men"]
+    return 3 if yd <= three else 4 if yd <= four else 5
 
 
-def plan_rating(holes, players=("scratch", "bogey"), n=100, seed=None, coarse_m=None,
+def plan_rating(holes, players=MODEL_PLAYERS["men"], n=100, seed=None, coarse_m=None,
                 fine_m=None, plays=4000, numbers=None, obstacles=False, workers=0,
                 names=None):  # fmt: skip
     """The plans of ``rate``'s solves, every one checked (``play.plan_play``: PlayerError, one
-    line, for one that cannot be; ``workers`` and ``names`` as it takes them) before any is
-    flown: {(player name, hole number): [the hole's PlayPlan, and the hole's without its
-    obstacles' with ``obstacles``]}, in the order they are solved."""
+    line, for one that cannot be; ``names`` as it takes them) before any is flown: {(player
+    name, hole number): [the hole's PlayPlan, and the hole's without its obstacles' with
+    ``obstacles``]}, in the order they are solved. ``workers``: the local Dask workers that
+    will solve them, each a whole solve at once (each solve then fits in their share of the
+    memory)."""
     from mcrun.play import DEFAULT_N, load_player, plan_play
     from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M
+    from mcrun.run.aim import available_memory
 
     loaded = [load_player(p) if isinstance(p, str) else p for p in players]
     numbers = list(numbers or range(1, len(holes) + 1))
+    memory = available_memory()
+    if workers and memory is not None:
+        memory /= int(workers)
     settings = dict(n=n or DEFAULT_N, seed=seed, coarse_m=coarse_m or DEFAULT_COARSE_M,
-                    fine_m=fine_m or DEFAULT_FINE_M, plays=plays, workers=workers,
+                    fine_m=fine_m or DEFAULT_FINE_M, plays=plays, memory=memory,
                     names=names)  # fmt: skip
     return {(player.name, number): [plan_play(player, h, **settings)
                                     for h in ((hole, without_obstacles(hole)) if obstacles
@@ -191,44 +234,62 @@ def plan_rating(holes, players=("scratch", "bogey"), n=100, seed=None, coarse_m=
 
 
 def rate_planned(holes, plans, women=False, progress=None, client=None):
-    """The ``CourseRating`` of ``holes`` from their ``plans`` (``plan_rating``), solved one
-    after another (``play.solve_planned``), the shots on ``client``'s workers where given.
-    ``progress(player, hole_number, result)``: called after each solve."""
+    """The ``CourseRating`` of ``holes`` from their ``plans`` (``plan_rating``): each player's
+    solve of each hole (``play.solve_planned``; with its obstacles' plan, the hole without
+    them solved after it) one task, the tasks one after another here (each on every thread),
+    or on ``client``'s Dask workers at once (each task on one worker: split by hole and
+    player), bit for bit the same. ``progress(player, hole_number)``: called as each task
+    finishes."""
+    from mcrun.executor import Executor
+
+    items = list(plans.items())
+    players = tuple(dict.fromkeys(player for player, _ in plans))
+    solved = {}
+
+    def done(k, result):
+        solved[items[k][0]] = result
+        if progress is not None:
+            progress(*items[k][0])
+
+    if client is None:
+        for k, item in enumerate(items):
+            done(k, _solved(item))
+    else:
+        Executor(client=client).map(_solved, items, done=done, name="hole")
+    scores = {player: [solved[key][0] for key, _ in items if key[0] == player]
+              for player in players}  # fmt: skip
+    return CourseRating(list(holes), players, scores, solved[items[-1][0]][1], women)
+
+
+def _solved(item):
+    """A task of ``rate_planned``: ((player, hole number), plans) solved: the hole's
+    HoleScore (with what its obstacles cost where the hole without them was planned) and the
+    seed the solve used."""
     from mcrun.play import solve_planned
 
-    players = tuple(dict.fromkeys(player for player, _ in plans))
-    scores = {player: [] for player in players}
-    seed_used = None
-    for (player, number), planned in plans.items():
-        result = solve_planned(planned[0], client=client)
-        seed_used = result.seed
-        score = HoleScore.of(number, result)
-        if progress is not None:
-            progress(player, number, result)
-        del result
-        if len(planned) > 1:  # the hole without its obstacles
-            clear = solve_planned(planned[1], client=client)
-            score = dataclasses.replace(
-                score, obstacles_strokes=score.expected_strokes - clear.tee_value
-            )
-            if progress is not None:
-                progress(player, number, clear)
-            del clear
-        scores[player].append(score)
-    return CourseRating(list(holes), players, scores, seed_used, women)
+    (_, number), planned = item
+    result = solve_planned(planned[0])
+    score, seed = HoleScore.of(number, result), result.seed
+    del result  # it holds every shot
+    if len(planned) > 1:  # the hole without its obstacles
+        clear = solve_planned(planned[1]).tee_value
+        score = dataclasses.replace(score, obstacles_strokes=score.expected_strokes - clear)
+    return score, seed
 
 
-def rate(holes, players=("scratch", "bogey"), n=100, seed=None, coarse_m=None, fine_m=None,
-         plays=4000, women=False, progress=None, client=None, numbers=None,
-         obstacles=False):  # fmt: skip
+def rate(holes, players=None, n=100, seed=None, coarse_m=None, fine_m=None, plays=4000,
+         women=False, progress=None, client=None, numbers=None, obstacles=False):  # fmt: skip
     """The ``CourseRating`` of ``holes`` (``mcrun.hole.Hole``s, in order) for ``players``
-    (presets or Players; the first the scratch player, the second the bogey player): each hole
+    (presets or Players; the first the scratch player, the second the bogey player; default
+    ``MODEL_PLAYERS``' men's, or women's with ``women``, whose Slope is the women's): each hole
     solved for each player (``n`` shots an action, the states' spacings, ``plays`` plays of
     each policy), every solve planned before the first is flown (``plan_rating``), then one
-    after another (``rate_planned``), the shots on ``client``'s workers where given;
+    after another (``rate_planned``), or each player's solve of each hole on one of
+    ``client``'s workers where given;
     ``numbers``: the holes' numbers in their course (default 1, 2, ...); ``obstacles``: each
     hole solved again without its obstacles (``without_obstacles``) for what they cost each
-    player. ``progress(player, hole_number, result)``: called after each solve."""
+    player. ``progress(player, hole_number)``: called as each player's hole is solved."""
+    players = MODEL_PLAYERS["women" if women else "men"] if players is None else players
     plans = plan_rating(holes, players, n=n, seed=seed, coarse_m=coarse_m, fine_m=fine_m,
                         plays=plays, numbers=numbers, obstacles=obstacles)  # fmt: skip
     return rate_planned(holes, plans, women=women, progress=progress, client=client)
