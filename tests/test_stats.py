@@ -198,3 +198,78 @@ def test_running_moments_give_the_mean_and_its_standard_error_chunk_by_chunk():
     mean, se = moments.mean_se()
     assert mean == math.fsum(values) / len(values)
     assert se == pytest.approx(values.std(ddof=1) / math.sqrt(len(values)), rel=1e-12)
+
+
+@pytest.mark.parametrize("name", ["par3-over-water", "penner-fig6-irons"])
+def test_the_summary_reads_from_its_spill_what_the_parquet_holds(name, tmp_path, monkeypatch):
+    """A local run's summary reads its values back from ``stats.Spill``: for every point, the
+    same chunks of the same ok values, bit for bit, as ``ShotsColumns`` reads from the run's
+    shots.parquet (chunks of 700 shots, not dividing the 2,500 of a point; a hole; several
+    points)."""
+    import pyarrow.parquet as pq
+
+    from mcrun.run.local import run_scenario
+
+    spilled = {}
+
+    class Kept(stats.Spill):
+        def close(self):
+            for point in self.blocks:
+                spilled[point] = list(self.columns(point).chunks(stats.SPILLED))
+            super().close()
+
+    monkeypatch.setattr(stats, "Spill", Kept)
+    result = run_scenario(name, n=2500, seed=3, out_dir=tmp_path / "run", chunk_size=700,
+                          progress=False)  # fmt: skip
+    with pq.ParquetFile(result.shots_path) as f:
+        groups = range(f.num_row_groups)
+        for point, chunks in spilled.items():
+            read = list(stats.ShotsColumns(f, groups, point, {}, 700).chunks(stats.SPILLED))
+            assert len(read) == len(chunks) == 4
+            for a, b in zip(read, chunks, strict=True):
+                for column in stats.SPILLED:
+                    np.testing.assert_array_equal(a[column].view(np.int64),
+                                                  b[column].view(np.int64))  # fmt: skip
+    assert len(spilled) == result.points
+
+
+@pytest.mark.parametrize("budget_values", [100_000, 500])
+def test_the_summary_s_quantiles_on_threads_are_those_of_one_thread(tmp_path, budget_values):
+    """``summarise``'s percentiles from a ``Spill`` (read whole, or histogrammed and refined
+    under a small budget), a group of variables a thread: the same values and sums, bit for
+    bit, as one thread reading every column, and numpy's percentiles."""
+    import numba
+
+    rng = np.random.default_rng(5)
+    spill = stats.Spill(tmp_path)
+    blocks = [rng.normal(50.0, 20.0, size=(len(stats.SPILLED), 3000)) for _ in range(5)]
+    for block in blocks:
+        spill.append(0, block)
+    columns = spill.columns(0)
+
+    class OneThread:  # the same values, read as ShotsColumns reads them: no ``concurrent``
+        def chunks(self, names):
+            return columns.chunks(names)
+
+    q = np.array(stats.PERCENTILES) / 100.0
+    variables = {name: (lambda c, name=name: c[name], q) for name in stats.QUANTITIES}
+    variables["distance"] = (lambda c: np.hypot(c["final_x_m"] - 3.0, c["final_y_m"] + 1.0), q)
+    values = {name: np.concatenate([b[stats.SPILLED.index(name)] for b in blocks])
+              for name in stats.SPILLED}  # fmt: skip
+    bounds = {name: (values[name].min(), values[name].max()) for name in stats.QUANTITIES}
+    distance = np.hypot(values["final_x_m"] - 3.0, values["final_y_m"] + 1.0)
+    bounds["distance"] = (distance.min(), distance.max())
+    n, budget = 15_000, 8 * budget_values
+    previous = numba.get_num_threads()
+    numba.set_num_threads(2)
+    try:
+        both = stats._quantiles_on_threads(columns, variables, n, budget, bounds)
+    finally:
+        numba.set_num_threads(previous)
+    one = stats._quantiles_on_threads(OneThread(), variables, n, budget, bounds)
+    for name in variables:
+        np.testing.assert_array_equal(both[0][name], one[0][name])
+        assert both[1][name] == one[1][name]
+        expected = distance if name == "distance" else values[name]
+        np.testing.assert_array_equal(both[0][name], np.percentile(expected, 100 * q))
+    spill.close()

@@ -5,10 +5,11 @@ par3-over-water (a hole: zones, lon/lat, expected strokes).
 The phases of a chunk (``run.local``'s task and writer, one after the other here so that each
 is timed alone): the sampling; the kernel (on the threads); the hole's columns (zones, lon/lat,
 expected strokes: ``ShotsWriter.hole_columns``); the streaming statistics (the moments and the
-hole's tally); the Parquet table and its write; then, once, the summary (its exact percentiles
-read back from the file). The run end to end: ``run.local.run_scenario`` in this process (its
-chunks the executor's tasks, written in order beside them), after a warm-up; the kernel alone:
-the same chunks, already sampled, through ``simulate_batch``.
+hole's tally, and the chunk's values for the summary kept in its ``stats.Spill``); the Parquet
+table and its write; then, once, the summary (its exact percentiles read back from the
+spill). The run end to end: ``run.local.run_scenario`` in this
+process (its chunks the executor's tasks, written in order beside them), after a warm-up; the
+kernel alone: the same chunks, already sampled, through ``simulate_batch``.
 """
 
 import tempfile
@@ -17,7 +18,6 @@ from pathlib import Path
 
 import numba
 import pyarrow as pa
-import pyarrow.parquet as pq
 
 from benchmarks.common import rate, target
 from mcrun.engine.backend import simulate_batch
@@ -49,6 +49,7 @@ def _phases(name, n):
             starts_xy_m=plan.starts_of(points), putting=plan.putting_of(scenario),
         )  # fmt: skip
         point_stats = [plan.point_stats(scenario, d) for d in the_plan.drivers]
+        spill = stats.Spill(tmp)
         for _, point, start, stop in the_plan.chunks():
             t0 = time.perf_counter()
             inputs, sampled = sampling.sample(scenario, points[point], start, stop,
@@ -60,24 +61,22 @@ def _phases(name, n):
             t3 = time.perf_counter()
             point_stats[point].update(out, sampled, hole_columns)
             t4 = time.perf_counter()
-            writer.append(point, writer.table(point, start, sampled, out, hole_columns))
+            table = writer.table(point, start, sampled, out, hole_columns)
+            writer.append(point, table)
             t5 = time.perf_counter()
-            for phase, s in zip(PHASES, (t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4),
+            spill.append(point, spill.block(table))
+            t6 = time.perf_counter()
+            for phase, s in zip(PHASES, (t1 - t0, t2 - t1, t3 - t2, t4 - t3 + t6 - t5, t5 - t4),
                                 strict=False):  # fmt: skip
                 seconds[phase] += s
         t5 = time.perf_counter()
         writer.close()  # (the row groups still kept: the Parquet's)
         seconds["parquet"] += time.perf_counter() - t5
         t6 = time.perf_counter()
-        cache = {}
-        with pq.ParquetFile(path) as shots_file:
-            plan.summary_rows(
-                points, point_stats,
-                lambda p: stats.ShotsColumns(shots_file, writer.row_groups.get(p, []), p, cache,
-                                             the_plan.chunk_size),  # fmt: skip
-                stats.DEFAULT_BUDGET_BYTES, on_hole=scenario.hole,
-            )  # fmt: skip
+        plan.summary_rows(points, point_stats, spill.columns, stats.DEFAULT_BUDGET_BYTES,
+                          on_hole=scenario.hole)  # fmt: skip
         seconds["summary"] = time.perf_counter() - t6
+        spill.close()
     return seconds
 
 

@@ -4,6 +4,7 @@ Course and Bogey Ratings, the Slope Rating and the plays-as yardage (``mcrun.pla
 table on screen, a row per hole and player to Parquet."""
 
 import contextlib
+import dataclasses
 import sys
 from pathlib import Path
 
@@ -204,10 +205,6 @@ def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tee
             table["elevation"] = str(Path(elevation).resolve())
             if elevation_crs is not None:
                 table["elevation_crs"] = str(elevation_crs)
-        hole = hole_from_table(table, path.parent, where)
-        if hole.par is None:
-            table["par"] = par_by_length(hole.length_m, women)
-            by_length.append(number)
         if yards is not None:
             table["tee"] = _tee_at(course.hole(f"#{position[number]}"), yards[number],
                                    f"{scorecard} hole {number}")  # fmt: skip
@@ -215,8 +212,10 @@ def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tee
             tee = _map_tee(boxes.get(position[number], []), number, tees, notes)
             if tee is not None:
                 table["tee"] = tee
-        if "par" in table or "tee" in table:
-            hole = hole_from_table(table, path.parent, where)
+        hole = hole_from_table(table, path.parent, where)
+        if hole.par is None:  # by its length from the tee it is played from
+            hole = dataclasses.replace(hole, par=par_by_length(hole.length_m, women))
+            by_length.append(number)
         holes.append(check_putting(hole))
     return numbers, holes, by_length, notes
 

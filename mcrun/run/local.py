@@ -27,7 +27,6 @@ from pathlib import Path
 
 import numba
 import pyarrow as pa
-import pyarrow.parquet as pq
 
 from mcrun import executor
 from mcrun.executor import on_threads
@@ -138,31 +137,24 @@ def run_scenario(
                     folder.file(output.TRAJECTORIES_FILE),
                     plan.file_metadata(provenance, "trajectories"),
                 )
+            # The summary's values of the ok shots, as written (``stats.Spill``): read back
+            # from there rather than decoded from the Parquet again.
+            spill = stats.Spill(folder.tmp)
             try:
-                point_stats = _stream(the_plan, shots_writer, traj_writer, progress)
-            except BaseException:
-                shots_writer.abort()
-                if traj_writer is not None:
-                    traj_writer.abort()
-                raise
-            shots_writer.close(plan.file_metadata(provenance, "shots", started))
-            # One open file for every point: its footer lists every row group of the run; and
-            # one cache, for the points that share a row group.
-            cache = {}
-            with pq.ParquetFile(folder.file(output.SHOTS_FILE)) as shots_file:
+                try:
+                    point_stats = _stream(the_plan, shots_writer, traj_writer, progress, spill)
+                except BaseException:
+                    shots_writer.abort()
+                    if traj_writer is not None:
+                        traj_writer.abort()
+                    raise
+                shots_writer.close(plan.file_metadata(provenance, "shots", started))
                 rows = plan.summary_rows(
-                    points,
-                    point_stats,
-                    lambda point: stats.ShotsColumns(
-                        shots_file,
-                        shots_writer.row_groups.get(point, []),
-                        point,
-                        cache,
-                        the_plan.chunk_size,
-                    ),
-                    budget_bytes,
+                    points, point_stats, spill.columns, budget_bytes,
                     on_hole=the_plan.scenario.hole,
-                )
+                )  # fmt: skip
+            finally:
+                spill.close()
             output.write_table(
                 folder.file(output.SUMMARY_FILE),
                 rows,
@@ -193,9 +185,9 @@ class _Stopped(Exception):
     """A chunk's task stops: another task or the writer failed."""
 
 
-def _stream(the_plan, shots_writer, traj_writer, progress):
-    """The chunks as the executor's tasks, written in order beside them; returns the
-    PointStats of every point."""
+def _stream(the_plan, shots_writer, traj_writer, progress, spill):
+    """The chunks as the executor's tasks, written in order beside them (and their summary's
+    values to ``spill``, a ``stats.Spill``); returns the PointStats of every point."""
     from tqdm import tqdm
 
     show = bool(progress) and sys.stderr.isatty()
@@ -205,7 +197,7 @@ def _stream(the_plan, shots_writer, traj_writer, progress):
     all_stats = [plan.point_stats(scenario, drivers) for drivers in the_plan.drivers]
     terrain = plan.terrain_of(scenario)
     ahead = AHEAD_PER_THREAD * max(numba.get_num_threads(), 1)
-    done = {}  # chunk index -> (its PointStats, its table, its inputs for the paths)
+    done = {}  # chunk index -> (its PointStats, its table, its spill, its inputs for the paths)
     turn = threading.Condition()
     state = {"written": 0, "failed": None}
 
@@ -228,8 +220,9 @@ def _stream(the_plan, shots_writer, traj_writer, progress):
                 scenario, shots_writer, the_plan.drivers[chunk.point], the_plan.input_names,
                 chunk.point, chunk.start, chunk.stop, terrain,
             )  # fmt: skip
+            block = spill.block(table)
             with turn:
-                done[k] = (part, table, inputs if traj_writer is not None else None)
+                done[k] = (part, table, block, inputs if traj_writer is not None else None)
                 turn.notify_all()
         except _Stopped:
             raise
@@ -246,9 +239,10 @@ def _stream(the_plan, shots_writer, traj_writer, progress):
                         turn.wait()
                     if state["failed"] is not None:
                         return
-                    part, table, inputs = done.pop(k)
+                    part, table, block, inputs = done.pop(k)
                 all_stats[chunk.point].merge(part)
                 shots_writer.append(chunk.point, table)
+                spill.append(chunk.point, block)
                 if traj_writer is not None:
                     plan.add_trajectories(traj_writer, inputs, chunk.point, chunk.start,
                                           chunk.stop, every, terrain)  # fmt: skip

@@ -356,12 +356,16 @@ def free_space(out_dir):
 
 
 def check_disk_space(the_plan, out_dir):
-    """Refuse (OutputError) a run whose estimated size is not under the free space."""
+    """Refuse (OutputError) a run whose estimated size, with its summary's temporary spill
+    (``stats.Spill``: 8 bytes a shot for each of ``stats.SPILLED``), is not under the free
+    space."""
     folder, free = free_space(out_dir)
-    if the_plan.bytes >= free:
+    spill = the_plan.shots * 8 * len(stats.SPILLED)
+    if the_plan.bytes + spill >= free:
         raise output.OutputError(
             f"the run would write about {size_text(the_plan.bytes)} of Parquet "
-            f"({the_plan.shots:,} shots) but {folder} has {size_text(free)} free: lower -n, "
+            f"({the_plan.shots:,} shots) and {size_text(spill)} of temporary values for its "
+            f"summary, but {folder} has {size_text(free)} free: lower -n, "
             "choose another folder with -o, or pass --ignore-disk-space to run anyway"
         )
 
