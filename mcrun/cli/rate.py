@@ -157,17 +157,17 @@ def play_order(course):
 def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tees=None,
                  elevation=None, elevation_crs=None):  # fmt: skip
     """The Holes of the course map ``path`` (a GeoJSON course map, as ``mcrun hole`` reads),
-    those of ``spec`` (``holes_wanted``), in order, each checked as ``mcrun play`` checks a
-    hole; a hole without a par in the map gets one by its line's length
-    (``rating.par_by_length``, a woman's with ``women``); ``putting``: the holes'
-    ``[hole.putting]`` settings
-    (``hole.PUTTING_KEYS``: the maps of their greens, for a putter other than the Tour's);
-    ``scorecard``: a CSV of a tee set (``read_scorecard``): each hole's tee that far from the
-    end of its line, along it (the holes on it, where ``spec`` is None); ``tees``: a tee set
-    of the map's tee boxes (``tee_set``; not with a scorecard); ``elevation``: a file of the
-    course's ground heights (``hole.elevation``; its ``elevation_crs``), each hole's relative
-    to its tee (default flat). Returns (their numbers, the
-    holes, the numbers whose par was taken from their length, notes on the tees taken)."""
+    those of ``spec`` (``holes_wanted``, numbered as ``play_order`` numbers them), in order,
+    each checked as ``mcrun play`` checks a hole; a hole without a par in the map gets one by
+    its length from the tee it is played from (``rating.par_by_length``, a woman's with
+    ``women``). ``putting``: the holes' ``[hole.putting]`` settings (``hole.PUTTING_KEYS``:
+    the maps of their greens, for a putter other than the Tour's); ``scorecard``: a CSV of a
+    tee set (``read_scorecard``): each hole's tee that far from the end of its line, along it
+    (the holes on it, where ``spec`` is None); ``tees``: a tee set of the map's tee boxes
+    (``tee_set``; not with a scorecard); ``elevation``: a file of the course's ground heights
+    (``hole.elevation``; its ``elevation_crs``), each hole's relative to its tee (default
+    flat). Returns (their numbers, the holes, the numbers whose par was taken from their
+    length, notes on the order and the tees taken)."""
     from mcrun.hole.hole import hole_from_table
     from mcrun.hole.osm import read_course
     from mcrun.hole.tees import hole_tees
