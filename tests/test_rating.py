@@ -1,6 +1,8 @@
 """A course rated by simulating the model players (``mcrun.play.rating``, ``mcrun rate``): the
-handicap system's formulas, the rounds drawn from the holes' plays, the made-up open course,
-and ``mcrun rate`` end to end on a small one with its one-line errors."""
+handicap system's formulas (the Slope, the length rating and the plays-as yardage, par by
+length), the rounds drawn from the holes' plays, the made-up open course, the map's tee boxes
+and its holes' order, and ``mcrun rate`` end to end on small courses (men's and women's players,
+obstacles, elevation, Dask) with its one-line errors."""
 
 import contextlib
 import io
