@@ -252,13 +252,13 @@ def _cmd_rate(args):
                         names=OPTION_NAMES)  # fmt: skip
     length_yd = sum(h.length_m for h in holes) / 0.9144
     if args.scorecard is not None:
-        tees = f"the tees of {args.scorecard}"
+        played_from = f"the tees of {args.scorecard}"
     else:
-        tees = {None: "the back tees", "forward": "the front tee boxes"}.get(
+        played_from = {None: "the back tees", "forward": "the front tee boxes"}.get(
             tees, f"tee box {tees} from the back"
         )
     print(f"rate: {args.course}: {len(holes)} hole{'s' * (len(holes) > 1)}, {length_yd:,.0f} "
-          f"yd from {tees} (tee to pin); {' and '.join(players)}, {n:,} shots an action",
+          f"yd from {played_from} (tee to pin); {' and '.join(players)}, {n:,} shots an action",
           file=sys.stderr, flush=True)  # fmt: skip
     for note in notes:
         print(f"rate: {note}", file=sys.stderr, flush=True)
