@@ -6,6 +6,7 @@ import math
 import sys
 
 from mcrun.cli.options import whole
+from mcrun.hole.hole import PUTTING_READS
 from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_stimp, putt
 from mcrun.putting.greens import DRIFT_MM_PER_M_BENTGRASS, DRIFT_RANGE_MM_PER_M, STIMP_RANGE_FT
 from mcrun.quantities import InputError
@@ -55,7 +56,7 @@ def _cmd_putt(args):
         return _cmd_green(args)
     if args.distance is None:
         raise InputError("--distance: required for a putt on a plane green (or give --hole)")
-    for name in ("resolution", "output", "plot"):
+    for name in ("resolution", "read", "output", "plot"):
         if getattr(args, name) is not None:
             raise InputError(f"--{name}: is for a green's map (with --hole)")
     args.slope = "0%" if args.slope is None else args.slope
@@ -126,6 +127,7 @@ def _cmd_green(args):
     n = spec["n"] if args.n is None else whole(args.n, "-n", 2)
     seed = spec["seed"] if args.seed is None else whole(args.seed, "--seed", 0)
     putter = spec["putter"] if args.putter is None else args.putter
+    read = spec["read"] if args.read is None else args.read
     drift = spec["drift_mm_per_m"] if args.drift is None else _drift(args.drift)
     try:
         green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"],
@@ -138,11 +140,11 @@ def _cmd_green(args):
         speed += f" (--stimp; the hole's green: {hole_ft:.1f} ft)"
     speed += f", drift {drift:g} mm/m"
     print(f"putt: the green of {hole.source}: {green.area_m2():.0f} m^2, {speed}; map "
-          f"{resolution:g} m, putter {putter}, {n} putts a read, seed {seed}", file=sys.stderr,
-          flush=True)  # fmt: skip
+          f"{resolution:g} m, putter {putter} ({read} read), {n} putts a read, seed {seed}",
+          file=sys.stderr, flush=True)  # fmt: skip
     bar = _bar()
     try:
-        result = expected_putts_map(green, putter, n, seed, resolution, progress=bar)
+        result = expected_putts_map(green, putter, n, seed, resolution, progress=bar, read=read)
     except KeyboardInterrupt:
         raise Interrupted("nothing was written") from None
     finally:
@@ -152,7 +154,7 @@ def _cmd_green(args):
     frame.insert(2, "lon_deg", lon)
     frame.insert(3, "lat_deg", lat)
     provenance = {
-        "hole": hole.source, "putter": putter, "n": n, "seed": seed,
+        "hole": hole.source, "putter": putter, "read": read, "n": n, "seed": seed,
         "resolution_m": resolution, "green_cell_m": green.cell_m, "stimp_m": green.stimp_m,
         "stimp_from": "hole" if stimp_m is None else "--stimp",
         "drift_mm_per_m": drift, "pin_xy_m": list(green.pin_xy_m),
@@ -178,8 +180,8 @@ def _cmd_green(args):
     print(
         f"expected putts over the green: {away.min():.3f} to {away.max():.3f}, mean "
         f"{away.mean():.3f} ({len(away)} points, {result.elapsed_s:.1f} s; settled in "
-        f"{result.sweeps} sweeps after the first: the last changed a value by "
-        f"{result.sweep_change:.4f} at most)"
+        f"{result.sweeps} {'sweep' if result.sweeps == 1 else 'sweeps'} after the first: the "
+        f"last changed a value by {result.sweep_change:.4f} at most)"
     )
     print(f"wrote {destination}")
     if args.plot is not None:
@@ -241,6 +243,9 @@ def register(subparsers):
     p.add_argument("--seed", metavar="S", help="random seed (0)")
     p.add_argument("--hole", metavar="HOLE", help="a hole TOML file: map its green")
     p.add_argument("--resolution", help="the map's spacing (the hole's, 0.5m)")
+    p.add_argument("--read", choices=list(PUTTING_READS),
+                   help="how the map reads each putt: the putter's own read, or the best of a "
+                   "search of paces and start lines (the hole's, own)")  # fmt: skip
     p.add_argument("-o", "--output", metavar="FILE", help="the map's Parquet (with --hole)")
     p.add_argument("--plot", metavar="PNG", help="the map's picture (with --hole)")
     p.add_argument("--force", action="store_true", help="replace existing outputs")

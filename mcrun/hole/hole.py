@@ -94,8 +94,11 @@ KEYS = (
     "putting",
 )
 PUTTING_MODELS = ("table", "physics")
+# How the map reads each putt (``putting.green_map``): the putter's own read, or the best of a
+# search.
+PUTTING_READS = ("own", "best")
 # [hole.putting]: its keys, defaults and what is allowed.
-PUTTING_DEFAULTS = {"model": "table", "putter": "tour", "n": 200, "seed": 0,
+PUTTING_DEFAULTS = {"model": "table", "putter": "tour", "read": "own", "n": 200, "seed": 0,
                     "resolution_m": 0.5, "cell_m": None, "elevation": None,
                     "elevation_crs": None,
                     "drift_mm_per_m": GREEN_DRIFT_MM_PER_M}  # fmt: skip
@@ -366,6 +369,8 @@ def _putting(table, where, folder):
             raise HoleError(f"{where}: '{name}': unknown key; allowed: {', '.join(PUTTING_KEYS)}")
         if key == "model" and v not in PUTTING_MODELS:
             raise HoleError(f"{where}: '{name}' = {v!r}: choose {', '.join(PUTTING_MODELS)}")
+        if key == "read" and v not in PUTTING_READS:
+            raise HoleError(f"{where}: '{name}' = {v!r}: choose {', '.join(PUTTING_READS)}")
         if key == "putter" and (not isinstance(v, str) or not v):
             raise HoleError(f"{where}: '{name}' = {v!r} must be a putter's name")
         if key == "n" and (isinstance(v, bool) or not isinstance(v, int) or not 2 <= v <= 100_000):

@@ -2,13 +2,16 @@
 at every point, the share of one-putts and of three putts or more.
 
 The value of a point is the expected number of strokes to hole out from there, every putt read
-as well as the putter can (``mcrun.putting.read.search``: the paces ``read.PACES_M``, each on the
-centre line the putter perceives, then start lines ``read.AIM_STEPS_DEG`` either side of the
-best), the later putts valued by the map itself:
+as ``read`` says, the later putts valued by the map itself:
 
     V(p) = min over reads of  E[ 1 + V(where the putt stopped) ],   V(in the hole) = 0,
 
-over ``n`` putts whose errors (start line, speed, read, the green's drift: ``putter``,
+where the reads are, with ``read="own"`` (the default), the putter's own alone: its pace
+(``Putter.pace_m``) on the centre line it perceives, the putter its calibration holds to the
+Tour's putts; with ``read="best"``, those of ``mcrun.putting.read.search`` (the paces
+``read.PACES_M``, each on the centre line the putter perceives, then start lines
+``read.AIM_STEPS_DEG`` either side of the best): the best a putter with the same errors could
+choose. Over ``n`` putts whose errors (start line, speed, read, the green's drift: ``putter``,
 ``stroke``) are common to every read and every point (common random numbers: the map is smooth,
 and its differences are the ground's). A putt that leaves the green is a chip from where it
 left: 1 + the baseline's fairway strokes from there (the fringe's lie, ``hole.zones``).
@@ -35,6 +38,7 @@ import numpy as np
 from numba import njit
 
 from mcrun.executor import on_threads
+from mcrun.hole.hole import PUTTING_READS as READS
 from mcrun.putting.putter import PUTTERS, putter_errors
 from mcrun.putting.read import AIM_STEPS_DEG, PACES_M, READ_NODES, search, value_read
 from mcrun.putting.rest import (
@@ -54,7 +58,9 @@ from mcrun.strokes.baseline import tour_baseline
 
 __all__ = [
     "DEFAULT_N",
+    "DEFAULT_READ",
     "DEFAULT_RESOLUTION_M",
+    "READS",
     "GreenMap",
     "expected_putts_map",
 ]
@@ -70,6 +76,10 @@ _OUT = 7 + len(READ_NODES)
 # The sweeps after the first: until no point's value changes by more than SWEEP_TOLERANCE.
 SWEEP_TOLERANCE = 0.001
 MAX_SWEEPS = 8
+# How each putt is read (``READS``): "own", the putter's own read (its pace on the centre line it
+# perceives: the read its calibration holds to the Tour's putts); "best", the best of
+# ``read.search``'s paces and start lines (the least expected putts under the putter's errors).
+DEFAULT_READ = "own"
 
 
 @njit(cache=True, nogil=True)
@@ -208,11 +218,12 @@ def _chip_table():
 
 
 def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
-                       resolution_m=DEFAULT_RESOLUTION_M, threads=None,
-                       progress=None):  # fmt: skip
+                       resolution_m=DEFAULT_RESOLUTION_M, threads=None, progress=None,
+                       read=DEFAULT_READ):  # fmt: skip
     """The GreenMap of ``green`` (a ``putting.green.Green``) for ``putter`` (a name of
     ``PUTTERS`` or a ``Putter``), ``n`` putts per read with errors seeded by ``seed``, on a grid
-    of ``resolution_m``. ``progress(done, total)``: called as the points are solved."""
+    of ``resolution_m``, every putt read as ``read`` says (``READS``). ``progress(done,
+    total)``: called as the points are solved."""
     started = time.perf_counter()
     if isinstance(putter, str):
         putter = PUTTERS[putter]
@@ -225,8 +236,13 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
     putt_green = PuttGreen(surface, 0.0, 1.0, 0.0, float(green.rho_g), float(green.drift_sd),
                            MAP_DT_S, surface.cell_m / 2.0)  # fmt: skip
     stroke = stroke_of(putter)
-    paces = np.array(PACES_M, dtype=float)
-    aim_steps = np.radians(np.array(AIM_STEPS_DEG, dtype=float))
+    if read not in READS:
+        raise ValueError(f"read {read!r}: choose {', '.join(READS)}")
+    if read == "own":
+        paces, aim_steps = np.array([putter.pace_m]), np.zeros(0)
+    else:
+        paces = np.array(PACES_M, dtype=float)
+        aim_steps = np.radians(np.array(AIM_STEPS_DEG, dtype=float))
     chip = _chip_table()
     base = tour_baseline()
 
@@ -342,6 +358,7 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
             "band_m": BAND_M,
             "r_near_m": R_NEAR_M,
             "sweep_tolerance": SWEEP_TOLERANCE,
+            "read": read,
         },
         sweeps=sweeps,
     )

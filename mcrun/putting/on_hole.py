@@ -5,13 +5,12 @@ green, pin, putter and settings, kept in memory and in a cache folder.
 (``[hole] putting = "table"``, the default), else the ``GreenMap`` of its green
 (``putting = "physics"``). The cache folder is ``$MCRUN_CACHE_DIR/greens`` (default
 ``~/.cache/mcrun/greens``); a map is stored under a hash of everything it depends on (the
-green's heights and nodes, the pin, the speed and drift, the putter's parameters, n, seed,
-resolution and the map's code version ``MAP_VERSION``), so that an edit of any of them builds a
-new map: a putter of the same name with other errors builds one too, and putters of other names
-with the same parameters share one. A
-folder that cannot be written is skipped: the map is then built in each process. A file there
-that cannot be read as a map (truncated, emptied, damaged) is built again and replaced, with a
-warning on stderr.
+green's heights and nodes, the pin, the speed and drift, the putter's parameters, the read, n,
+seed, resolution and the map's code version ``MAP_VERSION``), so that an edit of any of them
+builds a new map: a putter of the same name with other errors builds one too, and putters of
+other names with the same parameters share one. A folder that cannot be written is skipped:
+the map is then built in each process. A file there that cannot be read as a map (truncated,
+emptied, damaged) is built again and replaced, with a warning on stderr.
 """
 
 import dataclasses
@@ -83,7 +82,7 @@ def _key(green, spec):
     h = hashlib.sha256()
     h.update(green.key())
     putter = dataclasses.astuple(PUTTERS[spec["putter"]])[1:]  # its parameters, not its name
-    h.update(repr((MAP_VERSION, putter, spec["n"], spec["seed"],
+    h.update(repr((MAP_VERSION, putter, spec["read"], spec["n"], spec["seed"],
                    spec["resolution_m"])).encode())  # fmt: skip
     return h.hexdigest()[:32]
 
@@ -109,9 +108,11 @@ def map_of_hole(hole, progress=None, putter=None):
         if progress is None:
             print(f"mcrun: computing the expected-putts map of {green.source}'s green "
                   f"({green.area_m2():.0f} m^2 at {spec['resolution_m']:g} m, "
-                  f"{spec['n']} putts a read) ...", file=sys.stderr, flush=True)  # fmt: skip
+                  f"{spec['n']} putts a read, {spec['read']} read) ...", file=sys.stderr,
+                  flush=True)  # fmt: skip
         found = expected_putts_map(green, spec["putter"], spec["n"], spec["seed"],
-                                   spec["resolution_m"], progress=progress)  # fmt: skip
+                                   spec["resolution_m"], progress=progress,
+                                   read=spec["read"])  # fmt: skip
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
             tmp = path.with_suffix(f".{os.getpid()}.tmp.npz")
