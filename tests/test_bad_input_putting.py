@@ -255,3 +255,14 @@ def test_putt_on_a_hole_applies_stimp_and_says_so(tmp_path, capsys, monkeypatch)
     provenance = read_provenance(out)
     assert provenance["stimp_m"] == pytest.approx(4 * FOOT_M)
     assert provenance["stimp_from"] == "--stimp"
+    assert provenance["read"] == "own" and "(own read)" in err
+
+
+def test_putt_on_a_hole_reads_as_read_says(tmp_path, capsys):
+    """``--read best`` maps the green with the search's reads, said on stderr and in the file."""
+    hole = _hole(tmp_path, slope_deg=10.0)
+    out = tmp_path / "m.parquet"
+    assert main(["putt", "--hole", str(hole), "-o", str(out), "--stimp", "4ft", "--read",
+                 "best", "-n", "20"]) == 0  # fmt: skip
+    assert "(best read)" in capsys.readouterr().err
+    assert read_provenance(out)["read"] == "best"

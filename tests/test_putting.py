@@ -255,6 +255,7 @@ def test_mcrun_putt_prints_the_make_rate_and_the_read(capsys):
         (["--distance", "10ft", "--stimp", "-3ft"], "Stimp"),
         (["--distance", "10ft", "--drift", "40"], "--drift 40: allowed: 0 to 34"),
         (["--distance", "10ft", "--drift", "lots"], "--drift lots: allowed"),
+        (["--distance", "10ft", "--read", "best"], "--read: is for a green's map (with --hole)"),
     ],
 )
 def test_mcrun_putt_refuses_bad_input_in_one_line(options, says, capsys):
