@@ -17,7 +17,7 @@ from mcrun.physics.constants import G_MPS2
 from mcrun.physics.turf import STIMP_LAUNCH_SPEED_MPS, rho_g_from_stimp
 from mcrun.putting import putt
 from mcrun.putting.green import Green
-from mcrun.putting.green_map import MAP_DT_S, expected_putts_map
+from mcrun.putting.green_map import MAP_DT_S, expected_putts_map, read_candidates
 from mcrun.putting.on_hole import map_of_hole
 from mcrun.putting.roll import (
     DT_S,
@@ -409,7 +409,7 @@ def test_on_the_library_s_green_below_the_hole_is_cheaper_than_above(read):
     drift it was cheaper by 0.03-0.14."""
     from mcrun.putting.green import green_of_hole
     from mcrun.putting.putter import PUTTERS, putter_errors
-    from mcrun.putting.read import AIM_STEPS_DEG, PACES_M, READ_NODES, search
+    from mcrun.putting.read import READ_NODES, search
     from mcrun.putting.rest import hole_out_values
     from mcrun.putting.stroke import PuttGreen, stroke_of
     from mcrun.run import scenario as sc
@@ -422,10 +422,7 @@ def test_on_the_library_s_green_below_the_hole_is_cheaper_than_above(read):
     rest = hole_out_values(z, keys)
     px, py = green.pin_xy_m
     tour = PUTTERS["tour"]
-    if read == "own":
-        paces, steps = np.array([tour.pace_m]), np.zeros(0)
-    else:
-        paces, steps = np.array(PACES_M), np.radians(AIM_STEPS_DEG)
+    paces, steps = read_candidates(read, tour)
     for d in (2.0, 3.0, 5.0, 8.0):
         putts = {}
         for name, x in (("below", px - d), ("above", px + d)):

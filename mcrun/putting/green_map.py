@@ -63,6 +63,7 @@ __all__ = [
     "READS",
     "GreenMap",
     "expected_putts_map",
+    "read_candidates",
 ]
 
 DEFAULT_RESOLUTION_M = 0.5
@@ -217,6 +218,17 @@ def _chip_table():
     return _CHIP
 
 
+def read_candidates(read, putter):
+    """(paces m, start lines rad off the perceived centre line) that ``read.search`` tries at
+    every point of a map under ``read`` (``READS``) for ``putter`` (a ``Putter``): the own
+    read's pace alone, or the search's paces then start lines."""
+    if read not in READS:
+        raise ValueError(f"read {read!r}: choose {', '.join(READS)}")
+    if read == "own":
+        return np.array([putter.pace_m]), np.zeros(0)
+    return np.array(PACES_M, dtype=float), np.radians(np.array(AIM_STEPS_DEG, dtype=float))
+
+
 def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
                        resolution_m=DEFAULT_RESOLUTION_M, threads=None, progress=None,
                        read=DEFAULT_READ):  # fmt: skip
@@ -236,13 +248,7 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
     putt_green = PuttGreen(surface, 0.0, 1.0, 0.0, float(green.rho_g), float(green.drift_sd),
                            MAP_DT_S, surface.cell_m / 2.0)  # fmt: skip
     stroke = stroke_of(putter)
-    if read not in READS:
-        raise ValueError(f"read {read!r}: choose {', '.join(READS)}")
-    if read == "own":
-        paces, aim_steps = np.array([putter.pace_m]), np.zeros(0)
-    else:
-        paces = np.array(PACES_M, dtype=float)
-        aim_steps = np.radians(np.array(AIM_STEPS_DEG, dtype=float))
+    paces, aim_steps = read_candidates(read, putter)
     chip = _chip_table()
     base = tour_baseline()
 
