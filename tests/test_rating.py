@@ -171,6 +171,8 @@ def test_mcrun_rate_rates_for_the_women_s_model_players(tmp_path):
     assert list(frame["par"]) == [4, 4]
     meta = output.read_provenance(out)
     assert meta["women"] is True and meta["holes"] == 1
+    assert meta["greens"] == {"read": "own", "n": 8, "seed": 0, "resolution_m": 2.0,
+                              "drift_mm_per_m": 4.9}  # fmt: skip
     rating = meta["scratch_woman_rating_expected"]
     assert rating == round(frame["expected_strokes"].iloc[0], 1)
 

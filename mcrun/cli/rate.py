@@ -336,6 +336,9 @@ def write_rating(rating, frame, path, args, n):
                   "elevation": None if args.elevation is None else str(args.elevation),
                   "players": list(rating.players), "seed": rating.seed, "n": n,
                   "length_yd": rating.length_yd,
+                  # the greens' maps the model players putt on (the holes share these settings)
+                  "greens": {key: rating.holes[0].putting[key]
+                             for key in ("read", "n", "seed", "resolution_m", "drift_mm_per_m")},
                   "attribution": rating.holes[0].attribution or "", "file": "rating"}  # fmt: skip
     for reading, key in ((EXPECTED, "expected"), (BETTER_HALF, "better_half")):
         for player in rating.players[:2]:
