@@ -1,5 +1,5 @@
-"""``python -m benchmarks.putting [--resolution R] [--n N] [--library-n N]``: the expected-putts
-map of a 600 m^2 green.
+"""``python -m benchmarks.putting [--resolution R] [--n N] [--library-n N] [--library-best-n N]``:
+the expected-putts map of a 600 m^2 green.
 
 The issue's target: the map of a 600 m^2 green at 0.5 m, 200 putts per read, in under 60 s on
 two cores; timed with each of the map's reads (``green_map.READS``: the putter's own, the
