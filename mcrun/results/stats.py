@@ -711,7 +711,7 @@ def _quantiles_on_threads(columns, variables, n, budget_bytes, bounds):
     results = [None] * groups
 
     def needs(part):
-        wanted = [n for n in part if n in QUANTITIES]
+        wanted = [name for name in part if name in QUANTITIES]
         if "distance" in part:
             wanted += [c for c in ("final_x_m", "final_y_m") if c not in wanted]
         return wanted
