@@ -11,7 +11,9 @@ map, timed. Options: ``--n N``, ``--skip-length``, ``--skip-course``, ``--skip-m
   apart). The targets (the issue, for the men): the scratch rating rises one stroke per 220 yd
   within 15 % and the bogey rating one per 160 yd within 20 % (the slopes of a straight line
   fitted through the four), and the scratch rating within 2 strokes of length / 220 + 40.9 at
-  every length. The women's against their rules (``rating.LENGTH_RATING``: 180 and 120 yd a
+  every length (in both readings: the expected score and the better half). Each model player's
+  day form (``rating.DAY_FORM``) fitted again on these courses, beside the one in use. The
+  women's against their rules (``rating.LENGTH_RATING``: 180 and 120 yd a
   stroke) at the same tolerances (ours: the issue sets none for them).
 - The model players on a flat open par 4 of 400 yd (the women's of 336 yd, as much shorter as
   their scratch player's drive), against the scores the men's approach proximity was fitted to
@@ -42,11 +44,15 @@ from mcrun.cli.rate import course_holes
 from mcrun.hole.synthetic import open_course, pars_for
 from mcrun.play.rating import (
     BETTER_HALF,
+    DAY_FORM,
     EXPECTED,
+    KNUTH_GAP,
     LENGTH_RATING,
     MODEL_PLAYERS,
     SLOPE_FACTOR,
     CourseRating,
+    better_half_gap,
+    fit_day_form,
     length_rating,
     rate,
 )
@@ -94,11 +100,14 @@ def length_rule(n, sex="men"):
     players = MODEL_PLAYERS[sex]
     scratch, bogey = players
     lengths = LENGTHS_YD[sex]
-    rows, ratings = [], {p: [] for p in players}
+    rows, ratings, halves = [], {p: [] for p in players}, []
+    courses = {p: [] for p in players}
     for length in lengths:
         rating, seconds = open_rating(length, n, sex)
         for player in players:
             ratings[player].append(rating.rating(player))
+            courses[player].append(rating.scores[player])
+        halves.append(rating.rating(scratch, BETTER_HALF) - length_rating(scratch, length))
         rows.append("| " + " | ".join([f"{length:,}", *(
             f"{rating.rating(p):.1f} | {rating.rating(p, BETTER_HALF):.1f} | "
             f"{length_rating(p, length):.1f}" for p in players),
@@ -119,8 +128,21 @@ def length_rule(n, sex="men"):
     worst = max(abs(v) for v in off)
     lines += [f"- {scratch} within {WITHIN_STROKES:g} strokes of {_rule(scratch)} at every "
               f"length: {min(off):+.1f} to {max(off):+.1f} "
-              f"({'met' if worst <= WITHIN_STROKES else 'NOT met'})", ""]  # fmt: skip
-    return lines
+              f"({'met' if worst <= WITHIN_STROKES else 'NOT met'})"]  # fmt: skip
+    lines.append(
+        f"- {scratch}'s better half against the same: {min(halves):+.1f} to "
+        f"{max(halves):+.1f} "
+        f"({'met' if max(map(abs, halves)) <= WITHIN_STROKES else 'NOT met'})"
+    )
+    for player in players:
+        fitted = fit_day_form(courses[player], rating.seed)
+        alone = np.mean([better_half_gap(c, rating.seed) for c in courses[player]])
+        lines.append(
+            f"- {player}'s day form fitted to a better half {KNUTH_GAP:g} strokes below "
+            f"the average over these courses: {fitted:.3f} (in use "
+            f"{DAY_FORM[player]:.3f}; with independent holes the gap is {alone:.2f})"
+        )
+    return lines + [""]
 
 
 def course_rating(n, sex="men", path=COURSE):

@@ -18,10 +18,13 @@ from mcrun.cli.rate import course_holes, holes_wanted
 from mcrun.hole.synthetic import PAR_MIX, YARD_M, open_course, pars_for
 from mcrun.play.rating import (
     BETTER_HALF,
+    DAY_FORM,
     EXPECTED,
     CourseRating,
     HoleScore,
+    better_half_gap,
     course_rounds,
+    fit_day_form,
     length_rating,
     par_by_length,
     plays_as_yd,
@@ -76,9 +79,10 @@ def _scores(player, means):
 
 
 def test_the_better_half_is_below_the_expected_score_and_the_rounds_are_reproducible():
-    """The rounds: the holes' plays drawn independently (their sum's variance the sum of
-    theirs, within 5 %), the same for the same seed; the better half's mean below the
-    expected score, which is the holes' sum."""
+    """The rounds: without the day's form the holes' plays drawn independently (their sum's
+    variance the sum of theirs, within 5 %), the same for the same seed; the rating's rounds
+    those of the player's day form; the better half's mean below the expected score, which is
+    the holes' sum."""
     means = [4.3, 3.4, 5.2, 4.6] * 4 + [4.1, 3.2]
     scores = {"scratch": _scores("scratch", means), "bogey": _scores("bogey", np.add(means, 1.1))}
     rating = CourseRating([None] * 18, ("scratch", "bogey"), scores, seed=7)
@@ -86,11 +90,42 @@ def test_the_better_half_is_below_the_expected_score_and_the_rounds_are_reproduc
     assert expected == pytest.approx(sum(s.expected_strokes for s in scores["scratch"]))
     assert rating.rating("scratch", BETTER_HALF) < expected - 1.0
     variance = sum(s.scores.var() for s in scores["scratch"])
-    assert rating.rounds["scratch"].var() == pytest.approx(variance, rel=0.05)
-    again = course_rounds(scores["scratch"], 10_000, 7)
+    independent = course_rounds(scores["scratch"], 10_000, 7)
+    assert independent.var() == pytest.approx(variance, rel=0.05)
+    np.testing.assert_array_equal(independent, course_rounds(scores["scratch"], 10_000, 7))
+    again = course_rounds(scores["scratch"], 10_000, 7, DAY_FORM["scratch"])
     np.testing.assert_array_equal(again, rating.rounds["scratch"])
     assert rating.slope(EXPECTED) == slope_rating(round(expected, 1),
                                                   round(rating.rating("bogey"), 1))  # fmt: skip
+
+
+def _normal_scores(sd, holes=18, plays=20_000):
+    rng = np.random.default_rng(3)
+    return [HoleScore(k, "scratch", 4.0, 0.0, "Driver", rng.normal(4.0, sd, plays), 0, 0.0)
+            for k in range(1, holes + 1)]  # fmt: skip
+
+
+def test_the_day_s_form_spreads_the_rounds_as_a_gaussian_copula_does():
+    """Holes whose plays are normal (SD s), joined by a day form rho: each hole's scores the
+    same draws as without it (the rounds' mean unchanged, to rounding), the rounds' variance
+    18 s^2 (1 + 17 rho) (their correlation rho) within 5 %; the better half 0.798 of their SD
+    below the average (the mean of a normal's lower half, within 3 %); a day form fitted to a
+    gap of 3 strokes is the rho that gives it (within 0.02); a rho outside [0, 1) refused."""
+    sd = 0.6
+    scores = _normal_scores(sd)
+    alone = course_rounds(scores, 20_000, 11)
+    for rho in (0.1, 0.3):
+        rounds = course_rounds(scores, 20_000, 11, rho)
+        assert rounds.mean() == pytest.approx(alone.mean(), abs=1e-9)
+        assert rounds.var() == pytest.approx(18 * sd**2 * (1 + 17 * rho), rel=0.05)
+        gap = better_half_gap(scores, 11, rho, rounds=20_000)
+        assert gap == pytest.approx(0.7979 * np.sqrt(18 * sd**2 * (1 + 17 * rho)), rel=0.03)
+    rho = ((3.0 / 0.7979) ** 2 / (18 * sd**2) - 1.0) / 17.0
+    assert fit_day_form([scores], 11, gap=3.0) == pytest.approx(rho, abs=0.02)
+    assert fit_day_form([scores], 11, gap=0.5) == 0.0
+    for bad in (-0.1, 1.0):
+        with pytest.raises(ValueError, match="day_form"):
+            course_rounds(scores, 10, 11, bad)
 
 
 def test_holes_are_chosen_as_written():
@@ -173,6 +208,7 @@ def test_mcrun_rate_rates_for_the_women_s_model_players(tmp_path):
     assert meta["women"] is True and meta["holes"] == 1
     assert meta["greens"] == {"read": "own", "n": 8, "seed": 0, "resolution_m": 2.0,
                               "drift_mm_per_m": 4.9}  # fmt: skip
+    assert meta["day_form"] == {p: DAY_FORM[p] for p in ("scratch-woman", "bogey-woman")}
     rating = meta["scratch_woman_rating_expected"]
     assert rating == round(frame["expected_strokes"].iloc[0], 1)
 

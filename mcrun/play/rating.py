@@ -7,8 +7,8 @@ Rating by the system's definitions (the course-rating reference):
   the tee; the WHS text's "expected score of a scratch player") and the **better half**, the
   mean of the better half of the player's 18-hole scores (what the rating measures in practice:
   a handicap takes the best 8 of 20 differentials). The rounds are drawn from each hole's plays
-  of its policy (``PlayResult.scores``), each hole's shuffled by a seed of its own so that the
-  holes are independent.
+  of its policy (``PlayResult.scores``), each hole's by a seed of its own, and joined by the
+  player's form on the day (``DAY_FORM``, below).
 - Slope Rating: 5.381 x (BR - CR) for men, 4.24 x (BR - CR) for women, of the ratings at one
   decimal, rounded to a whole number and held within 55-155 (113: a course of standard relative
   difficulty).
@@ -22,6 +22,20 @@ bogey-woman (the presets of ``mcrun.play.player.PLAYERS``).
 What a hole's obstacles cost a player (``rate(..., obstacles=True)``): its expected strokes
 less those of the same hole without them (``without_obstacles``: its bunkers and penalty areas
 taken off the map, the ground under them what surrounds them, and no out of bounds).
+
+The day's form: a player's holes within a round are not independent of one another (a good day
+is good on most holes), and a better half depends on how far rounds spread. A player's average
+runs about 3 strokes above his handicap [Knuth, the amateurs reference], which for rounds spread
+about normally is 0.80 of their standard deviation, 3.75 strokes; independent holes spread the
+model players' rounds less (their better half about 2 strokes below their average on the open
+courses of ``benchmarks.rating``). So each round draws a form, and each hole's score is its
+plays' quantile at a latent normal correlated ``DAY_FORM[player]`` with that form (a Gaussian
+copula, by ranks: each hole's drawn plays are dealt to the rounds in the order of their
+latents, so that a hole's scores are the same draws as without it). ``DAY_FORM`` is fitted
+(``fit_day_form``) so that, over the open courses of ``benchmarks.rating``, the model player's
+better half lies 3.0 strokes below his average: an ESTIMATE from one round figure, the same for
+every model player (the reference gives no spread by handicap). The expected score does not
+depend on it; the better half does.
 
 A hole's par, where its map does not give one, is taken from its length (``par_by_length``:
 the USGA's guide for men, an ESTIMATE where its ranges overlap); a rating does not use it.
@@ -37,6 +51,7 @@ from mcrun.strokes.baseline import YARD_M
 
 __all__ = [
     "BETTER_HALF",
+    "DAY_FORM",
     "EXPECTED",
     "LENGTH_RATING",
     "MODEL_PLAYERS",
@@ -44,6 +59,9 @@ __all__ = [
     "SLOPE_RANGE",
     "CourseRating",
     "HoleScore",
+    "better_half_gap",
+    "course_rounds",
+    "fit_day_form",
     "length_rating",
     "par_by_length",
     "plan_rating",
@@ -64,6 +82,12 @@ LENGTH_RATING = {"scratch": (220.0, 40.9), "bogey": (160.0, 50.7),
 SLOPE_RANGE = (55, 155)
 EXPECTED, BETTER_HALF = "expected", "better half"
 ROUNDS = 10_000  # 18-hole rounds drawn from the holes' plays
+# The latent correlation of a model player's holes with his form on the day (module docstring),
+# fitted by ``fit_day_form`` to a better half 3.0 strokes below the average [Knuth] over the open
+# courses of ``benchmarks.rating`` (which prints the fit beside these): an ESTIMATE. A player
+# not named here plays independent holes.
+DAY_FORM = {"scratch": 0.15, "bogey": 0.02, "scratch-woman": 0.16, "bogey-woman": 0.04}
+KNUTH_GAP = 3.0  # strokes between a player's average and his handicap [Knuth]
 # Par by length (yd): a hole up to the first is a par 3, up to the second a par 4 (the USGA's
 # guide: for men par 3 up to 260 yd, par 4 240-490, par 5 450-710; for women par 3 up to 220,
 # par 4 200-420, par 5 370-600; the overlaps split).
@@ -110,7 +134,8 @@ class CourseRating:
 
     def __post_init__(self):
         for player in self.players:
-            self.rounds[player] = course_rounds(self.scores[player], ROUNDS, self.seed)
+            self.rounds[player] = course_rounds(self.scores[player], ROUNDS, self.seed,
+                                                DAY_FORM.get(player, 0.0))  # fmt: skip
 
     @property
     def length_yd(self):
@@ -160,14 +185,50 @@ class CourseRating:
         return pd.DataFrame(rows)
 
 
-def course_rounds(scores, rounds, seed):
-    """``rounds`` totals over the holes of ``scores`` (HoleScores): round r takes each hole's
-    play drawn by that hole's own shuffle (seeded by ``seed`` and the hole's number)."""
+def course_rounds(scores, rounds, seed, day_form=0.0):
+    """``rounds`` totals over the holes of ``scores`` (HoleScores): each hole's plays drawn
+    ``rounds`` times (seeded by ``seed`` and the hole's number) and dealt to the rounds in the
+    order of a latent normal correlated ``day_form`` with the round's form (a Gaussian copula by
+    ranks; 0: in the order drawn, the holes independent)."""
+    if not 0.0 <= day_form < 1.0:
+        raise ValueError(f"day_form {day_form}: must be in [0, 1)")
+    form = np.random.default_rng([seed, 0]).standard_normal(rounds)  # holes count from 1
     total = np.zeros(rounds)
     for s in scores:
         rng = np.random.default_rng([seed, s.hole])
-        total += rng.choice(s.scores, size=rounds, replace=True)
+        drawn = rng.choice(s.scores, size=rounds, replace=True)
+        if day_form > 0.0:
+            noise = rng.standard_normal(rounds)
+            latent = math.sqrt(day_form) * form + math.sqrt(1.0 - day_form) * noise
+            dealt = np.empty(rounds)
+            dealt[np.argsort(latent, kind="stable")] = np.sort(drawn, kind="stable")
+            drawn = dealt
+        total += drawn
     return total
+
+
+def better_half_gap(scores, seed, day_form=0.0, rounds=ROUNDS):
+    """The mean of the rounds (``course_rounds``) of ``scores`` less the mean of their better
+    half: how far a player's better half lies below his average."""
+    totals = np.sort(course_rounds(scores, rounds, seed, day_form))
+    return float(totals.mean() - totals[: rounds // 2].mean())
+
+
+def fit_day_form(courses, seed, gap=KNUTH_GAP, steps=20):
+    """The day form (``course_rounds``) whose better half lies ``gap`` strokes below the
+    average, on the mean over ``courses`` (each a list of one player's HoleScores), by
+    bisection in [0, 0.9]; 0 where the holes alone already spread the rounds that far."""
+
+    def mean_gap(rho):
+        return float(np.mean([better_half_gap(c, seed, rho) for c in courses]))
+
+    lo, hi = 0.0, 0.9
+    if mean_gap(lo) >= gap:
+        return 0.0
+    for _ in range(steps):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if mean_gap(mid) < gap else (lo, mid)
+    return 0.5 * (lo + hi)
 
 
 def slope_rating(course_rating, bogey_rating, women=False):
