@@ -1,5 +1,5 @@
-"""``python -m benchmarks.putting [--resolution R] [--n N] [--library-n N] [--library-best-n N]``:
-the expected-putts map of a 600 m^2 green.
+"""``python -m benchmarks.putting [--resolution R] [--n N] [--library-n N] [--library-best-n N]
+[--aim-n N] [--aim-putts N] [--aim-seeds K]``: the expected-putts map of a 600 m^2 green.
 
 The issue's target: the map of a 600 m^2 green at 0.5 m, 200 putts per read, in under 60 s on
 two cores; timed with each of the map's reads (``green_map.READS``: the putter's own, the
@@ -15,11 +15,21 @@ at the hole's own 100 a point's sampling error, about 0.03 putts, is as large as
 below and above the hole) and ``--library-best-n`` with the best (800: its search costs 12
 reads), and its expected putts straight below and straight above the pin at 2, 3, 5 and 8 m.
 
+Then the aim check: a wedge into a side-sloped green (``side_slope_wedge``: the library's
+``wedge-two-tier-firm`` scenario, Riverside 18 from 110 m, its ground a plane tilted 2 %
+falling right, Stimp 11 ft), its best aim (``ClubAims.best_between_m``: five aims 0.25 m apart,
+``--aim-n`` shots each) valued by the green's map with the putter's own read (``--aim-putts``
+putts a read, 1 m) and by the distance-only table, for ``--aim-seeds`` seeds of the shots and
+the map, and where the pattern then finishes across the slope.
+
 Prints Markdown tables and writes ``benchmarks/results/putting.md``; asserts nothing.
 """
 
 import argparse
+import json
+import math
 import os
+import re
 import time
 from pathlib import Path
 
@@ -35,6 +45,10 @@ from mcrun.strokes.baseline import FOOT_M
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "results" / "putting.md"
 TARGET_S = 60.0
+# The aim check: the slope across the wedge's line (falling right), the green's speed, the aims.
+SIDE_SLOPE = 0.02
+SIDE_STIMP_FT = 11.0
+AIM_OFFSETS_M = (-1.0, -0.75, -0.5, -0.25, 0.0)
 SEMI_AXES_M = (16.0, 12.0)
 PIN_XY_M = (-3.0, -2.0)
 
@@ -59,6 +73,9 @@ def main(argv=None):
     parser.add_argument("--n", type=int, default=200)
     parser.add_argument("--library-n", type=int, default=8000)
     parser.add_argument("--library-best-n", type=int, default=800)
+    parser.add_argument("--aim-n", type=int, default=20_000)
+    parser.add_argument("--aim-putts", type=int, default=2000)
+    parser.add_argument("--aim-seeds", type=int, default=5)
     args = parser.parse_args(argv)
     threads = len(os.sched_getaffinity(0))
     for read in READS:  # compile
@@ -92,6 +109,7 @@ def main(argv=None):
     lines.append("")
     lines += library_table(args.library_n, "own")
     lines += library_table(args.library_best_n, "best")
+    lines += aim_table(args.aim_n, args.aim_putts, args.aim_seeds)
     publish(RESULTS, lines)
 
 
@@ -127,6 +145,84 @@ def library_table(n, read):
                      + " | ".join(f"{100 * v[2][0]:.1f} %" for v in rows[name]) + " |")  # fmt: skip
     lines += ["", f"Sweeps after the first: {m.sweeps}; the last changed a value by "
               f"{m.sweep_change:.4f} at most.", ""]  # fmt: skip
+    return lines
+
+
+def side_slope_wedge(folder, putting=None, seed=0):
+    """The aim check's scenario file, written in ``folder``: the library's
+    ``wedge-two-tier-firm`` (Riverside 18, a wedge from 110 m) with its ground a plane tilted
+    ``SIDE_SLOPE`` falling right (across the line of play), Stimp ``SIDE_STIMP_FT``, the shots'
+    seed ``seed``, and ``putting`` (a TOML inline table's text) for its hole's putting (None:
+    the distance-only table)."""
+    from mcrun.run import scenario as sc
+
+    library = sc.library_folder()
+    text = (library / "wedge-two-tier-firm.toml").read_text()
+    hole = (library / "holes" / "riverside-18-wedge.toml").as_posix()
+    slope_deg = math.degrees(math.atan(SIDE_SLOPE))
+    rho_g = float(rho_g_from_stimp(SIDE_STIMP_FT * FOOT_M))
+    shape = f'shape = {{ kind = "tilted_plane", slope_deg = {slope_deg!r}, fall_line_deg = 90.0 }}'
+    replacements = (
+        (r"^name = .*$", 'name = "wedge-side-slope"'),
+        (
+            r"^question = .*$",
+            'question = "Where should a 110 m wedge aim at a green sloping across its line?"',
+        ),
+        (r"^seed = .*$", f"seed = {seed}"),
+        (r"^file = .*$", f"file = {json.dumps(hole)}"),
+        (r"^shape = .*$", shape + ("" if putting is None else f"\nputting = {putting}")),
+        (r'^preset = "firm_green"$', f'preset = "firm_green"\nrho_g = {rho_g!r}'),
+    )
+    for pattern, replacement in replacements:
+        text, count = re.subn(pattern, lambda _, r=replacement: r, text, count=1, flags=re.M)
+        if count != 1:
+            raise ValueError(f"wedge-two-tier-firm.toml: no line matches {pattern}")
+    path = Path(folder) / f"side-slope-{seed}-{'table' if putting is None else 'map'}.toml"
+    path.write_text(text)
+    return path
+
+
+def own_read_map(n, seed):
+    """The aim check's green map: the putter's own read, ``n`` putts a read, 1 m."""
+    return (f'{{ model = "physics", resolution_m = 1.0, n = {n}, read = "own", '
+            f"seed = {seed} }}")  # fmt: skip
+
+
+def aim_table(n, putts, seeds):
+    """The aim check as Markdown lines: for each seed, the best aim valued by the own read's
+    map and by the table, and the pattern's centre across the slope at each."""
+    import tempfile
+
+    from mcrun.run import aim
+
+    lines = [
+        f"## The aim check: a wedge into a green sloping 2 % across its line ({n:,} shots an "
+        f"aim, the own read's map of {putts:,} putts a read)",
+        "",
+        "| seed | best aim: own read's map | best aim: table | map - table | pattern's centre "
+        "below the pin: map | table | seconds |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    margins = []
+    with tempfile.TemporaryDirectory() as folder:
+        for seed in range(seeds):
+            started = time.perf_counter()
+            best, below = [], []
+            for putting in (own_read_map(putts, seed), None):
+                path = side_slope_wedge(folder, putting, seed)
+                result = aim.search(aim.load_scenario(path), n=n, offsets_m=AIM_OFFSETS_M)
+                offset = result.clubs[0].best_between_m()
+                _, y = aim.finishes(result, 0, offset)
+                best.append(offset)
+                below.append(float(np.mean(y)) - result.scenario.hole.pin_xy[1])  # falls right
+            margins.append(best[0] - best[1])
+            lines.append(f"| {seed} | {best[0]:+.3f} m | {best[1]:+.3f} m | {margins[-1]:+.3f} m | "
+                         f"{below[0]:+.2f} m | {below[1]:+.2f} m | "
+                         f"{time.perf_counter() - started:.0f} |")  # fmt: skip
+    lines += ["", "Aims in m right of the pin (+: below it, the slope falls right). The map moves "
+              f"the best aim {100 * np.mean(margins):.1f} cm towards below the pin on average "
+              f"({100 * min(margins):.1f} to {100 * max(margins):.1f}); the aim itself stays "
+              "above the pin, as the pattern rolls down the slope after it lands.", ""]  # fmt: skip
     return lines
 
 

@@ -100,6 +100,20 @@ class ClubAims:
         """Index of the aim with the fewest expected strokes."""
         return int(np.nanargmin(self.expected))
 
+    def best_between_m(self):
+        """The best aim between those flown (m right at the pin): the vertex of the parabola
+        through the best flown aim and its two neighbours, finer than the aims themselves; the
+        best flown aim where it is the first or the last of them, or the three do not curve
+        upwards."""
+        order = np.argsort(self.offsets_m)
+        offsets = np.asarray(self.offsets_m, dtype=float)[order]
+        expected = np.asarray(self.expected, dtype=float)[order]
+        k = int(np.nanargmin(expected))
+        if k == 0 or k == len(offsets) - 1:
+            return float(offsets[k])
+        a, b, _ = np.polyfit(offsets[k - 1 : k + 2], expected[k - 1 : k + 2], 2)
+        return float(-b / (2.0 * a)) if a > 0.0 else float(offsets[k])
+
     def off_map_share(self, k):
         """The share of the shots aimed ``offsets_m[k]`` that left the hole's map."""
         return self.off_map.get(self.offsets_m[k], 0) / max(len(self.scores[self.offsets_m[k]]), 1)
