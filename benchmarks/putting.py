@@ -19,8 +19,9 @@ Then the aim check: a wedge into a side-sloped green (``side_slope_wedge``: the 
 ``wedge-two-tier-firm`` scenario, Riverside 18 from 110 m, its ground a plane tilted 2 %
 falling right, Stimp 11 ft), its best aim (``ClubAims.best_between_m``: five aims 0.25 m apart,
 ``--aim-n`` shots each) valued by the green's map with the putter's own read (``--aim-putts``
-putts a read, 1 m) and by the distance-only table, for ``--aim-seeds`` seeds of the shots and
-the map, and where the pattern then finishes across the slope.
+putts a read, 1 m; and the default 200), built on the way, and by the distance-only table, for
+``--aim-seeds`` seeds of the shots and the maps, and where the pattern then finishes across
+the slope.
 
 Prints Markdown tables and writes ``benchmarks/results/putting.md``; asserts nothing.
 """
@@ -75,7 +76,7 @@ def main(argv=None):
     parser.add_argument("--library-best-n", type=int, default=800)
     parser.add_argument("--aim-n", type=int, default=20_000)
     parser.add_argument("--aim-putts", type=int, default=2000)
-    parser.add_argument("--aim-seeds", type=int, default=5)
+    parser.add_argument("--aim-seeds", type=int, default=8)
     args = parser.parse_args(argv)
     threads = len(os.sched_getaffinity(0))
     for read in READS:  # compile
@@ -144,7 +145,8 @@ def library_table(n, read):
         lines.append(f"| three or more, {name} | "
                      + " | ".join(f"{100 * v[2][0]:.1f} %" for v in rows[name]) + " |")  # fmt: skip
     lines += ["", f"Sweeps after the first: {m.sweeps}; the last changed a value by "
-              f"{m.sweep_change:.4f} at most.", ""]  # fmt: skip
+              f"{m.sweep_change:.4f} at most. Map data (c) OpenStreetMap contributors, ODbL.",
+              ""]  # fmt: skip
     return lines
 
 
@@ -158,6 +160,9 @@ def side_slope_wedge(folder, putting=None, seed=0):
 
     library = sc.library_folder()
     text = (library / "wedge-two-tier-firm.toml").read_text()
+    header = ("# The aim check of benchmarks/putting.py (side_slope_wedge). Riverside Golf, "
+              "Zagreb, hole 18:\n# map data (c) OpenStreetMap contributors, ODbL.\n")  # fmt: skip
+    text = header + re.sub(r"\A(#[^\n]*\n)+", "", text)
     hole = (library / "holes" / "riverside-18-wedge.toml").as_posix()
     slope_deg = math.degrees(math.atan(SIDE_SLOPE))
     rho_g = float(rho_g_from_stimp(SIDE_STIMP_FT * FOOT_M))
@@ -188,41 +193,55 @@ def own_read_map(n, seed):
             f"seed = {seed} }}")  # fmt: skip
 
 
-def aim_table(n, putts, seeds):
+def aim_table(n, putts, seeds, coarse_putts=200):
     """The aim check as Markdown lines: for each seed, the best aim valued by the own read's
-    map and by the table, and the pattern's centre across the slope at each."""
+    map of ``putts`` putts a read, by one of ``coarse_putts`` (the default's), and by the
+    table, and the pattern's centre across the slope at the first and the last; the maps
+    built (in a cache folder of their own), and timed with them."""
     import tempfile
 
     from mcrun.run import aim
 
     lines = [
-        f"## The aim check: a wedge into a green sloping 2 % across its line ({n:,} shots an "
-        f"aim, the own read's map of {putts:,} putts a read)",
+        f"## The aim check: a wedge into a green sloping 2 % across its line ({n:,} shots an aim)",
         "",
-        "| seed | best aim: own read's map | best aim: table | map - table | pattern's centre "
-        "below the pin: map | table | seconds |",
-        "|---|---|---|---|---|---|---|",
+        f"| seed | best aim: map of {putts:,} putts a read | table | map - table | map of "
+        f"{coarse_putts} putts - table | the pattern's centre below the pin: map of {putts:,} "
+        "| table | seconds |",
+        "|---|---|---|---|---|---|---|---|",
     ]
-    margins = []
+    margins, coarse = [], []
+    cache = os.environ.get("MCRUN_CACHE_DIR")
     with tempfile.TemporaryDirectory() as folder:
-        for seed in range(seeds):
-            started = time.perf_counter()
-            best, below = [], []
-            for putting in (own_read_map(putts, seed), None):
-                path = side_slope_wedge(folder, putting, seed)
-                result = aim.search(aim.load_scenario(path), n=n, offsets_m=AIM_OFFSETS_M)
-                offset = result.clubs[0].best_between_m()
-                _, y = aim.finishes(result, 0, offset)
-                best.append(offset)
-                below.append(float(np.mean(y)) - result.scenario.hole.pin_xy[1])  # falls right
-            margins.append(best[0] - best[1])
-            lines.append(f"| {seed} | {best[0]:+.3f} m | {best[1]:+.3f} m | {margins[-1]:+.3f} m | "
-                         f"{below[0]:+.2f} m | {below[1]:+.2f} m | "
-                         f"{time.perf_counter() - started:.0f} |")  # fmt: skip
-    lines += ["", "Aims in m right of the pin (+: below it, the slope falls right). The map moves "
-              f"the best aim {100 * np.mean(margins):.1f} cm towards below the pin on average "
-              f"({100 * min(margins):.1f} to {100 * max(margins):.1f}); the aim itself stays "
-              "above the pin, as the pattern rolls down the slope after it lands.", ""]  # fmt: skip
+        os.environ["MCRUN_CACHE_DIR"] = str(Path(folder) / "cache")
+        try:
+            for seed in range(seeds):
+                started = time.perf_counter()
+                best, below = [], []
+                for putting in (own_read_map(putts, seed), own_read_map(coarse_putts, seed), None):
+                    path = side_slope_wedge(folder, putting, seed)
+                    result = aim.search(aim.load_scenario(path), n=n, offsets_m=AIM_OFFSETS_M)
+                    best.append(result.clubs[0].best_between_m())
+                    _, y = aim.finishes(result, 0, best[-1])
+                    below.append(float(np.mean(y)) - result.scenario.hole.pin_xy[1])  # + right
+                margins.append(best[0] - best[2])
+                coarse.append(best[1] - best[2])
+                seconds = time.perf_counter() - started
+                lines.append(f"| {seed} | {best[0]:+.3f} m | {best[2]:+.3f} m | "
+                             f"{margins[-1]:+.3f} m | {coarse[-1]:+.3f} m | {below[0]:+.2f} m | "
+                             f"{below[2]:+.2f} m | {seconds:.0f} |")  # fmt: skip
+        finally:
+            if cache is None:
+                os.environ.pop("MCRUN_CACHE_DIR", None)
+            else:
+                os.environ["MCRUN_CACHE_DIR"] = cache
+    lines += ["", "Aims in m right of the pin (+: below it, the slope falls right). The map of "
+              f"{putts:,} putts a read moves the best aim {100 * np.mean(margins):.1f} cm "
+              f"towards below the pin on average (SD {100 * np.std(margins, ddof=1):.1f}; "
+              f"{100 * min(margins):.1f} to {100 * max(margins):.1f}); one of {coarse_putts} "
+              f"putts a read {100 * min(coarse):.1f} to {100 * max(coarse):.1f}. The aim itself "
+              "stays above the pin, as the pattern rolls down the slope after it lands.",
+              "", "Map data (c) OpenStreetMap contributors, ODbL.", ""]  # fmt: skip
     return lines
 
 

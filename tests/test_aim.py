@@ -384,13 +384,19 @@ def test_the_terrain_kernels_compile_is_said_apart_from_the_search(tmp_path, cap
 
 def test_the_best_aim_between_those_flown_is_the_parabola_s_vertex():
     """Expected strokes 1.4 + 0.05 (o + 0.37)^2 at five aims, flown in any order: the best
-    between them is -0.37 (to rounding); a best flown aim at an end of them is itself."""
+    between them is -0.37 (to rounding); a best flown aim at an end of them, or beside an aim
+    without a value, is itself; no value at all: NaN."""
     offsets = [0.0, -1.0, -0.5, 0.5, -0.25]
     club = aim.ClubAims("wedge", offsets_m=offsets,
                         expected=[1.4 + 0.05 * (o + 0.37) ** 2 for o in offsets])  # fmt: skip
     assert club.best_between_m() == pytest.approx(-0.37, abs=1e-9)
     club.expected = [1.4 + 0.05 * (o - 0.9) ** 2 for o in offsets]
     assert club.best_between_m() == 0.5
+    club.expected = [1.4 + 0.05 * (o + 0.37) ** 2 for o in offsets]
+    club.expected[0] = math.nan  # the aim at 0, beside the best (-0.25)
+    assert club.best_between_m() == -0.25
+    club.expected = [math.nan] * len(offsets)
+    assert math.isnan(club.best_between_m())
 
 
 def test_on_a_side_slope_the_green_s_map_moves_a_wedge_s_best_aim_towards_below_the_pin(

@@ -110,7 +110,8 @@ def test_the_day_s_form_spreads_the_rounds_as_a_gaussian_copula_does():
     same draws as without it (the rounds' mean unchanged, to rounding), the rounds' variance
     18 s^2 (1 + 17 rho) (their correlation rho) within 5 %; the better half 0.798 of their SD
     below the average (the mean of a normal's lower half, within 3 %); a day form fitted to a
-    gap of 3 strokes is the rho that gives it (within 0.02); a rho outside [0, 1) refused."""
+    gap of 3 strokes is the rho that gives it (within 0.02), none for a gap no rho gives; a rho
+    outside [0, 1) refused."""
     sd = 0.6
     scores = _normal_scores(sd)
     alone = course_rounds(scores, 20_000, 11)
@@ -123,6 +124,8 @@ def test_the_day_s_form_spreads_the_rounds_as_a_gaussian_copula_does():
     rho = ((3.0 / 0.7979) ** 2 / (18 * sd**2) - 1.0) / 17.0
     assert fit_day_form([scores], 11, gap=3.0) == pytest.approx(rho, abs=0.02)
     assert fit_day_form([scores], 11, gap=0.5) == 0.0
+    with pytest.raises(ValueError, match="no day form"):
+        fit_day_form([scores], 11, gap=100.0)
     for bad in (-0.1, 1.0):
         with pytest.raises(ValueError, match="day_form"):
             course_rounds(scores, 10, 11, bad)

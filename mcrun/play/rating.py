@@ -25,17 +25,20 @@ taken off the map, the ground under them what surrounds them, and no out of boun
 
 The day's form: a player's holes within a round are not independent of one another (a good day
 is good on most holes), and a better half depends on how far rounds spread. A player's average
-runs about 3 strokes above his handicap [Knuth, the amateurs reference], which for rounds spread
-about normally is 0.80 of their standard deviation, 3.75 strokes; independent holes spread the
-model players' rounds less (their better half about 2 strokes below their average on the open
-courses of ``benchmarks.rating``). So each round draws a form, and each hole's score is its
-plays' quantile at a latent normal correlated ``DAY_FORM[player]`` with that form (a Gaussian
-copula, by ranks: each hole's drawn plays are dealt to the rounds in the order of their
-latents, so that a hole's scores are the same draws as without it). ``DAY_FORM`` is fitted
-(``fit_day_form``) so that, over the open courses of ``benchmarks.rating``, the model player's
-better half lies 3.0 strokes below his average: an ESTIMATE from one round figure, the same for
-every model player (the reference gives no spread by handicap). The expected score does not
-depend on it; the better half does.
+runs about 3 strokes above his handicap [Knuth, the amateurs reference]; read as the distance
+from his average to his better half (the reading of a rating used here), that is 0.80 of the
+rounds' standard deviation for rounds spread about normally: 3.75 strokes. Independent holes
+spread the model players' rounds less (their better half 1.8-2.7 strokes below their average
+on the open courses of ``benchmarks.rating``). So each round draws a form, and each hole's
+score is its plays' quantile at a latent normal sqrt(rho) form + sqrt(1 - rho) noise, rho =
+``DAY_FORM[player]``: the holes' latents correlated rho with one another (a Gaussian copula,
+by ranks: each hole's drawn plays are dealt to the rounds in the order of their latents, so
+that a hole's scores are the same draws as without it). ``DAY_FORM`` is fitted
+(``fit_day_form``) so that, over those open courses, the model player's better half lies 3.0
+strokes below his average: an ESTIMATE from one figure, the same for every model player (the
+reference gives no spread by handicap). Were Knuth's handicap the best 8 of 20 (0.97 of the
+spread below the average), the spread would be 3.1 strokes and the better half about 0.5
+higher. The expected score does not depend on it; the better half does.
 
 A hole's par, where its map does not give one, is taken from its length (``par_by_length``:
 the USGA's guide for men, an ESTIMATE where its ranges overlap); a rating does not use it.
@@ -82,10 +85,10 @@ LENGTH_RATING = {"scratch": (220.0, 40.9), "bogey": (160.0, 50.7),
 SLOPE_RANGE = (55, 155)
 EXPECTED, BETTER_HALF = "expected", "better half"
 ROUNDS = 10_000  # 18-hole rounds drawn from the holes' plays
-# The latent correlation of a model player's holes with his form on the day (module docstring),
-# fitted by ``fit_day_form`` to a better half 3.0 strokes below the average [Knuth] over the open
-# courses of ``benchmarks.rating`` (which prints the fit beside these): an ESTIMATE. A player
-# not named here plays independent holes.
+# The day's form: the correlation of a model player's holes' latents within a round (module
+# docstring), fitted by ``fit_day_form`` to a better half 3.0 strokes below the average [Knuth]
+# over the open courses of ``benchmarks.rating`` (which prints the fit beside these): an
+# ESTIMATE. A player not named here plays independent holes.
 DAY_FORM = {"scratch": 0.15, "bogey": 0.02, "scratch-woman": 0.16, "bogey-woman": 0.04}
 KNUTH_GAP = 3.0  # strokes between a player's average and his handicap [Knuth]
 # Par by length (yd): a hole up to the first is a par 3, up to the second a par 4 (the USGA's
@@ -188,8 +191,9 @@ class CourseRating:
 def course_rounds(scores, rounds, seed, day_form=0.0):
     """``rounds`` totals over the holes of ``scores`` (HoleScores): each hole's plays drawn
     ``rounds`` times (seeded by ``seed`` and the hole's number) and dealt to the rounds in the
-    order of a latent normal correlated ``day_form`` with the round's form (a Gaussian copula by
-    ranks; 0: in the order drawn, the holes independent)."""
+    order of a latent normal, sqrt(day_form) times the round's form plus sqrt(1 - day_form)
+    times the hole's own noise, so that the holes' latents are correlated ``day_form`` with one
+    another (a Gaussian copula by ranks; 0: in the order drawn, the holes independent)."""
     if not 0.0 <= day_form < 1.0:
         raise ValueError(f"day_form {day_form}: must be in [0, 1)")
     form = np.random.default_rng([seed, 0]).standard_normal(rounds)  # holes count from 1
@@ -217,7 +221,8 @@ def better_half_gap(scores, seed, day_form=0.0, rounds=ROUNDS):
 def fit_day_form(courses, seed, gap=KNUTH_GAP, steps=20):
     """The day form (``course_rounds``) whose better half lies ``gap`` strokes below the
     average, on the mean over ``courses`` (each a list of one player's HoleScores), by
-    bisection in [0, 0.9]; 0 where the holes alone already spread the rounds that far."""
+    bisection in [0, 0.9]; 0 where the holes alone already spread the rounds that far;
+    ValueError where even 0.9 does not."""
 
     def mean_gap(rho):
         return float(np.mean([better_half_gap(c, seed, rho) for c in courses]))
@@ -225,6 +230,8 @@ def fit_day_form(courses, seed, gap=KNUTH_GAP, steps=20):
     lo, hi = 0.0, 0.9
     if mean_gap(lo) >= gap:
         return 0.0
+    if mean_gap(hi) < gap:
+        raise ValueError(f"no day form up to {hi} puts the better half {gap} strokes below")
     for _ in range(steps):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if mean_gap(mid) < gap else (lo, mid)

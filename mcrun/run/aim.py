@@ -103,15 +103,18 @@ class ClubAims:
     def best_between_m(self):
         """The best aim between those flown (m right at the pin): the vertex of the parabola
         through the best flown aim and its two neighbours, finer than the aims themselves; the
-        best flown aim where it is the first or the last of them, or the three do not curve
-        upwards."""
+        best flown aim where it is the first or the last of them, a neighbour has no value, or
+        the three do not curve upwards. NaN where no aim has a value."""
         order = np.argsort(self.offsets_m)
         offsets = np.asarray(self.offsets_m, dtype=float)[order]
         expected = np.asarray(self.expected, dtype=float)[order]
-        k = int(np.nanargmin(expected))
-        if k == 0 or k == len(offsets) - 1:
+        if not np.isfinite(expected).any():
+            return math.nan
+        k = int(np.nanargmin(np.where(np.isfinite(expected), expected, np.nan)))
+        three = slice(k - 1, k + 2)
+        if k == 0 or k == len(offsets) - 1 or not np.isfinite(expected[three]).all():
             return float(offsets[k])
-        a, b, _ = np.polyfit(offsets[k - 1 : k + 2], expected[k - 1 : k + 2], 2)
+        a, b, _ = np.polyfit(offsets[three], expected[three], 2)
         return float(-b / (2.0 * a)) if a > 0.0 else float(offsets[k])
 
     def off_map_share(self, k):
