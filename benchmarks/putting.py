@@ -19,9 +19,9 @@ Then the aim check: a wedge into a side-sloped green (``side_slope_wedge``: the 
 ``wedge-two-tier-firm`` scenario, Riverside 18 from 110 m, its ground a plane tilted 2 %
 falling right, Stimp 11 ft), its best aim (``ClubAims.best_between_m``: five aims 0.25 m apart,
 ``--aim-n`` shots each) valued by the green's map with the putter's own read (``--aim-putts``
-putts a read, 1 m; and the default 200), built on the way, and by the distance-only table, for
-``--aim-seeds`` seeds of the shots and the maps, and where the pattern then finishes across
-the slope.
+putts a read, 1 m; and the others of ``AIM_MAPS``: the test's and the default's putts), built
+on the way, and by the distance-only table, for ``--aim-seeds`` seeds of the shots and the
+maps, and where the pattern then finishes across the slope.
 
 Prints Markdown tables and writes ``benchmarks/results/putting.md``; asserts nothing.
 """
@@ -187,30 +187,37 @@ def side_slope_wedge(folder, putting=None, seed=0):
     return path
 
 
-def own_read_map(n, seed):
-    """The aim check's green map: the putter's own read, ``n`` putts a read, 1 m."""
-    return (f'{{ model = "physics", resolution_m = 1.0, n = {n}, read = "own", '
+def own_read_map(n, seed, resolution_m=1.0):
+    """The aim check's green map: the putter's own read, ``n`` putts a read, at
+    ``resolution_m``."""
+    return (f'{{ model = "physics", resolution_m = {resolution_m!r}, n = {n}, read = "own", '
             f"seed = {seed} }}")  # fmt: skip
 
 
-def aim_table(n, putts, seeds, coarse_putts=200):
+# The aim check's maps, (putts a read, resolution m): the benchmark's, the test's (cheaper) and
+# the default's number of putts.
+AIM_MAPS = ((2000, 1.0), (2000, 1.5), (200, 1.0))
+
+
+def aim_table(n, putts, seeds):
     """The aim check as Markdown lines: for each seed, the best aim valued by the own read's
-    map of ``putts`` putts a read, by one of ``coarse_putts`` (the default's), and by the
-    table, and the pattern's centre across the slope at the first and the last; the maps
-    built (in a cache folder of their own), and timed with them."""
+    map of ``putts`` putts a read at 1 m, by the other maps of ``AIM_MAPS``, and by the table,
+    and the pattern's centre across the slope at the first and the last; the maps built (in a
+    cache folder of their own), and timed with them."""
     import tempfile
 
     from mcrun.run import aim
 
+    maps = ((putts, 1.0), *(m for m in AIM_MAPS[1:] if m != (putts, 1.0)))
+    others = " | ".join(f"map of {k:,} putts at {r:g} m - table" for k, r in maps[1:])
     lines = [
         f"## The aim check: a wedge into a green sloping 2 % across its line ({n:,} shots an aim)",
         "",
-        f"| seed | best aim: map of {putts:,} putts a read | table | map - table | map of "
-        f"{coarse_putts} putts - table | the pattern's centre below the pin: map of {putts:,} "
-        "| table | seconds |",
-        "|---|---|---|---|---|---|---|---|",
+        f"| seed | best aim: map of {putts:,} putts a read at 1 m | table | map - table | "
+        f"{others} | the pattern's centre below the pin: map | table | seconds |",
+        "|---" * (7 + len(maps) - 1) + "|",
     ]
-    margins, coarse = [], []
+    margins = {m: [] for m in maps}
     cache = os.environ.get("MCRUN_CACHE_DIR")
     with tempfile.TemporaryDirectory() as folder:
         os.environ["MCRUN_CACHE_DIR"] = str(Path(folder) / "cache")
@@ -218,30 +225,32 @@ def aim_table(n, putts, seeds, coarse_putts=200):
             for seed in range(seeds):
                 started = time.perf_counter()
                 best, below = [], []
-                for putting in (own_read_map(putts, seed), own_read_map(coarse_putts, seed), None):
+                for putting in (*(own_read_map(k, seed, r) for k, r in maps), None):
                     path = side_slope_wedge(folder, putting, seed)
                     result = aim.search(aim.load_scenario(path), n=n, offsets_m=AIM_OFFSETS_M)
                     best.append(result.clubs[0].best_between_m())
                     _, y = aim.finishes(result, 0, best[-1])
                     below.append(float(np.mean(y)) - result.scenario.hole.pin_xy[1])  # + right
-                margins.append(best[0] - best[2])
-                coarse.append(best[1] - best[2])
+                for m, value in zip(maps, best, strict=False):
+                    margins[m].append(value - best[-1])
                 seconds = time.perf_counter() - started
-                lines.append(f"| {seed} | {best[0]:+.3f} m | {best[2]:+.3f} m | "
-                             f"{margins[-1]:+.3f} m | {coarse[-1]:+.3f} m | {below[0]:+.2f} m | "
-                             f"{below[2]:+.2f} m | {seconds:.0f} |")  # fmt: skip
+                cells = [f"{seed}", f"{best[0]:+.3f} m", f"{best[-1]:+.3f} m",
+                         *(f"{margins[m][-1]:+.3f} m" for m in maps),
+                         f"{below[0]:+.2f} m", f"{below[-1]:+.2f} m", f"{seconds:.0f}"]  # fmt: skip
+                lines.append("| " + " | ".join(cells) + " |")
         finally:
             if cache is None:
                 os.environ.pop("MCRUN_CACHE_DIR", None)
             else:
                 os.environ["MCRUN_CACHE_DIR"] = cache
-    lines += ["", "Aims in m right of the pin (+: below it, the slope falls right). The map of "
-              f"{putts:,} putts a read moves the best aim {100 * np.mean(margins):.1f} cm "
-              f"towards below the pin on average (SD {100 * np.std(margins, ddof=1):.1f}; "
-              f"{100 * min(margins):.1f} to {100 * max(margins):.1f}); one of {coarse_putts} "
-              f"putts a read {100 * min(coarse):.1f} to {100 * max(coarse):.1f}. The aim itself "
-              "stays above the pin, as the pattern rolls down the slope after it lands.",
-              "", "Map data (c) OpenStreetMap contributors, ODbL.", ""]  # fmt: skip
+    lines += ["", "Aims in m right of the pin (+: below it, the slope falls right). How far each "
+              "map moves the best aim towards below the pin, against the table:", ""]  # fmt: skip
+    for (k, r), values in margins.items():
+        sd = f"SD {100 * np.std(values, ddof=1):.1f}; " if len(values) > 1 else ""
+        lines.append(f"- {k:,} putts a read at {r:g} m: {100 * np.mean(values):.1f} cm on average "
+                     f"({sd}{100 * min(values):.1f} to {100 * max(values):.1f})")  # fmt: skip
+    lines += ["", "The aim itself stays above the pin, as the pattern rolls down the slope after "
+              "it lands.", "", "Map data (c) OpenStreetMap contributors, ODbL.", ""]  # fmt: skip
     return lines
 
 

@@ -407,9 +407,10 @@ def test_on_a_side_slope_the_green_s_map_moves_a_wedge_s_best_aim_towards_below_
     to the pin, 20,000 shots each. The pattern rolls down the slope after it lands, so the best
     aim lies above the pin (left of it) whatever values the finishes. Valued by the green's
     map with the putter's own read (uphill putts cheaper than downhill ones; 2,000 putts a
-    read, 1 m), the best aim (``best_between_m``) lies at least 3 cm right of, below, the one
-    the distance-only table gives. Over 8 seeds of the shots and the map the margin was 6.3 to
-    14.1 cm (mean 10.0, SD 2.3): 3 cm is the mean less 3 SD; here (seed 0) it is 10.3 cm."""
+    read at 1.5 m, half the cost of the benchmark's 1 m), the best aim (``best_between_m``)
+    lies at least 2.5 cm right of, below, the one the distance-only table gives. Over 8 seeds
+    of the shots and the map (``python -m benchmarks.putting``) the margin was 5.8 to 13.5 cm
+    (mean 9.9, SD 2.4): 2.5 cm is about the mean less 3 SD; here (seed 0) it is 9.4 cm."""
     import sys
     from pathlib import Path
 
@@ -420,9 +421,9 @@ def test_on_a_side_slope_the_green_s_map_moves_a_wedge_s_best_aim_towards_below_
 
     monkeypatch.setenv("MCRUN_CACHE_DIR", str(tmp_path / "cache"))
     best = {}
-    for name, putting in (("map", own_read_map(2000, 0)), ("table", None)):
+    for name, putting in (("map", own_read_map(2000, 0, resolution_m=1.5)), ("table", None)):
         scenario = aim.load_scenario(side_slope_wedge(tmp_path, putting, seed=0))
         result = aim.search(scenario, n=20_000, offsets_m=AIM_OFFSETS_M)
         best[name] = result.clubs[0].best_between_m()
     assert -1.0 < best["table"] < 0.0 and -1.0 < best["map"] < 0.0
-    assert best["map"] - best["table"] >= 0.03
+    assert best["map"] - best["table"] >= 0.025
