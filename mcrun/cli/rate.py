@@ -327,7 +327,7 @@ def _cmd_rate(args):
 
 def write_rating(rating, frame, path, args, n):
     """A row per hole and player to Parquet, with the ratings and the provenance."""
-    from mcrun.play.rating import BETTER_HALF, DAY_FORM, EXPECTED
+    from mcrun.play.rating import BETTER_HALF, EXPECTED
     from mcrun.results import output
 
     provenance = {"course": str(args.course), "holes": len(rating.holes), "women": rating.women,
@@ -336,7 +336,7 @@ def write_rating(rating, frame, path, args, n):
                   "elevation": None if args.elevation is None else str(args.elevation),
                   "players": list(rating.players), "seed": rating.seed, "n": n,
                   # the better half's rounds: each player's day form (``rating.DAY_FORM``)
-                  "day_form": {p: DAY_FORM.get(p, 0.0) for p in rating.players},
+                  "day_form": dict(rating.day_form),
                   "length_yd": rating.length_yd,
                   # the greens' maps the model players putt on (the holes share these settings)
                   "greens": {key: rating.holes[0].putting[key]

@@ -126,7 +126,8 @@ class HoleScore:
 @dataclass
 class CourseRating:
     """The holes (``mcrun.hole.Hole``s, in the course's order) and each player's
-    ``HoleScore``s; ``rounds``: the 18-hole (or however many holes) totals drawn from them."""
+    ``HoleScore``s; ``rounds``: the 18-hole (or however many holes) totals drawn from them,
+    with each player's ``day_form`` (``DAY_FORM``; 0 for a player not named there)."""
 
     holes: list
     players: tuple
@@ -134,11 +135,13 @@ class CourseRating:
     seed: int
     women: bool = False
     rounds: dict = field(default_factory=dict)  # player -> totals
+    day_form: dict = field(default_factory=dict)  # player -> the day form of his rounds
 
     def __post_init__(self):
         for player in self.players:
+            self.day_form[player] = DAY_FORM.get(player, 0.0)
             self.rounds[player] = course_rounds(self.scores[player], ROUNDS, self.seed,
-                                                DAY_FORM.get(player, 0.0))  # fmt: skip
+                                                self.day_form[player])  # fmt: skip
 
     @property
     def length_yd(self):
@@ -196,7 +199,8 @@ def course_rounds(scores, rounds, seed, day_form=0.0):
     another (a Gaussian copula by ranks; 0: in the order drawn, the holes independent)."""
     if not 0.0 <= day_form < 1.0:
         raise ValueError(f"day_form {day_form}: must be in [0, 1)")
-    form = np.random.default_rng([seed, 0]).standard_normal(rounds)  # holes count from 1
+    if day_form > 0.0:
+        form = np.random.default_rng([seed, 0]).standard_normal(rounds)  # holes count from 1
     total = np.zeros(rounds)
     for s in scores:
         rng = np.random.default_rng([seed, s.hole])
