@@ -225,12 +225,14 @@ def aim_table(n, putts, seeds):
             for seed in range(seeds):
                 started = time.perf_counter()
                 best, below = [], []
-                for putting in (*(own_read_map(k, seed, r) for k, r in maps), None):
+                valuations = (*(own_read_map(k, seed, r) for k, r in maps), None)
+                for k, putting in enumerate(valuations):
                     path = side_slope_wedge(folder, putting, seed)
                     result = aim.search(aim.load_scenario(path), n=n, offsets_m=AIM_OFFSETS_M)
                     best.append(result.clubs[0].best_between_m())
-                    _, y = aim.finishes(result, 0, best[-1])
-                    below.append(float(np.mean(y)) - result.scenario.hole.pin_xy[1])  # + right
+                    if k in (0, len(valuations) - 1):  # the pattern: the first map's, the table's
+                        _, y = aim.finishes(result, 0, best[-1])
+                        below.append(float(np.mean(y)) - result.scenario.hole.pin_xy[1])  # right
                 for m, value in zip(maps, best, strict=False):
                     margins[m].append(value - best[-1])
                 seconds = time.perf_counter() - started
