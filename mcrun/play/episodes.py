@@ -97,7 +97,7 @@ def _drop_better(solution, tr, states, shot, lat, grids):
     out = np.zeros(len(shot), dtype=bool)
     for k in np.flatnonzero(tr.kind[shot] == WATER):
         i = shot[k]
-        drop = value_at(tr.x[i], tr.y[i], tr.lie[i], solution.values, lat.lie, *grids,
-                        lat.pin_xy[0], lat.pin_xy[1], lat.table)  # fmt: skip
+        drop = value_at(tr.x[i], tr.y[i], tr.lie[i], solution.values, *grids, lat.pin_xy[0],
+                        lat.pin_xy[1], lat.table)  # fmt: skip
         out[k] = drop < solution.values[states[k]]
     return out
