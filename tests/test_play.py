@@ -5,6 +5,7 @@ Tour's proximity and fairways, and ``mcrun play``."""
 
 import dataclasses
 import json
+import math
 import textwrap
 
 import numpy as np
@@ -25,7 +26,7 @@ from mcrun.play.calibration import (
     proximity_target_ft,
     rough_ratio,
 )
-from mcrun.play.lattice import TEE_LIE, lattice
+from mcrun.play.lattice import TABLE_STEP_M, TEE_LIE, lattice, stacked, value_at
 from mcrun.play.player import PART_POWERS, TOUR_GROUND, TOUR_ROUGH, TOUR_SPREAD, WOMEN, on_hole
 from mcrun.play.solve import solve
 from mcrun.play.transitions import WATER, fly, options_of, plan_actions
@@ -133,6 +134,67 @@ def test_a_symmetric_hole_and_player_give_a_symmetric_solution(symmetric):
     if "deg" in best[1]:
         mirror = best[1].replace("left", "RIGHT").replace("right", "left").replace("RIGHT", "right")
         assert any(name == mirror and abs(q - best[2]) < 1e-9 for _, name, q, _ in rows)
+
+
+def _value_plainly(x, y, lie, values, lat):
+    """A point's value as ``lattice.value_at`` defines it, plainly: the grid from hypot, the
+    cell's nodes of the point's lie weighed one by one, then the nearest such node within two
+    cells, then the table. (NumPy's hypot is the C library's, as Numba's is; Python's own
+    may differ in the last bit.)"""
+    d = float(np.hypot(x - lat.pin_xy[0], y - lat.pin_xy[1]))
+    k = 0
+    while k < len(lat.reach_m) - 1 and d > lat.reach_m[k]:
+        k += 1
+    x0, y0, cell, index = lat.grids[k]
+    fx, fy = (x - x0) / cell, (y - y0) / cell
+    ix, iy = math.floor(fx), math.floor(fy)
+    tx, ty = fx - ix, fy - iy
+    ny, nx = index.shape
+    total = acc = 0.0
+    for dy in range(2):
+        for dx in range(2):
+            jx, jy = ix + dx, iy + dy
+            if 0 <= jx < nx and 0 <= jy < ny and index[jy, jx] >= 0:
+                if lat.lie[index[jy, jx]] == lie:
+                    w = (tx if dx else 1.0 - tx) * (ty if dy else 1.0 - ty)
+                    total += w
+                    acc += w * values[index[jy, jx]]
+    if total > 1e-12:
+        return acc / total
+    best, found = 1e300, -1
+    for jy in range(iy - 1, iy + 3):
+        for jx in range(ix - 1, ix + 3):
+            if 0 <= jx < nx and 0 <= jy < ny and index[jy, jx] >= 0:
+                r = (jx - fx) ** 2 + (jy - fy) ** 2
+                if lat.lie[index[jy, jx]] == lie and r < best:
+                    best, found = r, index[jy, jx]
+    if found >= 0:
+        return values[found]
+    f = min(d / TABLE_STEP_M, lat.table.shape[1] - 1.000001)
+    j = int(f)
+    return lat.table[lie, j] + (f - j) * (lat.table[lie, j + 1] - lat.table[lie, j])
+
+
+def test_a_point_s_value_is_the_plain_weighing_of_its_nodes_bit_for_bit(symmetric):
+    """``value_at`` (the grid picked on the squared distance, a cell's nodes weighed without
+    branches, for the sweeps' speed) against the plain definition, at 4,000 points over the
+    whole map and beyond it, in every lie a ball can rest in, and on the fine grid's reach:
+    the same float, bit for bit."""
+    _, _, result = symmetric
+    lat, values = result.lattice, result.solution.values
+    grids = stacked(lat)
+    rng = np.random.default_rng(5)
+    x = rng.uniform(lat.xy[:, 0].min() - 20.0, lat.xy[:, 0].max() + 20.0, 3000)
+    y = rng.uniform(lat.xy[:, 1].min() - 20.0, lat.xy[:, 1].max() + 20.0, 3000)
+    angle = rng.uniform(0.0, 2.0 * math.pi, 1000)  # on the fine grid's reach, to the ulp
+    x = np.r_[x, lat.pin_xy[0] + lat.reach_m[0] * np.cos(angle)]
+    y = np.r_[y, lat.pin_xy[1] + lat.reach_m[0] * np.sin(angle)]
+    lies = np.unique(lat.lie)
+    assert len(lies) >= 3
+    for k, (px, py) in enumerate(zip(x, y, strict=True)):
+        lie = lies[k % len(lies)]
+        got = value_at(px, py, lie, values, *grids, lat.pin_xy[0], lat.pin_xy[1], lat.table)
+        assert got == _value_plainly(px, py, lie, values, lat), (px, py, lie)
 
 
 @pytest.mark.determinism

@@ -101,13 +101,15 @@ FAIRWAY_SHARE = 0.60
 # that scratch plays it 0.30 strokes worse than the Tour (Table 9's 3.99 + 0.30 = 4.29: rounds
 # to a 0 handicap are 5.45 strokes a round worse than the Tour's on courses of the same
 # difficulty, ShotByShot) and bogey 1.17 worse than scratch (5.46: the USGA's bogey golfer 21
-# strokes a round behind scratch at Slope 113): 1.33 and 3.21. The amateurs reference's
+# strokes a round behind scratch at Slope 113), with the greens' maps putted as the players'
+# own putters read (the maps' default): 1.28 and 3.09 (4.290 and 5.459 there; with the best
+# of 12 reads a point, the maps' earlier default, it was 1.33 and 3.21). The amateurs reference's
 # proximity gives 1.43-1.82 for scratch (31 ft from 100 yd, Shot Scope; 36 ft 8 in from 150 yd,
 # Arccos; 30 ft farther than the Tour from 175-200 yd, Shot Scope) and 3.59 for a Handicap
 # Index of 20 (65 ft from 100 yd, Shot Scope): the fit is a little closer, as the amateurs'
 # short game and putting are the Tour's scaled. Fairways: scratch 50 % (Arccos 51, Shot Scope
 # 50), bogey 43 % (Arccos 41, Shot Scope 45).
-AMATEUR_TARGETS = {"scratch": (1.33, 0.50), "bogey": (3.21, 0.43)}
+AMATEUR_TARGETS = {"scratch": (1.28, 0.50), "bogey": (3.09, 0.43)}
 AMATEUR_STEPS = 4
 _OUT = {name: k for k, name in enumerate(OUTCOME_FIELDS)}
 

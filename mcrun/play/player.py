@@ -99,13 +99,13 @@ PITCH_ROUGH = (1.433, 1.437, 1.451, 1.477, 1.514, 1.567, 1.636, 1.719, 1.814, 1.
 # speeds times 0.8875 and 0.7698 (the driver's mean total on the level, at their spreads, 248
 # and 200 yd, their 3-woods 224 and 174 yd). Their spreads CALIBRATED as the Tour's
 # (``calibration.calibrate`` with ``calibration.AMATEUR_TARGETS``, four steps, 4,000 shots a
-# club; tests/test_play.py): approach proximity 1.33 and 3.21 times the Tour's (fitted to the
+# club; tests/test_play.py): approach proximity 1.28 and 3.09 times the Tour's (fitted to the
 # amateurs' scores), fairways 50 % and 43 % (the amateurs reference). Their putters:
 # ``putting.PUTTERS``'s scratch and 15-handicap (the nearest preset to a bogey player's,
 # ESTIMATES). Off the ground and from the rough they take the Tour bag's factors (ESTIMATES for
 # them).
-SCRATCH_SPREAD = (2.555, 3.08, 2.993, 2.332, 2.613, 2.509, 2.287, 2.1, 2.102, 2.256, 2.75, 3.005)
-BOGEY_SPREAD = (4.095, 5.38, 5.249, 4.763, 4.799, 4.914, 5.03, 5.117, 5.148, 5.325, 5.939, 6.354)
+SCRATCH_SPREAD = (2.555, 3.08, 2.993, 2.238, 2.512, 2.412, 2.199, 2.021, 2.024, 2.174, 2.655, 2.906)
+BOGEY_SPREAD = (4.095, 5.38, 5.249, 4.609, 4.679, 4.765, 4.867, 4.939, 4.964, 5.138, 5.758, 6.154)
 # The women's model players (a scratch woman drives 210 yd and reaches 400 yd in two; a bogey
 # woman, Handicap Index about 24, 150 and 280): the Tour bag's ball speeds times 0.7765 and
 # 0.628 (drives of 211 and 151 yd on the level at their spreads, 3-woods of 190 and 129). No
@@ -116,10 +116,10 @@ BOGEY_SPREAD = (4.095, 5.38, 5.249, 4.763, 4.799, 4.914, 5.03, 5.117, 5.148, 5.3
 # angular dispersion: she hits more fairways than he does, her drives being shorter); his
 # putter.
 WOMEN = {"scratch-woman": "scratch", "bogey-woman": "bogey"}  # each woman's man, as above
-SCRATCH_WOMAN_SPREAD = (2.555, 3.08, 2.993, 2.148, 2.357, 2.233, 2.121, 2.137, 2.166, 2.285,
-                        2.727, 3.021)  # fmt: skip
-BOGEY_WOMAN_SPREAD = (4.095, 5.38, 5.249, 4.617, 4.57, 4.695, 4.859, 5.012, 5.071, 5.234, 5.76,
-                      6.268)  # fmt: skip
+SCRATCH_WOMAN_SPREAD = (2.555, 3.08, 2.993, 2.065, 2.269, 2.149, 2.04, 2.057, 2.086, 2.2, 2.63,
+                        2.919)  # fmt: skip
+BOGEY_WOMAN_SPREAD = (4.095, 5.38, 5.249, 4.465, 4.433, 4.551, 4.704, 4.842, 4.895, 5.053, 5.567,
+                      6.069)  # fmt: skip
 PLAYERS = {
     "tour": (TOUR_BAG, 1.0, TOUR_SPREAD, "tour"),
     "scratch": (TOUR_BAG, 0.8875, SCRATCH_SPREAD, "scratch"),

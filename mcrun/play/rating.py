@@ -89,7 +89,7 @@ ROUNDS = 10_000  # 18-hole rounds drawn from the holes' plays
 # docstring), fitted by ``fit_day_form`` to a better half 3.0 strokes below the average [Knuth]
 # over the open courses of ``benchmarks.rating`` (which prints the fit beside these): an
 # ESTIMATE. A player not named here plays independent holes.
-DAY_FORM = {"scratch": 0.15, "bogey": 0.02, "scratch-woman": 0.16, "bogey-woman": 0.04}
+DAY_FORM = {"scratch": 0.161, "bogey": 0.019, "scratch-woman": 0.165, "bogey-woman": 0.047}
 KNUTH_GAP = 3.0  # strokes between a player's average and his handicap [Knuth]
 # Par by length (yd): a hole up to the first is a par 3, up to the second a par 4 (the USGA's
 # guide: for men par 3 up to 260 yd, par 4 240-490, par 5 450-710; for women par 3 up to 220,
