@@ -42,7 +42,7 @@ def _q_rows(rows, first, last, values, row_state, row_start, kind, lie, x, y, co
     Compiled without Numba's reference counts (``_nrt=False``: it allocates nothing and only
     reads and writes the arrays it is given). With them, the arrays handed to the inlined
     ``value_at`` are counted in and out at every shot, in branches that Numba's pruning of the
-    counts does not reach: the sweeps took 1.7 times as long."""
+    counts does not reach: a sweep took 1.6-2 times as long."""
     for j in range(first, last):
         r = rows[j]
         s = row_state[r]
