@@ -205,6 +205,7 @@ def aim_table(n, putts, seeds):
     and the pattern's centre across the slope at the first and the last; the maps built (in a
     cache folder of their own), and timed with them."""
     import tempfile
+    from unittest import mock
 
     from mcrun.run import aim
 
@@ -218,33 +219,28 @@ def aim_table(n, putts, seeds):
         "|---" * (7 + len(maps) - 1) + "|",
     ]
     margins = {m: [] for m in maps}
-    cache = os.environ.get("MCRUN_CACHE_DIR")
-    with tempfile.TemporaryDirectory() as folder:
-        os.environ["MCRUN_CACHE_DIR"] = str(Path(folder) / "cache")
-        try:
-            for seed in range(seeds):
-                started = time.perf_counter()
-                best, below = [], []
-                valuations = (*(own_read_map(k, seed, r) for k, r in maps), None)
-                for k, putting in enumerate(valuations):
-                    path = side_slope_wedge(folder, putting, seed)
-                    result = aim.search(aim.load_scenario(path), n=n, offsets_m=AIM_OFFSETS_M)
-                    best.append(result.clubs[0].best_between_m())
-                    if k in (0, len(valuations) - 1):  # the pattern: the first map's, the table's
-                        _, y = aim.finishes(result, 0, best[-1])
-                        below.append(float(np.mean(y)) - result.scenario.hole.pin_xy[1])  # right
-                for m, value in zip(maps, best, strict=False):
-                    margins[m].append(value - best[-1])
-                seconds = time.perf_counter() - started
-                cells = [f"{seed}", f"{best[0]:+.3f} m", f"{best[-1]:+.3f} m",
-                         *(f"{margins[m][-1]:+.3f} m" for m in maps),
-                         f"{below[0]:+.2f} m", f"{below[-1]:+.2f} m", f"{seconds:.0f}"]  # fmt: skip
-                lines.append("| " + " | ".join(cells) + " |")
-        finally:
-            if cache is None:
-                os.environ.pop("MCRUN_CACHE_DIR", None)
-            else:
-                os.environ["MCRUN_CACHE_DIR"] = cache
+    with (
+        tempfile.TemporaryDirectory() as folder,
+        mock.patch.dict(os.environ, {"MCRUN_CACHE_DIR": str(Path(folder) / "cache")}),
+    ):
+        for seed in range(seeds):
+            started = time.perf_counter()
+            best, below = [], []
+            valuations = (*(own_read_map(k, seed, r) for k, r in maps), None)
+            for k, putting in enumerate(valuations):
+                path = side_slope_wedge(folder, putting, seed)
+                result = aim.search(aim.load_scenario(path), n=n, offsets_m=AIM_OFFSETS_M)
+                best.append(result.clubs[0].best_between_m())
+                if k in (0, len(valuations) - 1):  # the pattern: the first map's, the table's
+                    _, y = aim.finishes(result, 0, best[-1])
+                    below.append(float(np.mean(y)) - result.scenario.hole.pin_xy[1])  # right
+            for m, value in zip(maps, best, strict=False):
+                margins[m].append(value - best[-1])
+            seconds = time.perf_counter() - started
+            cells = [f"{seed}", f"{best[0]:+.3f} m", f"{best[-1]:+.3f} m",
+                     *(f"{margins[m][-1]:+.3f} m" for m in maps),
+                     f"{below[0]:+.2f} m", f"{below[-1]:+.2f} m", f"{seconds:.0f}"]  # fmt: skip
+            lines.append("| " + " | ".join(cells) + " |")
     lines += ["", "Aims in m right of the pin (+: below it, the slope falls right). How far each "
               "map moves the best aim towards below the pin, against the table:", ""]  # fmt: skip
     for (k, r), values in margins.items():
