@@ -173,6 +173,22 @@ def test_short_putts_and_the_hole():
     assert e("green", 2 * FT) == pytest.approx((1.0 + 1.04) / 2, abs=1e-12)
 
 
+def test_a_green_table_from_0_m_still_holes_the_ball_in_the_cup():
+    """A baseline whose green rows start at 0 m (no tap-in row added): a ball within the cup's
+    radius is holed, 0.0, alone or among balls beyond it; beyond it, the table's line."""
+    from mcrun.strokes.baseline import LIES, Baseline
+
+    tour = tour_baseline()
+    distance_m, strokes = dict(tour.distance_m), dict(tour.strokes)
+    distance_m["green"], strokes["green"] = np.array([0.0, 1.0, 10.0]), np.array([1.0, 1.5, 2.0])
+    base = Baseline("0 m", distance_m, strokes)
+    green = LIES.index("green")
+    values = base.expected_by_code(np.full(3, green), np.array([0.5 * HOLE_RADIUS_M, 0.5, 5.0]))
+    assert values.tolist() == [0.0, 1.25, pytest.approx(1.5 + 4.0 / 18.0, abs=1e-12)]
+    assert base.expected("green", 0.5 * HOLE_RADIUS_M) == 0.0
+    assert base.expected_by_code(np.full(2, green), np.array([0.5, 5.0]))[0] == 1.25
+
+
 def test_off_the_green_below_10_yd_is_the_putt_plus_the_lies_step():
     # The step of each lie over a 30 ft (10 yd) putt, 1.98: fairway 0.20, rough 0.36, sand 0.45,
     # recovery 1.47; at 5 yd (15 ft, a putt of 1.78):

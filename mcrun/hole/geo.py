@@ -41,10 +41,9 @@ def to_ecef(lon_deg, lat_deg, h_m=0.0):
     return r * np.cos(lon), r * np.sin(lon), (n * (1.0 - E2) + h_m) * sin_lat
 
 
-def from_ecef(x, y, z):
-    """Geodetic (lon_deg, lat_deg, h_m) of ECEF metres (Bowring's start, then Newton steps:
-    sub-micrometre near the ground)."""
-    x, y, z = np.asarray(x, float), np.asarray(y, float), np.asarray(z, float)
+def _lon_lat_rad(x, y, z):
+    """Geodetic (lon, lat) in radians of ECEF metres (float arrays) and their distance p (m)
+    from the polar axis: Bowring's start, then Newton steps (sub-micrometre near the ground)."""
     p = np.hypot(x, y)
     lon = np.arctan2(y, x)
     theta = np.arctan2(z * A_M, p * B_M)
@@ -54,6 +53,13 @@ def from_ecef(x, y, z):
         n = A_M / np.sqrt(1.0 - E2 * sin_lat * sin_lat)
         h = p / np.cos(lat) - n
         lat = np.arctan2(z, p * (1.0 - E2 * n / (n + h)))
+    return lon, lat, p
+
+
+def from_ecef(x, y, z):
+    """Geodetic (lon_deg, lat_deg, h_m) of ECEF metres (``_lon_lat_rad``, then the height)."""
+    x, y, z = np.asarray(x, float), np.asarray(y, float), np.asarray(z, float)
+    lon, lat, p = _lon_lat_rad(x, y, z)
     sin_lat = np.sin(lat)
     n = A_M / np.sqrt(1.0 - E2 * sin_lat * sin_lat)
     h = p * np.cos(lat) + z * sin_lat - A_M * A_M / n
@@ -108,5 +114,6 @@ class Frame:
         # error in that drop moves the point by s / R m sideways, which is nothing here.
         u = -(e * e + n * n) / (2.0 * MEAN_RADIUS_M)
         d = np.tensordot(self._enu.T, np.stack(np.broadcast_arrays(e, n, u)), axes=1)
-        lon, lat, _ = from_ecef(*(d + self._origin.reshape((3,) + (1,) * np.ndim(e))))
-        return lon, lat
+        x, y, z = d + self._origin.reshape((3,) + (1,) * np.ndim(e))
+        lon, lat, _ = _lon_lat_rad(x, y, z)  # (not the height: a sixth of the work)
+        return np.degrees(lon), np.degrees(lat)

@@ -131,7 +131,7 @@ def driver_inputs(point, columns):
 # Bytes of Parquet per shot, an upper bound: shots.parquet of pga-driver (every launch input
 # drawn) measured 150 B a shot at 1e6 shots in chunks of 65,536; a scenario that draws more
 # inputs (wind, temperature, turf) writes up to about 250 B. The bound takes every column as a
-# drawn float64 that zstd cannot compress: 8 B per column and shot.
+# drawn float64 that the codec cannot compress: 8 B per column and shot.
 BYTES_PER_COLUMN_SHOT = 8
 # Each row group adds its column chunks' page headers and footer entries: about 365 B per
 # column (measured: a 100 x 100 sweep of 10 shots a point, one row group a point, wrote

@@ -107,6 +107,8 @@ class Baseline:
             return self._green(d)
         rows_d, rows_v = self.distance_m[lie], self.strokes[lie]
         below = d < rows_d[0]
+        if not below.any():  # (the rows' values alone: the same numbers, half the work)
+            return _linear(rows_d, rows_v, d)
         out = _linear(rows_d, rows_v, np.where(below, rows_d[0], d))
         if lie == "tee":
             return np.where(below, self._one("fairway", d), out)
@@ -119,17 +121,23 @@ class Baseline:
         if rows_d[0] > TAP_IN_M:
             rows_d, rows_v = np.r_[TAP_IN_M, rows_d], np.r_[1.0, rows_v]
         d = np.asarray(d, dtype=float)
+        short, holed = d < rows_d[0], d <= HOLE_RADIUS_M
+        if not (short.any() or holed.any()):  # (the same numbers without the np.where)
+            return _linear(rows_d, rows_v, d)
         out = _linear(rows_d, rows_v, np.maximum(d, rows_d[0]))
-        out = np.where(d < rows_d[0], np.minimum(rows_v[0], 1.0), out)
-        return np.where(d <= HOLE_RADIUS_M, 0.0, out)
+        out = np.where(short, np.minimum(rows_v[0], 1.0), out)
+        return np.where(holed, 0.0, out)
 
 
 def _linear(x, y, at):
     """Linear interpolation through (x, y), extended above the last point by the line through
     the last two; ``at`` at or above x[0]."""
     out = np.interp(at, x, y)
+    above = at > x[-1]
+    if not above.any():
+        return np.asarray(out)
     slope = (y[-1] - y[-2]) / (x[-1] - x[-2])
-    return np.where(at > x[-1], y[-1] + slope * (at - x[-1]), out)
+    return np.where(above, y[-1] + slope * (at - x[-1]), out)
 
 
 def _number(text, where, column, allowed):
