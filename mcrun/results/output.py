@@ -69,9 +69,9 @@ SUCCESS_FILE = "_SUCCESS"
 _PART = re.compile(r"part-(\d+)\.parquet")
 # Parquet's codec: LZ4 (LZ4_RAW in the file; pandas, polars, DuckDB and Spark read it). Measured
 # on pga-driver and par3-over-water (2-core AMD EPYC): zstd at its default level took 0.57 us a
-# shot to encode and write against LZ4's 0.35 (a quarter of everything a run does besides the
-# kernel), for files 11 % smaller (156 against 175 B a shot). Recompress a run kept for long
-# with any Parquet tool (DuckDB: COPY ... TO ... (COMPRESSION zstd)).
+# shot to encode and write against LZ4's 0.35 (zstd's write was a third to a half of all a run
+# did besides the kernel), for files 11 % smaller (156 against 175 B a shot for pga-driver).
+# Recompress a run kept for long with any Parquet tool (DuckDB: COPY ... (COMPRESSION zstd)).
 COMPRESSION = "lz4"
 # The columns of shots.parquet whose row groups carry min/max statistics, for readers that
 # skip row groups by point or status. An outcome's row group spans its whole spread, so its

@@ -129,7 +129,7 @@ def driver_inputs(point, columns):
 # --- the plan: what a run will be, said before it starts ---------------------------------------
 
 # Bytes of Parquet per shot, an upper bound: shots.parquet of pga-driver (every launch input
-# drawn) measured 150 B a shot at 1e6 shots in chunks of 65,536; a scenario that draws more
+# drawn) measured 175 B a shot at 1e6 shots in chunks of 65,536 (LZ4); a scenario that draws more
 # inputs (wind, temperature, turf) writes up to about 250 B. The bound takes every column as a
 # drawn float64 that the codec cannot compress: 8 B per column and shot.
 BYTES_PER_COLUMN_SHOT = 8
