@@ -73,6 +73,11 @@ _PART = re.compile(r"part-(\d+)\.parquet")
 # did besides the kernel), for files 11 % smaller (156 against 175 B a shot for pga-driver).
 # Recompress a run kept for long with any Parquet tool (DuckDB: COPY ... (COMPRESSION zstd)).
 COMPRESSION = "lz4"
+# Values handed to each column's encoder at a time (pyarrow's default: 1,024): a chunk's column
+# in one go writes shots.parquet in about a tenth less time (par3-over-water 0.30-0.31 against
+# 0.33-0.41 us a shot, pga-driver 0.22-0.27 against 0.26-0.29), the same values, in pages of up
+# to 1 MB as before (65,536 float64 are 512 kB).
+WRITE_BATCH_SIZE = 65_536
 # The columns of shots.parquet whose row groups carry min/max statistics, for readers that
 # skip row groups by point or status. An outcome's row group spans its whole spread, so its
 # statistics would skip nothing, and they cost a fifth of the write.
@@ -278,6 +283,7 @@ class ShotsWriter(_ParquetWriter):
                 self.path,
                 self.schema,
                 compression=COMPRESSION,
+                write_batch_size=WRITE_BATCH_SIZE,
                 use_dictionary=dictionary_columns(self.schema),
                 write_statistics=[c for c in STATISTICS_COLUMNS if c in self.schema.names],
             )
