@@ -16,6 +16,8 @@ import contextlib
 import errno
 import os
 import signal
+import sys
+import threading
 
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
@@ -27,10 +29,21 @@ class Terminated(KeyboardInterrupt):
     """The process received SIGTERM; handled wherever Ctrl-C's KeyboardInterrupt is."""
 
 
+# How long after an interrupt lost where Python ignores exceptions it is delivered again.
+REDELIVER_S = 0.02
+
+
 @contextlib.contextmanager
 def sigterm_interrupts():
     """Within the block, SIGTERM raises ``Terminated`` in the main thread; yields a list that
-    holds the signal once received. Outside the main thread SIGTERM is left as it is."""
+    holds the signal once received. Outside the main thread SIGTERM is left as it is.
+
+    Python runs a signal's handler between two bytecodes of the main thread, whatever it is
+    running: within a garbage collector's callback (Dask's client registers one) or a
+    ``__del__``, an exception is printed as "Exception ignored" and dropped, and the interrupt
+    with it (the command ran on). Within the block such a dropped ``Terminated`` or Ctrl-C's
+    ``KeyboardInterrupt`` is delivered again, ``REDELIVER_S`` later, from a thread of its own
+    (so that it is not raised within the hook that saw it dropped), and nothing is printed."""
     received = []
 
     def handler(signum, frame):
@@ -42,9 +55,26 @@ def sigterm_interrupts():
     except ValueError:  # not the main thread of the main interpreter
         yield received
         return
+    previous_hook = sys.unraisablehook
+
+    def unraisable(event):
+        dropped = event.exc_value
+        if isinstance(dropped, KeyboardInterrupt) and threading.current_thread() is (
+            threading.main_thread()
+        ):
+            signum = signal.SIGTERM if isinstance(dropped, Terminated) else signal.SIGINT
+            again = threading.Timer(REDELIVER_S, signal.pthread_kill,
+                                    (threading.main_thread().ident, signum))  # fmt: skip
+            again.daemon = True
+            again.start()
+            return
+        previous_hook(event)
+
+    sys.unraisablehook = unraisable
     try:
         yield received
     finally:
+        sys.unraisablehook = previous_hook
         signal.signal(signal.SIGTERM, previous)
 
 

@@ -325,6 +325,44 @@ def test_sigterm_stops_a_dask_run_and_its_cluster(tmp_path):
     assert listing(tmp_path) == ["scenario.toml"]
 
 
+@pytest.mark.parametrize("interrupt", [signal.SIGTERM, signal.SIGINT])
+def test_an_interrupt_dropped_in_a_garbage_collector_s_callback_comes_again(
+    interrupt, ctrl_c_raises, capsys
+):
+    """An interrupt whose exception Python drops (raised within a garbage collector's callback,
+    as Dask's client registers one: "Exception ignored in ... GCDiagnosis._gc_callback", the
+    command ran on and a Dask run did not stop) comes again, ``REDELIVER_S`` later, in the
+    code that runs; nothing is printed."""
+    import gc
+
+    expected = exits.Terminated if interrupt == signal.SIGTERM else KeyboardInterrupt
+    raised_inside = []
+
+    def callback(phase, info):
+        if phase == "start" and not raised_inside:
+            try:
+                signal.raise_signal(interrupt)  # its handler runs here, within the callback
+            except BaseException as err:
+                raised_inside.append(type(err))
+                raise  # and the collector drops it
+
+    with exits.sigterm_interrupts() as received, pytest.raises(expected) as caught:
+        gc.callbacks.append(callback)
+        try:
+            gc.collect()
+            time.sleep(1.0)  # (it comes again within REDELIVER_S, 0.02 s: here or in collect)
+        finally:
+            gc.callbacks.remove(callback)
+    assert raised_inside == [expected] and caught.type is expected
+    # (each SIGTERM handled is received: the dropped one, and the one that stopped the block;
+    # one may be dropped again if it too comes within a collection)
+    if interrupt == signal.SIGTERM:
+        assert len(received) >= 2 and set(received) == {signal.SIGTERM}
+    else:
+        assert received == []
+    assert "Exception ignored" not in capsys.readouterr().err
+
+
 def test_an_interrupt_waits_for_a_step_that_cannot_be_undone():
     """Within ``interrupts_deferred`` SIGTERM waits; it stops the command as the step ends."""
     with exits.sigterm_interrupts() as received, pytest.raises(exits.Terminated):
