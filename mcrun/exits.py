@@ -29,7 +29,7 @@ class Terminated(KeyboardInterrupt):
     """The process received SIGTERM; handled wherever Ctrl-C's KeyboardInterrupt is."""
 
 
-# How long after an interrupt lost where Python ignores exceptions it is delivered again.
+# How long after Python drops an interrupt's exception (``sigterm_interrupts``) it comes again.
 REDELIVER_S = 0.02
 
 
