@@ -309,12 +309,15 @@ def test_metadata_round_trips_and_reproduces_the_run(drive, tmp_path):
 
 
 def test_shots_parquet_layout(drive):
-    """Columns named with units, small chunks sharing a row group, LZ4, status and
-    status_name."""
+    """Columns named with units, small chunks sharing a row group, LZ4 where it gains (a
+    sampled input and an outcome uncompressed), status and status_name."""
     _, result = drive
     f = pq.ParquetFile(result.shots_path)
     assert f.num_row_groups == 1  # 4 points x 1200 shots, under output.ROW_GROUP_ROWS
-    assert f.metadata.row_group(0).column(0).compression == "LZ4"  # LZ4_RAW: pyarrow names both so
+    columns = [f.metadata.row_group(0).column(k) for k in range(f.metadata.num_columns)]
+    codecs = {c.path_in_schema: c.compression for c in columns}
+    assert codecs["point"] == codecs["mu"] == "LZ4"  # LZ4_RAW: pyarrow names both so
+    assert codecs["temperature_c"] == codecs["carry_m"] == "UNCOMPRESSED"
     schema = f.schema_arrow
     assert schema.names[:4] == ["point", "group", "label", "shot"]
     assert set(PLANE_FIELDS) <= set(schema.names)
@@ -329,6 +332,40 @@ def test_shots_parquet_layout(drive):
     traj = result.trajectories()
     assert set(traj["shot"]) == {0, 400, 800}
     assert list(traj.columns) == ["point", "shot", "t_s", "x_m", "y_m", "z_m", "phase"]
+
+
+def test_columns_that_lz4_does_not_shrink_are_written_uncompressed():
+    """output.column_compression: random float64 gain nothing from LZ4 (none); a constant, a
+    count and text do (LZ4); an empty table keeps LZ4."""
+    rng = np.random.default_rng(1)
+    n = 10_000
+    table = pa.table({
+        "sampled": rng.normal(size=n), "constant": np.full(n, 20.0),
+        "shot": np.arange(n, dtype=np.int64), "noise": rng.integers(0, 2**62, n),
+        "name": pa.array(["ok"] * n).dictionary_encode(),
+    })  # fmt: skip
+    assert output.column_compression(table) == {
+        "sampled": "none", "constant": "lz4", "shot": "lz4", "noise": "none", "name": "lz4"
+    }  # fmt: skip
+    assert set(output.column_compression(table.slice(0, 0)).values()) == {"lz4"}
+    # A column sliced from the middle of its buffer is judged on its own values.
+    mixed = pa.table({"x": np.concatenate([np.zeros(n), rng.normal(size=n)])})
+    assert output.column_compression(mixed.slice(n))["x"] == "none"
+    assert output.column_compression(mixed.slice(0, n))["x"] == "lz4"
+
+
+def test_a_shots_writer_without_shots_writes_the_schema_and_an_aborted_one_nothing(tmp_path):
+    def writer(name):
+        return output.ShotsWriter(tmp_path / name, ["ball_speed_mps"], ["g"], ["p"], {})
+
+    empty = writer("empty.parquet")
+    empty.close()
+    empty.close()
+    assert pq.read_table(tmp_path / "empty.parquet").num_rows == 0
+    aborted = writer("aborted.parquet")
+    aborted.abort()
+    aborted.close()
+    assert not (tmp_path / "aborted.parquet").exists()
 
 
 def test_run_dataframes(drive):

@@ -236,7 +236,7 @@ def _write_parquet(fs, path, table, local, use_dictionary=True):
     """Write ``table`` as one row group; on a local filesystem under a hidden temporary name
     renamed into place, so that a part is either complete or absent."""
     kwargs = {
-        "compression": output.COMPRESSION,
+        "compression": output.column_compression(table),
         "write_batch_size": output.WRITE_BATCH_SIZE,
         "row_group_size": max(table.num_rows, 1),
         "use_dictionary": use_dictionary,
