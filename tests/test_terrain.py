@@ -76,22 +76,55 @@ def shape(kind, **params):
     return lambda X, Y: shape_height(kind, params, X, Y)
 
 
+# The ground asked as the kernels ask it: through the Terrain's view as compiled code borrows
+# it (``ground.borrowed``: pointers). The functions asked are then those the kernels compiled,
+# which Numba's cache holds once they are warmed up; asked from Python, through its view of
+# arrays, each would compile again (``roll_out`` alone for 15 s).
+
+
+@numba.njit(cache=True)
+def _height(terrain, x, y):
+    return ground.grid._grid_height(ground.borrowed(terrain), x, y)
+
+
+@numba.njit(cache=True)
+def _gradient(terrain, x, y):
+    return ground.grid._grid_gradient(ground.borrowed(terrain), x, y)
+
+
+@numba.njit(cache=True)
+def _rolled_out(terrain, x, y, v, w, plane, traj, row, dt_record):
+    view = ground.borrowed(terrain)
+    return roll_out(
+        x, y, ground.grid._grid_height(view, x, y), v[0], v[1], v[2], w[0], w[1], w[2], view,
+        plane, 0.0, traj, row, dt_record, dt_record,
+    )  # fmt: skip
+
+
+@numba.njit(cache=True)
+def _hops(terrain, x, y, z, vx, vy, vz, hop_time):
+    """``hop_search._grid_hop`` and ``_marched_hop`` of the same hop."""
+    view = ground.borrowed(terrain)
+    return (
+        ground.hop_search._grid_hop(view, x, y, z, vx, vy, vz, hop_time),
+        ground.hop_search._marched_hop(view, x, y, z, vx, vy, vz, hop_time),
+    )
+
+
 def rolling(terrain, x, y, vx, vy, dt_record=0.0, rows=0):
     """``rolling.roll_out`` of a ball put on the terrain at (x, y) (hole frame) rolling without
     slipping at horizontal velocity (vx, vy), along the ground. Returns (x, y, z, t, status)
     of its end in the hole frame, and its path (rows t, x, y, z, phase) every ``dt_record``."""
     xc, yc, vxc, vyc = x, -y, vx, -vy  # the core frame: y to the LEFT
-    view = ground.borrowed(terrain)  # (what compiled code asks of the ground)
-    hx, hy = ground.grid._grid_gradient(view, xc, yc)
+    hx, hy = _gradient(terrain, xc, yc)
     n = np.array([-hx, -hy, 1.0]) / math.sqrt(1.0 + hx * hx + hy * hy)
     v = np.array([vxc, vyc, hx * vxc + hy * vyc])
     w = np.cross(n, v) / BALL_RADIUS_M  # no slip: v + w x (-r n) = 0
     traj = np.empty((rows, 5))
     any_plane = ground.Plane(0.0, 0.0, 1.0, PRESETS["green"])
-    x1, y1, z1, t1, status, m, _, _ = roll_out(
-        xc, yc, ground.grid._grid_height(view, xc, yc), *v, *w, view,
-        any_plane, 0.0, traj, 0, dt_record, dt_record,
-    )  # fmt: skip
+    x1, y1, z1, t1, status, m, _, _ = _rolled_out(
+        terrain, xc, yc, v, w, any_plane, traj, 0, dt_record
+    )
     assert m <= rows or rows == 0
     return (x1, -y1, z1, t1, status), traj[: min(m, rows)]
 
@@ -99,7 +132,7 @@ def rolling(terrain, x, y, vx, vy, dt_record=0.0, rows=0):
 def landed(terrain, x, y, vx, vy, vz, turf="green"):
     """``simulate_landed`` of one ball touching the terrain at (x, y) (hole frame) at velocity
     (vx, vy, vz), without spin: its outcomes."""
-    hx, hy = ground.grid._grid_gradient(ground.borrowed(terrain), x, -y)
+    hx, hy = _gradient(terrain, x, -y)
     n = np.array([-hx, -hy, 1.0]) / math.sqrt(1.0 + hx * hx + hy * hy)
     landing = np.array([[x, -y, vx, -vy, vz, 0.0, 0.0, 0.0, 0.0, *n]])
     assert landing.shape[1] == N_LANDING
@@ -342,8 +375,7 @@ def test_energy_is_never_created(kind, params, ball):
     assert status == OK and len(path) > 10_000
     p = path[path[:, 4] == ROLL][:-1]  # the last is the rest, off the grid of times
     t, x, y = p[:, 0], p[:, 1], p[:, 2]
-    view = ground.borrowed(terrain)
-    z = np.array([ground.grid._grid_height(view, a, -b) for a, b in zip(x, y, strict=True)])
+    z = np.array([_height(terrain, a, -b) for a, b in zip(x, y, strict=True)])
     xyz = np.column_stack([x, y, z])
     v = (xyz[2:] - xyz[:-2]) / (t[2:] - t[:-2])[:, None]
     speed = np.linalg.norm(v, axis=1)
@@ -595,28 +627,26 @@ def test_a_hop_ends_at_the_first_crossing_of_the_surface(height):
     square at once): where it ends the ball is on the bilinear surface within 1e-9 m, and no
     earlier time of 400 along the hop finds it below (by more than rounding); it agrees with
     the march along the parabola (``_marched_hop``) within 1 um where that is not grazing."""
-    terrain = ground.borrowed(grid(0.0, 40.0, -20.0, 20.0, 0.5, height))
+    terrain = grid(0.0, 40.0, -20.0, 20.0, 0.5, height)
     rng = np.random.default_rng(3)
     for _ in range(200):
         x, y = rng.uniform(8.0, 30.0), rng.uniform(-8.0, 8.0)
-        z = ground.grid._grid_height(terrain, x, y)
-        hx, hy = ground.grid._grid_gradient(terrain, x, y)
+        z = _height(terrain, x, y)
+        hx, hy = _gradient(terrain, x, y)
         vx, vy = rng.normal(6.0, 3.0), rng.normal(0.0, 3.0)
         vz = hx * vx + hy * vy + rng.uniform(0.3, 3.0)  # leaving the ground
         # (the exact return to the tangent plane, which a hop on calm ground takes)
         hop_time = 2.0 * (vz - hx * vx - hy * vy) / G
-        x1, y1, z1, vz1, t = ground.hop_search._grid_hop(terrain, x, y, z, vx, vy, vz, hop_time)
+        (x1, y1, z1, vz1, t), marched = _hops(terrain, x, y, z, vx, vy, vz, hop_time)
         assert t > 0.0
 
         def gap(s, x=x, y=y, z=z, vx=vx, vy=vy, vz=vz):
-            return z + vz * s - 0.5 * G * s * s - ground.grid._grid_height(terrain, x + vx * s,
-                                                                      y + vy * s)  # fmt: skip
+            return z + vz * s - 0.5 * G * s * s - _height(terrain, x + vx * s, y + vy * s)
 
         assert abs(gap(t)) < 1e-9
         assert (x1, y1, vz1) == pytest.approx((x + vx * t, y + vy * t, vz - G * t), abs=1e-12)
-        assert z1 == pytest.approx(ground.grid._grid_height(terrain, x1, y1), abs=1e-9)
+        assert z1 == pytest.approx(_height(terrain, x1, y1), abs=1e-9)
         assert min(gap(s) for s in np.linspace(1e-6, t, 400)[:-1]) > -1e-9
-        marched = ground.hop_search._marched_hop(terrain, x, y, z, vx, vy, vz, hop_time)
         if min(gap(s) for s in np.linspace(0.05 * t, 0.95 * t, 50)) > 1e-4:
             assert marched[4] == pytest.approx(t, abs=1e-6)
 
