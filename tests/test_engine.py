@@ -355,6 +355,10 @@ def test_columns_that_lz4_does_not_shrink_are_written_uncompressed():
 
 
 def test_a_shots_writer_without_shots_writes_the_schema_and_an_aborted_one_nothing(tmp_path):
+    """The writer opens shots.parquet on its first row group (whose values choose the codecs):
+    closed before any, it still writes the file, its schema and no row; aborted, nothing, even
+    when closed after."""
+
     def writer(name):
         return output.ShotsWriter(tmp_path / name, ["ball_speed_mps"], ["g"], ["p"], {})
 
