@@ -2,7 +2,8 @@
 
 A run is a folder:
 
-- ``shots.parquet``: one row per shot, written as the run goes (one row group per chunk, LZ4):
+- ``shots.parquet``: one row per shot, written as the run goes (one row group per chunk; LZ4
+  where it shrinks a column, ``column_compression``):
   point, group, label, shot (the global sample index i), the sampled inputs, every field of
   ``schema.OUTCOME_FIELDS`` (status as an int8 code, bounces as a nullable int32, the rest
   float64, NaN where a failed shot did not get that far) and status_name. The outcome's
