@@ -76,12 +76,14 @@ _PART = re.compile(r"part-(\d+)\.parquet")
 COMPRESSION = "lz4"
 # A column of numbers that COMPRESSION shrinks by less than this share is written uncompressed:
 # a sampled input or an outcome, float64 whose low bytes are as good as random (LZ4 kept 8.03 of
-# every 8 bytes of them). Half of a run's columns are such, and LZ4 spent a sixth to a quarter
-# of the write's time on them: 0.22 against 0.18 us a shot of CPU to encode and write pga-driver,
-# 0.29 against 0.22 par3-over-water; the files come out a little smaller (174.2 against 174.9 B).
-INCOMPRESSIBLE_GAIN = 0.05
-# The values of each column that ``column_compression`` tries (its first ones).
-COMPRESSION_SAMPLE = 8192
+# every 8 bytes of them), or a longitude or latitude (0.99 and 0.91 of them, for 0.02 us a shot
+# of the two together). Half of a run's columns are such: CPU to encode and write 1,000,000 shots,
+# 0.17-0.18 against 0.18-0.20 us a shot for pga-driver, 0.22 against 0.27 for par3-over-water.
+INCOMPRESSIBLE_GAIN = 0.10
+# The values of each column that ``column_compression`` tries (its first ones): 128 kB of
+# float64, past LZ4's mode for inputs up to 64 kB, which shrinks such data more than it does
+# Parquet's pages of up to 1 MB (a latitude to 0.82 of its bytes in 64 kB, 0.91 in 128 kB).
+COMPRESSION_SAMPLE = 16384
 # Values handed to each column's encoder at a time (pyarrow's default: 1,024): a chunk's column
 # in one go writes shots.parquet in about a tenth less time (par3-over-water 0.30-0.31 against
 # 0.33-0.41 us a shot, pga-driver 0.22-0.27 against 0.26-0.29), the same values, in pages of up
