@@ -250,16 +250,13 @@ def score_shots(
         raise ValueError("score_shots: give a hole, or pin_xy_m and start_lie")
     outcome = _outcome_codes(shots)
     n = len(outcome)
-    start_code, e_start = _lie_codes(start_lie), None
     if start_distance_m is None:
         start_distance_m = math.hypot(*pin_xy_m)
-    start_distance_m = np.asarray(start_distance_m, dtype=float)
-    if start_code.size == 1 and start_distance_m.size == 1:  # one start: valued once
-        one = base.expected_by_code(start_code.reshape(1), start_distance_m.reshape(1))
-        e_start = np.full(n, one[0])
-    start_code = np.broadcast_to(start_code, (n,))
-    start_distance_m = np.broadcast_to(start_distance_m, (n,))
-    if e_start is None:
+    code, distance = _lie_codes(start_lie), np.asarray(start_distance_m, dtype=float)
+    start_code, start_distance_m = np.broadcast_to(code, (n,)), np.broadcast_to(distance, (n,))
+    if code.size == 1 and distance.size == 1:  # one start: valued once
+        e_start = np.full(n, base.expected_by_code(code.reshape(1), distance.reshape(1))[0])
+    else:
         e_start = base.expected_by_code(start_code, start_distance_m)
     pin_x, pin_y = pin_xy_m
     d_final = _floats(shots, "pin_distance_m", n)
