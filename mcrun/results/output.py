@@ -447,7 +447,7 @@ def column_compression(table):
     """Each column's codec in a file that ``table`` starts (ParquetWriter's ``compression``):
     COMPRESSION, or "none" for a column of numbers whose first COMPRESSION_SAMPLE values in
     ``table`` COMPRESSION shrinks by less than INCOMPRESSIBLE_GAIN."""
-    codec = pa.Codec("lz4_raw")
+    codec = pa.Codec("lz4_raw")  # what Parquet writes for "lz4": LZ4 blocks, without a frame
     chosen = {}
     for field, column in zip(table.schema, table.columns, strict=True):
         chosen[field.name] = COMPRESSION
