@@ -9,6 +9,7 @@ import textwrap
 
 import numpy as np
 import pytest
+from numba import njit
 from scipy.integrate import solve_ivp
 
 from mcrun.cli import main
@@ -21,13 +22,19 @@ from mcrun.putting.green_map import MAP_DT_S, expected_putts_map, read_candidate
 from mcrun.putting.on_hole import map_of_hole
 from mcrun.putting.roll import (
     DT_S,
+    LANES,
     MAX_TIME_S,
+    ROLL_STATUS,
+    STATUS_NOT_STOPPED,
     STATUS_OFF_GREEN,
     STATUS_STOPPED,
     Surface,
     roll,
+    roll_core,
+    roll_lanes,
     roll_on,
 )
+from mcrun.putting.stroke import PuttGreen
 from mcrun.results.reader import open_run
 from mcrun.run import local
 from mcrun.strokes import score_shots
@@ -105,6 +112,42 @@ def test_a_putt_that_leaves_the_green_stops_at_its_edge():
                   0.125)  # fmt: skip
     assert got[0] == STATUS_OFF_GREEN
     assert 3.0 < got[1] <= 3.0 + 0.125 + 0.125 + 1e-9
+
+
+@pytest.mark.parametrize("n, max_time_s", [(600, MAX_TIME_S), (600, 2.5), (3, MAX_TIME_S),
+                                           (5, 0.0)])  # fmt: skip
+def test_putts_rolled_side_by_side_are_each_the_putt_rolled_alone(n, max_time_s):
+    """``roll_lanes`` (the map's putts, ``LANES`` at a time) against ``roll_core`` one putt at a
+    time, on a 4 m disc sloping 2 % with the drift: every status (holed, at rest, off the
+    green, still rolling at the time limit), and where each ended, bit for bit."""
+    green = disc_green(slope=0.02)
+    g = PuttGreen(green.surface, 0.0, 1.0, 0.0, green.rho_g, 0.01, MAP_DT_S, 0.125)
+    hx, hy = 0.8, -0.4
+    rng = np.random.default_rng(n)
+    x, y = rng.uniform(-3.0, 3.0, n), rng.uniform(-3.0, 3.0, n)
+    heading = np.arctan2(hy - y, hx - x) + rng.normal(0.0, 0.1, n)
+    speed = rng.uniform(0.0, 3.0, n)
+    vx, vy = speed * np.cos(heading), speed * np.sin(heading)
+    keys = rng.integers(0, 2**63, n).astype(np.uint64)
+    status, end_x, end_y = np.zeros(n, np.int64), np.zeros(n), np.zeros(n)
+    roll_lanes(x, y, vx, vy, keys, g.slope_tan, g.fall_x, g.fall_y, g.rho_g, hx, hy, g.dt_s,
+               max_time_s, g.surface, g.ds_max_m, g.drift_sd, status, end_x, end_y)  # fmt: skip
+    alone = np.array([_rolled(x[i], y[i], vx[i], vy[i], keys[i], hx, hy, g, max_time_s)
+                      for i in range(n)])  # fmt: skip
+    assert np.array_equal(status, alone[:, 0])
+    assert end_x.tobytes() == alone[:, 1].tobytes() and end_y.tobytes() == alone[:, 2].tobytes()
+    if n > LANES:  # every status, but the time limit's only under a short limit
+        unlimited = {STATUS_NOT_STOPPED} if max_time_s == MAX_TIME_S else set()
+        assert set(status) == set(ROLL_STATUS) - unlimited
+
+
+@njit(cache=True)
+def _rolled(x, y, vx, vy, key, hx, hy, g, max_time_s):
+    """``roll_core``'s (status, x, y) of a putt with the cup, the drift and ``max_time_s``."""
+    out = roll_core(x, y, vx, vy, g.slope_tan, g.fall_x, g.fall_y, g.rho_g, hx, hy, True,
+                    g.dt_s, max_time_s, g.surface, g.ds_max_m, 0.0, 0.0, g.drift_sd,
+                    key)  # fmt: skip
+    return out[0], out[1], out[2]
 
 
 def disc_green(radius_m=4.0, slope=0.0, stimp_ft=11.0):

@@ -29,7 +29,7 @@ from numba import njit
 from mcrun.putting.cup import HOLE_RADIUS_M
 from mcrun.putting.rest import off_value, rest_value
 from mcrun.putting.roll import STATUS_HOLED, STATUS_STOPPED
-from mcrun.putting.stroke import centre_line, pace_speed_mps, strike, tilt
+from mcrun.putting.stroke import centre_line, pace_speed_mps, strike_lanes, struck_velocity, tilt
 
 __all__ = [
     "AIM_STEPS_DEG",
@@ -97,20 +97,30 @@ def score(x, y, hx, hy, pace_m, offset, lines, green, stroke, z, keys, rest, put
     read at ``pace_m`` on the perceived centre line (``read_lines``) + ``offset`` (rad), each
     putt with its errors z[i, 0] and keys[i, 0]; each sample's putts into ``putts``."""
     n = z.shape[0]
-    total, total2, ones, threes = 0.0, 0.0, 0.0, 0.0
+    # Every putt's strike, then their rolls at once (``stroke.strike_lanes``: each as
+    # ``stroke.strike`` rolls it), then their values in order.
+    start_x, start_y = np.full(n, x), np.full(n, y)
+    vx, vy = np.empty(n), np.empty(n)
+    drift_keys = np.empty(n, dtype=keys.dtype)
     for i in range(n):
         tx, ty = tilt(stroke, z[i, 0])
         speed = pace_speed_mps(x, y, hx, hy, pace_m, stroke.pace_slope_share, green, tx, ty)
         aim = line_at(lines, stroke.read_sd, tx, ty) + offset
-        out = strike(x, y, hx, hy, aim, speed, green, stroke, z[i, 0, 0], z[i, 0, 1], keys[i, 0])
-        if out[0] == STATUS_HOLED:
+        vx[i], vy[i] = struck_velocity(x, y, hx, hy, aim, speed, stroke, z[i, 0, 0], z[i, 0, 1])
+        drift_keys[i] = keys[i, 0]
+    status = np.empty(n, dtype=np.int64)
+    end_x, end_y = np.empty(n), np.empty(n)
+    strike_lanes(start_x, start_y, vx, vy, drift_keys, hx, hy, green, status, end_x, end_y)
+    total, total2, ones, threes = 0.0, 0.0, 0.0, 0.0
+    for i in range(n):
+        if status[i] == STATUS_HOLED:
             value, p1_next, holed = 1.0, 1.0, True
-        elif out[0] == STATUS_STOPPED:
-            later, p1_next = rest_value(out[1], out[2], hx, hy, green, stroke, rest, i)
+        elif status[i] == STATUS_STOPPED:
+            later, p1_next = rest_value(end_x[i], end_y[i], hx, hy, green, stroke, rest, i)
             holed = later == 0.0
             value = 1.0 + later
         else:  # off the green (or never at rest)
-            value = 1.0 + off_value(out[1], out[2], hx, hy, rest)
+            value = 1.0 + off_value(end_x[i], end_y[i], hx, hy, rest)
             p1_next, holed = 0.0, False
         putts[i] = value
         total += value

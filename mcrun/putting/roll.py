@@ -27,7 +27,12 @@ Two grounds, one roll:
   is not the green's stops there with ``STATUS_OFF_GREEN``: it is a chip from there.
 
 Integration: classical Runge-Kutta (RK4) in time steps ``dt_s``; the last step before the ball
-stops is solved in closed form (deceleration taken constant over it).
+stops is solved in closed form (deceleration taken constant over it). A step is ``_step``;
+``roll_core`` takes them one after the other for one ball, and ``roll_lanes`` for many putts
+side by side (``LANES`` at once, each part of a step for every lane in turn), the same steps
+bit for bit: a ball's step waits on its step before, a chain of square roots and divisions, so
+that many balls keep the processor busy where one keeps it waiting (the putts of a green's map
+roll about twice as fast).
 
 Two things a real green and a real reader add (``roll_core``'s last arguments):
 
@@ -66,6 +71,7 @@ __all__ = [
     "drift_step",
     "roll",
     "roll_core",
+    "roll_lanes",
     "roll_on",
     "slope_at",
 ]
@@ -73,12 +79,16 @@ __all__ = [
 ROLLING_FACTOR = 5.0 / 7.0  # a uniform sphere rolling without slipping, I = (2/5) m r^2
 DT_S = 0.004
 MAX_TIME_S = 60.0
+# The putts ``roll_lanes`` rolls side by side.
+LANES = 16
 
 # The roll's statuses are the project's (``mcrun.status``).
 STATUS_STOPPED = OK  # at rest on the green
 STATUS_HOLED = HOLED  # dropped in the cup
 STATUS_NOT_STOPPED = NOT_STOPPED  # still moving at the cap (a slope too steep to rest on, or not)
 STATUS_OFF_GREEN = OFF_GREEN  # left the green (or its grid): a chip from where it left
+# What ``_step`` returns for a ball that rolls on (otherwise the status its roll ends with).
+ROLLING = -1
 ROLL_STATUS = {
     OK: "stopped",
     HOLED: "holed",
@@ -268,76 +278,245 @@ def roll_core(x_m, y_m, vx_mps, vy_mps, slope_tan, fall_x, fall_y, rho_g, hole_x
     """The one roll of ``roll`` (an empty ``surface``, ``NO_SURFACE``: the plane of slope_tan,
     fall_x, fall_y) and of ``roll_on`` (a grid), for what asks of either ground: the ground
     tilted by the fall vector (``tilt_x``, ``tilt_y``) (a read; 0, 0: the ground as it is), the
-    heading's random walk ``drift_sd`` (rad per sqrt(m); 0: none) drawn from ``key``."""
-    grid = surface.height_m.shape[0] > 0
+    heading's random walk ``drift_sd`` (rad per sqrt(m); 0: none) drawn from ``key``: ``_step``
+    after ``_step`` until the ball stops, drops, leaves the green or runs past ``max_time_s``."""
     x, y, vx, vy, t = x_m, y_m, vx_mps, vy_mps, 0.0
     best = math.hypot(x - hole_x_m, y - hole_y_m)
     bx, by = x, y
     while t < max_time_s:
-        speed = math.sqrt(vx * vx + vy * vy)
-        h = dt_s
+        end, x, y, vx, vy, t, key, best, bx, by = _step(
+            x, y, vx, vy, t, key, best, bx, by, slope_tan, fall_x, fall_y, rho_g, hole_x_m,
+            hole_y_m, cup, dt_s, surface, ds_max_m, tilt_x, tilt_y, drift_sd,
+        )  # fmt: skip
+        if end != ROLLING:
+            return end, x, y, t, best, bx, by
+    return STATUS_NOT_STOPPED, x, y, t, best, bx, by
+
+
+@njit(cache=True)
+def roll_lanes(x_m, y_m, vx_mps, vy_mps, keys, slope_tan, fall_x, fall_y, rho_g, hole_x_m,
+               hole_y_m, dt_s, max_time_s, surface, ds_max_m, drift_sd, status, end_x_m,
+               end_y_m):  # fmt: skip
+    """``roll_core`` of n putts with the cup, the i-th from (x_m[i], y_m[i]) at (vx_mps[i],
+    vy_mps[i]) with the drift's key keys[i], on the ground as it is (no tilt): its status and
+    where it ended into status[i], end_x_m[i], end_y_m[i], the same bit for bit.
+
+    A roll is a chain of square roots and divisions, each step's waiting on the step before, so
+    that one ball keeps the processor waiting. Here ``LANES`` balls roll side by side, a ball
+    taking a lane as one leaves it, and each part of a step is taken for every lane in turn, so
+    that the processor works on several balls' steps at once. A lane's step is ``_step``'s in
+    its common case: the same operations in the same order. Where a step may be other than
+    that (the ball stops in it, nearly stands, enters the cup's circle or leaves the green),
+    the lane's step is ``_step`` itself, from the same state."""
+    n = x_m.shape[0]
+    grid = surface.height_m.shape[0] > 0
+    w = min(LANES, n)
+    ball = np.full(w, -1, dtype=np.int64)
+    x, y, vx, vy, t = np.zeros(w), np.zeros(w), np.zeros(w), np.zeros(w), np.zeros(w)
+    key = np.zeros(w, dtype=np.uint64)
+    h, speed = np.zeros(w), np.zeros(w)
+    fx, fy, gx, gy, resist = np.zeros(w), np.zeros(w), np.zeros(w), np.zeros(w), np.zeros(w)
+    x1, y1, v1x, v1y = np.zeros(w), np.zeros(w), np.zeros(w), np.zeros(w)
+    key1 = np.zeros(w, dtype=np.uint64)
+    other = np.zeros(w, dtype=np.bool_)
+    following, live = 0, 0
+    for lane in range(w):
+        following, live = _take_lane(lane, following, live, ball, x, y, vx, vy, t, key, x_m,
+                                     y_m, vx_mps, vy_mps, keys, max_time_s, status, end_x_m,
+                                     end_y_m)  # fmt: skip
+    while live > 0:
+        # Each part of a step for every lane in turn: the slope ahead (``_slope_ahead`` without
+        # a tilt, written out: called, it cost the lanes a tenth of their time), RK4, the drift.
+        for lane in range(w):
+            sp = math.sqrt(vx[lane] * vx[lane] + vy[lane] * vy[lane])
+            hh = dt_s
+            if grid:
+                if ds_max_m > 0.0 and sp * hh > ds_max_m:
+                    hh = ds_max_m / sp
+                s_tan, f_x, f_y = grid_slope(x[lane] + vx[lane] * hh / 2.0,
+                                             y[lane] + vy[lane] * hh / 2.0, surface)  # fmt: skip
+            else:
+                s_tan, f_x, f_y = slope_at(x[lane], y[lane], slope_tan, fall_x, fall_y)
+            gx[lane], gy[lane], resist[lane] = _pull(s_tan, f_x, f_y, rho_g)
+            speed[lane], h[lane], fx[lane], fy[lane] = sp, hh, f_x, f_y
+        for lane in range(w):
+            sp, u, v = speed[lane], vx[lane], vy[lane]
+            ax, ay = _accel(u, v, gx[lane], gy[lane], resist[lane], fx[lane], fy[lane])
+            if sp > 1e-9:  # ``_step``'s own where the ball stops in this step
+                decel = _decel(sp, ax, ay, u, v)
+                other[lane] = decel > 0.0 and sp <= decel * h[lane]
+            else:  # or nearly stands
+                other[lane] = True
+            x1[lane], y1[lane], v1x[lane], v1y[lane] = _rk4(
+                x[lane], y[lane], u, v, h[lane], ax, ay, gx[lane], gy[lane], resist[lane],
+                fx[lane], fy[lane],
+            )  # fmt: skip
+        if drift_sd > 0.0:
+            for lane in range(w):
+                key1[lane], v1x[lane], v1y[lane] = _drifted(
+                    v1x[lane], v1y[lane], speed[lane], h[lane], drift_sd, key[lane]
+                )
+        else:
+            key1[:] = key
+        # The cup's circle entered, the green left, the ball at rest: ``_step``'s own.
+        for lane in range(w):
+            if (x[lane] - hole_x_m) ** 2 + (y[lane] - hole_y_m) ** 2 > HOLE_RADIUS_M**2:
+                if _entry(x[lane], y[lane], x1[lane], y1[lane], hole_x_m, hole_y_m)[0] >= 0.0:
+                    other[lane] = True
+            if grid and not on_green(x1[lane], y1[lane], surface):
+                other[lane] = True
+            if v1x[lane] == 0.0 and v1y[lane] == 0.0:
+                other[lane] = True
+        for lane in range(w):
+            i = ball[lane]
+            if i < 0:
+                continue
+            if other[lane]:
+                end, x[lane], y[lane], vx[lane], vy[lane], t[lane], key[lane], _, _, _ = _step(
+                    x[lane], y[lane], vx[lane], vy[lane], t[lane], key[lane], 0.0, 0.0, 0.0,
+                    slope_tan, fall_x, fall_y, rho_g, hole_x_m, hole_y_m, True, dt_s, surface,
+                    ds_max_m, 0.0, 0.0, drift_sd,
+                )  # fmt: skip
+            else:
+                end = ROLLING
+                x[lane], y[lane], vx[lane], vy[lane] = x1[lane], y1[lane], v1x[lane], v1y[lane]
+                t[lane], key[lane] = t[lane] + h[lane], key1[lane]
+            if end == ROLLING and not t[lane] < max_time_s:
+                end = STATUS_NOT_STOPPED
+            if end != ROLLING:
+                status[i], end_x_m[i], end_y_m[i] = end, x[lane], y[lane]
+                ball[lane] = -1
+                live -= 1
+                following, live = _take_lane(lane, following, live, ball, x, y, vx, vy, t, key,
+                                             x_m, y_m, vx_mps, vy_mps, keys, max_time_s, status,
+                                             end_x_m, end_y_m)  # fmt: skip
+
+
+@njit(cache=True, inline="always")
+def _take_lane(lane, following, live, ball, x, y, vx, vy, t, key, x_m, y_m, vx_mps, vy_mps,
+               keys, max_time_s, status, end_x_m, end_y_m):  # fmt: skip
+    """Put the next ball (``following``) that rolls at all into ``lane`` (a ball given no time,
+    ``max_time_s`` <= 0, ends where it is, not stopped); (the next ball after it, balls
+    rolling)."""
+    while following < x_m.shape[0]:
+        i = following
+        following += 1
+        if not 0.0 < max_time_s:
+            status[i], end_x_m[i], end_y_m[i] = STATUS_NOT_STOPPED, x_m[i], y_m[i]
+            continue
+        ball[lane] = i
+        x[lane], y[lane], vx[lane], vy[lane] = x_m[i], y_m[i], vx_mps[i], vy_mps[i]
+        t[lane], key[lane] = 0.0, keys[i]
+        return following, live + 1
+    return following, live
+
+
+@njit(cache=True, inline="always")
+def _slope_ahead(x, y, vx, vy, slope_tan, fall_x, fall_y, rho_g, dt_s, surface, ds_max_m,
+                 tilt_x, tilt_y):  # fmt: skip
+    """A step's start: the ball's speed, the step's length in time (at most ``dt_s``, and on a
+    grid ``ds_max_m`` in distance), and the pull of the slope (``_pull``, with the fall
+    direction) at the step's midpoint as the ball is heading (on a plane, anywhere), tilted."""
+    speed = math.sqrt(vx * vx + vy * vy)
+    h = dt_s
+    if surface.height_m.shape[0] > 0:
+        if ds_max_m > 0.0 and speed * h > ds_max_m:
+            h = ds_max_m / speed
+        s_tan, fx, fy = grid_slope(x + vx * h / 2.0, y + vy * h / 2.0, surface)
+    else:
+        s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
+    s_tan, fx, fy = _tilted(s_tan, fx, fy, tilt_x, tilt_y)
+    gx, gy, resist = _pull(s_tan, fx, fy, rho_g)
+    return speed, h, gx, gy, resist, fx, fy
+
+
+@njit(cache=True, inline="always")
+def _decel(speed, ax, ay, vx, vy):
+    """The deceleration along the motion of a ball at ``speed`` (vx, vy) under the acceleration
+    (ax, ay): -a.v_hat (0 for a ball nearly at rest). The ball stops in a step of h where
+    0 < decel and speed <= decel h."""
+    return -(ax * vx + ay * vy) / speed if speed > 1e-9 else 0.0
+
+
+@njit(cache=True, inline="always")
+def _rk4(x, y, vx, vy, h, ax, ay, gx, gy, resist, fx, fy):
+    """A step of ``h`` (s) by RK4 under the pull (gx, gy, resist, fx, fy), (ax, ay) the
+    acceleration at its start: (x, y, vx, vy) after it."""
+    k1x, k1y = ax, ay
+    k2x, k2y = _accel(vx + h / 2 * k1x, vy + h / 2 * k1y, gx, gy, resist, fx, fy)
+    k3x, k3y = _accel(vx + h / 2 * k2x, vy + h / 2 * k2y, gx, gy, resist, fx, fy)
+    k4x, k4y = _accel(vx + h * k3x, vy + h * k3y, gx, gy, resist, fx, fy)
+    v1x = vx + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x)
+    v1y = vy + h / 6 * (k1y + 2 * k2y + 2 * k3y + k4y)
+    # position: RK4 of dx/dt = v with the stages' velocities
+    x1 = x + h / 6 * (vx + 2 * (vx + h / 2 * k1x) + 2 * (vx + h / 2 * k2x) + vx + h * k3x)
+    y1 = y + h / 6 * (vy + 2 * (vy + h / 2 * k1y) + 2 * (vy + h / 2 * k2y) + vy + h * k3y)
+    return x1, y1, v1x, v1y
+
+
+@njit(cache=True, inline="always")
+def _drifted(vx, vy, speed, h, drift_sd, key):
+    """The heading's random walk over a step of ``h`` (s) begun at ``speed``: (key, the
+    velocity turned)."""
+    key, w = drift_step(key)
+    turn = drift_sd * math.sqrt(speed * h) * w  # the step's length, to O(h^2)
+    # cos and sin of a turn under a degree, to 1e-10
+    cos_t, sin_t = 1.0 - 0.5 * turn * turn, turn * (1.0 - turn * turn / 6.0)
+    return key, cos_t * vx - sin_t * vy, sin_t * vx + cos_t * vy
+
+
+@njit(cache=True, inline="always")
+def _step(x, y, vx, vy, t, key, best, bx, by, slope_tan, fall_x, fall_y, rho_g, hole_x_m,
+          hole_y_m, cup, dt_s, surface, ds_max_m, tilt_x, tilt_y, drift_sd):  # fmt: skip
+    """One step of a roll (``roll_core``'s) from the state (x, y, vx, vy, t, key) and the
+    closest approach so far (best, bx, by): (end, the state after it, the closest approach),
+    ``end`` ``ROLLING`` or the status the roll ends with (then x, y where it ended)."""
+    grid = surface.height_m.shape[0] > 0
+    speed, h, gx, gy, resist, fx, fy = _slope_ahead(x, y, vx, vy, slope_tan, fall_x, fall_y,
+                                                    rho_g, dt_s, surface, ds_max_m, tilt_x,
+                                                    tilt_y)  # fmt: skip
+    ax, ay = _accel(vx, vy, gx, gy, resist, fx, fy)
+    decel = _decel(speed, ax, ay, vx, vy)
+    if speed > 1e-9 and decel > 0.0 and speed <= decel * h:
+        t_stop = speed / decel
+        x1 = x + vx * t_stop / 2.0
+        y1 = y + vy * t_stop / 2.0
+        v1x, v1y = 0.0, 0.0
+        h = t_stop
+    else:
+        x1, y1, v1x, v1y = _rk4(x, y, vx, vy, h, ax, ay, gx, gy, resist, fx, fy)
+        if drift_sd > 0.0:
+            key, v1x, v1y = _drifted(v1x, v1y, speed, h, drift_sd, key)
+    # The cup: the centre's path enters the rim's circle in this step.
+    outside = (x - hole_x_m) ** 2 + (y - hole_y_m) ** 2 > HOLE_RADIUS_M**2
+    if outside:
+        s, offset = _entry(x, y, x1, y1, hole_x_m, hole_y_m)
+        if s >= 0.0:
+            speed1 = math.sqrt(v1x * v1x + v1y * v1y)
+            at_rim = speed + s * (speed1 - speed)
+            if cup and at_rim < capture_speed_mps(offset):
+                return (STATUS_HOLED, hole_x_m, hole_y_m, 0.0, 0.0, t + s * h, key, 0.0,
+                        hole_x_m, hole_y_m)  # fmt: skip
+    # The closest approach to the hole's centre along this step (a read's roll, without
+    # the cup, asks it; a putt's roll does not).
+    if not cup:
+        dx, dy = x1 - x, y1 - y
+        seg2 = dx * dx + dy * dy
+        f = 0.0
+        if seg2 > 0.0:
+            f = min(1.0, max(0.0, ((hole_x_m - x) * dx + (hole_y_m - y) * dy) / seg2))
+        px, py = x + f * dx, y + f * dy
+        dist = math.hypot(px - hole_x_m, py - hole_y_m)
+        if dist < best:
+            best, bx, by = dist, px, py
+    x, y, vx, vy, t = x1, y1, v1x, v1y, t + h
+    if grid and not on_green(x, y, surface):
+        return STATUS_OFF_GREEN, x, y, vx, vy, t, key, best, bx, by
+    if vx == 0.0 and vy == 0.0:
         if grid:
-            if ds_max_m > 0.0 and speed * h > ds_max_m:
-                h = ds_max_m / speed
-            s_tan, fx, fy = grid_slope(x + vx * h / 2.0, y + vy * h / 2.0, surface)
+            s_tan, fx, fy = grid_slope(x, y, surface)
         else:
             s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
-        s_tan, fx, fy = _tilted(s_tan, fx, fy, tilt_x, tilt_y)
-        gx, gy, resist = _pull(s_tan, fx, fy, rho_g)
-        ax, ay = _accel(vx, vy, gx, gy, resist, fx, fy)
-        # The step in which the ball stops: along its motion it slows at -a.v_hat.
-        decel = -(ax * vx + ay * vy) / speed if speed > 1e-9 else 0.0
-        if speed > 1e-9 and decel > 0.0 and speed <= decel * h:
-            t_stop = speed / decel
-            x1 = x + vx * t_stop / 2.0
-            y1 = y + vy * t_stop / 2.0
-            v1x, v1y = 0.0, 0.0
-            h = t_stop
-        else:
-            k1x, k1y = ax, ay
-            k2x, k2y = _accel(vx + h / 2 * k1x, vy + h / 2 * k1y, gx, gy, resist, fx, fy)
-            k3x, k3y = _accel(vx + h / 2 * k2x, vy + h / 2 * k2y, gx, gy, resist, fx, fy)
-            k4x, k4y = _accel(vx + h * k3x, vy + h * k3y, gx, gy, resist, fx, fy)
-            v1x = vx + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x)
-            v1y = vy + h / 6 * (k1y + 2 * k2y + 2 * k3y + k4y)
-            # position: RK4 of dx/dt = v with the stages' velocities
-            x1 = x + h / 6 * (vx + 2 * (vx + h / 2 * k1x) + 2 * (vx + h / 2 * k2x) + vx + h * k3x)
-            y1 = y + h / 6 * (vy + 2 * (vy + h / 2 * k1y) + 2 * (vy + h / 2 * k2y) + vy + h * k3y)
-            if drift_sd > 0.0:  # the heading's random walk over the step's length
-                key, w = drift_step(key)
-                turn = drift_sd * math.sqrt(speed * h) * w  # the step's length, to O(h^2)
-                # cos and sin of a turn under a degree, to 1e-10
-                cos_t, sin_t = 1.0 - 0.5 * turn * turn, turn * (1.0 - turn * turn / 6.0)
-                v1x, v1y = cos_t * v1x - sin_t * v1y, sin_t * v1x + cos_t * v1y
-        # The cup: the centre's path enters the rim's circle in this step.
-        outside = (x - hole_x_m) ** 2 + (y - hole_y_m) ** 2 > HOLE_RADIUS_M**2
-        if outside:
-            s, offset = _entry(x, y, x1, y1, hole_x_m, hole_y_m)
-            if s >= 0.0:
-                speed1 = math.sqrt(v1x * v1x + v1y * v1y)
-                at_rim = speed + s * (speed1 - speed)
-                if cup and at_rim < capture_speed_mps(offset):
-                    return STATUS_HOLED, hole_x_m, hole_y_m, t + s * h, 0.0, hole_x_m, hole_y_m
-        # The closest approach to the hole's centre along this step (a read's roll, without
-        # the cup, asks it; a putt's roll does not).
-        if not cup:
-            dx, dy = x1 - x, y1 - y
-            seg2 = dx * dx + dy * dy
-            f = 0.0
-            if seg2 > 0.0:
-                f = min(1.0, max(0.0, ((hole_x_m - x) * dx + (hole_y_m - y) * dy) / seg2))
-            px, py = x + f * dx, y + f * dy
-            dist = math.hypot(px - hole_x_m, py - hole_y_m)
-            if dist < best:
-                best, bx, by = dist, px, py
-        x, y, vx, vy, t = x1, y1, v1x, v1y, t + h
-        if grid and not on_green(x, y, surface):
-            return STATUS_OFF_GREEN, x, y, t, best, bx, by
-        if vx == 0.0 and vy == 0.0:
-            if grid:
-                s_tan, fx, fy = grid_slope(x, y, surface)
-            else:
-                s_tan, fx, fy = slope_at(x, y, slope_tan, fall_x, fall_y)
-            if _tilted(s_tan, fx, fy, tilt_x, tilt_y)[0] <= rho_g:
-                return STATUS_STOPPED, x, y, t, best, bx, by
-    return STATUS_NOT_STOPPED, x, y, t, best, bx, by
+        if _tilted(s_tan, fx, fy, tilt_x, tilt_y)[0] <= rho_g:
+            return STATUS_STOPPED, x, y, vx, vy, t, key, best, bx, by
+    return ROLLING, x, y, vx, vy, t, key, best, bx, by

@@ -1,5 +1,6 @@
 """A putt struck: the putter's read of the green, its errors and the green's drift, on the one
-roll (``roll.roll_core``). Each is done here and nowhere else:
+roll (``roll.roll_core``, or ``roll.roll_lanes`` for many at once: the same steps). Each is
+done here and nowhere else:
 
 - the green a putt is struck on (``PuttGreen``): a plane (``roll.NO_SURFACE`` and its slope) or
   a grid (a ``roll.Surface``), its rolling resistance, its drift and the roll's steps;
@@ -14,8 +15,9 @@ roll (``roll.roll_core``). Each is done here and nowhere else:
   fitted with the putter (``putter``: the Tour's leaves uphill and downhill);
 - the start line (``centre_line``): the one on which the error-free putt at that speed rolls over
   the hole's centre on the perceived green;
-- the strike (``strike``): the chosen line and speed missed by the putter's start-line and
-  relative speed errors, rolled on the green as it is, with its drift;
+- the strike (``strike``; ``struck_velocity``, then ``strike_lanes`` for many putts at once):
+  the chosen line and speed missed by the putter's start-line and relative speed errors, rolled
+  on the green as it is, with its drift;
 - holing out with the putter's own read (``hole_out_from``): the pace ``Stroke.pace_m``, the
   centre line, putt after putt until the ball drops.
 
@@ -40,6 +42,7 @@ from mcrun.putting.roll import (
     Surface,
     grid_height,
     roll_core,
+    roll_lanes,
 )
 
 __all__ = [
@@ -51,6 +54,8 @@ __all__ = [
     "pace_speed_mps",
     "plane_putt_green",
     "strike",
+    "strike_lanes",
+    "struck_velocity",
     "tilt",
 ]
 
@@ -199,15 +204,32 @@ def centre_line(x, y, hx, hy, speed, green, tilt_x, tilt_y):
     return c
 
 
+@njit(cache=True, inline="always")
+def struck_velocity(x, y, hx, hy, aim_rad, speed, stroke, z_line, z_speed):
+    """The velocity (m/s, x and y) of the putt from (x, y) aimed ``aim_rad`` from the line to
+    the hole at ``speed``, missed by the errors ``z_line`` and ``z_speed`` (standard normals)."""
+    angle = math.atan2(hy - y, hx - x) + aim_rad + stroke.line_sd_rad * z_line
+    v = max(0.0, speed * (1.0 + stroke.speed_sd * z_speed))
+    return v * math.cos(angle), v * math.sin(angle)
+
+
 @njit(cache=True)
 def strike(x, y, hx, hy, aim_rad, speed, green, stroke, z_line, z_speed, key):
     """The putt from (x, y) aimed ``aim_rad`` from the line to the hole at ``speed``, missed by
     the errors ``z_line`` and ``z_speed`` (standard normals), rolled on the green as it is with
     its drift (from ``key``) and the cup: the roll's (status, x, y, time, closest, cx, cy)."""
-    angle = math.atan2(hy - y, hx - x) + aim_rad + stroke.line_sd_rad * z_line
-    v = max(0.0, speed * (1.0 + stroke.speed_sd * z_speed))
-    return _roll(x, y, v * math.cos(angle), v * math.sin(angle), hx, hy, True, green, 0.0, 0.0,
-                 green.drift_sd, key)  # fmt: skip
+    vx, vy = struck_velocity(x, y, hx, hy, aim_rad, speed, stroke, z_line, z_speed)
+    return _roll(x, y, vx, vy, hx, hy, True, green, 0.0, 0.0, green.drift_sd, key)
+
+
+@njit(cache=True)
+def strike_lanes(x, y, vx, vy, keys, hx, hy, green, status, end_x, end_y):
+    """``strike``'s roll of n putts at once (``roll.roll_lanes``), the i-th from (x[i], y[i]) at
+    the velocity (vx[i], vy[i]) (``struck_velocity``) with the drift's key keys[i]: its status
+    and where it ended into status[i], end_x[i], end_y[i], as ``strike`` gives them."""
+    roll_lanes(x, y, vx, vy, keys, green.slope_tan, green.fall_x, green.fall_y, green.rho_g, hx,
+               hy, green.dt_s, MAX_TIME_S, green.surface, green.ds_max_m, green.drift_sd,
+               status, end_x, end_y)  # fmt: skip
 
 
 @njit(cache=True)
