@@ -357,7 +357,8 @@ def roll_lanes(x_m, y_m, vx_mps, vy_mps, keys, slope_tan, fall_x, fall_y, rho_g,
                     v1x[lane], v1y[lane], speed[lane], h[lane], drift_sd, key[lane]
                 )
         else:
-            key1[:] = key
+            for lane in range(w):  # (a loop, not key1[:] = key, whose shape check compiles slowly)
+                key1[lane] = key[lane]
         # The cup's circle entered, the green left, the ball at rest: ``_step``'s own.
         for lane in range(w):
             if (x[lane] - hole_x_m) ** 2 + (y[lane] - hole_y_m) ** 2 > HOLE_RADIUS_M**2:
