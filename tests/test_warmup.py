@@ -174,7 +174,16 @@ def test_cli_warm_up_says_what_it_found_cached(warmed, capsys):
 @pytest.mark.parametrize(
     "argv, message",
     [
-        (["--ground", "green"], "argument --ground: invalid choice: 'green'"),
+        (["--ground", "fairway"], "argument --ground: invalid choice: 'fairway'"),
+        (
+            ["--ground", "green", "--kernel", "batch"],
+            "--kernel batch: the green has no kernel 'batch': choose one of putt, map",
+        ),
+        (
+            ["--ground", "terrain", "--kernel", "map"],
+            "--kernel map: the terrain has no kernel "
+            "'map': choose one of batch, traced, landed, batch_general, traced_general",
+        ),
         (["--kernel", "fast"], "argument --kernel: invalid choice: 'fast'"),
         (["--processes", "two"], "argument --processes: invalid int value: 'two'"),
         (["--processes", "0"], "--processes 0: give a whole number >= 1"),
@@ -287,3 +296,93 @@ def test_the_jobs_compile_every_kernel_once_the_terrain_s_batch_apart():
         "warming up the batch, traced, landed, batch_general, traced_general kernel(s) on the "
         "plane and the traced, landed kernel(s) on the terrain failed"
     )
+
+
+# --- the green's kernels (putting.warmup) --------------------------------------------------------
+
+
+def test_the_green_s_kernels_are_those_the_putting_commands_run(tmp_path, capsys):
+    """After the green's warm-up, ``mcrun putt`` on a plane green and the map of a hole's green
+    (the library's, not the warm-up's tiny one) compile no other signature of any kernel the
+    check asks: the warm-up compiled (or loaded) the very ones the commands run."""
+    from mcrun.cli import main
+    from mcrun.putting import warmup as green
+
+    done = green.warm_up()
+    assert [(k.ground, k.kernel) for k in done] == [("green", "putt"), ("green", "map")]
+    assert green.kernel_cached() is True
+    kernels = {d: len(d.signatures) for k in green.KERNELS for d in green._dispatchers(k)}
+    assert all(count == 1 for count in kernels.values()), kernels
+    argv = ["putt", "--distance", "7ft", "--stimp", "10ft", "--slope", "1%", "-n", "20"]
+    assert main(argv) == 0 and main([*argv, "--direction", "180"]) == 0
+    out = tmp_path / "map.parquet"
+    hole = ROOT / "scenarios" / "holes" / "riverside-18-green.toml"
+    assert main(["putt", "--hole", str(hole), "-n", "4", "--resolution", "2m", "-o", str(out)]) == 0
+    assert {d: len(d.signatures) for d in kernels} == kernels
+    capsys.readouterr()
+
+
+def test_the_green_s_kernels_are_not_cached_in_an_empty_cache(tmp_path):
+    check = "from mcrun.putting import warmup; print(warmup.kernel_cached())"
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    done = subprocess.run([sys.executable, "-c", check], capture_output=True, text=True, env=env)
+    assert done.stdout.split() == ["False"]
+    assert not any(p.suffix in (".nbi", ".nbc") for p in tmp_path.rglob("*"))
+
+
+def test_warm_up_all_plans_the_green_in_a_job_of_its_own(monkeypatch):
+    """Every ground at once: the engine's jobs as ``engine.warmup.jobs`` plans them, then the
+    green's, each job run by the green's job function (which passes the engine's pairs on)."""
+    from mcrun.putting import warmup as green
+
+    ran = []
+
+    def run_jobs(job, planned, processes):
+        ran.append((job, planned, processes))
+        return [[warmup.KernelWarmUp(g, k, 0.0, True) for g, ks in pairs for k in ks]
+                for pairs in planned]  # fmt: skip
+
+    monkeypatch.setattr(warmup, "run_jobs", run_jobs)
+    report = green.warm_up_all(processes=2)
+    job, planned, processes = ran[-1]
+    assert job is green.warm_up_job and processes == 2
+    assert planned == [*warmup.jobs(warmup.GROUNDS, warmup.KERNELS, 2), (("green", green.KERNELS),)]
+    assert [(k.ground, k.kernel) for k in report.kernels] == [
+        *((g, k) for g in warmup.GROUNDS for k in warmup.KERNELS),
+        ("green", "putt"),
+        ("green", "map"),
+    ]
+    green.warm_up_all(kernels=("batch", "map"), processes=1)
+    assert ran[-1][1] == [(("plane", ("batch",)),), (("terrain", ("batch",)),),
+                          (("green", ("map",)),)]  # fmt: skip
+    green.warm_up_all(("green",))
+    assert ran[-1][1] == [(("green", green.KERNELS),)] and ran[-1][2] == 1
+    with pytest.raises(ValueError, match="the plane or the terrain has no kernel 'putt'"):
+        green.warm_up_all(("plane", "terrain"), ("putt",))
+    with pytest.raises(ValueError, match="unknown ground 'fairway'"):
+        green.warm_up_all(("fairway",))
+
+
+def test_a_putt_says_the_green_s_compile_apart(capsys, monkeypatch):
+    """A putt whose kernels are not in Numba's cache: the compile is said on stderr, with its
+    time, before the putt; a bad input is refused before any compile."""
+    from mcrun.cli import main
+    from mcrun.putting import warmup as green
+
+    compiled = []
+    monkeypatch.setattr(green, "kernel_cached", lambda kernels=green.KERNELS: False)
+
+    def warm_up(kernels):
+        compiled.append(kernels)
+        return [warmup.KernelWarmUp("green", k, 31.6, False) for k in kernels]
+
+    monkeypatch.setattr(green, "warm_up", warm_up)
+    assert main(["putt", "--distance", "1000ft"]) == 2
+    assert compiled == [] and capsys.readouterr().err.startswith("mcrun: error: distance ")
+    assert main(["putt", "--distance", "6ft", "-n", "10"]) == 0
+    assert compiled == [("putt",)]
+    assert capsys.readouterr().err.splitlines() == [
+        "mcrun: compiling the green's kernels (first putts after install; cached for the next "
+        "runs)",
+        "mcrun: compiled the green's kernels in 32 s",
+    ]

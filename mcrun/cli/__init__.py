@@ -210,10 +210,15 @@ def _general_flight(aero, profile):
 
 
 def compile_if_needed(ground, kernels=("batch",)):
-    """When the ``kernels`` for ``ground`` ("plane" or "terrain") are not in numba's on-disk
+    """When the ``kernels`` for ``ground`` ("plane" or "terrain") are not in Numba's on-disk
     cache yet (the first run after an install or an upgrade compiles them, which takes a while),
     compile them now, saying so on stderr with the time it took: a command's time and rate that
-    follow are then its own. Returns the seconds the compile took (0.0 when none was needed)."""
+    follow are then its own. Returns the seconds the compile took (0.0 when none was needed).
+    ``ground`` "green": the green's kernels (``putting.warmup.KERNELS``)."""
+    if ground == "green":
+        from mcrun.putting.warmup import compile_announced
+
+        return compile_announced(kernels, lambda line: print(line, file=sys.stderr, flush=True))
     if _kernel_cached(ground, kernels) is not False:
         return 0.0
     from mcrun.engine.warmup import warm_up

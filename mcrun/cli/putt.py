@@ -5,9 +5,10 @@ with ``--hole``, the expected-putts map of a hole's green to Parquet (and a pict
 import math
 import sys
 
+from mcrun.cli import compile_if_needed
 from mcrun.cli.options import whole
 from mcrun.hole.hole import PUTTING_READS
-from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_stimp, putt
+from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_putt, check_stimp, putt
 from mcrun.putting.greens import DRIFT_MM_PER_M_BENTGRASS, DRIFT_RANGE_MM_PER_M, STIMP_RANGE_FT
 from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
@@ -65,16 +66,19 @@ def _cmd_putt(args):
     args.seed = "0" if args.seed is None else args.seed
     args.stimp = DEFAULT_STIMP if args.stimp is None else args.stimp
     drift = DRIFT_MM_PER_M_BENTGRASS if args.drift is None else _drift(args.drift)
-    result = putt(
-        parse_quantity(args.distance, "length", "--distance"),
-        _stimp_m(args.stimp),
-        _slope_tan(args.slope),
-        parse_quantity(args.direction, "angle", "--direction") * 180.0 / math.pi,
+    given = dict(
+        distance_m=parse_quantity(args.distance, "length", "--distance"),
+        stimp_m=_stimp_m(args.stimp),
+        slope_tan=_slope_tan(args.slope),
+        direction_deg=parse_quantity(args.direction, "angle", "--direction") * 180.0 / math.pi,
         putter=args.putter,
         n=whole("2000" if args.n is None else args.n, "-n", 2),
         seed=whole(args.seed, "--seed", 0),
         drift_mm_per_m=drift,
     )
+    check_putt(**{k: v for k, v in given.items() if k != "seed"})
+    compile_if_needed("green", ("putt",))
+    result = putt(**given)
     r = result.read
     if abs(r.aim_deg) < 0.005:
         line = "at the hole"
@@ -142,6 +146,7 @@ def _cmd_green(args):
     print(f"putt: the green of {hole.source}: {green.area_m2():.0f} m^2, {speed}; map "
           f"{resolution:g} m, putter {putter} ({read} read), {n} putts a read, seed {seed}",
           file=sys.stderr, flush=True)  # fmt: skip
+    compile_if_needed("green", ("map",))
     bar = _bar()
     try:
         result = expected_putts_map(green, putter, n, seed, resolution, progress=bar, read=read)

@@ -4,6 +4,7 @@ say what was compiled or found cached and how long each took."""
 
 from mcrun.cli import CommandError
 from mcrun.engine import warmup
+from mcrun.putting import warmup as green
 
 ALL = "all"
 
@@ -15,12 +16,13 @@ def _which(value, allowed):
 def _cmd_warm_up(args):
     if args.processes is not None and args.processes < 1:
         raise CommandError(f"--processes {args.processes}: give a whole number >= 1")
-    grounds = _which(args.ground, warmup.GROUNDS)
-    kernels = _which(args.kernel, warmup.KERNELS)
+    grounds = _which(args.ground, green.GROUNDS)
+    kernels = None if args.kernel == ALL else (args.kernel,)
     try:
-        report = warmup.warm_up_all(grounds, kernels, args.processes)
-    except warmup.WarmUpError as err:
-        raise CommandError(str(err)) from None
+        report = green.warm_up_all(grounds, kernels, args.processes)
+    except (ValueError, warmup.WarmUpError) as err:
+        what = f"--kernel {args.kernel}: " if isinstance(err, ValueError) else ""
+        raise CommandError(f"{what}{err}") from None
     width = max(7, *(len(done.kernel) for done in report.kernels))
     print(f"{'ground':<8}  {'kernel':<{width}}  {'state':<8}  {'time':>8}")
     for done in report.kernels:
@@ -41,28 +43,32 @@ def register(subparsers):
     p = subparsers.add_parser(
         "warm-up",
         help="compile the kernels into the on-disk cache ahead of the first run",
-        description="Compile the kernels (the batch and the traced batch, each for the usual "
-        "flight and for the general lanes, and the run from a landing, on the plane and on a "
-        "hole's terrain) into Numba's on-disk cache, or find "
-        "them there, so that no later command compiles: one process per kind of ground, at "
-        "most the cores. Says what it compiled or found cached and how long each took. The "
-        "cache is __pycache__ beside mcrun's sources, or NUMBA_CACHE_DIR.",
+        description="Compile the kernels (the engine's batch and traced batch, each for the "
+        "usual flight and for the general lanes, and its run from a landing, on the plane and "
+        "on a hole's terrain; the green's putt on a plane green and expected-putts map) into "
+        "Numba's on-disk cache, or find them there, so that no later command compiles: one "
+        "process per kind of ground, at most the cores. Says what it compiled or found cached "
+        "and how long each took. The cache is __pycache__ beside mcrun's sources, or "
+        "NUMBA_CACHE_DIR.",
         epilog="example: mcrun warm-up --ground plane",
         allow_abbrev=False,
     )
     p.add_argument(
         "--ground",
-        choices=(*warmup.GROUNDS, ALL),
+        choices=(*green.GROUNDS, ALL),
         default=ALL,
-        help="the kind of ground: plane (no hole), terrain (a hole) or all (default)",
+        help="the kind of ground: plane (no hole), terrain (a hole), green (putting) or all "
+        "(default)",
     )
     p.add_argument(
         "--kernel",
-        choices=(*warmup.KERNELS, ALL),
+        choices=(*warmup.KERNELS, *green.KERNELS, ALL),
         default=ALL,
         help="the kernel: batch (every run), traced (recorded paths), landed (the paper's "
         "bounce studies), batch_general and traced_general (those of the aerodynamic models "
-        "and wind profiles that fly in the general lanes) or all (default)",
+        "and wind profiles that fly in the general lanes), on the plane or a terrain; putt (a "
+        "putt on a plane green) and map (a green's expected-putts map), on the green; or all "
+        "(default)",
     )
     p.add_argument(
         "--processes",

@@ -102,20 +102,33 @@ def _kernel_arguments(ground, kernel="batch"):
     return inputs, 0, QUADRATIC_COEFFICIENTS, out, terrain
 
 
-def _compiled(ground, kernel):
-    """Whether ``kernel`` for ``ground`` is compiled, in this process or on disk (None: cannot
-    be told)."""
-    dispatcher = _kernel(kernel)
-    signature = tuple(dispatcher.typeof_pyval(a) for a in _kernel_arguments(ground, kernel))
-    if signature in dispatcher.overloads:
+def dispatcher_cached(dispatcher, signature=None):
+    """Whether the Numba ``dispatcher`` is compiled for ``signature`` (a tuple of Numba types;
+    None: for any), in this process or in its on-disk cache for this source, this Numba and
+    this CPU. Raises AttributeError where Numba's cache internals have moved."""
+    compiled = dispatcher.overloads
+    if bool(compiled) if signature is None else signature in compiled:
         return True
     # What the dispatcher looks up on disk before it compiles (numba.core.caching.Cache): the
-    # index of the kernel's cache, for its source stamp, by signature, CPU and bytecode.
+    # index of its cache, for its source stamp, by signature, CPU and bytecode.
     cache = dispatcher._cache
-    key = cache._index_key(signature, dispatcher.targetctx.codegen())
+    codegen = dispatcher.targetctx.codegen()
     files = cache._cache_file
-    name = files._load_index().get(key)
-    return name is not None and os.path.exists(os.path.join(files._cache_path, name))
+    index = files._load_index()
+    if signature is None:
+        rest = cache._index_key((), codegen)[1:]
+        names = [name for key, name in index.items() if key[1:] == rest]
+    else:
+        names = [index.get(cache._index_key(signature, codegen))]
+    return any(name is not None and os.path.exists(os.path.join(files._cache_path, name))
+               for name in names)  # fmt: skip
+
+
+def _compiled(ground, kernel):
+    """Whether ``kernel`` for ``ground`` is compiled, in this process or on disk."""
+    dispatcher = _kernel(kernel)
+    signature = tuple(dispatcher.typeof_pyval(a) for a in _kernel_arguments(ground, kernel))
+    return dispatcher_cached(dispatcher, signature)
 
 
 def kernel_cached(ground="plane", kernels=("batch",)):
@@ -190,7 +203,9 @@ class WarmUpError(RuntimeError):
     """A warm-up job failed (in a child process or here); its message is one line."""
 
 
-def _choose(values, allowed, what):
+def choose(values, allowed, what):
+    """``values`` without repeats, each of ``allowed`` (else ValueError, one line naming
+    ``what`` it is), at least one."""
     values = tuple(dict.fromkeys(values))
     for value in values:
         if value not in allowed:
@@ -200,22 +215,26 @@ def _choose(values, allowed, what):
     return values
 
 
+def warm_pair(ground, kernels):
+    """Compile (or load) each of ``kernels`` on ``ground`` in this process, in order, each timed
+    on its own: a list of ``KernelWarmUp``."""
+    done = []
+    for kernel in kernels:
+        was_cached = kernel_cached(ground, (kernel,))
+        started = time.perf_counter()
+        _run(ground, kernel)
+        done.append(KernelWarmUp(ground, kernel, time.perf_counter() - started, was_cached))
+    return done
+
+
 def warm_up_job(*pairs):
-    """One job of ``warm_up_all``: for each (ground, kernels) pair in turn, compile (or load)
-    each of its kernels on its ground in this process, in order, each timed on its own; its
-    cache saves are locked against the other jobs' (``cache_lock``). Returns a list of
+    """One job of ``warm_up_all``: ``warm_pair`` of each (ground, kernels) pair in turn, its
+    cache saves locked against the other jobs' (``cache_lock``). Returns a list of
     ``KernelWarmUp``."""
     from mcrun.engine import cache_lock
 
-    done = []
     with cache_lock.locked_saves():
-        for ground, kernels in pairs:
-            for kernel in kernels:
-                was_cached = kernel_cached(ground, (kernel,))
-                started = time.perf_counter()
-                _run(ground, kernel)
-                done.append(KernelWarmUp(ground, kernel, time.perf_counter() - started, was_cached))
-    return done
+        return [done for ground, kernels in pairs for done in warm_pair(ground, kernels)]
 
 
 # The terrain's kernels that go with the plane's in a job of their own when there are two
@@ -296,31 +315,39 @@ def _describe(args):
     return f"warm-up job {args!r} failed"
 
 
-def warm_up_all(grounds=GROUNDS, kernels=KERNELS, processes=None):
+def warm_up_all(grounds=GROUNDS, kernels=KERNELS, processes=None, also=(), job=warm_up_job):
     """Compile every kernel of ``kernels`` for every kind of ground of ``grounds`` (all of
     them by default), or load it from Numba's on-disk cache, as ``warm_up`` does: one job per
     ground (its kernels in order, which share their callees; with two processes, two of the
     terrain's go with the plane's: ``jobs``), the jobs in ``processes`` spawned processes at
     once (default: one per job, at most the cores; 1: in this process, one after the other).
-    The jobs' saves to the cache are locked against each other (``cache_lock``:
-    concurrent saves could otherwise lose index entries); where that lock is not available the
-    jobs run one after the other. Returns a ``WarmUpReport``; raises ``WarmUpError`` (one line)
-    when a job fails, ``ValueError`` for an unknown ground or kernel."""
+    ``also``: more jobs, of kernels above the engine's (each a tuple of (ground, kernels)
+    pairs), after the engine's, every job then run by ``job``, a function of such pairs that
+    knows their grounds (``putting.warmup.warm_up_all``, the green's kernels); ``grounds``
+    may then be empty. The jobs' saves to the cache are locked against each other
+    (``cache_lock``: concurrent saves could otherwise lose index entries); where that lock is
+    not available the jobs run one after the other. Returns a ``WarmUpReport``; raises
+    ``WarmUpError`` (one line) when a job fails, ``ValueError`` for an unknown ground or
+    kernel."""
     from mcrun.engine import cache_lock
 
-    grounds = _choose(grounds, GROUNDS, "ground")
-    kernels = _choose(kernels, KERNELS, "kernel")
+    also = [tuple(pairs) for pairs in also]
+    grounds = choose(grounds, GROUNDS, "ground") if grounds or not also else ()
+    kernels = choose(kernels, KERNELS, "kernel") if grounds else ()
+    count = len(grounds) + len(also)
     if processes is None:
-        processes = default_processes(len(grounds))
+        processes = default_processes(count)
     elif isinstance(processes, bool) or not isinstance(processes, int) or processes < 1:
         raise ValueError(f"processes must be a whole number >= 1, got {processes!r}")
-    processes = min(processes, len(grounds))
+    processes = min(processes, count)
     if not cache_lock.available():
         processes = 1
     started = time.perf_counter()
-    planned = jobs(grounds, kernels, processes)
-    results = run_jobs(warm_up_job, planned, processes)
-    order = {(g, k): i for i, (g, k) in enumerate((g, k) for g in grounds for k in kernels)}
+    planned = (jobs(grounds, kernels, processes) if grounds else []) + also
+    results = run_jobs(job, planned, processes)
+    pairs = [(g, k) for g in grounds for k in kernels]
+    pairs += [(g, k) for pairs_ in also for g, ks in pairs_ for k in ks]
+    order = {pair: i for i, pair in enumerate(pairs)}
     done = tuple(sorted((k for job in results for k in job),
                         key=lambda k: order[(k.ground, k.kernel)]))  # fmt: skip
     return WarmUpReport(done, processes, time.perf_counter() - started)

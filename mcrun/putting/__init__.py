@@ -46,7 +46,16 @@ from mcrun.putting.stroke import (
 from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
 
-__all__ = ["MAX_PUTTS", "PUTTERS", "PuttResult", "Putter", "Read", "check_stimp", "putt"]
+__all__ = [
+    "MAX_PUTTS",
+    "PUTTERS",
+    "PuttResult",
+    "Putter",
+    "Read",
+    "check_putt",
+    "check_stimp",
+    "putt",
+]
 
 MAX_DISTANCE_M = 100.0
 MAX_SLOPE_TAN = 0.2
@@ -88,18 +97,10 @@ def check_stimp(stimp_m, what=None):
     return stimp_m
 
 
-def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, seed=0,
-         read=True, drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
-    """Hole out a putt of ``distance_m`` (m) on a plane green of Stimp ``stimp_m`` (m), slope
-    ``slope_tan`` (rise over run) falling towards ``direction_deg`` (degrees from the putt's line,
-    counter-clockwise: 0 downhill, 90 falls to the left, 180 uphill), drift ``drift_mm_per_m``
-    (``greens``: 4.9 pure bentgrass, 0 a perfect green), ``n`` times, struck by ``putter`` (a
-    name of ``PUTTERS`` or a ``Putter``) with errors seeded by ``seed``.
-
-    With ``read`` the first putt's pace and start line are the ones that minimise the expected
-    putts (``mcrun.putting.read``, on the same errors); without, the putter's own read (its pace
-    on the centre line it perceives). Raises InputError for inputs out of range.
-    """
+def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000,
+               drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
+    """Check the inputs of ``putt`` (the seed apart, which it checks as it draws the errors):
+    InputError (one line) for one out of range. Returns the ``Putter``."""
     if isinstance(putter, str):
         if putter not in PUTTERS:
             raise InputError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")
@@ -126,6 +127,22 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
                          f"({DRIFT_MM_PER_M_BENTGRASS:g}: pure bentgrass)")  # fmt: skip
     if int(n) != n or n < 2:
         raise InputError(f"n {n}: allowed: a whole number of at least 2")
+    return putter
+
+
+def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, seed=0,
+         read=True, drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
+    """Hole out a putt of ``distance_m`` (m) on a plane green of Stimp ``stimp_m`` (m), slope
+    ``slope_tan`` (rise over run) falling towards ``direction_deg`` (degrees from the putt's line,
+    counter-clockwise: 0 downhill, 90 falls to the left, 180 uphill), drift ``drift_mm_per_m``
+    (``greens``: 4.9 pure bentgrass, 0 a perfect green), ``n`` times, struck by ``putter`` (a
+    name of ``PUTTERS`` or a ``Putter``) with errors seeded by ``seed``.
+
+    With ``read`` the first putt's pace and start line are the ones that minimise the expected
+    putts (``mcrun.putting.read``, on the same errors); without, the putter's own read (its pace
+    on the centre line it perceives). Raises InputError for inputs out of range.
+    """
+    putter = check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter, n, drift_mm_per_m)
     n = int(n)
     try:
         z, keys = putter_errors(n, seed)

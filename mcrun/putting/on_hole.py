@@ -26,6 +26,7 @@ import numpy as np
 from mcrun.putting.green import green_of_hole
 from mcrun.putting.green_map import POLAR_ANGLES, POLAR_RADII_M, GreenMap, expected_putts_map
 from mcrun.putting.putter import PUTTERS
+from mcrun.putting.warmup import compile_announced
 
 __all__ = ["MAP_VERSION", "cache_folder", "check_putting", "map_of_hole", "putting_of"]
 
@@ -105,6 +106,7 @@ def map_of_hole(hole, progress=None, putter=None):
     path = cache_folder() / f"{key}.npz"
     found = _cached_map(path, green, spec)
     if found is None:
+        compile_announced(("map",), lambda line: print(line, file=sys.stderr, flush=True))
         if progress is None:
             print(f"mcrun: computing the expected-putts map of {green.source}'s green "
                   f"({green.area_m2():.0f} m^2 at {spec['resolution_m']:g} m, "
