@@ -215,21 +215,20 @@ def compile_if_needed(ground, kernels=("batch",)):
     compile them now, saying so on stderr with the time it took: a command's time and rate that
     follow are then its own. Returns the seconds the compile took (0.0 when none was needed).
     ``ground`` "green": the green's kernels (``putting.warmup.KERNELS``)."""
+
+    def say(line):
+        print(line, file=sys.stderr, flush=True)
+
     if ground == "green":
         from mcrun.putting.warmup import compile_announced
 
-        return compile_announced(kernels, lambda line: print(line, file=sys.stderr, flush=True))
+        return compile_announced(kernels, say)
     if _kernel_cached(ground, kernels) is not False:
         return 0.0
-    from mcrun.engine.warmup import warm_up
+    from mcrun.engine import warmup
 
     what, when = KERNEL_NAMES[ground]
-    print(
-        f"mcrun: compiling {what} ({when}; cached for the next runs)", file=sys.stderr, flush=True
-    )
-    seconds = sum(done.seconds for done in warm_up((ground,), kernels))
-    print(f"mcrun: compiled {what} in {seconds:.0f} s", file=sys.stderr, flush=True)
-    return seconds
+    return warmup.announced(what, when, lambda: warmup.warm_up((ground,), kernels), say)
 
 
 # --- running a command -------------------------------------------------------------------------

@@ -215,16 +215,22 @@ def choose(values, allowed, what):
     return values
 
 
-def warm_pair(ground, kernels):
-    """Compile (or load) each of ``kernels`` on ``ground`` in this process, in order, each timed
-    on its own: a list of ``KernelWarmUp``."""
+def timed(ground, kernels, cached, run):
+    """``run(kernel)`` for each of ``kernels`` on ``ground`` in turn, each timed on its own,
+    ``cached(kernel)`` asked before: a list of ``KernelWarmUp``."""
     done = []
     for kernel in kernels:
-        was_cached = kernel_cached(ground, (kernel,))
+        was_cached = cached(kernel)
         started = time.perf_counter()
-        _run(ground, kernel)
+        run(kernel)
         done.append(KernelWarmUp(ground, kernel, time.perf_counter() - started, was_cached))
     return done
+
+
+def warm_pair(ground, kernels):
+    """Compile (or load) each of ``kernels`` on ``ground`` in this process, in order, each timed
+    on its own (``timed``): a list of ``KernelWarmUp``."""
+    return timed(ground, kernels, lambda k: kernel_cached(ground, (k,)), lambda k: _run(ground, k))
 
 
 def warm_up_job(*pairs):
@@ -346,7 +352,7 @@ def warm_up_all(grounds=GROUNDS, kernels=KERNELS, processes=None, also=(), job=w
     planned = (jobs(grounds, kernels, processes) if grounds else []) + also
     results = run_jobs(job, planned, processes)
     pairs = [(g, k) for g in grounds for k in kernels]
-    pairs += [(g, k) for pairs_ in also for g, ks in pairs_ for k in ks]
+    pairs += [(g, k) for extra in also for g, ks in extra for k in ks]
     order = {pair: i for i, pair in enumerate(pairs)}
     done = tuple(sorted((k for job in results for k in job),
                         key=lambda k: order[(k.ground, k.kernel)]))  # fmt: skip
@@ -360,7 +366,14 @@ def compile_announced(ground, kernels=("batch",), say=print):
     if kernel_cached(ground, kernels) is not False:
         return 0.0
     what = "the kernels" if ground == "plane" else "the kernels for a hole's ground"
-    say(f"mcrun: compiling {what} (first run after install; cached for the next runs)")
-    seconds = sum(done.seconds for done in warm_up((ground,), kernels))
+    return announced(what, "first run after install", lambda: warm_up((ground,), kernels), say)
+
+
+def announced(what, when, warm, say):
+    """``warm()`` (a warm-up: its ``WarmUp``s or ``KernelWarmUp``s) said before and after
+    (``say``, a function of one line): ``mcrun: compiling {what} ({when}; cached for the next
+    runs)``, then ``mcrun: compiled {what} in N s``. Returns its seconds."""
+    say(f"mcrun: compiling {what} ({when}; cached for the next runs)")
+    seconds = sum(done.seconds for done in warm())
     say(f"mcrun: compiled {what} in {seconds:.0f} s")
     return seconds

@@ -16,12 +16,9 @@ a tiny case; ``warm_up_all`` (``mcrun warm-up``) compiles the engine's kernels a
 in parallel processes.
 """
 
-import time
-
 import numpy as np
 
 from mcrun.engine import warmup as engine
-from mcrun.engine.warmup import KernelWarmUp
 
 GROUND = "green"
 KERNELS = ("putt", "map")
@@ -93,13 +90,7 @@ def warm_up(kernels=KERNELS):
     """Compile the green's ``kernels``, or load them from Numba's cache, each in turn on a tiny
     case: a list of ``engine.warmup.KernelWarmUp``, one per kernel, in order."""
     _check(kernels)
-    done = []
-    for kernel in kernels:
-        was_cached = kernel_cached((kernel,))
-        started = time.perf_counter()
-        _run(kernel)
-        done.append(KernelWarmUp(GROUND, kernel, time.perf_counter() - started, was_cached))
-    return done
+    return engine.timed(GROUND, kernels, lambda k: kernel_cached((k,)), _run)
 
 
 def warm_up_job(*pairs):
@@ -125,20 +116,18 @@ def warm_up_all(grounds=GROUNDS, kernels=None, processes=None):
     both = engine.KERNELS + KERNELS
     asked = None if kernels is None else engine.choose(kernels, both, "kernel")
 
-    def of(ground):
-        own = KERNELS if ground == GROUND else engine.KERNELS
-        chosen = own if asked is None else tuple(k for k in asked if k in own)
-        if not chosen and len(grounds) == 1:
-            raise ValueError(f"the {ground} has no kernel '{', '.join(asked)}': choose one of "
-                             f"{', '.join(own)}")  # fmt: skip
-        return chosen
+    def of(own):  # the kernels asked for of those ``own``
+        return own if asked is None else tuple(k for k in asked if k in own)
 
-    engine_grounds = tuple(g for g in grounds if g != GROUND and of(g))
-    green = of(GROUND) if GROUND in grounds else ()
+    engine_kernels = of(engine.KERNELS)
+    engine_grounds = tuple(g for g in grounds if g != GROUND) if engine_kernels else ()
+    green = of(KERNELS) if GROUND in grounds else ()
     if not engine_grounds and not green:
+        if len(grounds) == 1:
+            own = KERNELS if grounds[0] == GROUND else engine.KERNELS
+            raise ValueError(f"the {grounds[0]} has no kernel '{', '.join(asked)}': choose one "
+                             f"of {', '.join(own)}")  # fmt: skip
         raise ValueError(f"the {' or the '.join(grounds)} has no kernel '{', '.join(asked)}'")
-    engine_kernels = engine.KERNELS if asked is None else tuple(
-        k for k in asked if k in engine.KERNELS)  # fmt: skip
     also = [((GROUND, green),)] if green else []
     return engine.warm_up_all(engine_grounds, engine_kernels, processes, also, warm_up_job)
 
@@ -150,8 +139,5 @@ def compile_announced(kernels=KERNELS, say=print):
     was needed)."""
     if kernel_cached(kernels) is not False:
         return 0.0
-    say("mcrun: compiling the green's kernels (first putts after install; cached for the next "
-        "runs)")  # fmt: skip
-    seconds = sum(done.seconds for done in warm_up(kernels))
-    say(f"mcrun: compiled the green's kernels in {seconds:.0f} s")
-    return seconds
+    return engine.announced("the green's kernels", "first putts after install",
+                            lambda: warm_up(kernels), say)  # fmt: skip
