@@ -233,6 +233,29 @@ def test_the_summary_reads_from_its_spill_what_the_parquet_holds(name, tmp_path,
     assert len(spilled) == result.points
 
 
+def test_a_point_whose_chunks_hold_no_ok_shot_is_summarised_as_none_ok(tmp_path):
+    """A chunk without an ok shot spills nothing: a point on turf without rolling resistance
+    (``turf.rho_g`` 0, where no ball stops: every shot not_stopped) is summarised with no ok
+    shot and no values, beside a point whose shots are all ok."""
+    from mcrun.run.local import run_scenario
+
+    scenario = tmp_path / "rho.toml"
+    scenario.write_text(
+        '[scenario]\nname = "rho"\nshots = 300\nseed = 1\n'
+        '[launch]\nball_speed = { dist = "normal", mean = "167 mph", sd = "1.5 mph" }\n'
+        'launch_angle = "10.9 deg"\nspin = "2686 rpm"\n'
+        '[turf]\npreset = "fairway"\n[sweep]\n"turf.rho_g" = [0, 0.1]\n',
+        encoding="utf-8",
+    )
+    result = run_scenario(scenario, out_dir=tmp_path / "run", chunk_size=100, progress=False)
+    summary = result.summary().set_index("point")
+    assert summary.loc[0, "n_ok"] == 0 and summary.loc[0, "n_not_stopped"] == 300
+    assert summary.loc[1, "n_ok"] == 300
+    assert np.isnan(summary.loc[0, "total_m_mean"]) and summary.loc[1, "total_m_mean"] > 200.0
+    statuses = pd.read_parquet(result.shots_path, columns=["point", "status"])
+    assert set(statuses.loc[statuses.point == 0, "status"]) == {NOT_STOPPED}
+
+
 @pytest.mark.parametrize("budget_values", [100_000, 500])
 def test_the_summary_s_quantiles_on_threads_are_those_of_one_thread(tmp_path, budget_values):
     """``summarise``'s percentiles from a ``Spill`` (read whole, or histogrammed and refined

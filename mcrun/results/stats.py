@@ -603,7 +603,8 @@ class Spill:
     def append(self, point, block):
         """``block`` (``block``) of a chunk of ``point``, after those before it."""
         offset = self.file.seek(0, 2)
-        self.file.write(memoryview(np.ascontiguousarray(block)).cast("B"))
+        if block.size:  # a chunk without an ok shot has nothing to write (and no view to cast)
+            self.file.write(memoryview(np.ascontiguousarray(block)).cast("B"))
         self.blocks.setdefault(point, []).append((offset, block.shape[1]))
 
     def columns(self, point):
