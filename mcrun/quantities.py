@@ -401,6 +401,15 @@ def _scalar(*values):
     return all(isinstance(v, float) for v in values)
 
 
+def _rho_g_of_stimp(stimp_m):
+    """rho_g of a Stimp reading (m), of a float or an array: a drawn reading of 0 or less (out
+    of its limits, so that its shot is refused as invalid_input) gives NaN, not an error."""
+    if _scalar(stimp_m):
+        return rho_g_from_stimp(stimp_m)
+    positive = stimp_m > 0.0
+    return np.where(positive, rho_g_from_stimp(np.where(positive, stimp_m, 1.0)), np.nan)
+
+
 def club_launch(club_speed, club_mass, loft):
     """(ball speed m/s, launch angle deg, spin rad/s) of a club delivery (SI, loft in rad;
     Penner 2001), of floats or arrays: the launch angle as the API reports it, in degrees."""
@@ -518,7 +527,7 @@ def kernel_columns(values, wind=None, air_density=None):
     preset = v["turf.preset"]
     preset = PRESETS[preset] if isinstance(preset, str) else preset
     scale = v["turf.restitution"]
-    rho_g = rho_g_from_stimp(v["turf.stimp"]) if "turf.stimp" in v else v["turf.rho_g"]
+    rho_g = _rho_g_of_stimp(v["turf.stimp"]) if "turf.stimp" in v else v["turf.rho_g"]
     out.update(
         e0=preset.e0 * scale,
         e1=preset.e1 * scale,

@@ -24,6 +24,7 @@ from mcrun.physics import aero, atmosphere
 from mcrun.physics.constants import DEG
 from mcrun.physics.launch import launch_from_club
 from mcrun.physics.turf import PRESETS, rho_g_from_stimp
+from mcrun.quantities import by_path
 from mcrun.run import scenario as sc
 from mcrun.run.sampling import (
     block_generator,
@@ -451,23 +452,28 @@ def test_weather_turf_and_model_conversions(random_scenario, drawn):
     assert (col["mu"] == x["mu"]).all()
 
 
-def test_out_of_range_draws_become_invalid_kernel_inputs(tmp_path):
-    """A normal friction of 0.1 +- 0.2 draws some negative values: those shots get a NaN ball
-    speed, so the kernel reports invalid_input; the sampled value is kept."""
-    text = """
+@pytest.mark.parametrize("turf", ["mu = { dist = 'normal', mean = 0.1, sd = 0.2 }",
+                                  "stimp = { dist = 'normal', mean = '1 m', sd = '2 m' }"])
+def test_out_of_range_draws_become_invalid_kernel_inputs(tmp_path, turf):
+    """A normal friction of 0.1 +- 0.2, or a Stimp reading of 1 +- 2 m, draws some negative
+    values: those shots get a NaN ball speed, so the kernel reports invalid_input (a Stimp of 0
+    or less gives no rho_g, and no error); the sampled value is kept."""
+    text = f"""
     [launch]
     ball_speed = 70
     launch_angle = 11
     spin = 280
     [turf]
-    mu = { dist = "normal", mean = 0.1, sd = 0.2 }
+    {turf}
     """
     s = load(tmp_path, text)
     inputs, x = sample(s, s.points[0], 0, 4000)
-    negative = x["mu"] < 0.0
-    assert 0.2 < negative.mean() < 0.4
-    assert np.isnan(inputs[negative, COLUMN["ball_speed_mps"]]).all()
-    assert (inputs[~negative, COLUMN["ball_speed_mps"]] == 70.0).all()
+    name, path = ("mu", "turf.mu") if turf.startswith("mu") else ("stimp_m", "turf.stimp")
+    assert 0.2 < (x[name] < 0.0).mean() < 0.4
+    lo, hi = by_path(path).limits
+    refused = ~((x[name] >= lo) & (x[name] <= hi))
+    assert np.isnan(inputs[refused, COLUMN["ball_speed_mps"]]).all()
+    assert (inputs[~refused, COLUMN["ball_speed_mps"]] == 70.0).all()
     assert (x["ball_speed_mps"] == 70.0).all()
 
 
