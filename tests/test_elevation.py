@@ -352,6 +352,13 @@ def test_bad_files_say_so_in_one_line(tmp_path):
         tmp_path / "rotated.tif", np.zeros((3, 3)), geokeys(1, 1, 32633), matrix=turned
     )
     assert "rotated" in one_line_error(rotated)
+    fill = np.zeros((3, 3), np.float32)
+    fill[1, 2] = np.finfo(np.float32).min  # a fill value that no GDAL_NODATA tag marks
+    unmarked = write_tiff(tmp_path / "fill.tif", fill, geokeys(1, 1, 32633), **placed)
+    assert (
+        f"the node at x {E_W + 2.5:.10g}, y {N_N - 1.5:.10g} has a height of -3.40282e+38 m: "
+        "allowed are heights -500 to 9000 m (a missing height is nodata)"
+    ) in one_line_error(unmarked)
     rgb = write_tiff(tmp_path / "rgb.tif", np.zeros((3, 3, 3), np.uint8), geokeys(1, 1, 32633))
     assert "allowed is one band of heights" in one_line_error(rgb)
     # ESRI ASCII grid
@@ -370,6 +377,9 @@ def test_bad_files_say_so_in_one_line(tmp_path):
         file("d.asc", good.replace("106.5", ""))
     )
     assert "height 'x' is not a number" in one_line_error(file("e.asc", good.replace("106.5", "x")))
+    assert "has a height of 1e+300 m: allowed are heights -500 to 9000 m" in one_line_error(
+        file("e2.asc", good.replace("106.5", "1e300"))
+    )
     assert "unknown header key 'cols'" in one_line_error(file("f.asc", "cols 3\n" + good))
     assert "the grid has 3 x 1 nodes" in one_line_error(
         file("g.asc", good.replace("nrows 2", "nrows 1").replace("104.5 105.5 106.5", ""))
@@ -388,6 +398,12 @@ def test_bad_files_say_so_in_one_line(tmp_path):
     assert "row 3 column elevation = 'high': allowed is a number" in one_line_error(
         file("d.csv", "lon,lat,elevation\n15,45,100\n15.1,45,high\n15,45.1,100\n")
     )
+    for height in ("1e300", "-1e6", "inf"):
+        assert (
+            f"row 3 column elevation = {float(height):g} m: allowed are heights -500 to 9000 m"
+        ) in one_line_error(
+            file("h.csv", f"lon,lat,elevation\n15,45,100\n15.1,45,{height}\n15,45.1,100\n")
+        )
     assert "the points lie on one line" in one_line_error(
         file("e.csv", "lon,lat,elevation\n15,45,1\n15.1,45.2,2\n15.3,45.6,3\n15.31,45.62,3\n")
     )

@@ -452,8 +452,13 @@ def test_weather_turf_and_model_conversions(random_scenario, drawn):
     assert (col["mu"] == x["mu"]).all()
 
 
-@pytest.mark.parametrize("turf", ["mu = { dist = 'normal', mean = 0.1, sd = 0.2 }",
-                                  "stimp = { dist = 'normal', mean = '1 m', sd = '2 m' }"])
+@pytest.mark.parametrize(
+    "turf",
+    [
+        "mu = { dist = 'normal', mean = 0.1, sd = 0.2 }",
+        "stimp = { dist = 'normal', mean = '1 m', sd = '2 m' }",
+    ],
+)
 def test_out_of_range_draws_become_invalid_kernel_inputs(tmp_path, turf):
     """A normal friction of 0.1 +- 0.2, or a Stimp reading of 1 +- 2 m, draws some negative
     values: those shots get a NaN ball speed, so the kernel reports invalid_input (a Stimp of 0

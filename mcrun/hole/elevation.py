@@ -27,9 +27,10 @@ The grid keeps its own coordinates; ``height_m(lon, lat)`` projects WGS84 lon/la
 four nodes around the point, so a plane in the grid's coordinates is reproduced exactly. Outside
 the nodes' extent, or next to a missing node, the height is NaN.
 
-Any file that cannot be read raises ``ElevationError`` with one line naming the file, what is
-wrong and what is allowed. ``tifffile``, ``pyproj`` and ``scipy`` are optional: the ``hole`` extra
-installs the first two (``pip install 'mcrun[hole]'``).
+A height outside ``HEIGHT_LIMITS_M`` (the ground anywhere on Earth), an infinity or a fill value
+no nodata marks among them, is refused. Any file that cannot be read raises ``ElevationError``
+with one line naming the file, what is wrong and what is allowed. ``tifffile``, ``pyproj`` and
+``scipy`` are optional: the ``hole`` extra installs the first two (``pip install 'mcrun[hole]'``).
 """
 
 import math
@@ -42,6 +43,9 @@ import numpy as np
 EARTH_RADIUS_M = 6_371_008.8  # mean radius (IUGG): cell sizes in degrees shown in metres
 MAX_NODES = 25_000_000  # a grid gridded from points: 200 MB of float64 at most
 
+# Heights of the ground anywhere on Earth (m): the Dead Sea's shore is 430 m below sea level,
+# Everest 8,849 m above it. A height outside them is a fill value or a damaged file, not ground.
+HEIGHT_LIMITS_M = (-500.0, 9000.0)
 EDGE_CELLS = 1e-9  # how far outside the nodes' extent, in cells, a point still counts as on it
 HOLE_EXTRA = "pip install 'mcrun[hole]'"
 
@@ -250,6 +254,16 @@ def load_elevation(path, crs=None):
     )
 
 
+_ALLOWED_HEIGHTS = f"{HEIGHT_LIMITS_M[0]:g} to {HEIGHT_LIMITS_M[1]:g} m"
+
+
+def _off_earth(heights):
+    """The indices of ``heights`` (1-d) that are given (not NaN) but outside HEIGHT_LIMITS_M:
+    infinities among them."""
+    lo, hi = HEIGHT_LIMITS_M
+    return np.flatnonzero(~np.isnan(heights) & ~((heights >= lo) & (heights <= hi)))
+
+
 def _grid(name, kind, place, x0, y0, dx, dy, heights, extra=""):
     """The Elevation of a north-up grid (row 0 at y0), checked."""
     heights = np.asarray(heights, dtype=np.float64)
@@ -257,6 +271,14 @@ def _grid(name, kind, place, x0, y0, dx, dy, heights, extra=""):
     if nx < 2 or ny < 2:
         raise ElevationError(
             f"{name}: the grid has {nx} x {ny} nodes: allowed is at least 2 x 2 heights"
+        )
+    bad = _off_earth(heights.ravel())
+    if bad.size:
+        iy, ix = divmod(int(bad[0]), nx)
+        raise ElevationError(
+            f"{name}: the node at x {x0 + ix * dx:.10g}, y {y0 + iy * dy:.10g} has a height of "
+            f"{heights[iy, ix]:g} m: allowed are heights {_ALLOWED_HEIGHTS} (a missing height "
+            "is nodata)"
         )
     valid = np.isfinite(heights)
     if not valid.any():
@@ -586,7 +608,13 @@ def _load_points(path, crs):
     if np.isnan(x).any() or np.isnan(y).any():
         row = int(np.flatnonzero(np.isnan(x) | np.isnan(y))[0]) + 2
         raise ElevationError(f"{name}: row {row} has no coordinates: allowed is a point per row")
-    keep = np.isfinite(z)  # a point without a height is no point
+    bad = _off_earth(z)
+    if bad.size:
+        raise ElevationError(
+            f"{name}: row {bad[0] + 2} column {cz} = {z[bad[0]]:g} m: allowed are heights "
+            f"{_ALLOWED_HEIGHTS} (a point without a height is an empty cell)"
+        )
+    keep = ~np.isnan(z)  # a point without a height is no point
     x, y, z = x[keep], y[keep], z[keep]
     rows = np.flatnonzero(keep) + 2  # the header is row 1
     if place.geographic and len(x) and (np.abs(x).max() > 180 or np.abs(y).max() > 90):
