@@ -101,6 +101,28 @@ def interrupts_deferred():
             signal.raise_signal(signum)  # now handled as it would have been
 
 
+def interruptible(fn, *args, **kwargs):
+    """``fn(*args, **kwargs)`` on a thread of its own, waited for so that Ctrl-C and SIGTERM take
+    effect at once: compiled code called from the main thread holds it until it returns, and a
+    signal's handler with it (a putt of 100,000 holings-out takes minutes). ``fn`` should
+    release the GIL (a ``nogil`` kernel) and leave nothing half written: interrupted, the
+    thread is left to finish as the process exits (a daemon, which it does not wait for)."""
+    box = {}
+
+    def call():
+        try:
+            box["result"] = fn(*args, **kwargs)
+        except BaseException as err:
+            box["error"] = err
+
+    thread = threading.Thread(target=call, name="mcrun-call", daemon=True)
+    thread.start()
+    thread.join()  # a signal's handler runs here, in the main thread, as it comes
+    if "error" in box:
+        raise box["error"]
+    return box["result"]
+
+
 def shorten(text, most=_SHOWN):
     """``text`` with its middle replaced by "..." when it has more than ``most`` characters."""
     if len(text) <= most:

@@ -6,14 +6,18 @@ are patched to fail as they would (EBUSY) for that destination only.
 """
 
 import errno
+import math
 import os
 import shutil
 import signal
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
+import numba
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -361,6 +365,35 @@ def test_an_interrupt_dropped_in_a_garbage_collector_s_callback_comes_again(
     else:
         assert received == []
     assert "Exception ignored" not in capsys.readouterr().err
+
+
+@numba.njit(cache=True, nogil=True)
+def _spin(stop):
+    """Compiled work that runs until ``stop[0]`` is set (as a long kernel runs), or for 10-20 s
+    of 2026's CPUs."""
+    x, k = 0.0, 0
+    while stop[0] == 0.0 and k < 1_000_000_000:
+        x = math.sin(x) + 1.0
+        k += 1
+    return x, k
+
+
+def test_sigterm_stops_a_long_kernel_call_at_once():
+    """``exits.interruptible``: a call into compiled code that would hold the main thread (and
+    SIGTERM's handler with it) for as long as it runs is waited for on a thread of its own, so
+    that SIGTERM stops the command at once; the call is left to finish."""
+    stop = np.zeros(1)
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGTERM))
+    started = time.monotonic()
+    try:
+        with exits.sigterm_interrupts() as received, pytest.raises(exits.Terminated):
+            timer.start()
+            exits.interruptible(_spin, stop)
+        waited = time.monotonic() - started
+    finally:
+        stop[0] = 1.0  # the call ends
+    assert received == [signal.SIGTERM] and waited < 2.0
+    assert exits.interruptible(_spin, np.ones(1)) == (0.0, 0)  # and returns what the call does
 
 
 def test_an_interrupt_waits_for_a_step_that_cannot_be_undone():

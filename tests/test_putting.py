@@ -252,6 +252,7 @@ def test_mcrun_putt_prints_the_make_rate_and_the_read(capsys):
         (["--distance", "ten"], "--distance"),
         (["--distance", "1cm"], "distance"),
         (["--distance", "10ft", "-n", "1"], "-n"),
+        (["--distance", "10ft", "-n", "1e9"], "-n '1e9': allowed: a whole number from 2 to 100000"),
         (["--distance", "10ft", "--stimp", "-3ft"], "Stimp"),
         (["--distance", "10ft", "--drift", "40"], "--drift 40: allowed: 0 to 34"),
         (["--distance", "10ft", "--drift", "lots"], "--drift lots: allowed"),
@@ -262,6 +263,12 @@ def test_mcrun_putt_refuses_bad_input_in_one_line(options, says, capsys):
     assert main(["putt", *options]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("mcrun: error:") and says in err
+
+
+def test_putt_refuses_more_putts_than_a_hole_may_value():
+    """``putt``'s n is that of a hole's ``[putting] n``: 100,001 would take minutes."""
+    with pytest.raises(InputError, match="n 100001: allowed: a whole number from 2 to 100000"):
+        putt(3.0, 3.3, 0.01, 0.0, n=100_001)
 
 
 def test_putt_refuses_an_unknown_putter():

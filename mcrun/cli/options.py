@@ -58,14 +58,17 @@ def number(text, option):
     return value
 
 
-def whole(text, option, least):
-    """A whole number of at least ``least`` (``2000``, ``1e4``); InputError naming the option."""
+def whole(text, option, least, most=None):
+    """A whole number of at least ``least`` (and at most ``most``: ``2000``, ``1e4``);
+    InputError naming the option."""
     try:
         value = float(text)
     except ValueError:
         value = math.nan
     if not math.isfinite(value) or value != int(value) or value < least:
         raise InputError(f"{option} {text!r}: allowed: a whole number of at least {least}")
+    if most is not None and value > most:
+        raise InputError(f"{option} {text!r}: allowed: a whole number from {least} to {most}")
     return int(value)
 
 

@@ -5,9 +5,10 @@ with ``--hole``, the expected-putts map of a hole's green to Parquet (and a pict
 import math
 import sys
 
+from mcrun import exits
 from mcrun.cli import compile_if_needed
 from mcrun.cli.options import whole
-from mcrun.hole.hole import PUTTING_READS
+from mcrun.hole.hole import PUTTING_N_RANGE, PUTTING_READS
 from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_putt, check_stimp, putt
 from mcrun.putting.greens import DRIFT_MM_PER_M_BENTGRASS, DRIFT_RANGE_MM_PER_M, STIMP_RANGE_FT
 from mcrun.quantities import InputError
@@ -72,13 +73,13 @@ def _cmd_putt(args):
         slope_tan=_slope_tan(args.slope),
         direction_deg=parse_quantity(args.direction, "angle", "--direction") * 180.0 / math.pi,
         putter=args.putter,
-        n=whole("2000" if args.n is None else args.n, "-n", 2),
+        n=whole("2000" if args.n is None else args.n, "-n", *PUTTING_N_RANGE),
         seed=whole(args.seed, "--seed", 0),
         drift_mm_per_m=drift,
     )
     check_putt(**{k: v for k, v in given.items() if k != "seed"})
     compile_if_needed("green", ("putt",))
-    result = putt(**given)
+    result = exits.interruptible(putt, **given)
     r = result.read
     if abs(r.aim_deg) < 0.005:
         line = "at the hole"
@@ -128,7 +129,7 @@ def _cmd_green(args):
                   else parse_quantity(args.resolution, "length", "--resolution"))  # fmt: skip
     if not 0.05 <= resolution <= 5.0:
         raise InputError(f"--resolution {args.resolution}: allowed: 0.05 m to 5 m")
-    n = spec["n"] if args.n is None else whole(args.n, "-n", 2)
+    n = spec["n"] if args.n is None else whole(args.n, "-n", *PUTTING_N_RANGE)
     seed = spec["seed"] if args.seed is None else whole(args.seed, "--seed", 0)
     putter = spec["putter"] if args.putter is None else args.putter
     read = spec["read"] if args.read is None else args.read

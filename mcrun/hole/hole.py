@@ -103,6 +103,8 @@ PUTTING_DEFAULTS = {"model": "table", "putter": "tour", "read": "own", "n": 200,
                     "elevation_crs": None,
                     "drift_mm_per_m": GREEN_DRIFT_MM_PER_M}  # fmt: skip
 PUTTING_KEYS = tuple(PUTTING_DEFAULTS)
+# Putts a read is valued on (``[hole.putting] n``, ``mcrun putt -n``): the most take minutes.
+PUTTING_N_RANGE = (2, 100_000)
 
 
 @njit(cache=True, nogil=True)
@@ -373,8 +375,9 @@ def _putting(table, where, folder):
             raise HoleError(f"{where}: '{name}' = {v!r}: choose {', '.join(PUTTING_READS)}")
         if key == "putter" and (not isinstance(v, str) or not v):
             raise HoleError(f"{where}: '{name}' = {v!r} must be a putter's name")
-        if key == "n" and (isinstance(v, bool) or not isinstance(v, int) or not 2 <= v <= 100_000):
-            raise HoleError(f"{where}: '{name}' = {v!r} must be a whole number in [2, 100000]")
+        lo, hi = PUTTING_N_RANGE
+        if key == "n" and (isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi):
+            raise HoleError(f"{where}: '{name}' = {v!r} must be a whole number in [{lo}, {hi}]")
         if key == "seed" and (isinstance(v, bool) or not isinstance(v, int) or v < 0):
             raise HoleError(f"{where}: '{name}' = {v!r} must be a whole number 0 or more")
         if key in ("resolution_m", "cell_m"):

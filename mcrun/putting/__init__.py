@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mcrun.hole.hole import PUTTING_N_RANGE
 from mcrun.physics.turf import rho_g_from_stimp
 from mcrun.putting.cup import HOLE_RADIUS_M
 from mcrun.putting.greens import (
@@ -125,8 +126,9 @@ def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2
     if not lo <= drift_mm_per_m <= hi:
         raise InputError(f"drift {drift_mm_per_m:g} mm/m: allowed: {lo:g} to {hi:g} mm/m "
                          f"({DRIFT_MM_PER_M_BENTGRASS:g}: pure bentgrass)")  # fmt: skip
-    if int(n) != n or n < 2:
-        raise InputError(f"n {n}: allowed: a whole number of at least 2")
+    lo, hi = PUTTING_N_RANGE
+    if int(n) != n or not lo <= n <= hi:
+        raise InputError(f"n {n}: allowed: a whole number from {lo} to {hi}")
     return putter
 
 

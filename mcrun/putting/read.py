@@ -134,7 +134,7 @@ def score(x, y, hx, hy, pace_m, offset, lines, green, stroke, z, keys, rest, put
     return mean, math.sqrt(var / n), ones / n, threes / n
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)  # ``mcrun putt`` waits for it interruptibly
 def search(x, y, hx, hy, green, stroke, z, keys, rest, paces, aim_steps, tried, putts,
            best_lines):  # fmt: skip
     """The read of a putt from (x, y): the paces, each on its perceived centre line, then the
@@ -171,7 +171,7 @@ def search(x, y, hx, hy, green, stroke, z, keys, rest, paces, aim_steps, tried, 
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)  # ``mcrun putt`` waits for it interruptibly
 def value_read(x, y, hx, hy, pace, offset, lines, green, stroke, z, keys, rest, putts):
     """(mean, se, p1, p3) of the read (``pace``, ``offset``; its ``read_lines``) from (x, y),
     as ``search`` values its candidates."""
