@@ -219,3 +219,17 @@ def test_a_ref_shared_by_two_courses_is_ambiguous_and_a_position_chooses(tmp_pat
         message
     )
     assert "a ref (1, 2, 3)" in message
+
+
+def test_a_grid_too_large_is_refused_before_it_is_built(folder):
+    """A fine cell over a wide margin (each within its range) would be 1.76 billion nodes: the
+    count is refused up front, with the least cell that fits, in place of running out of
+    memory after a minute; a plain hole of 2 km by 2 km at 0.3 m is 44.5 million, within."""
+    message = _error({"map": MAP, "hole": 2, "cell_m": 0.05, "margin_m": 1000}, folder)
+    assert "'cell_m' = 0.05 over 2168 x 2026 m (the hole and its margin_m) is a grid of " in message
+    assert "allowed are at most 50,000,000 (a cell_m of at least 0.3 m" in message
+    table = {"length_m": 2000, "width_m": 2000, "cell_m": 0.3, "margin_m": 0}
+    hole_from_table(table, folder, "plain")  # (its grid is built on demand: not here)
+    table["cell_m"] = 0.25
+    with pytest.raises(HoleError, match="is a grid of 8,001 x 8,001 nodes"):
+        hole_from_table(table, folder, "plain")

@@ -69,6 +69,9 @@ CELL_RANGE_M = (0.05, 10.0)
 MARGIN_RANGE_M = (0.0, 1000.0)
 SIZE_RANGE_M = (1.0, 2000.0)
 # A golf=pin further than this from the hole's green is another green's.
+# The most nodes a hole's grid may have: about 10 bytes each in its Terrain (a hole of 700 by
+# 200 m at the default cell has 560,000; at 0.1 m, 14 million).
+MAX_NODES = 50_000_000
 PIN_SEARCH_M = 10.0
 # A green further than this from the end of a hole line is another hole's (a map may hold a
 # country's courses: only the greens near the line's end are looked at).
@@ -543,6 +546,22 @@ def _plain_hole(table, where, margin_m, cell_m):
     )
 
 
+def _check_nodes(extent_m, cell_m, where):
+    """HoleError, before anything is built, where the grid of ``extent_m`` at ``cell_m`` would
+    have more than MAX_NODES nodes (as ``Hole.terrain_over`` counts them)."""
+    x_min, x_max, y_min, y_max = extent_m
+    nx = math.ceil((x_max - math.floor(x_min / cell_m) * cell_m) / cell_m) + 1
+    ny = math.ceil((y_max - math.floor(y_min / cell_m) * cell_m) / cell_m) + 1
+    if nx * ny > MAX_NODES:
+        least = math.sqrt((x_max - x_min) * (y_max - y_min) / MAX_NODES)
+        raise HoleError(
+            f"{where}: 'cell_m' = {cell_m:g} over {x_max - x_min:.0f} x {y_max - y_min:.0f} m "
+            f"(the hole and its margin_m) is a grid of {nx:,} x {ny:,} nodes: allowed are at "
+            f"most {MAX_NODES:,} (a cell_m of at least {math.ceil(least * 100) / 100:g} m, or a "
+            "smaller margin_m)"
+        )
+
+
 def _elevation_heights(table, folder, where, frame):
     """The heights of an elevation file, relative to the tee, on a grid of the frame."""
     from mcrun.hole.elevation import load_elevation
@@ -644,6 +663,7 @@ def hole_from_table(table, folder, source):
         if "hole" in table:
             raise HoleError(f"{where}: 'hole' chooses a hole of a 'map', and there is none")
         parts = _plain_hole(table, where, margin, cell)
+    _check_nodes(parts["extent_m"], cell, where)
     heights, ground = None, "flat"
     if "elevation" in table:
         if parts["frame"] is None:
