@@ -138,6 +138,15 @@ def test_tour_bags_hold_every_club_of_the_table():
 
 ERRORS = [
     # (name, file text, key path in the message, words of what is allowed)
+    *(
+        (
+            f"name {name!r}",
+            f"[scenario]\nname = {name!r}\n" + BALL,
+            "scenario.name",
+            "allowed is a name a run's folder can take (runs/<name>-<seed>)",
+        )
+        for name in ("../../etc/x", "a/b", "a\\b", "", "  ", ".hidden", "x" * 201)
+    ),  # fmt: skip
     ("unknown top key", BALL + "[wether]\n", "wether", "allowed: scenario, launch"),
     (
         "unknown launch key",

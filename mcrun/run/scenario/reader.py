@@ -33,6 +33,8 @@ from mcrun.run.scenario.values import (
 )
 
 _TOP_KEYS = ("scenario", *SECTION_NAMES, "group", "sweep", "hole")
+# A scenario's name is its default run folder's (``runs/<name>-<seed>``), with room for the seed.
+MAX_NAME_BYTES = 200
 _SCENARIO_KEYS = ("name", "question", "description", "shots", "seed", "target", "block_size")
 _GROUP_KEYS = ("name", "target", "hole", *SECTION_NAMES)
 _BALL = ("ball_speed", "launch_angle", "spin")
@@ -263,6 +265,15 @@ def loads(text, path):
         if key in head and not isinstance(head[key], str):
             raise ctx.error(f"scenario.{key}", f"must be a string, got {short(head[key])}")
     name = head.get("name", path.stem)
+    if "name" in head and (
+        not name.strip() or name.startswith(".") or any(c in name for c in "/\\\0")
+        or len(name.encode("utf-8")) > MAX_NAME_BYTES
+    ):  # fmt: skip
+        raise ctx.error(
+            "scenario.name",
+            f"{short(name)}: allowed is a name a run's folder can take (runs/<name>-<seed>): "
+            f"not blank, no / or \\, not starting with '.', at most {MAX_NAME_BYTES} bytes",
+        )
     question = question_of(text)
     shots = _integer(ctx, "scenario.shots", head.get("shots", 100_000), 1)
     seed = _integer(ctx, "scenario.seed", head.get("seed", 0), 0)
