@@ -9,6 +9,7 @@ draw is deterministic, so none of these can fail at random: a failure means a wr
 
 import math
 import textwrap
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -480,6 +481,28 @@ def test_out_of_range_draws_become_invalid_kernel_inputs(tmp_path, turf):
     assert np.isnan(inputs[refused, COLUMN["ball_speed_mps"]]).all()
     assert (inputs[~refused, COLUMN["ball_speed_mps"]] == 70.0).all()
     assert (x["ball_speed_mps"] == 70.0).all()
+
+
+def test_draws_out_of_range_convert_without_a_warning(tmp_path):
+    """A temperature of 20 +- 100 C draws values whose air overflows (exp of a huge number):
+    their shots are refused as invalid_input, silently, not with NumPy's warnings on stderr."""
+    text = """
+    [launch]
+    ball_speed = 70
+    launch_angle = 11
+    spin = 280
+    [weather]
+    temperature = { dist = "normal", mean = "20 C", sd = "100 C" }
+    """
+    s = load(tmp_path, text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        inputs, x = sample(s, s.points[0], 0, 4000)
+    lo, hi = by_path("weather.temperature").range  # (C; its limits are in K)
+    refused = ~((x["temperature_c"] >= lo) & (x["temperature_c"] <= hi))
+    assert 0.5 < refused.mean() < 1.0
+    assert np.isnan(inputs[refused, COLUMN["ball_speed_mps"]]).all()
+    assert not np.isnan(inputs[~refused, COLUMN["ball_speed_mps"]]).any()
 
 
 def test_mixed_launch_modes_share_one_set_of_columns(tmp_path):

@@ -255,7 +255,9 @@ def _convert(scenario, point, raw, columns, inputs=None):
     block_size rows to fill. A sampled column that is constant is a read-only broadcast view."""
     n = scenario.block_size
     names = {key: spec for key, spec in point.params.items() if isinstance(spec, str)}
-    everything = kernel_columns({**raw, **names})
+    # (a drawn value out of its limits may overflow its conversion: its shot is refused below)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        everything = kernel_columns({**raw, **names})
     kernel = kernel_part(everything)
     if point.play is not None:
         # On a hole: struck from the point's start, about the line from there to its aim.
