@@ -117,6 +117,7 @@ def test_a_plan_says_its_shots_time_and_memory():
         (["--dask", "local", "--workers", "1e9"], "--workers '1e9': allowed: a whole number of "
          "worker processes from 1 to "),
         (["--dask", "local", "--workers", "2.5"], "--workers '2.5': allowed"),
+        (["--longer", "10"], "--longer 10: give its unit, e.g. 10yd"),  # (10 m, not 10 yd)
     ],
 )  # fmt: skip
 def test_workers_are_for_dask_local_and_bounded(options, says, eight_gb, tmp_path, capsys):

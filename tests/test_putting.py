@@ -254,6 +254,7 @@ def test_mcrun_putt_prints_the_make_rate_and_the_read(capsys):
         (["--distance", "10ft", "-n", "1"], "-n"),
         (["--distance", "10ft", "-n", "1e9"], "-n '1e9': allowed: a whole number from 2 to 100000"),
         (["--distance", "10ft", "--stimp", "-3ft"], "Stimp"),
+        (["--distance", "10ft", "--stimp", "3"], "--stimp 3: give its unit, e.g. 11ft"),
         (["--distance", "10ft", "--drift", "40"], "--drift 40: allowed: 0 to 34"),
         (["--distance", "10ft", "--drift", "lots"], "--drift lots: allowed"),
         (["--distance", "10ft", "--read", "best"], "--read: is for a green's map (with --hole)"),

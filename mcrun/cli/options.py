@@ -32,6 +32,17 @@ def quantity(text, kind, option):
     return None if text is None else units.parse_quantity(text, kind, option)
 
 
+def with_unit(text, kind, option, example):
+    """SI value of an option whose unit must be given, where a bare number would be read in a
+    unit its users do not quote it in (a Stimp reading in metres, a drive in metres):
+    InputError naming the option and an ``example``."""
+    try:
+        float(text)
+    except ValueError:
+        return units.parse_quantity(text, kind, option)
+    raise InputError(f"{option} {text}: give its unit, e.g. {example}")
+
+
 def from_si(value, kind, unit):
     """``value`` (SI) in ``unit``, or None when the option was not given."""
     return None if value is None else units.to_unit(value, kind, unit)

@@ -6,7 +6,7 @@ import contextlib
 import sys
 
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
-from mcrun.cli.options import local_cores, local_workers, whole
+from mcrun.cli.options import local_cores, local_workers, whole, with_unit
 from mcrun.putting.putter import PUTTERS
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
@@ -130,7 +130,7 @@ def _cmd_play(args):
     if args.longer is not None:
         from mcrun.play.calibration import longer
 
-        yards = parse_quantity(args.longer, "length", "--longer") / 0.9144
+        yards = with_unit(args.longer, "length", "--longer", "10yd") / 0.9144
         if not -100.0 <= yards <= 100.0:
             raise InputError(f"--longer {args.longer}: allowed: -100 yd to 100 yd")
         players.append(longer(player, 0, yards))

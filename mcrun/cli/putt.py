@@ -7,7 +7,7 @@ import sys
 
 from mcrun import exits
 from mcrun.cli import compile_if_needed
-from mcrun.cli.options import whole
+from mcrun.cli.options import whole, with_unit
 from mcrun.hole.hole import PUTTING_N_RANGE, PUTTING_READS
 from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_putt, check_stimp, putt
 from mcrun.putting.greens import DRIFT_MM_PER_M_BENTGRASS, DRIFT_RANGE_MM_PER_M, STIMP_RANGE_FT
@@ -35,7 +35,7 @@ def _slope_tan(text):
 
 def _stimp_m(text):
     """The --stimp reading (m), within the Stimp readings of a green."""
-    return check_stimp(parse_quantity(text, "length", "--stimp"), f"--stimp {text}")
+    return check_stimp(with_unit(text, "length", "--stimp", "11ft"), f"--stimp {text}")
 
 
 def _drift(text):
@@ -87,7 +87,7 @@ def _cmd_putt(args):
         line = f"{abs(r.aim_deg):.2f} deg {'left' if r.aim_deg > 0 else 'right'} of the hole"
     print(
         f"putt: {args.distance} on a plane green, Stimp {args.stimp}, slope {args.slope} "
-        f"falling at {args.direction} deg, drift {drift:g} mm/m; putter {args.putter}; "
+        f"falling at {given['direction_deg']:g} deg, drift {drift:g} mm/m; putter {args.putter}; "
         f"n {result.n}, seed {args.seed}"
     )
     print(f"read: start line {line}, pace {r.pace_m:.2f} m past")
