@@ -441,6 +441,12 @@ ERRORS = [
         "must be a pair [x, y] of lengths",
     ),
     (
+        "target far away",
+        '[scenario]\ntarget = ["1e300 m", "0 m"]\n' + BALL,
+        "scenario.target[0]",
+        "1e+300 m: allowed: -2000 m to 2000 m from the tee",
+    ),
+    (
         "log wind profile roughness",
         BALL + '[weather]\nwind_profile = "log"\nwind_profile_parameter = 20\n',
         "weather.wind_profile_parameter",

@@ -279,12 +279,23 @@ def section_leaves(ctx, section, table, prefix):
     return leaves
 
 
+# How far from the start a target may be, along or across the line (m): past any shot.
+TARGET_LIMIT_M = 2000.0
+
+
 def read_target(ctx, where, value):
     if not isinstance(value, list) or len(value) != 2:
         raise ctx.error(
             where, f'must be a pair [x, y] of lengths, e.g. ["251 m", "0 m"], got {short(value)}'
         )
-    return tuple(read_value(ctx, f"{where}[{k}]", v, "length", None) for k, v in enumerate(value))
+    target = tuple(read_value(ctx, f"{where}[{k}]", v, "length", None) for k, v in enumerate(value))
+    for k, v in enumerate(target):
+        if abs(v) > TARGET_LIMIT_M:
+            raise ctx.error(
+                f"{where}[{k}]",
+                f"{v:g} m: allowed: -{TARGET_LIMIT_M:g} m to {TARGET_LIMIT_M:g} m from the tee",
+            )
+    return target
 
 
 def _flatten_sweep(ctx, table, prefix=""):
