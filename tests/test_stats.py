@@ -296,3 +296,21 @@ def test_the_summary_s_quantiles_on_threads_are_those_of_one_thread(tmp_path, bu
         expected = distance if name == "distance" else values[name]
         np.testing.assert_array_equal(both[0][name], np.percentile(expected, 100 * q))
     spill.close()
+
+
+def test_values_that_vary_only_by_rounding_drive_nothing(tmp_path):
+    """Copies of one shot fitted by a normal (its standard deviations an ulp or so) fly shots
+    that differ in their last bits only: no input explains their variance and no landing state
+    their run (NaN), where their rounding gave shares of 8 % and correlations of +-1."""
+    from mcrun.run.local import run_scenario
+
+    (tmp_path / "same.csv").write_text("ball_speed_mph,launch_deg,spin_rpm\n" + "150,12,2500\n" * 3)
+    scenario = tmp_path / "same.toml"
+    scenario.write_text('[launch]\nfile = "same.csv"\nsample = "normal"\n', encoding="utf-8")
+    result = run_scenario(scenario, n=200, seed=1, out_dir=tmp_path / "run", progress=False)
+    row = result.summary().iloc[0]
+    shots = pd.read_parquet(result.shots_path, columns=["ball_speed_mps", "total_m"])
+    assert 0.0 < shots["ball_speed_mps"].std() < 1e-12 * shots["ball_speed_mps"].mean()
+    assert np.isnan(row["total_m_r2"]) and np.isnan(row["final_y_m_r2"])
+    shares = [v for k, v in row.items() if "_share_" in k or "_corr_" in k]
+    assert shares and np.isnan(shares).all()

@@ -79,6 +79,10 @@ DRIVEN = ("total_m", "final_y_m")
 LANDING_DRIVERS = ("landing_angle_deg", "landing_speed_mps", "landing_spin_radps")
 DDOF = 1
 DERIVED_R2 = 0.999
+# A spread of values within this share of their magnitude is rounding, not variation (copies of
+# one shot fitted by a normal vary by an ulp or so): such a value drives nothing and is not
+# driven.
+SPREAD_ROUNDING = 1e-9
 
 DEFAULT_BUDGET_BYTES = 64 * 2**20
 _HISTOGRAM_BINS = 4096
@@ -300,10 +304,13 @@ class PointStats:
         return float(self.moments.covariance()[self.index[a], self.index[b]])
 
     def correlation(self, a, b):
-        """Pearson correlation of two columns over the ok shots (NaN if either is constant)."""
+        """Pearson correlation of two columns over the ok shots (NaN if either is constant, to
+        rounding: ``varies``)."""
         cov = self.moments.covariance()
         i, j = self.index[a], self.index[b]
         if self.n_ok < 2 or not (cov[i, i] > 0.0 and cov[j, j] > 0.0):
+            return math.nan
+        if not (self.varies(a) and self.varies(b)):
             return math.nan
         return float(cov[i, j] / math.sqrt(cov[i, i] * cov[j, j]))
 
@@ -326,8 +333,10 @@ class PointStats:
         return near * (1.0 - 1e-12), far * (1.0 + 1e-12)
 
     def varies(self, name):
+        """Whether ``name``'s ok values spread beyond rounding (``SPREAD_ROUNDING``)."""
         k = self.index[name]
-        return bool(self.moments.max[k] > self.moments.min[k])
+        lo, hi = self.moments.min[k], self.moments.max[k]
+        return bool(hi - lo > SPREAD_ROUNDING * max(abs(lo), abs(hi)))
 
     def drivers(self, y, candidates=None, derived_r2=DERIVED_R2):
         """Standardised regression coefficients of ``y`` on the inputs that vary.
@@ -340,7 +349,7 @@ class PointStats:
         cov = self.moments.covariance()
         iy = self.index[y]
         var_y = cov[iy, iy]
-        if self.n_ok < 3 or not var_y > 0.0:
+        if self.n_ok < 3 or not var_y > 0.0 or not self.varies(y):
             return {}, math.nan
         kept = []
         for name in candidates:
