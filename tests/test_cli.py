@@ -263,6 +263,7 @@ BAD_SHOTS = {
     "bad number": [*DRIVE_ARGS, "--mu", "abc"],
     "bad friction": [*DRIVE_ARGS, "--mu", "-0.1"],
     "bad wind profile": [*DRIVE_ARGS, "--wind-profile", "sine"],
+    "a parameter for the uniform wind": [*DRIVE_ARGS, "--wind-param", "5"],
     "pressure and altitude": [*DRIVE_ARGS, "--pressure", "1000hPa", "--altitude", "100"],
     "humidity over 100 %": [*DRIVE_ARGS, "--humidity", "150%"],
     "temperature unit": [*DRIVE_ARGS, "--temperature", "20X"],

@@ -331,6 +331,7 @@ def test_bad_files_say_so_in_one_line(tmp_path):
         return tmp_path / name
 
     assert "no such file" in one_line_error(tmp_path / "none.tif")
+    assert "is a folder: allowed is a .tif/.tiff, .asc or .csv file" in one_line_error(tmp_path)
     assert "allowed are .tif/.tiff" in one_line_error(file("dem.xyz", "1 2 3\n"))
     # GeoTIFF
     assert "not a readable TIFF" in one_line_error(file("text.tif", "not a tiff\n"))

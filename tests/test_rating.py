@@ -134,7 +134,7 @@ def test_the_day_s_form_spreads_the_rounds_as_a_gaussian_copula_does():
 def test_holes_are_chosen_as_written():
     assert holes_wanted(None, 3) == [1, 2, 3]
     assert holes_wanted("1-3, 7,9-10", 18) == [1, 2, 3, 7, 9, 10]
-    for bad in ("0-3", "5-2", "19", "a"):
+    for bad in ("0-3", "5-2", "19", "a", "1-", "-3", "1-2-3"):
         with pytest.raises(InputError, match="--holes"):
             holes_wanted(bad, 18)
 
@@ -222,6 +222,7 @@ def test_mcrun_rate_rates_for_the_women_s_model_players(tmp_path):
         (["--holes", "3"], "--holes '3': allowed: hole numbers 1-2"),
         (["-n", "1"], "-n '1': allowed: a whole number of at least 2"),
         (["--putts", "0"], "--putts '0'"),
+        (["--elevation-crs", "EPSG:32633"], "--elevation-crs: is for --elevation"),
     ],
 )
 def test_bad_arguments_end_in_one_line(rated, tmp_path, capsys, args, message):

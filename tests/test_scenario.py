@@ -786,3 +786,12 @@ def test_turf_limits_are_those_of_check_turf(tmp_path, name):
     sc.load(write(tmp_path, BALL + f"[turf]\n{name} = {hi}\n"))
     with pytest.raises(sc.ScenarioError, match=f"turf.{name}"):
         sc.load(write(tmp_path, BALL + f"[turf]\n{name} = {hi * 1.01}\n"))
+
+
+def test_a_file_saved_with_a_byte_order_mark_reads_as_without(tmp_path):
+    """A scenario saved with a UTF-8 byte-order mark (as Windows' Notepad may) is the same
+    scenario, not "Invalid statement (at line 1, column 1)"."""
+    plain = write(tmp_path, BALL)
+    marked = tmp_path / "bom.toml"
+    marked.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes())
+    assert sc.load(marked).points[0].params == sc.load(plain).points[0].params

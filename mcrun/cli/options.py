@@ -163,6 +163,8 @@ def conditions_kwargs(args):
     """Keyword arguments of ``mcrun.api.simulate`` from ``add_conditions_options``' options."""
     wind = None if args.wind is None else units.parse_vector(args.wind, "speed", "--wind")
     profile = args.wind_profile
+    if args.wind_param is not None and profile == "uniform":
+        raise InputError("--wind-param: is for --wind-profile log or power (uniform has none)")
     if profile == "log":  # the log law's parameter is a roughness length, e.g. 3cm
         wind_param = quantity(args.wind_param, "length", "--wind-param")
     else:  # the power law's is an exponent

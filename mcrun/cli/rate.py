@@ -29,9 +29,9 @@ def holes_wanted(spec, count, where="--holes"):
         return list(range(1, count + 1))
     numbers = []
     for part in str(spec).split(","):
-        lo, _, hi = part.strip().partition("-")
+        lo, dash, hi = part.strip().partition("-")
         try:
-            first, last = int(lo), int(hi or lo)
+            first, last = int(lo), int(hi if dash else lo)  # ("1-" is no range: refused)
         except ValueError:
             raise InputError(f"{where} {spec!r}: allowed: hole numbers 1-{count} as 1-9 or "
                              "1,3,10-12") from None  # fmt: skip
@@ -240,6 +240,8 @@ def _cmd_rate(args):
         if not 0.05 <= resolution <= 5.0:
             raise InputError(f"--green-resolution {resolution:g} m: allowed: 0.05 m to 5 m")
         putting["resolution_m"] = resolution
+    if args.elevation_crs is not None and args.elevation is None:
+        raise InputError("--elevation-crs: is for --elevation (the file whose coordinates it says)")
     tees = tee_set(args.tees)
     numbers, holes, by_length, notes = course_holes(args.course, args.holes, putting,
                                                     args.scorecard, args.women, tees,

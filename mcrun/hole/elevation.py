@@ -239,6 +239,8 @@ def load_elevation(path, crs=None):
     overrides the file's coordinate system."""
     path = Path(path)
     name = path.name
+    if path.is_dir():
+        raise ElevationError(f"{name or path}: is a folder: allowed is a .tif/.tiff, .asc or .csv file of heights")
     if not path.is_file():
         raise ElevationError(f"{name}: no such file ({path})")
     suffix = path.suffix.lower()

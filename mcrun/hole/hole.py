@@ -56,7 +56,6 @@ from mcrun.hole.zones import (
 from mcrun.physics.turf import (
     GREEN_DRIFT_MM_PER_M,
     GREEN_DRIFT_RANGE_MM_PER_M,
-    LIMITS,
     PRESETS,
     Turf,
     check_turf,
@@ -354,7 +353,7 @@ def _turfs(table, where):
         try:
             turfs[kind] = check_turf(turf._replace(**{k: float(v) for k, v in changes.items()}))
         except ValueError as err:
-            raise HoleError(f"{where}: '{key}': {err} (limits: {LIMITS})") from None
+            raise HoleError(f"{where}: '{key}': {err}") from None
     return turfs
 
 

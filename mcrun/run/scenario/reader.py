@@ -237,7 +237,7 @@ def load(path):
     """
     path = find(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # (a byte-order mark, as Notepad saves)
     except (OSError, UnicodeDecodeError) as err:
         raise ScenarioError(f"{path}: cannot read the file: {err}") from None
     return loads(text, path)
