@@ -240,7 +240,9 @@ def load_elevation(path, crs=None):
     path = Path(path)
     name = path.name
     if path.is_dir():
-        raise ElevationError(f"{name or path}: is a folder: allowed is a .tif/.tiff, .asc or .csv file of heights")
+        raise ElevationError(
+            f"{name or path}: is a folder: allowed is a .tif/.tiff, .asc or .csv file of heights"
+        )
     if not path.is_file():
         raise ElevationError(f"{name}: no such file ({path})")
     suffix = path.suffix.lower()
