@@ -233,3 +233,41 @@ def test_a_grid_too_large_is_refused_before_it_is_built(folder):
     table["cell_m"] = 0.25
     with pytest.raises(HoleError, match="is a grid of 8,001 x 8,001 nodes"):
         hole_from_table(table, folder, "plain")
+
+
+@pytest.mark.parametrize(
+    ("coordinates", "says"),
+    [
+        ([[15.9, 45.78]], "1 point: allowed is a line or a ring of at least 2 [lon, lat] points"),
+        ([], "0 points: allowed is a line or a ring of at least 2"),
+        ([[15.9, 45.78], [float("nan"), 45.79]], "point 2 is [nan, 45.79]: allowed are finite"),
+        ([[15.9, 45.78], [15.9, float("inf")]], "point 2 is [15.9, inf]: allowed are finite"),
+        ([15.9, 45.78], "its coordinates are not lists of [lon, lat] points"),
+    ],
+)
+def test_a_hole_line_s_geometry_is_named_as_it_is_wrong(tmp_path, coordinates, says):
+    data = json.loads((MAPS / "no-green.geojson").read_text())
+    data["features"][1]["geometry"]["coordinates"] = coordinates  # the hole line
+    (tmp_path / "line.geojson").write_text(json.dumps(data))  # (NaN as JSON's NaN)
+    message = _error({"map": "line.geojson", "hole": 1}, tmp_path)
+    assert f"line.geojson: feature {data['features'][1]['id']}: {says}" in message
+
+
+def test_a_hole_line_of_no_length_and_a_par_out_of_range_are_listed_as_unplayable(folder, capsys):
+    """A golf=hole line that ends where it starts has no tee-to-green direction (its pin would
+    be any green nearby); a par of 99 is none: each is refused for its hole, and marked in the
+    map's listing, which lists the others."""
+    from mcrun.cli import main
+
+    data = json.loads((folder / MAP).read_text())
+    holes = [f for f in data["features"] if f["properties"].get("golf") == "hole"]
+    holes[1]["geometry"]["coordinates"] = [holes[1]["geometry"]["coordinates"][0]] * 2
+    holes[2]["properties"]["par"] = "99"
+    (folder / "odd.geojson").write_text(json.dumps(data))
+    message = _error({"map": "odd.geojson", "hole": 2}, folder)
+    assert "hole 2: its golf=hole line ends 0.0 m from where it starts: allowed is" in message
+    assert main(["hole", str(folder / "odd.geojson")]) == 0
+    out = capsys.readouterr().out
+    assert "  ! hole 2: its golf=hole line ends 0.0 m" in out
+    assert "  ! par 99: allowed is a whole number 2-7" in out
+    assert "2 of 18 holes cannot be played as mapped" in out

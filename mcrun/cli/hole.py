@@ -32,6 +32,9 @@ def _list_holes(path):
         head = f"{line.index:>4}  {line.ref or '-':>4}  {line.par or '-':>3}"
         title = hole_title(course_name, line)
         try:
+            if line.par is not None and line.par not in range(2, 8):  # (as load_hole checks it)
+                raise HoleError(f"{path}: par {line.par}: allowed is a whole number 2-7 (mend "
+                                "the map, or give 'par' in a hole file)")  # fmt: skip
             tee, pin = tee_and_pin(course, line, str(path))
         except HoleError as err:
             bad += 1

@@ -426,6 +426,13 @@ def tee_and_pin(course, line, where, table=None):
     ends = [line.lonlat[-1]] + ([] if pin is None else [pin])
     greens = [_in_frame(local, p) for p in course.greens_near(ends, GREEN_SEARCH_M)]
     end_xy = local.to_xy(*line.lonlat[-1])
+    reach = math.hypot(*end_xy)  # from the tee, the line's first point without a 'tee'
+    if "tee" not in table and pin is None and reach < 1.0:
+        raise HoleError(
+            f"{where}: hole {line.index}: its golf=hole line ends {reach:.1f} m from where it "
+            "starts: allowed is a line from the tee to the green (or a 'tee' and a 'pin' in a "
+            "hole file)"
+        )
     if pin is None:
         pin = tuple(line.lonlat[-1])
         if greens:

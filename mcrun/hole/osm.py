@@ -155,13 +155,26 @@ def _points(coords, where, depth):
             coords = list(coords)
         else:
             a = np.asarray(coords, dtype=float)
-            if a.ndim != 2 or a.shape[0] < 2 or a.shape[1] < 2 or not np.isfinite(a).all():
+            if a.size == 0:
+                a = a.reshape(0, 2)
+            if a.ndim != 2 or a.shape[1] < 2:
                 raise ValueError
             a = a[:, :2]
     except (TypeError, ValueError):
         raise HoleError(f"{where}: its coordinates are not lists of [lon, lat] points") from None
     if depth > 0:
         return [_points(c, where, depth - 1) for c in coords]
+    if a.shape[0] < 2:
+        raise HoleError(
+            f"{where}: {a.shape[0]} point{'s' * (a.shape[0] != 1)}: allowed is a line or a ring "
+            "of at least 2 [lon, lat] points"
+        )
+    if not np.isfinite(a).all():
+        k = int(np.flatnonzero(~np.isfinite(a).all(axis=1))[0])
+        raise HoleError(
+            f"{where}: point {k + 1} is [{a[k, 0]:g}, {a[k, 1]:g}]: allowed are finite "
+            "[lon, lat] numbers"
+        )
     bad = (np.abs(a[:, 0]) > 180.0) | (np.abs(a[:, 1]) > 90.0)
     if bad.any():
         lon, lat = a[np.flatnonzero(bad)[0]]
