@@ -264,16 +264,21 @@ def test_outputs_in_a_missing_folder_are_written_there(tmp_path, capsys):
 
 
 def test_aims_all_off_the_map_are_refused(tmp_path, capsys, monkeypatch):
-    """--centre 1e6 once reported a best aim of +999980 m: every shot of every aim left the
-    map, so there is no best aim to say; one line, exit code 2, nothing written."""
+    """--centre 1e6 once reported a best aim of +999980 m, and --offsets 1e9 a table beside
+    the reference aim: every shot of those aims left the map, so there is no best aim to say.
+    Refused before a shot is flown: one line, exit code 2, nothing written."""
     monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(aim, "search", lambda *a, **k: pytest.fail("the search ran"))
     out = tmp_path / "a.parquet"
-    code = main(["aim", "par3-over-water", "-n", "50", "--centre", "1e6", "-o", str(out)])
-    captured = capsys.readouterr()
-    assert code == 2 and captured.out == ""
-    error = captured.err.splitlines()[-1]
-    assert error.startswith("mcrun: error: every shot of every aim (+999980.0 to +1000020.0 m")
-    assert "left the hole's map" in error
+    for option, value in (("--centre", "1e6"), ("--offsets", "1e9,-2e9")):
+        code = main(["aim", "par3-over-water", "-n", "50", option, value, "-o", str(out)])
+        captured = capsys.readouterr()
+        assert code == 2 and captured.out == ""
+        shown = {"1e6": "1e+06", "1e9,-2e9": "1e+09,-2e+09"}[value]
+        assert captured.err.splitlines()[-1].startswith(
+            f"mcrun: error: {option} {shown}: every aim is off the hole's map, which spans "
+        )
+        assert "m right of the line from the tee to the pin: aim where the map is" in captured.err
     assert list(tmp_path.iterdir()) == []
 
 

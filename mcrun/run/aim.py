@@ -325,6 +325,15 @@ def check(
                 f"{coarse_m:g}: {coarse:,.0f} aims per club; at most {MAX_AIMS:,} (2 x half "
                 "width / step + 1): narrow the region or widen the step"
             )
+    given = offsets_m if offsets_m is not None else [] if centre_m is None else [centre_m]
+    y_lo, y_hi = scenario.hole.extent_m[2:]
+    if given and all(not y_lo <= o <= y_hi for o in given):
+        what = names["offsets_m"] if offsets_m is not None else names["centre_m"]
+        raise AimError(
+            f"{what} {','.join(f'{o:g}' for o in given)}: every aim is off the hole's map, which "
+            f"spans {y_lo:+.0f} to {y_hi:+.0f} m right of the line from the tee to the pin: aim "
+            "where the map is"
+        )
     clubs = len(scenario.points)
     aims = aims_per_club(half_width_m, coarse_m, resolution_m, offsets_m)
     size = memory_bytes(clubs, n, aims)
