@@ -282,6 +282,26 @@ def test_bad_shot_input_is_one_line_and_exit_2(capsys, argv):
     assert err.startswith("mcrun: error: ")
 
 
+@pytest.mark.parametrize(
+    "command, argv, says",
+    [
+        ("shot", ["--ball-speed", "0", "--launch", "11", "--spin", "280"],
+         "--ball-speed (ball_speed_mps) = 0 is outside the allowed range [0.5, 120]"),
+        ("shot", ["--club-speed", "40", "--loft", "100"],
+         "--loft (loft_deg) = 100 is outside the allowed range [0, 70]"),
+        ("bounce", ["--speed", "20", "--angle", "95", "--spin", "100"],
+         "--angle (impact_angle_deg) = 95 is outside the allowed range [0, 89.9]"),
+        ("bounce", ["--speed", "20", "--angle", "45", "--spin", "1e9"],
+         "--spin (backspin_radps) = 1e+09 is outside the allowed range [-2000, 2000]"),
+    ],
+)  # fmt: skip
+def test_a_value_out_of_range_names_its_option(capsys, command, argv, says):
+    """The API's range errors name its values (ball_speed_mps); the command names the option
+    that gave it too."""
+    code, out, err = run(capsys, command, *argv)
+    assert (code, out, err) == (2, "", f"mcrun: error: {says}\n")
+
+
 BAD_BOUNCES = {
     "angle from the vertical over 90": ["--speed", "26.8", "--angle", "95", "--spin", "224"],
     "missing angle": ["--speed", "26.8", "--spin", "224"],

@@ -25,7 +25,7 @@ from mcrun.cli.options import (
     quantity,
 )
 from mcrun.physics import aero, turf
-from mcrun.quantities import DEFAULTS
+from mcrun.quantities import DEFAULTS, InputError
 
 # --- printing ----------------------------------------------------------------------------------
 
@@ -107,6 +107,37 @@ def _status_note(code, slope_deg=0.0, rho_g=None):
 # --- commands ----------------------------------------------------------------------------------
 
 
+# The options of ``mcrun shot`` and ``mcrun bounce`` by the API's names of their values, which
+# its range errors name ("ball_speed_mps = 0 is outside the allowed range [0.5, 120]").
+SHOT_OPTIONS = {
+    "ball_speed_mps": "--ball-speed",
+    "launch_angle_deg": "--launch",
+    "spin_radps": "--spin",
+    "azimuth_deg": "--azimuth",
+    "spin_axis_deg": "--spin-axis",
+    "club_speed_mps": "--club-speed",
+    "club_mass_kg": "--club-mass",
+    "loft_deg": "--loft",
+}
+BOUNCE_OPTIONS = {
+    "ball_speed_mps": "--speed",
+    "impact_angle_deg": "--angle",
+    "backspin_radps": "--spin",
+}
+
+
+def _named(call, options):
+    """``call()``, an InputError that names an API value re-raised naming its option too."""
+    try:
+        return call()
+    except InputError as err:
+        text = str(err)
+        name = text.split(" ", 1)[0]
+        if name not in options:
+            raise
+        raise InputError(f"{options[name]} ({name}){text[len(name) :]}") from None
+
+
 def _shot_kwargs(args):
     """Keyword arguments of ``mcrun.api.simulate`` from the ``shot`` options."""
     return given(
@@ -123,7 +154,9 @@ def _shot_kwargs(args):
 
 def _cmd_shot(args):
     kwargs = _shot_kwargs(args)
-    result = api.simulate(trajectory=args.trajectory is not None, **kwargs)
+    result = _named(
+        lambda: api.simulate(trajectory=args.trajectory is not None, **kwargs), SHOT_OPTIONS
+    )
     if args.trajectory is not None:
         try:
             result.trajectory.to_csv(args.trajectory, index=False)
@@ -148,7 +181,9 @@ def _cmd_bounce(args):
     angle = degrees(args.angle, "--angle")
     spin = quantity(args.spin, "spin", "--spin")
     overrides = given(mu=number(args.mu, "--mu"), softness=number(args.softness, "--softness"))
-    result = api.bounce_once(speed, angle, spin, turf=args.turf, **overrides)
+    result = _named(
+        lambda: api.bounce_once(speed, angle, spin, turf=args.turf, **overrides), BOUNCE_OPTIONS
+    )
     if args.json:
         _print_json(result)
     else:
