@@ -67,10 +67,10 @@ DEFAULT_MARGIN_M = 50.0
 CELL_RANGE_M = (0.05, 10.0)
 MARGIN_RANGE_M = (0.0, 1000.0)
 SIZE_RANGE_M = (1.0, 2000.0)
-# A golf=pin further than this from the hole's green is another green's.
 # The most nodes a hole's grid may have: about 10 bytes each in its Terrain (a hole of 700 by
 # 200 m at the default cell has 560,000; at 0.1 m, 14 million).
 MAX_NODES = 50_000_000
+# A golf=pin further than this from the hole's green is another green's.
 PIN_SEARCH_M = 10.0
 # A green further than this from the end of a hole line is another hole's (a map may hold a
 # country's courses: only the greens near the line's end are looked at).
