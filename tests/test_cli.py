@@ -302,6 +302,17 @@ def test_a_value_out_of_range_names_its_option(capsys, command, argv, says):
     assert (code, out, err) == (2, "", f"mcrun: error: {says}\n")
 
 
+def test_a_trajectory_that_cannot_be_written_is_refused_before_the_shot(
+    capsys, tmp_path, monkeypatch
+):
+    monkeypatch.setattr(api, "simulate", lambda **k: pytest.fail("the shot was flown"))
+    for path, says in ((tmp_path / "none" / "t.csv", "is not a folder"),
+                       (tmp_path, "is a folder; give a file name")):  # fmt: skip
+        code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--trajectory", str(path))
+        assert code == 2 and out == "" and err.count("\n") == 1
+        assert err.startswith(f"mcrun: error: --trajectory {path}: ") and says in err
+
+
 BAD_BOUNCES = {
     "angle from the vertical over 90": ["--speed", "26.8", "--angle", "95", "--spin", "224"],
     "missing angle": ["--speed", "26.8", "--spin", "224"],

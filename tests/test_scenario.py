@@ -155,6 +155,13 @@ ERRORS = [
         "allowed: ball_speed, launch_angle, spin",
     ),
     (
+        "a group's dotted key quoted",
+        BALL + '[[group]]\nname = "a"\n"launch.spin" = 3000\n',
+        "group[0].launch.spin",
+        "unknown key; allowed: name, target, hole, launch, club, turf, weather, models (write "
+        "launch.spin unquoted: a dotted key)",
+    ),
+    (
         "unknown scenario key",
         "[scenario]\nshot = 5\n" + BALL,
         "scenario.shot",

@@ -10,8 +10,10 @@ matplotlib, so that ``mcrun shot`` starts quickly.
 import argparse
 import json
 import math
+import os
 import sys
 import textwrap
+from pathlib import Path
 
 from mcrun import api, status, units
 from mcrun.cli import CommandError
@@ -152,8 +154,25 @@ def _shot_kwargs(args):
     ) | conditions_kwargs(args)
 
 
+def _check_trajectory_path(text):
+    """CommandError, before the shot is flown, where ``--trajectory`` cannot be written."""
+    path = Path(text)
+    where = path.parent if str(path.parent) else Path(".")
+    reason = None
+    if path.is_dir():
+        reason = "is a folder; give a file name"
+    elif not where.is_dir():
+        reason = f"{where} is not a folder"
+    elif not os.access(where, os.W_OK | os.X_OK):
+        reason = f"cannot write in {where}"
+    if reason is not None:
+        raise CommandError(f"--trajectory {text}: {reason}")
+
+
 def _cmd_shot(args):
     kwargs = _shot_kwargs(args)
+    if args.trajectory is not None:
+        _check_trajectory_path(args.trajectory)
     result = _named(
         lambda: api.simulate(trajectory=args.trajectory is not None, **kwargs), SHOT_OPTIONS
     )

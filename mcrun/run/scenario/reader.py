@@ -300,8 +300,11 @@ def loads(text, path):
             where = f"group[{k}]"
             for key in table:
                 if key not in _GROUP_KEYS:
+                    # "launch.spin" quoted is one key of that name (as [sweep] writes it)
+                    dotted = key.partition(".")[0] in SECTION_NAMES
+                    hint = f" (write {key} unquoted: a dotted key)" if dotted else ""
                     raise ctx.error(
-                        f"{where}.{key}", f"unknown key; allowed: {', '.join(_GROUP_KEYS)}"
+                        f"{where}.{key}", f"unknown key; allowed: {', '.join(_GROUP_KEYS)}{hint}"
                     )
             gname = table.get("name")
             if not isinstance(gname, str) or not gname.strip():
