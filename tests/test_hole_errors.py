@@ -271,3 +271,34 @@ def test_a_hole_line_of_no_length_and_a_par_out_of_range_are_listed_as_unplayabl
     assert "  ! hole 2: its golf=hole line ends 0.0 m" in out
     assert "  ! par 99: allowed is a whole number 2-7" in out
     assert "2 of 18 holes cannot be played as mapped" in out
+
+
+def test_a_feature_that_cannot_be_read_stops_only_what_needs_it(folder, capsys):
+    """A map cut at its edge leaves broken pieces: a hole line of one point is kept, unplayable
+    (choosing it says why; the other holes keep their numbers and play), and a bunker with a
+    NaN point is left out, said by the listing, where either stopped the whole map before."""
+    from mcrun.cli import main
+
+    data = json.loads((folder / MAP).read_text())
+    holes = [f for f in data["features"] if f["properties"].get("golf") == "hole"]
+    holes[1]["geometry"]["coordinates"] = holes[1]["geometry"]["coordinates"][:1]
+    bunker = next(f for f in data["features"] if f["properties"].get("golf") == "bunker")
+    bunker["geometry"]["coordinates"][0][1] = [float("nan"), 45.77]
+    (folder / "cut.geojson").write_text(json.dumps(data))
+    message = _error({"map": "cut.geojson", "hole": 2}, folder)
+    assert f"feature {holes[1]['id']}: 1 point: allowed is a line or a ring" in message
+    hole = hole_from_table({"map": "cut.geojson", "hole": 3}, folder, "h3")
+    whole = hole_from_table({"map": MAP, "hole": 3}, folder, "h3")
+    assert hole.length_m == whole.length_m and hole.index == 3
+    assert main(["hole", str(folder / "cut.geojson")]) == 0
+    out = capsys.readouterr().out
+    assert f"  ! feature {holes[1]['id']}: 1 point" in out
+    assert "1 of 18 holes cannot be played as mapped" in out
+    assert (f"1 feature(s) of the map left out, their geometry unreadable (the first: feature "
+            f"{bunker['id']}: point 2 is [nan, 45.77]: allowed are finite") in out  # fmt: skip
+    from mcrun.cli.rate import play_order
+    from mcrun.hole.osm import read_course
+
+    order, note = play_order(read_course(folder / "cut.geojson"))
+    assert order == {k: k for k in range(1, 19)}  # (the broken line keeps its place)
+    assert note == play_order(read_course(folder / MAP))[1]  # its walks left out: the same

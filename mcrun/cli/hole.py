@@ -48,6 +48,9 @@ def _list_holes(path):
             f"{bad} of {len(course.holes)} holes cannot be played as mapped (marked !): "
             "give them a 'pin' on a green in a hole file, or mend the map"
         )
+    if course.skipped:
+        print(f"{len(course.skipped)} feature(s) of the map left out, their geometry unreadable "
+              f"(the first: {course.skipped[0]})")  # fmt: skip
     print(f"map: {course.source}, {ATTRIBUTION}")
 
 

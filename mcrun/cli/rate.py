@@ -141,15 +141,18 @@ def play_order(course):
         range(1, len(lines) + 1)
     ):
         return {int(r): k + 1 for k, r in enumerate(refs)}, None
-    frame = Frame(*lines[0].lonlat[0], 0.0)
-    walks = [float(np.hypot(*np.subtract(frame.to_xy(*b.lonlat[0]), frame.to_xy(*a.lonlat[-1]))))
+    read = [line for line in lines if line.lonlat is not None]
+    frame = Frame(*read[0].lonlat[0], 0.0) if read else None
+    walks = [np.nan if a.lonlat is None or b.lonlat is None else
+             float(np.hypot(*np.subtract(frame.to_xy(*b.lonlat[0]), frame.to_xy(*a.lonlat[-1]))))
              for a, b in zip(lines, lines[1:], strict=False)]  # fmt: skip
     note = "the map does not number its holes 1-N (ref): they are taken in its order"
-    if walks:
-        far = int(np.argmax(walks))
-        note += (f" (each green {min(walks):.0f}-{max(walks):.0f} m from the next tee"
-                 + (f": hole {far + 2}'s tee is {walks[far]:.0f} m from hole {far + 1}'s green, "
-                    "the map's order may not be the course's" if walks[far] > FAR_WALK_M
+    if walks and not np.isnan(walks).all():
+        far = int(np.nanargmax(walks))
+        longest = walks[far]
+        note += (f" (each green {np.nanmin(walks):.0f}-{longest:.0f} m from the next tee"
+                 + (f": hole {far + 2}'s tee is {longest:.0f} m from hole {far + 1}'s green, "
+                    "the map's order may not be the course's" if longest > FAR_WALK_M
                     else "") + ")")  # fmt: skip
     return {k: k for k in range(1, len(lines) + 1)}, note
 

@@ -419,6 +419,8 @@ def tee_and_pin(course, line, where, table=None):
     ``where``) when the hole has no green or its pin is not on one."""
     table = {} if table is None else table
     map_path = course.source
+    if line.problem is not None:
+        raise HoleError(line.problem)
     tee = _lonlat(table, "tee", where) or tuple(line.lonlat[0])
     # Find the green and the pin in a provisional frame at the tee (east-north, metres).
     local = Frame(*tee, 0.0)

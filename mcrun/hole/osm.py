@@ -36,14 +36,17 @@ ATTRIBUTION = "(c) OpenStreetMap contributors, ODbL"
 @dataclass(frozen=True)
 class HoleLine:
     """One ``golf=hole`` line: its 1-based position among the file's holes, its tags and its
-    points ((n, 2) lon, lat deg, tee first)."""
+    points ((n, 2) lon, lat deg, tee first); a line whose points cannot be read has none
+    (``lonlat`` None) and says why in ``problem`` (it keeps its position: the others keep
+    their numbers, and choosing it says the problem)."""
 
     index: int
     ref: str | None
     par: int | None
     name: str | None
-    lonlat: np.ndarray
+    lonlat: np.ndarray | None
     feature: str  # the feature's id, or "feature N"
+    problem: str | None = None
 
 
 @dataclass(frozen=True)
@@ -58,6 +61,9 @@ class Course:
     pins: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     boundary: list = field(default_factory=list)
     courses: list = field(default_factory=list)  # (name or None, polygon): each golf_course
+    # Why each zone, pin or course boundary whose geometry cannot be read was left out (a map
+    # cut at its edge leaves such pieces); one line each.
+    skipped: list = field(default_factory=list)
 
     @cached_property
     def greens(self):
@@ -98,6 +104,8 @@ class Course:
         holding most of its points, the smallest of those when nested; None when it lies in
         none, or that course has no name."""
         best = None
+        if line.lonlat is None:
+            return None
         lon, lat = line.lonlat[:, 0], line.lonlat[:, 1]
         boxes = self._course_boxes
         near = (
@@ -123,7 +131,7 @@ class Course:
         if not text.startswith("#"):
             matches = [line for line in self.holes if line.ref is not None and line.ref == text]
             if len(matches) == 1:
-                return matches[0]
+                return _playable(matches[0])
             if matches:
                 shown = ", ".join(
                     f"#{m.index} on {self.course_of(m) or 'no named course'}" for m in matches[:5]
@@ -136,7 +144,7 @@ class Course:
                 )
         position = text.removeprefix("#")
         if position.isascii() and position.isdigit() and 1 <= int(position) <= len(self.holes):
-            return self.holes[int(position) - 1]
+            return _playable(self.holes[int(position) - 1])
         refs = list(dict.fromkeys(h.ref for h in self.holes if h.ref is not None))
         refs_text = " (the file has no ref tags)"
         if refs:
@@ -145,6 +153,13 @@ class Course:
             f"{self.source}: hole {key!r} does not exist: the map has {len(self.holes)} "
             f"golf=hole lines; give a position 1-{len(self.holes)}{refs_text}"
         )
+
+
+def _playable(line):
+    """``line``, or HoleError saying why its points cannot be read."""
+    if line.problem is not None:
+        raise HoleError(line.problem)
+    return line
 
 
 def _points(coords, where, depth):
@@ -265,7 +280,9 @@ def sniff(path):
 
 def read_course(path):
     """The Course of the GeoJSON FeatureCollection at ``path``; HoleError (one line naming the
-    file) when it is not one or a feature that is read is malformed."""
+    file) when it is not one. A feature whose geometry cannot be read does not stop the map (a
+    map cut at its edge leaves such pieces): a hole line is kept, unplayable, with its
+    ``problem``; a zone, pin or course boundary is left out, said in ``Course.skipped``."""
     path = Path(path)
     source = str(path)
     what = sniff(path)
@@ -290,7 +307,7 @@ def read_course(path):
     features = data.get("features")
     if not isinstance(features, list):
         raise HoleError(f"{source}: its 'features' is not a list")
-    holes, zones, pins, boundary, courses, name = [], [], [], [], [], None
+    holes, zones, pins, boundary, courses, name, skipped = [], [], [], [], [], None, []
     for k, feature in enumerate(features, 1):
         if not isinstance(feature, dict) or not isinstance(feature.get("geometry"), dict):
             continue
@@ -301,7 +318,10 @@ def read_course(path):
         where = f"{source}: feature {feature.get('id') or k}"
         golf = tags.get("golf")
         if golf == "hole" and geometry.get("type") == "LineString":
-            lonlat = _points(geometry.get("coordinates"), where, 0)
+            try:
+                lonlat, problem = _points(geometry.get("coordinates"), where, 0), None
+            except HoleError as err:
+                lonlat, problem = None, str(err)
             holes.append(
                 HoleLine(
                     index=len(holes) + 1,
@@ -310,22 +330,15 @@ def read_course(path):
                     name=tags.get("name"),
                     lonlat=lonlat,
                     feature=str(feature.get("id") or f"feature {k}"),
+                    problem=problem,
                 )
             )
-        elif golf == "pin" and geometry.get("type") == "Point":
-            point = _points([geometry.get("coordinates"), geometry.get("coordinates")], where, 0)
-            pins.append(point[0])
-        elif tags.get("leisure") == "golf_course":
-            polygons = _polygons(geometry, where)
-            boundary.extend(polygons)
-            course_name = None if tags.get("name") is None else str(tags["name"])
-            courses.extend((course_name, polygon) for polygon in polygons)
-            if polygons and name is None:
-                name = course_name
         else:
-            kind = zone_of_tags(tags)
-            if kind is not None:
-                zones.extend((kind, polygon) for polygon in _polygons(geometry, where))
+            try:
+                name = _read_feature(tags, geometry, golf, where, zones, pins, boundary, courses,
+                                     name)  # fmt: skip
+            except HoleError as err:
+                skipped.append(str(err).removeprefix(f"{source}: "))
     if not holes:
         raise HoleError(f"{source}: has no golf=hole LineString: it is not a golf course map")
     return Course(
@@ -336,4 +349,27 @@ def read_course(path):
         pins=np.array(pins, dtype=float).reshape(-1, 2),
         boundary=boundary,
         courses=courses,
+        skipped=skipped,
     )
+
+
+def _read_feature(tags, geometry, golf, where, zones, pins, boundary, courses, name):
+    """A feature other than a hole line added to ``zones``, ``pins``, ``boundary`` and
+    ``courses`` (a pin, a course boundary, a zone, or nothing); returns the map's name (the first
+    course's, ``name`` until one is found); HoleError where its geometry cannot be read, before
+    anything is added."""
+    if golf == "pin" and geometry.get("type") == "Point":
+        point = _points([geometry.get("coordinates"), geometry.get("coordinates")], where, 0)
+        pins.append(point[0])
+    elif tags.get("leisure") == "golf_course":
+        polygons = _polygons(geometry, where)
+        boundary.extend(polygons)
+        course_name = None if tags.get("name") is None else str(tags["name"])
+        courses.extend((course_name, polygon) for polygon in polygons)
+        if polygons and name is None:
+            name = course_name
+    else:
+        kind = zone_of_tags(tags)
+        if kind is not None:
+            zones.extend((kind, polygon) for polygon in _polygons(geometry, where))
+    return name

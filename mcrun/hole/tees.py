@@ -76,6 +76,8 @@ def hole_tees(course):
     along = np.zeros(len(centres))
     reach_deg = np.degrees((TEE_BEHIND_M + TEE_LATERAL_M) / MEAN_RADIUS_M)
     for line in course.holes:
+        if line.lonlat is None:  # (a line that cannot be read: no tee is its)
+            continue
         # Only tees within the line's box and reach can be its (a country's map has thousands).
         reach = reach_deg * np.array([1.0 / max(np.cos(np.radians(line.lonlat[0, 1])), 1e-6), 1.0])
         lo, hi = line.lonlat.min(axis=0) - reach, line.lonlat.max(axis=0) + reach
