@@ -179,3 +179,9 @@ def test_cli_bad_path_exits_2_with_one_line(tmp_path, capsys):
     out, err = capsys.readouterr()
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and err.startswith("mcrun: error: ")
+
+
+def test_cli_form_without_fit_is_refused(capsys):
+    """--form chooses the form --fit refits: alone it would be ignored."""
+    code, out, err = _run_cli(["--form", "trackman2019"], capsys)
+    assert (code, out, err) == (2, "", "mcrun: error: --form: is for --fit (the form it refits)\n")

@@ -276,7 +276,8 @@ def test_a_hole_line_of_no_length_and_a_par_out_of_range_are_listed_as_unplayabl
 def test_a_feature_that_cannot_be_read_stops_only_what_needs_it(folder, capsys):
     """A map cut at its edge leaves broken pieces: a hole line of one point is kept, unplayable
     (choosing it says why; the other holes keep their numbers and play), and a bunker with a
-    NaN point is left out, said by the listing, where either stopped the whole map before."""
+    NaN point is left out, said by the listing and a hole's description, where either stopped
+    the whole map before."""
     from mcrun.cli import main
 
     data = json.loads((folder / MAP).read_text())
@@ -290,6 +291,11 @@ def test_a_feature_that_cannot_be_read_stops_only_what_needs_it(folder, capsys):
     hole = hole_from_table({"map": "cut.geojson", "hole": 3}, folder, "h3")
     whole = hole_from_table({"map": MAP, "hole": 3}, folder, "h3")
     assert hole.length_m == whole.length_m and hole.index == 3
+    assert len(hole.map_skipped) == 1 and whole.map_skipped == ()
+    assert main(["hole", str(folder / "cut.geojson"), "--hole", "3"]) == 0
+    assert "map: 1 feature(s) left out, their geometry unreadable (the first: feature" in (
+        capsys.readouterr().out
+    )
     assert main(["hole", str(folder / "cut.geojson")]) == 0
     out = capsys.readouterr().out
     assert f"  ! feature {holes[1]['id']}: 1 point" in out

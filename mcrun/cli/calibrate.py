@@ -20,6 +20,7 @@ from mcrun.calibrate import (
     row_literal,
 )
 from mcrun.physics import aero
+from mcrun.quantities import InputError
 
 
 def _records(frame):
@@ -131,11 +132,14 @@ def format_cv(cv):
 
 def _cmd_calibrate(args):
     """Run ``mcrun calibrate``; returns the exit code (bad input raises InputError)."""
+    if args.form is not None and not args.fit:
+        raise InputError("--form: is for --fit (the form it refits)")
     frame = load_measured(args.data)
     output = {}
     text = []
     if args.fit:
-        result = fit(frame, form=args.form)
+        form = args.form or (aero.DEFAULT_MODEL if aero.DEFAULT_MODEL in FORMS else "trackman2019")
+        result = fit(frame, form=form)
         output["fit"] = {
             "form": result.form,
             "start": result.start,
@@ -213,7 +217,6 @@ def register(subparsers):
     parser.add_argument(
         "--form",
         choices=list(FORMS),
-        default=aero.DEFAULT_MODEL if aero.DEFAULT_MODEL in FORMS else "trackman2019",
         help="the form --fit refits (default: the default model's)",
     )
     parser.add_argument(

@@ -60,6 +60,9 @@ def _describe(hole):
     if hole.map_source:
         ref = f", ref {hole.ref}" if hole.ref else ""
         print(f"map: {hole.map_source}, hole {hole.index}{ref}; {hole.attribution}")
+        if hole.map_skipped:
+            print(f"map: {len(hole.map_skipped)} feature(s) left out, their geometry unreadable "
+                  f"(the first: {hole.map_skipped[0]})")  # fmt: skip
     print(f"par: {hole.par if hole.par is not None else '-'}")
     if hole.frame is not None:
         for what, (lon, lat) in (("tee", hole.tee_lonlat), ("pin", hole.pin_lonlat)):

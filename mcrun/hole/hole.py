@@ -141,6 +141,7 @@ class Hole:
     name: str | None = None
     map_source: str | None = None
     attribution: str | None = None  # to show wherever the map's data or a figure of it appears
+    map_skipped: tuple = ()  # what of its map was left out, unreadable (``osm.Course.skipped``)
     ground: str = "flat"  # "flat", "elevation FILE" or "shape KIND"
     line_xy: np.ndarray | None = None  # the hole line in the frame
     putting: dict = field(default_factory=lambda: dict(PUTTING_DEFAULTS))  # [hole.putting]
@@ -508,6 +509,7 @@ def _map_hole(table, folder, where):
         name=hole_title(course.course_of(line), line),
         map_source=str(map_path),
         attribution=ATTRIBUTION,
+        map_skipped=tuple(course.skipped),
     )
 
 
@@ -708,6 +710,7 @@ def hole_from_table(table, folder, source):
         name=None if name is None else str(name),
         map_source=parts.get("map_source"),
         attribution=parts.get("attribution"),
+        map_skipped=parts.get("map_skipped", ()),
         ground=ground,
         line_xy=parts.get("line_xy"),
         putting=_putting(table, where, folder),
