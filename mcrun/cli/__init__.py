@@ -159,12 +159,6 @@ SIMULATING_COMMANDS = {
     "replay": "plane",
 }
 
-# What the compile of each kernel is called on stderr.
-KERNEL_NAMES = {
-    "plane": ("the kernels", "first run after install"),
-    "terrain": ("the kernel for a hole's ground", "first run on a hole after install"),
-}
-
 
 def _kernel_cached(ground, kernels=("batch",)):
     """Whether the ``kernels`` for ``ground`` are compiled or in numba's on-disk cache (None
@@ -227,7 +221,7 @@ def compile_if_needed(ground, kernels=("batch",)):
         return 0.0
     from mcrun.engine import warmup
 
-    what, when = KERNEL_NAMES[ground]
+    what, when = warmup.KERNEL_NAMES[ground]
     return warmup.announced(what, when, lambda: warmup.warm_up((ground,), kernels), say)
 
 

@@ -359,14 +359,22 @@ def warm_up_all(grounds=GROUNDS, kernels=KERNELS, processes=None, also=(), job=w
     return WarmUpReport(done, processes, time.perf_counter() - started)
 
 
+# What the compile of each ground's kernels is called on stderr (``announced``), by the command
+# line and the Dask client alike.
+KERNEL_NAMES = {
+    "plane": ("the kernels", "first run after install"),
+    "terrain": ("the kernel for a hole's ground", "first run on a hole after install"),
+}
+
+
 def compile_announced(ground, kernels=("batch",), say=print):
     """When the ``kernels`` for ``ground`` are not in Numba's on-disk cache, compile them here,
     saying so (``say``, a function of one line) before and after, with the time it took.
     Returns the seconds of the compilation (0.0 when none was needed)."""
     if kernel_cached(ground, kernels) is not False:
         return 0.0
-    what = "the kernels" if ground == "plane" else "the kernels for a hole's ground"
-    return announced(what, "first run after install", lambda: warm_up((ground,), kernels), say)
+    what, when = KERNEL_NAMES[ground]
+    return announced(what, when, lambda: warm_up((ground,), kernels), say)
 
 
 def announced(what, when, warm, say):
