@@ -192,11 +192,7 @@ class Hole:
         rasterised and its heights sampled from the hole's ground at that spacing (a green to
         putt on is this ground at a finer one, ``putting.green``)."""
         cell = self.cell_m if cell_m is None else float(cell_m)
-        x_min, x_max, y_min, y_max = extent_m
-        x0 = math.floor(x_min / cell) * cell
-        y0 = math.floor(y_min / cell) * cell
-        nx = int(math.ceil((x_max - x0) / cell)) + 1
-        ny = int(math.ceil((y_max - y0) / cell)) + 1
+        x0, y0, nx, ny = _grid_of(extent_m, cell)
         zone = rasterize(self.zones, x0, y0, cell, nx, ny, self.boundary)
         if self._heights is None:
             height = np.zeros((ny, nx))
@@ -556,12 +552,26 @@ def _plain_hole(table, where, margin_m, cell_m):
     )
 
 
-def _check_nodes(extent_m, cell_m, where):
-    """HoleError, before anything is built, where the grid of ``extent_m`` at ``cell_m`` would
-    have more than MAX_NODES nodes (as ``Hole.terrain_over`` counts them)."""
+def _grid_of(extent_m, cell_m):
+    """(x0, y0, nx, ny) of the grid over ``extent_m`` = (x_min, x_max, y_min, y_max): its nodes
+    on multiples of ``cell_m``, its first at or before each minimum, its last at or past each
+    maximum."""
     x_min, x_max, y_min, y_max = extent_m
-    nx = math.ceil((x_max - math.floor(x_min / cell_m) * cell_m) / cell_m) + 1
-    ny = math.ceil((y_max - math.floor(y_min / cell_m) * cell_m) / cell_m) + 1
+    x0 = math.floor(x_min / cell_m) * cell_m
+    y0 = math.floor(y_min / cell_m) * cell_m
+    return (
+        x0,
+        y0,
+        int(math.ceil((x_max - x0) / cell_m)) + 1,
+        int(math.ceil((y_max - y0) / cell_m)) + 1,
+    )
+
+
+def _check_nodes(extent_m, cell_m, where):
+    """HoleError, before anything is built, where the grid of ``extent_m`` at ``cell_m``
+    (``_grid_of``, as ``Hole.terrain_over`` builds it) would have more than MAX_NODES nodes."""
+    x_min, x_max, y_min, y_max = extent_m
+    _, _, nx, ny = _grid_of(extent_m, cell_m)
     if nx * ny > MAX_NODES:
         least = math.sqrt((x_max - x_min) * (y_max - y_min) / MAX_NODES)
         raise HoleError(

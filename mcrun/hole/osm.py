@@ -333,10 +333,22 @@ def read_course(path):
                     problem=problem,
                 )
             )
-        else:
+        else:  # (a geometry that cannot be read raises before anything is added)
             try:
-                name = _read_feature(tags, geometry, golf, where, zones, pins, boundary, courses,
-                                     name)  # fmt: skip
+                if golf == "pin" and geometry.get("type") == "Point":
+                    coordinates = geometry.get("coordinates")
+                    pins.append(_points([coordinates, coordinates], where, 0)[0])
+                elif tags.get("leisure") == "golf_course":
+                    polygons = _polygons(geometry, where)
+                    boundary.extend(polygons)
+                    course_name = None if tags.get("name") is None else str(tags["name"])
+                    courses.extend((course_name, polygon) for polygon in polygons)
+                    if polygons and name is None:
+                        name = course_name
+                else:
+                    kind = zone_of_tags(tags)
+                    if kind is not None:
+                        zones.extend((kind, polygon) for polygon in _polygons(geometry, where))
             except HoleError as err:
                 skipped.append(str(err).removeprefix(f"{source}: "))
     if not holes:
@@ -351,25 +363,3 @@ def read_course(path):
         courses=courses,
         skipped=skipped,
     )
-
-
-def _read_feature(tags, geometry, golf, where, zones, pins, boundary, courses, name):
-    """A feature other than a hole line added to ``zones``, ``pins``, ``boundary`` and
-    ``courses`` (a pin, a course boundary, a zone, or nothing); returns the map's name (the first
-    course's, ``name`` until one is found); HoleError where its geometry cannot be read, before
-    anything is added."""
-    if golf == "pin" and geometry.get("type") == "Point":
-        point = _points([geometry.get("coordinates"), geometry.get("coordinates")], where, 0)
-        pins.append(point[0])
-    elif tags.get("leisure") == "golf_course":
-        polygons = _polygons(geometry, where)
-        boundary.extend(polygons)
-        course_name = None if tags.get("name") is None else str(tags["name"])
-        courses.extend((course_name, polygon) for polygon in polygons)
-        if polygons and name is None:
-            name = course_name
-    else:
-        kind = zone_of_tags(tags)
-        if kind is not None:
-            zones.extend((kind, polygon) for polygon in _polygons(geometry, where))
-    return name
