@@ -293,7 +293,7 @@ def test_a_feature_that_cannot_be_read_stops_only_what_needs_it(folder, capsys):
     assert hole.length_m == whole.length_m and hole.index == 3
     assert len(hole.map_skipped) == 1 and whole.map_skipped == ()
     assert main(["hole", str(folder / "cut.geojson"), "--hole", "3"]) == 0
-    assert "map: 1 feature(s) left out, their geometry unreadable (the first: feature" in (
+    assert "map: 1 feature(s) of the map left out, their geometry unreadable (the first: " in (
         capsys.readouterr().out
     )
     assert main(["hole", str(folder / "cut.geojson")]) == 0
@@ -308,3 +308,33 @@ def test_a_feature_that_cannot_be_read_stops_only_what_needs_it(folder, capsys):
     order, note = play_order(read_course(folder / "cut.geojson"))
     assert order == {k: k for k in range(1, 19)}  # (the broken line keeps its place)
     assert note == play_order(read_course(folder / MAP))[1]  # its walks left out: the same
+
+
+def test_the_commands_that_play_a_hole_say_what_of_its_map_was_left_out(folder, capsys):
+    """A hole played on a map with an unreadable feature is played as the rest of the map draws
+    it: ``mcrun run`` and ``validate`` (and ``aim``, ``play``, ``putt --hole``, by the same
+    ``say_skipped``) say so on stderr, and ``mcrun rate`` among its notes; a whole map, nothing."""
+    from mcrun.cli import main
+    from mcrun.cli.rate import course_holes
+
+    data = json.loads((folder / MAP).read_text())
+    bunker = next(f for f in data["features"] if f["properties"].get("golf") == "bunker")
+    bunker["geometry"]["coordinates"][0][1] = [float("nan"), 45.77]
+    (folder / "cut.geojson").write_text(json.dumps(data))
+    scenario = (HOLES.parent / "par4-tee-shot.toml").read_text()
+    for name in ("cut.geojson", MAP):
+        (folder / "h.toml").write_text(
+            (HOLES / "riverside-9.toml").read_text().replace(f'"{MAP}"', f'"{name}"')
+        )
+        (folder / "s.toml").write_text(scenario.replace("holes/riverside-9.toml", "h.toml"))
+        assert main(["validate", str(folder / "s.toml")]) == 0
+        err = capsys.readouterr().err
+        if name == MAP:
+            assert "left out" not in err
+        else:
+            assert (f"mcrun: note: {folder / 'cut.geojson'}: 1 feature(s) of the map left out, "
+                    f"their geometry unreadable (the first: feature {bunker['id']}: point 2 is "
+                    "[nan, 45.77]") in err  # fmt: skip
+    notes = course_holes(folder / "cut.geojson", "9")[3]
+    assert any(n.startswith("1 feature(s) of the map left out") for n in notes)
+    assert not any("left out" in n for n in course_holes(folder / MAP, "9")[3])

@@ -255,6 +255,7 @@ def test_mcrun_putt_prints_the_make_rate_and_the_read(capsys):
         (["--distance", "10ft", "-n", "1e9"], "-n '1e9': allowed: a whole number from 2 to 100000"),
         (["--distance", "10ft", "--stimp", "-3ft"], "Stimp"),
         (["--distance", "10ft", "--stimp", "3"], "--stimp 3: give its unit, e.g. 11ft"),
+        (["--distance", "10"], "--distance 10: give its unit, e.g. 10ft"),  # (10 m or 10 ft?)
         (["--distance", "10ft", "--drift", "40"], "--drift 40: allowed: 0 to 34"),
         (["--distance", "10ft", "--drift", "lots"], "--drift lots: allowed"),
         (["--distance", "10ft", "--read", "best"], "--read: is for a green's map (with --hole)"),
@@ -266,10 +267,12 @@ def test_mcrun_putt_refuses_bad_input_in_one_line(options, says, capsys):
     assert err.count("\n") == 1 and err.startswith("mcrun: error:") and says in err
 
 
-def test_putt_refuses_more_putts_than_a_hole_may_value():
-    """``putt``'s n is that of a hole's ``[putting] n``: 100,001 would take minutes."""
-    with pytest.raises(InputError, match="n 100001: allowed: a whole number from 2 to 100000"):
-        putt(3.0, 3.3, 0.01, 0.0, n=100_001)
+@pytest.mark.parametrize("n", [100_001, math.inf, math.nan, 2.5])
+def test_putt_refuses_more_putts_than_a_hole_may_value(n):
+    """``putt``'s n is that of a hole's ``[putting] n``: 100,001 would take minutes; an
+    infinite n is refused as any other (``int`` of it would raise OverflowError)."""
+    with pytest.raises(InputError, match=f"n {n}: allowed: a whole number from 2 to 100000"):
+        putt(3.0, 3.3, 0.01, 0.0, n=n)
 
 
 def test_putt_refuses_an_unknown_putter():

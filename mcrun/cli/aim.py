@@ -7,6 +7,7 @@ import math
 import sys
 
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
+from mcrun.cli.hole import say_skipped
 from mcrun.quantities import InputError
 from mcrun.run import aim
 from mcrun.strokes import BaselineError, load_baseline
@@ -29,6 +30,7 @@ def _offsets(text):
 
 def _cmd_aim(args):
     scenario = aim.load_scenario(args.scenario, args.seed)
+    say_skipped(scenario.hole)
     checked = aim.check(
         scenario, n=args.n, half_width_m=args.half_width, centre_m=args.centre,
         coarse_m=args.step, resolution_m=args.resolution, offsets_m=_offsets(args.offsets),

@@ -1,6 +1,7 @@
 """``mcrun hole``: describe a hole (its zones and their areas, its length, its ground, its par)
 and draw its map; or list the holes of a course map."""
 
+import sys
 from pathlib import Path
 
 from mcrun.cli import CommandError
@@ -15,6 +16,21 @@ GEOJSON_SUFFIXES = (".geojson", ".json")
 
 # The pictures ``--plot`` writes, by the suffix of its file.
 PICTURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def skipped_line(skipped):
+    """What of a map was left out, unreadable (``osm.Course.skipped``, ``Hole.map_skipped``), in
+    one line."""
+    return (f"{len(skipped)} feature(s) of the map left out, their geometry unreadable (the "
+            f"first: {skipped[0]})")  # fmt: skip
+
+
+def say_skipped(hole):
+    """Tell, on stderr, what of ``hole``'s map was left out (the commands that play a hole: the
+    hole is played as the rest of its map draws it); nothing for a hole whose map read whole."""
+    if hole is not None and hole.map_skipped:
+        print(f"mcrun: note: {hole.map_source}: {skipped_line(hole.map_skipped)}",
+              file=sys.stderr, flush=True)  # fmt: skip
 
 
 def _list_holes(path):
@@ -49,8 +65,7 @@ def _list_holes(path):
             "give them a 'pin' on a green in a hole file, or mend the map"
         )
     if course.skipped:
-        print(f"{len(course.skipped)} feature(s) of the map left out, their geometry unreadable "
-              f"(the first: {course.skipped[0]})")  # fmt: skip
+        print(skipped_line(course.skipped))
     print(f"map: {course.source}, {ATTRIBUTION}")
 
 
@@ -61,8 +76,7 @@ def _describe(hole):
         ref = f", ref {hole.ref}" if hole.ref else ""
         print(f"map: {hole.map_source}, hole {hole.index}{ref}; {hole.attribution}")
         if hole.map_skipped:
-            print(f"map: {len(hole.map_skipped)} feature(s) left out, their geometry unreadable "
-                  f"(the first: {hole.map_skipped[0]})")  # fmt: skip
+            print(f"map: {skipped_line(hole.map_skipped)}")
     print(f"par: {hole.par if hole.par is not None else '-'}")
     if hole.frame is not None:
         for what, (lon, lat) in (("tee", hole.tee_lonlat), ("pin", hole.pin_lonlat)):

@@ -34,16 +34,19 @@ def _is_hole_file(spec):
 def _hole_of(spec):
     """The Hole of a hole TOML file (its own errors said as they are: no green, a pin off the
     green), or of a scenario (a file or a library name) with a [hole]."""
+    from mcrun.cli.hole import say_skipped
     from mcrun.hole.hole import load_hole
     from mcrun.putting.on_hole import check_putting
     from mcrun.run import scenario as sc
 
     if _is_hole_file(spec):
-        return check_putting(load_hole(spec))
-    scenario = sc.load(spec)
-    if scenario.hole is None:
-        raise InputError(f"HOLE {spec}: a scenario without a [hole]: give a hole file")
-    return check_putting(scenario.hole)
+        hole = load_hole(spec)
+    else:
+        hole = sc.load(spec).hole
+        if hole is None:
+            raise InputError(f"HOLE {spec}: a scenario without a [hole]: give a hole file")
+    say_skipped(hole)
+    return check_putting(hole)
 
 
 def _workers(args):

@@ -68,7 +68,7 @@ def _cmd_putt(args):
     args.stimp = DEFAULT_STIMP if args.stimp is None else args.stimp
     drift = DRIFT_MM_PER_M_BENTGRASS if args.drift is None else _drift(args.drift)
     given = dict(
-        distance_m=parse_quantity(args.distance, "length", "--distance"),
+        distance_m=with_unit(args.distance, "length", "--distance", "10ft"),
         stimp_m=_stimp_m(args.stimp),
         slope_tan=_slope_tan(args.slope),
         direction_deg=parse_quantity(args.direction, "angle", "--direction") * 180.0 / math.pi,
@@ -103,6 +103,7 @@ def _cmd_putt(args):
 def _cmd_green(args):
     """The expected-putts map of a hole's green: a table, a picture, a few lines."""
     from mcrun.cli import Interrupted, write_all_or_nothing
+    from mcrun.cli.hole import say_skipped
     from mcrun.hole.hole import load_hole
     from mcrun.physics.turf import stimp_from_rho_g
     from mcrun.putting.green import GreenError, green_of_hole
@@ -116,7 +117,9 @@ def _cmd_green(args):
             raise InputError(f"--{name}: is for a plane green; with --hole the green is the hole's")
     if args.output is None:
         raise InputError("--hole: give -o FILE.parquet for the map (and --plot FILE.png)")
-    hole = check_putting(load_hole(args.hole), green=False)  # the green: below, at its speed
+    hole = load_hole(args.hole)
+    say_skipped(hole)
+    hole = check_putting(hole, green=False)  # the green: below, at its speed
     stimp_m = None if args.stimp is None else _stimp_m(args.stimp)
     destination = aim.check_output(args.output, args.force, "-o", (".parquet",), ".parquet")
     if args.plot is not None:

@@ -171,6 +171,7 @@ def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tee
     (``hole.elevation``; its ``elevation_crs``), each hole's relative to its tee (default
     flat). Returns (their numbers, the holes, the numbers whose par was taken from their
     length, notes on the order and the tees taken)."""
+    from mcrun.cli.hole import skipped_line
     from mcrun.hole.hole import hole_from_table
     from mcrun.hole.osm import read_course
     from mcrun.hole.tees import hole_tees
@@ -190,6 +191,8 @@ def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tee
     position, order_note = play_order(course)
     boxes = {} if tees is None else hole_tees(course)
     notes = [] if order_note is None else [order_note]
+    if course.skipped:
+        notes.append(skipped_line(course.skipped))
     if yards is not None:
         if spec is None:
             numbers = sorted(yards)

@@ -199,7 +199,7 @@ def _run_options(args):
 
 def _cmd_run(args):
     try:
-        args.scenario = scenario_module.load(args.scenario)
+        args.scenario = _load(args.scenario)
         # The kernels of the scenario's ground alone (a hole's runs nothing on the plane), said
         # apart from the run's time.
         ground, _ = plan.kernels_of(args.scenario)
@@ -263,8 +263,19 @@ def describe(scenario):
     return "\n".join(lines)
 
 
+def _load(spec):
+    """The scenario ``spec`` (a file or a library name), what of its hole's map was left out
+    said."""
+    scenario = scenario_module.load(spec)
+    if scenario.hole is not None:
+        from mcrun.cli.hole import say_skipped
+
+        say_skipped(scenario.hole)
+    return scenario
+
+
 def _cmd_validate(args):
-    scenario = scenario_module.load(args.scenario)
+    scenario = _load(args.scenario)
     text = describe(scenario)
     print(text)
     return 0

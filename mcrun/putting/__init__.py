@@ -127,7 +127,7 @@ def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2
         raise InputError(f"drift {drift_mm_per_m:g} mm/m: allowed: {lo:g} to {hi:g} mm/m "
                          f"({DRIFT_MM_PER_M_BENTGRASS:g}: pure bentgrass)")  # fmt: skip
     lo, hi = PUTTING_N_RANGE
-    if int(n) != n or not lo <= n <= hi:
+    if not lo <= n <= hi or int(n) != n:  # (the range first: NaN and inf are out of it)
         raise InputError(f"n {n}: allowed: a whole number from {lo} to {hi}")
     return putter
 
