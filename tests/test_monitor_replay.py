@@ -265,3 +265,16 @@ def test_a_long_session_is_flown_in_chunks_and_its_memory_bounded(tmp_path, monk
     monkeypatch.setattr(replay, "CHUNK", 7)
     small = replay.replay(garmin_session(tmp_path / "short.csv", 40))
     pd.testing.assert_frame_equal(small, whole.iloc[:40], check_exact=True)
+
+
+def test_a_number_too_large_to_be_a_float_is_said_as_such(tmp_path):
+    """Garmin's ``1e999`` in a speed cell reads as an infinite number: the row is invalid and
+    says so, not that 'inf' could not be read."""
+    lines = (DATA / "garmin-r10-metric.csv").read_text(encoding="utf-8-sig").splitlines()
+    cells = lines[2].split(",")
+    cells[9] = "1e999"  # Ball Speed
+    path = tmp_path / "garmin.csv"
+    path.write_text("\n".join([lines[0], lines[1], ",".join(cells), lines[3]]) + "\n")
+    frame = replay.replay(path)
+    assert list(frame["status"]) == [INVALID_INPUT, OK]
+    assert frame["invalid_reason"].iloc[0] == "Ball Speed: inf is not a finite number"

@@ -102,9 +102,13 @@ def invalid_reasons(session, values, valid, most=None):
         kind = KIND[quantity]
         for row in rows[missing]:
             cell = session.frame[column].iloc[row] if column in session.frame else None
-            reasons[row] = f"{column}: " + (
-                "empty" if cell is None or pd.isna(cell) else f"{shown(str(cell), 30)} not read"
-            )
+            if cell is None or pd.isna(cell):
+                why = "empty"
+            elif isinstance(cell, float | np.floating):  # read as a number: inf ("1e999")
+                why = f"{cell} is not a finite number"
+            else:
+                why = f"{shown(str(cell), 30)} not read"
+            reasons[row] = f"{column}: {why}"
         for row, value in zip(rows[outside], si[outside], strict=True):
             reasons[row] = f"{column}: {_in_unit(value, kind, unit)} is outside " + (
                 f"[{_in_unit(lo, kind, unit)}, {_in_unit(hi, kind, unit)}]"
