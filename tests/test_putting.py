@@ -278,3 +278,26 @@ def test_putt_refuses_more_putts_than_a_hole_may_value(n):
 def test_putt_refuses_an_unknown_putter():
     with pytest.raises(InputError, match="allowed: tour, scratch, 15-handicap"):
         putt(3.0, 3.3, 0.01, 0.0, putter="pro")
+
+
+@pytest.mark.determinism
+def test_a_putt_is_the_same_on_one_thread_and_on_two():
+    """The read's hole-outs from where the first putts stop run on every thread
+    (``rest._hole_outs``): each sample with its own errors, the same putts and the same read
+    whatever the thread count."""
+    import numba
+
+    args = (3.0, 3.3, 0.02, 60.0)
+    previous = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        one = putt(*args, n=300, seed=5)
+    finally:
+        numba.set_num_threads(previous)
+    numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+    try:
+        two = putt(*args, n=300, seed=5)
+    finally:
+        numba.set_num_threads(previous)
+    np.testing.assert_array_equal(one.putts, two.putts)
+    assert one.read == two.read and one.average_putts == two.average_putts

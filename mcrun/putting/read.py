@@ -7,7 +7,7 @@ tilt, ``stroke.tilt``): the putter chooses where to aim relative to the break it
 search with common random numbers: every candidate is struck with the same n putts' errors, so
 that the differences between candidates are the candidates', not the samples'. First the paces
 ``PACES_M``, each on the perceived centre line; then, at the best pace, start lines
-``AIM_STEPS_DEG`` either side of it. What a ball at rest is worth is ``rest.rest_value``.
+``AIM_STEPS_DEG`` either side of it. What a ball at rest is worth is ``rest.rest_values``.
 
 The perceived centre line of each of the n putts is the quadratic in its misread tilt (tx, ty)
 through the centre lines at the tilts (0, 0), (+-h, 0), (0, +-h) and (h, h), h the putter's
@@ -27,7 +27,7 @@ import numpy as np
 from numba import njit
 
 from mcrun.putting.cup import HOLE_RADIUS_M
-from mcrun.putting.rest import off_value, rest_value
+from mcrun.putting.rest import off_value, rest_values
 from mcrun.putting.roll import STATUS_HOLED, STATUS_STOPPED
 from mcrun.putting.stroke import centre_line, pace_speed_mps, strike_lanes, struck_velocity, tilt
 
@@ -111,14 +111,16 @@ def score(x, y, hx, hy, pace_m, offset, lines, green, stroke, z, keys, rest, put
     status = np.empty(n, dtype=np.int64)
     end_x, end_y = np.empty(n), np.empty(n)
     strike_lanes(start_x, start_y, vx, vy, drift_keys, hx, hy, green, status, end_x, end_y)
+    later, p1_later = np.zeros(n), np.zeros(n)
+    rest_values(end_x, end_y, status, hx, hy, green, stroke, rest, later, p1_later)
     total, total2, ones, threes = 0.0, 0.0, 0.0, 0.0
     for i in range(n):
         if status[i] == STATUS_HOLED:
             value, p1_next, holed = 1.0, 1.0, True
         elif status[i] == STATUS_STOPPED:
-            later, p1_next = rest_value(end_x[i], end_y[i], hx, hy, green, stroke, rest, i)
-            holed = later == 0.0
-            value = 1.0 + later
+            p1_next = p1_later[i]
+            holed = later[i] == 0.0
+            value = 1.0 + later[i]
         else:  # off the green (or never at rest)
             value = 1.0 + off_value(end_x[i], end_y[i], hx, hy, rest)
             p1_next, holed = 0.0, False

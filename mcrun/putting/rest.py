@@ -15,12 +15,13 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from mcrun.putting.cup import HOLE_RADIUS_M
-from mcrun.putting.stroke import MAX_PUTTS, hole_out_from
+from mcrun.putting.roll import STATUS_STOPPED, Surface
+from mcrun.putting.stroke import MAX_PUTTS, PuttGreen, hole_out_from
 
-__all__ = ["HOLE_OUT", "MAP", "RestValues", "hole_out_values", "rest_value"]
+__all__ = ["HOLE_OUT", "MAP", "RestValues", "hole_out_values", "rest_values"]
 
 HOLE_OUT = 0
 MAP = 1
@@ -136,13 +137,36 @@ def map_value(x, y, hx, hy, rest):
 
 
 @njit(cache=True)
-def rest_value(x, y, hx, hy, green, stroke, rest, i):
-    """(expected strokes still to come, one-putt share) of sample ``i``'s ball at rest at
-    (x, y) after its first putt."""
+def rest_values(end_x, end_y, status, hx, hy, green, stroke, rest, later, p1):
+    """(expected strokes still to come, one-putt share) of each sample's ball at rest after its
+    first putt (status[i] STATUS_STOPPED) at (end_x[i], end_y[i]), into later[i] and p1[i]
+    (the others' left as they are): a map's values interpolated, one sample after the other;
+    holing out, each sample's later putts with its own errors, on every thread
+    (``_hole_outs``)."""
     if rest.kind == MAP:
-        return map_value(x, y, hx, hy, rest)
-    putts = hole_out_from(x, y, hx, hy, green, stroke, rest.z[i], rest.keys[i], 1)[0]
-    return float(putts), 1.0 if putts == 1 else 0.0
+        for i in range(status.shape[0]):
+            if status[i] == STATUS_STOPPED:
+                later[i], p1[i] = map_value(end_x[i], end_y[i], hx, hy, rest)
+    else:
+        s = green.surface
+        _hole_outs(end_x, end_y, status, hx, hy, s.height_m, s.on_green, s.x0_m, s.y0_m,
+                   s.cell_m, green[1:], stroke, rest.z, rest.keys, later, p1)  # fmt: skip
+
+
+@njit(cache=True, parallel=True)
+def _hole_outs(end_x, end_y, status, hx, hy, height_m, on_green, x0_m, y0_m, cell_m, plane,
+               stroke, z, keys, later, p1):  # fmt: skip
+    """``rest_values`` holing out: sample i's later putts with its errors z[i] and drift keys
+    keys[i], whatever thread takes it (a plane green's putt: thousands of hole-outs; a map's
+    solver, on threads of its own, reads its values instead). The green comes in its parts
+    (its surface's, then the rest of the ``PuttGreen``, ``plane``), put together in the loop:
+    Numba's parallel loops take no tuple that holds arrays."""
+    for i in prange(status.shape[0]):
+        if status[i] == STATUS_STOPPED:
+            green = PuttGreen(Surface(height_m, on_green, x0_m, y0_m, cell_m), *plane)
+            putts = hole_out_from(end_x[i], end_y[i], hx, hy, green, stroke, z[i], keys[i], 1)[0]
+            later[i] = float(putts)
+            p1[i] = 1.0 if putts == 1 else 0.0
 
 
 @njit(cache=True)
