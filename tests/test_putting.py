@@ -253,6 +253,7 @@ def test_mcrun_putt_prints_the_make_rate_and_the_read(capsys):
         (["--distance", "1cm"], "distance"),
         (["--distance", "10ft", "-n", "1"], "-n"),
         (["--distance", "10ft", "-n", "1e9"], "-n '1e9': allowed: a whole number from 2 to 100000"),
+        (["--distance", "10ft", "-n", "inf"], "-n 'inf': allowed: a whole number from 2 to 100000"),
         (["--distance", "10ft", "--stimp", "-3ft"], "Stimp"),
         (["--distance", "10ft", "--stimp", "3"], "--stimp 3: give its unit, e.g. 11ft"),
         (["--distance", "10"], "--distance 10: give its unit, e.g. 10ft"),  # (10 m or 10 ft?)

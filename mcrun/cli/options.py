@@ -76,10 +76,10 @@ def whole(text, option, least, most=None):
         value = float(text)
     except ValueError:
         value = math.nan
-    if not math.isfinite(value) or value != int(value) or value < least:
-        raise InputError(f"{option} {text!r}: allowed: a whole number of at least {least}")
-    if most is not None and value > most:
-        raise InputError(f"{option} {text!r}: allowed: a whole number from {least} to {most}")
+    top = math.inf if most is None else most
+    if not (math.isfinite(value) and least <= value <= top and value == int(value)):
+        allowed = f"from {least} to {most}" if most is not None else f"of at least {least}"
+        raise InputError(f"{option} {text!r}: allowed: a whole number {allowed}")
     return int(value)
 
 

@@ -233,7 +233,7 @@ def register(subparsers):
         "mcrun putt --hole green.toml -o putts.parquet --plot putts.png",
         allow_abbrev=False,
     )
-    p.add_argument("--distance", help="to the hole, e.g. 10ft, 3m")
+    p.add_argument("--distance", help="to the hole, with its unit: e.g. 10ft, 3m")
     lo, hi = STIMP_RANGE_FT
     p.add_argument("--stimp", help=f"the green's Stimpmeter reading, {lo:g}ft to {hi:g}ft "
                    f"({DEFAULT_STIMP}; with --hole: the hole's green's)")  # fmt: skip
