@@ -802,3 +802,18 @@ def test_a_file_saved_with_a_byte_order_mark_reads_as_without(tmp_path):
     marked = tmp_path / "bom.toml"
     marked.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes())
     assert sc.load(marked).points[0].params == sc.load(plain).points[0].params
+
+
+def test_a_sweep_of_too_many_points_is_refused_before_one_is_built(tmp_path):
+    """The points are counted from the lists' lengths (groups times the sweep's combinations):
+    10^7 points took minutes and gigabytes to build before they were refused or run."""
+    values = ", ".join(f'"{k} deg"' for k in range(-49, 51))  # 100 values
+    text = (BALL + "[[group]]\nname = 'a'\n[[group]]\nname = 'b'\n[sweep]\n"
+            f'"launch.azimuth" = [{values}]\n"launch.spin_axis" = [{values}]\n'
+            '"turf.mu" = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]\n')  # fmt: skip
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(write(tmp_path, text))
+    assert str(info.value).endswith(
+        "s.toml: sweep: 120,000 points (2 groups x 60,000 of the sweep): allowed are at most "
+        "100,000"
+    )

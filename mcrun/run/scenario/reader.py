@@ -2,6 +2,7 @@
 quantities given or their defaults, the launch by ball, club or file)."""
 
 import itertools
+import math
 import tomllib
 from pathlib import Path
 
@@ -35,6 +36,9 @@ from mcrun.run.scenario.values import (
 _TOP_KEYS = ("scenario", *SECTION_NAMES, "group", "sweep", "hole")
 # A scenario's name is its default run folder's (``runs/<name>-<seed>``), with room for the seed.
 MAX_NAME_BYTES = 200
+# The points a scenario may have (its groups times its sweep's combinations): each is read and
+# checked as it is built (a hundred thousand take some 20 s and 0.9 GB).
+MAX_POINTS = 100_000
 _SCENARIO_KEYS = ("name", "question", "description", "shots", "seed", "target", "block_size")
 _GROUP_KEYS = ("name", "target", "hole", *SECTION_NAMES)
 _BALL = ("ball_speed", "launch_angle", "spin")
@@ -327,6 +331,11 @@ def loads(text, path):
             group_list.append((gname, overrides, gtarget, gplay))
 
     sweep = sweep_leaves(ctx, data["sweep"]) if "sweep" in data else []
+    combinations = math.prod(len(leaves) for _, _, _, leaves in sweep)
+    if len(group_list) * combinations > MAX_POINTS:  # counted before a point is built
+        each = f" ({len(group_list)} groups x {combinations:,} of the sweep)" if groups else ""
+        raise ctx.error("sweep" if sweep else "group", f"{len(group_list) * combinations:,} "
+                        f"points{each}: allowed are at most {MAX_POINTS:,}")  # fmt: skip
     combos = list(itertools.product(*(leaves for _, _, _, leaves in sweep))) if sweep else [()]
 
     points = []
