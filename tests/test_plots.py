@@ -13,11 +13,13 @@ numbers; and every mistake a user can make must end in one line and exit code 2.
 import base64
 import html
 import re
+import shutil
 import struct
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 import pyarrow.parquet as pq
 import pytest
 
@@ -360,7 +362,8 @@ def test_a_folder_that_is_not_a_run_is_one_line(runs, tmp_path, capsys, command)
     one_line_error(capsys, main([command, str(tmp_path)]), "not an mcrun run folder")
     a_file = tmp_path / "file.txt"
     a_file.write_text("x")
-    one_line_error(capsys, main([command, str(a_file)]), "is not a folder")
+    one_line_error(capsys, main([command, str(a_file)]), "is not a folder" if command == "report"
+                   else "is a file but not one that mcrun replay wrote")  # fmt: skip
     partial = tmp_path / "partial"
     partial.mkdir()
     (partial / output.SUMMARY_FILE).write_bytes((runs["groups"] / output.SUMMARY_FILE).read_bytes())
@@ -370,6 +373,60 @@ def test_a_folder_that_is_not_a_run_is_one_line(runs, tmp_path, capsys, command)
     (broken / output.SHOTS_FILE).write_bytes(b"not parquet")
     (broken / output.SUMMARY_FILE).write_bytes(b"not parquet either")
     one_line_error(capsys, main([command, str(broken)]), "cannot read the run")
+
+
+def _damaged(source, folder, shots=None, trajectories=None):
+    """A copy of the run folder ``source`` at ``folder``, its shots and trajectories replaced
+    by the tables given."""
+    shutil.copytree(source, folder)
+    for name, table in ((output.SHOTS_FILE, shots), (output.TRAJECTORIES_FILE, trajectories)):
+        if table is not None:
+            pq.write_table(table, folder / name)
+    return folder
+
+
+@pytest.mark.parametrize("command", ["plot", "report"])
+def test_a_run_folder_of_two_runs_or_damaged_columns_is_one_line(runs, tmp_path, capsys,
+                                                                  command):  # fmt: skip
+    """Shots of another run beside a summary, shots cut short, a column of text where numbers
+    go or a trajectory column missing: each refused in one line naming the file, where they
+    drew another run's shots under this one's title, or ended in a traceback."""
+    single, groups = runs["single"], runs["groups"]
+
+    def out(k):
+        return str(tmp_path / (f"o{k}.html" if command == "report" else f"o{k}"))
+
+    mixed = tmp_path / "mixed"
+    shutil.copytree(single, mixed)
+    shutil.copy(groups / output.SHOTS_FILE, mixed / output.SHOTS_FILE)
+    one_line_error(
+        capsys,
+        main([command, str(mixed), "-o", out(1)]),
+        "shots.parquet and summary.parquet are not of one run (scenario_name",
+    )
+    shots = pq.read_table(single / output.SHOTS_FILE)
+    short = _damaged(single, tmp_path / "short", shots=shots.slice(0, 10))
+    one_line_error(
+        capsys,
+        main([command, str(short), "-o", out(2)]),
+        f"shots.parquet has 10 shots where summary.parquet counts {SINGLE_N:,}",
+    )
+    k = shots.schema.get_field_index("total_m")
+    text = shots.set_column(k, "total_m", pa.array(shots["total_m"].to_numpy().astype(str)))
+    strings = _damaged(single, tmp_path / "strings", shots=text)
+    one_line_error(
+        capsys,
+        main([command, str(strings), "-o", out(3)]),
+        "strings/shots.parquet: column total_m is string: allowed are numbers",
+    )
+    paths = pq.read_table(single / output.TRAJECTORIES_FILE)
+    no_z = _damaged(single, tmp_path / "no_z", trajectories=paths.drop_columns(["z_m"]))
+    one_line_error(
+        capsys,
+        main([command, str(no_z), "-o", out(4)]),
+        "no_z/trajectories.parquet was not written by mcrun run: no column z_m",
+    )
+    assert not any(Path(out(k)).exists() for k in range(1, 5))
 
 
 def test_an_unwritable_output_is_one_line(runs, tmp_path, capsys):

@@ -203,3 +203,33 @@ def test_replay_plot_interrupted_says_what_was_written(tmp_path, monkeypatch, ca
     err = capsys.readouterr().err
     assert err.startswith(f"mcrun: interrupted: wrote {out}") and "pictures were not" in err, err
     assert out.exists() and not list(tmp_path.glob("*.png"))
+
+
+def test_plot_of_a_damaged_replay_file_is_one_line(tmp_path, capsys):
+    """A replay's Parquet without a column the pictures draw, with text in it, or with no
+    rows; a Parquet file that mcrun replay did not write: one line each, nothing drawn, where
+    they ended in a KeyError or said "is not a folder"."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    pytest.importorskip("matplotlib")
+    out = tmp_path / "tm.parquet"
+    assert main(["replay", str(DATA / "trackman-normalized.csv"), "-o", str(out), "--quiet"]) == 0
+    capsys.readouterr()
+    table = pq.read_table(out)
+    k = table.schema.get_field_index("carry_m")
+    text = pa.array(table["carry_m"].to_numpy().astype(str))
+    cases = {
+        "no_carry": (table.drop_columns(["carry_m"]), "no_carry.parquet was not written by "
+                     "mcrun replay: no column carry_m"),
+        "text": (table.set_column(k, "carry_m", text), "text.parquet: column carry_m is "),
+        "empty": (table.slice(0, 0), "empty.parquet: no shots to draw"),
+        "bare": (table.replace_schema_metadata(None), "bare.parquet is a file but not one that "
+                 "mcrun replay wrote (its provenance says file = None"),
+    }  # fmt: skip
+    for name, (damaged, says) in cases.items():
+        path = tmp_path / f"{name}.parquet"
+        pq.write_table(damaged, path)
+        code = main(["plot", str(path), "-o", str(tmp_path / name), "--dpi", "30"])
+        one_line_error(capsys, code, says)
+        assert not (tmp_path / name).exists()

@@ -1,9 +1,12 @@
 """``mcrun plot`` and ``mcrun report``: the pictures of a finished run (``mcrun.report.plots``)
 and its self-contained HTML page (``mcrun.report.html``)."""
 
+from pathlib import Path
+
 from mcrun.cli import Interrupted
 from mcrun.cli.options import DPI_RANGE, dpi_value
 from mcrun.report import hole_plots, html, plots, replay_plots, style
+from mcrun.report.run_view import PlotError
 
 
 def _cmd_plot(args):
@@ -11,6 +14,8 @@ def _cmd_plot(args):
         for path in replay_plots.plot_replay_file(args.run_dir, args.out, args.dpi):
             print(f"wrote {path}")
         return 0
+    if Path(args.run_dir).is_file():
+        raise PlotError(replay_plots.not_a_replay(args.run_dir))
     try:
         written = plots.write_plots(
             args.run_dir, args.out, args.dpi, point_figures=hole_plots.point_figures

@@ -247,6 +247,34 @@ def is_replay(path):
         return False
 
 
+def _check_replay(path, frame):
+    """PlotError unless ``frame`` (read from ``path``) has shots and the columns the pictures
+    draw, numbers where they are numbers, as ``mcrun replay`` writes them."""
+    if frame.empty:
+        raise PlotError(f"{path}: no shots to draw")
+    for name in ("status", *(column for _, column in clubs.SPREAD)):
+        if name not in frame:
+            raise PlotError(f"{path} was not written by mcrun replay: no column {name}")
+        if not pd.api.types.is_numeric_dtype(frame[name]):
+            raise PlotError(f"{path}: column {name} is {frame[name].dtype}: allowed are "
+                            "numbers, as mcrun replay writes them")  # fmt: skip
+
+
+def not_a_replay(path):
+    """Why the file ``path`` is not one that ``mcrun replay`` wrote (for ``mcrun plot FILE``),
+    one line."""
+    try:
+        provenance = output.read_provenance(path)
+    except Exception as err:  # not a Parquet, or provenance not as mcrun writes it
+        why = f"its provenance cannot be read: {reader.reason_of(err)}"
+    else:
+        why = f"its provenance says file = {provenance.get('file')!r}, not 'replay'"
+    return (
+        f"{path} is a file but not one that mcrun replay wrote ({why}): give a run folder "
+        "or a replay's file"
+    )
+
+
 def plot_replay_file(path, out_dir=None, dpi=150):
     """The PNGs of a replay output ``path`` (``mcrun plot REPLAY.parquet``), written into
     ``out_dir`` (default: beside it); return the paths written."""
@@ -256,6 +284,7 @@ def plot_replay_file(path, out_dir=None, dpi=150):
         frame = pd.read_parquet(path)
     except Exception as err:  # a damaged file: one line
         raise PlotError(f"{path}: cannot read the replay: {err}") from None
+    _check_replay(path, frame)
     destination = path if out_dir is None else Path(out_dir) / path.name
     if out_dir is not None:
         try:

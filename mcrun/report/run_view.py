@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 
 from mcrun import status as status_codes
 from mcrun.quantities import InputError
@@ -152,10 +153,33 @@ def open_run(run_dir):
         raise PlotError(
             f"the shots of {folder.path} were not written by mcrun run: no column {missing[0]}"
         )
+    _check_numbers(folder, output.SHOTS_FILE, SHOT_COLUMNS)
+    if folder.has_trajectories:
+        _check_numbers(folder, output.TRAJECTORIES_FILE, TRAJECTORY_COLUMNS)
     summary = summary.sort_values("point").reset_index(drop=True)
     columns = list(summary.columns)
     sweep_keys = columns[columns.index("label") + 1 : columns.index("n_shots")]
     return Run(folder, summary, sweep_keys)
+
+
+def _check_numbers(folder, what, columns):
+    """PlotError unless each of ``columns`` of the run's ``what`` (shots or trajectories) is
+    there and holds numbers (a dictionary of names for ``phase``), as mcrun run writes them."""
+    try:
+        schema = folder.schema(what)
+    except (OSError, pa.ArrowException) as err:
+        raise PlotError(f"cannot read {folder.path}/{what}: {err}") from None
+    for name in columns:
+        if name not in schema.names:
+            raise PlotError(f"{folder.path}/{what} was not written by mcrun run: no column {name}")
+        kind = schema.field(name).type
+        if name == "phase":  # the phases' names
+            ok, allowed = pa.types.is_dictionary(kind), "names (a dictionary)"
+        else:
+            ok, allowed = pa.types.is_floating(kind) or pa.types.is_integer(kind), "numbers"
+        if not ok:
+            raise PlotError(f"{folder.path}/{what}: column {name} is {kind}: allowed are "
+                            f"{allowed}, as mcrun run writes them")  # fmt: skip
 
 
 # --- what is drawn of one point ----------------------------------------------------------------

@@ -144,7 +144,11 @@ def decode_provenance(metadata):
         value = value.decode() if isinstance(value, bytes) else value
         if key.startswith(PREFIX):
             name = key[len(PREFIX) :]
-            fields[name] = value if name in _TEXT_FIELDS else json.loads(value)
+            try:
+                fields[name] = value if name in _TEXT_FIELDS else json.loads(value)
+            except ValueError:
+                raise ValueError(f"its metadata {key} = {value[:40]!r} is not JSON, as mcrun "
+                                 "writes it") from None  # fmt: skip
     return fields
 
 

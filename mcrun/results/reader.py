@@ -82,6 +82,21 @@ class RunFolder:
             self._hole_map.append(geometry.read_hole_map(self.provenance))
         return self._hole_map[0]
 
+    def schema(self, what=output.SHOTS_FILE):
+        """The pyarrow schema of the run's shots (``output.SHOTS_FILE``) or trajectories
+        (``output.TRAJECTORIES_FILE``): the file's, or a dataset's (its first part's for the
+        trajectories)."""
+        if self.layout == FILE_LAYOUT:
+            with self.fs.open_input_file(f"{self.root}/{what}") as f:
+                return pq.read_schema(f)
+        if what == output.SHOTS_FILE:
+            return _dataset(self.fs, self.root).schema
+        for parts in self._parts(output.TRAJECTORIES_DIR).values():
+            for name in parts:
+                with self.fs.open_input_file(name) as f:
+                    return pq.read_schema(f)
+        return output.TRAJECTORY_SCHEMA
+
     def shots(self, columns=None):
         """The shots as one DataFrame, as pandas reads the local executor's shots.parquet: rows
         by point and shot, the same columns in the same order and types (``group`` a
@@ -218,6 +233,27 @@ def _point_batches(parquet_file, point, columns, batch_rows):
         yield out
 
 
+# What tells one run from another in its files' provenance.
+RUN_KEYS = ("scenario_name", "start_time_utc", "seed", "n")
+
+
+def _check_one_run(folder, summary, provenance, shots):
+    """RunFolderError unless the shots (``shots``, the Parquet metadata of shots.parquet) are
+    the summary's: the same run in their provenance, as many rows as the summary counts."""
+    theirs = output.decode_provenance(shots.metadata)
+    for key in RUN_KEYS:
+        if key in provenance and key in theirs and provenance[key] != theirs[key]:
+            raise RunFolderError(
+                f"{folder}: {output.SHOTS_FILE} and {output.SUMMARY_FILE} are not of one run "
+                f"({key} {theirs[key]!r} against {provenance[key]!r})"
+            )
+    if "n_shots" in summary and int(summary["n_shots"].sum()) != shots.num_rows:
+        raise RunFolderError(
+            f"{folder}: {output.SHOTS_FILE} has {shots.num_rows:,} shots where "
+            f"{output.SUMMARY_FILE} counts {int(summary['n_shots'].sum()):,}: not one run's files"
+        )
+
+
 def open_run(folder):
     """Open a finished run folder of either layout, a path or an fsspec URL: a ``RunFolder``.
 
@@ -263,8 +299,14 @@ def open_run(folder):
         with fs.open_input_file(f"{root}/{output.SUMMARY_FILE}") as f:
             provenance = output.decode_provenance(pq.read_metadata(f).metadata)
         shot_columns = _shot_columns(fs, root, layout)
+        shots = None
+        if layout == FILE_LAYOUT:
+            with fs.open_input_file(f"{root}/{output.SHOTS_FILE}") as f:
+                shots = pq.read_metadata(f)
     except (OSError, pa.ArrowException, ValueError) as err:
         raise RunFolderError(f"cannot read the run in {folder}: {reason_of(err)}") from None
+    if shots is not None:
+        _check_one_run(folder, summary, provenance, shots)
     return RunFolder(folder, url, fs, root, layout, summary, provenance, shot_columns, trajectories)
 
 
