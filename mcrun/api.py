@@ -87,8 +87,9 @@ def resolve_turf(turf=DEFAULTS["turf"], **overrides):
     if stimp_m is not None and "rho_g" in overrides:
         raise InputError("give rho_g or a Stimp reading, not both")
     if stimp_m is not None:
+        stimp_m = check_range("stimp_m", stimp_m)  # (a rho_g out of range named no Stimp)
         try:
-            overrides["rho_g"] = rho_g_from_stimp(float(stimp_m))
+            overrides["rho_g"] = rho_g_from_stimp(stimp_m)
         except ValueError as err:
             raise InputError(str(err)) from None
     unknown = set(overrides) - set(Turf._fields)

@@ -293,6 +293,11 @@ def test_bad_shot_input_is_one_line_and_exit_2(capsys, argv):
          "--angle (impact_angle_deg) = 95 is outside the allowed range [0, 89.9]"),
         ("bounce", ["--speed", "20", "--angle", "45", "--spin", "1e9"],
          "--spin (backspin_radps) = 1e+09 is outside the allowed range [-2000, 2000]"),
+        # (1e9 m ran a shot that never stopped; 0.01mm named a rho_g never given)
+        ("shot", [*DRIVE_ARGS, "--stimp", "1e9"],
+         "--stimp 1e9: allowed: 0.33 ft to 19.7 ft (a Stimpmeter reading)"),
+        ("shot", [*DRIVE_ARGS, "--stimp", "0.01mm"],
+         "--stimp 0.01mm: allowed: 0.33 ft to 19.7 ft (a Stimpmeter reading)"),
     ],
 )  # fmt: skip
 def test_a_value_out_of_range_names_its_option(capsys, command, argv, says):

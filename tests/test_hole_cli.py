@@ -129,6 +129,7 @@ def test_a_plot_of_an_unknown_picture_format_is_one_line(capsys, tmp_path):
     formats allowed, exit 2, nothing written (it was a traceback)."""
     target = tmp_path / "map.xyz"
     assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(target)]) == 2
-    err = capsys.readouterr().err
+    out, err = capsys.readouterr()
     assert err.count("\n") == 1 and "--plot" in err and ".png" in err, err
+    assert out == ""  # refused before the hole is described
     assert list(tmp_path.iterdir()) == []

@@ -438,6 +438,9 @@ def test_an_unwritable_output_is_one_line(runs, tmp_path, capsys):
     one_line_error(capsys, code, "is a folder")
     code = main(["report", str(runs["groups"]), "-o", str(blocker / "r.html")])
     one_line_error(capsys, code, "-o:")
+    code = main(["report", str(runs["groups"]), "-o", str(tmp_path / "r.pdf")])  # (was HTML)
+    one_line_error(capsys, code, "r.pdf: the report is an HTML page: give a file ending in .html")
+    assert not (tmp_path / "r.pdf").exists()
 
 
 @pytest.mark.parametrize("command", ["plot", "report"])

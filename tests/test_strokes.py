@@ -235,6 +235,10 @@ def test_a_users_baseline(tmp_path):
     mine = load_baseline(path)
     assert float(mine.expected("fairway", 116 * YD)) == pytest.approx(2.84 + 0.5, abs=1e-12)
     assert float(mine.expected("green", 10 * FT)) == pytest.approx(2.11, abs=1e-12)
+    # Saved by Excel as "CSV UTF-8": a byte-order mark before the first line (it read as a
+    # column named '\ufeff# Expected strokes...').
+    path.write_text("\n".join(out) + "\n", encoding="utf-8-sig")
+    assert float(load_baseline(path).expected("fairway", 116 * YD)) == pytest.approx(3.34)
 
 
 GOOD_HEADER = "lie,distance_yd,distance_ft,expected_strokes"

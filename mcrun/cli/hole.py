@@ -101,6 +101,10 @@ def _describe(hole):
 
 def _cmd_hole(args):
     path = Path(args.file)
+    suffix = Path(args.plot).suffix.lower() if args.plot else None
+    if args.plot and suffix not in PICTURE_SUFFIXES:  # before the hole is described
+        raise CommandError(f"--plot {args.plot}: a picture is {', '.join(PICTURE_SUFFIXES)}, "
+                           f"got {suffix or 'no suffix'}")  # fmt: skip
     if path.suffix.lower() in GEOJSON_SUFFIXES:
         if args.hole is None:
             if args.plot:
@@ -115,12 +119,6 @@ def _cmd_hole(args):
     if args.plot:
         from mcrun.report.hole_map import write_hole_map
 
-        suffix = Path(args.plot).suffix.lower()
-        if suffix not in PICTURE_SUFFIXES:
-            raise CommandError(
-                f"--plot {args.plot}: a picture is {', '.join(PICTURE_SUFFIXES)}, got "
-                f"{suffix or 'no suffix'}"
-            )
         try:
             write_hole_map(hole, args.plot)
         except OSError as err:

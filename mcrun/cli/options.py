@@ -147,13 +147,20 @@ def given(**kwargs):
 
 def turf_from_args(args):
     """The turf preset named by ``--turf`` with the overrides given on the command line."""
+    stimp_m = quantity(args.stimp, "length", "--stimp")
+    if stimp_m is not None:  # named as given (the API names stimp_m, in m)
+        lo, hi = api.RANGES["stimp_m"]
+        if not lo <= stimp_m <= hi:
+            ft = units.to_unit(1.0, "length", "ft")
+            raise InputError(f"--stimp {args.stimp}: allowed: {lo * ft:.2g} ft to "
+                             f"{hi * ft:.3g} ft (a Stimpmeter reading)")  # fmt: skip
     return api.resolve_turf(
         args.turf,
         **given(
             mu=number(args.mu, "--mu"),
             softness=number(args.softness, "--softness"),
             rho_g=number(args.rho_g, "--rho-g"),
-            stimp_m=quantity(args.stimp, "length", "--stimp"),
+            stimp_m=stimp_m,
             critical_height_m=quantity(args.critical_height, "length", "--critical-height"),
         ),
     )

@@ -120,8 +120,8 @@ def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2
             f"slope {100 * slope_tan:g} %: steeper than the stopping slope of a Stimp "
             f"{stimp_m / 0.3048:g} ft green ({100 * rest:.1f} %): a ball cannot rest there"
         )
-    if not math.isfinite(direction_deg):
-        raise InputError(f"direction {direction_deg}: allowed: a finite angle in degrees")
+    if not abs(direction_deg) <= 360.0:  # (NaN and inf fail too)
+        raise InputError(f"direction {direction_deg:g} deg: allowed: -360 to 360 deg")
     lo, hi = DRIFT_RANGE_MM_PER_M
     if not lo <= drift_mm_per_m <= hi:
         raise InputError(f"drift {drift_mm_per_m:g} mm/m: allowed: {lo:g} to {hi:g} mm/m "

@@ -27,6 +27,7 @@ from mcrun.results.reader import reason_of
 
 DEFAULT_REPORT_DPI = 100
 REPORT_FILE = "report.html"
+REPORT_SUFFIXES = (".html", ".htm")
 
 # --- the report --------------------------------------------------------------------------------
 
@@ -450,6 +451,9 @@ def write_report(run_dir, path=None, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER
     run = open_run(run_dir)
     require_matplotlib("report")
     path = Path(run.beside(REPORT_FILE) if path is None else path)
+    if path.suffix.lower() not in REPORT_SUFFIXES and not path.is_dir():  # (a folder: below)
+        raise PlotError(f"-o {path}: the report is an HTML page: give a file ending in "
+                        f"{' or '.join(REPORT_SUFFIXES)}")  # fmt: skip
     destination = output.AtomicFile(path, force=True)
     try:
         destination.__enter__()  # refuses a folder or an unwritable place, creates the parents

@@ -160,7 +160,7 @@ def load_baseline(path):
     # A str or Path, or an importlib.resources Traversable (the package's table).
     source = Path(path) if isinstance(path, str) else path
     try:
-        text = source.read_text(encoding="utf-8")
+        text = source.read_text(encoding="utf-8-sig")  # (a BOM, as Excel writes)
     except (OSError, UnicodeDecodeError) as error:
         raise BaselineError(
             f"{name}: cannot be read as a UTF-8 CSV ({error.__class__.__name__})"
