@@ -5,6 +5,7 @@ conversion to the kernel's columns are those of the table of quantities (``mcrun
 which the runs share.
 """
 
+import inspect
 import math
 from dataclasses import dataclass
 
@@ -82,6 +83,8 @@ def resolve_turf(turf=DEFAULTS["turf"], **overrides):
             turf = turf_preset(turf)
         except ValueError as err:
             raise InputError(str(err)) from None
+    elif not isinstance(turf, Turf):
+        raise InputError(f"turf {turf!r}: allowed: a preset's name (mcrun turfs) or a Turf")
     overrides = {k: v for k, v in overrides.items() if v is not None}
     stimp_m = overrides.pop("stimp_m", None)
     if stimp_m is not None and "rho_g" in overrides:
@@ -263,6 +266,24 @@ def flight_params(
     )
 
 
+def _keywords(*functions):
+    """The named parameters of ``functions``, in order (their ``**`` apart)."""
+    return [name for f in functions for name, p in inspect.signature(f).parameters.items()
+            if p.kind is not p.VAR_KEYWORD]  # fmt: skip
+
+
+def _check_keywords(given, *functions):
+    """InputError naming the first of the keyword arguments ``given`` that none of
+    ``functions`` takes, and every one a shot takes (a TypeError naming a private function
+    before)."""
+    known = _keywords(*functions)
+    unknown = [k for k in given if k not in known]
+    if unknown:
+        allowed = _keywords(shot_inputs, _conditions_values, _flight_values, _air_values)
+        raise InputError(f"unknown argument {unknown[0]!r}; allowed: {', '.join(allowed)} (a "
+                         "turf's fields: turf=resolve_turf(preset, mu=...))")  # fmt: skip
+
+
 def _conditions_values(
     turf=DEFAULTS["turf"],
     slope_deg=DEFAULTS["slope_deg"],
@@ -280,6 +301,7 @@ def _conditions_values(
         dt_s = default_of("models.dt", {"weather.wind_profile": profile})
     values["models.dt"] = check_range("dt_s", dt_s)
     values["turf.preset"] = resolve_turf(turf)
+    _check_keywords(conditions, _flight_values, _air_values)
     flight, wind, density = _flight_values(**conditions)
     values.update(flight)
     # The turf's fields are the Turf's (its restitution as it is).
@@ -319,6 +341,7 @@ def shot_inputs(
     the club delivery gives it (the kernel reports it back through radians, which may move its
     last bit).
     """
+    _check_keywords(conditions, _conditions_values, _flight_values, _air_values)
     speed, angle_deg, spin = launch_conditions(
         ball_speed_mps, launch_angle_deg, spin_radps, club_speed_mps, club_mass_kg, loft_deg
     )

@@ -345,6 +345,22 @@ def test_bounce_input_ranges_are_those_of_the_api(capsys):
     assert "impact_angle_deg" in err and "[0, 89.9]" in err
 
 
+def test_the_api_names_an_unknown_argument_and_a_turf_that_is_none():
+    """A misspelt keyword or a turf's field given to ``simulate`` (a TypeError naming a private
+    function), and a turf that is neither a name nor a Turf (an AttributeError): InputError
+    naming it and what is allowed; ``resolve_turf`` checks a Stimp reading's range."""
+    launch = {"launch_angle_deg": 11.0, "spin_radps": 280.0}
+    for given, name in (({"ball_speed": 70.0}, "ball_speed"), ({"mu": 0.3}, "mu")):
+        with pytest.raises(api.InputError, match=rf"^unknown argument '{name}'; allowed: "
+                           "ball_speed_mps, launch_angle_deg"):  # fmt: skip
+            api.simulate(**{"ball_speed_mps": 70.0, **launch, **given})
+    for wrong in (None, 3):
+        with pytest.raises(api.InputError, match=rf"^turf {wrong}: allowed: a preset's name"):
+            api.simulate(ball_speed_mps=70.0, turf=wrong, **launch)
+    with pytest.raises(api.InputError, match=r"^stimp_m = 1e\+09 is outside .*\[0.1, 6\]"):
+        api.resolve_turf("green", stimp_m=1e9)
+
+
 def test_error_messages_name_the_problem(capsys):
     """The one line says what is wrong and what is allowed."""
     _, _, err = run(capsys, "shot", "--ball-speed", "500", "--launch", "10.9", "--spin", "1")
