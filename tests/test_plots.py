@@ -426,7 +426,16 @@ def test_a_run_folder_of_two_runs_or_damaged_columns_is_one_line(runs, tmp_path,
         main([command, str(no_z), "-o", out(4)]),
         "no_z/trajectories.parquet was not written by mcrun run: no column z_m",
     )
-    assert not any(Path(out(k)).exists() for k in range(1, 5))
+    later = _damaged(single, tmp_path / "later")
+    table = pq.read_table(later / output.SUMMARY_FILE)
+    metadata = {**table.schema.metadata, b"mcrun.format_version": b"7"}
+    pq.write_table(table.replace_schema_metadata(metadata), later / output.SUMMARY_FILE)
+    one_line_error(
+        capsys,
+        main([command, str(later), "-o", out(5)]),
+        "later: format_version 7: this mcrun reads runs of format 1",
+    )
+    assert not any(Path(out(k)).exists() for k in range(1, 6))
 
 
 def test_an_unwritable_output_is_one_line(runs, tmp_path, capsys):

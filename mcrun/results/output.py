@@ -94,6 +94,8 @@ WRITE_BATCH_SIZE = 65_536
 # statistics would skip nothing, and they cost a fifth of the write.
 STATISTICS_COLUMNS = ("point", "group", "label", "shot", "status", "status_name")
 PREFIX = "mcrun."
+# The layout of a run's files, in their provenance: what this mcrun writes and reads.
+FORMAT_VERSION = 1
 
 # How each provenance value is stored: text as is, everything else as JSON.
 _TEXT_FIELDS = ("scenario_text", "scenario_path", "scenario_name", "start_time_utc", "backend")

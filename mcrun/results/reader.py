@@ -305,6 +305,12 @@ def open_run(folder):
                 shots = pq.read_metadata(f)
     except (OSError, pa.ArrowException, ValueError) as err:
         raise RunFolderError(f"cannot read the run in {folder}: {reason_of(err)}") from None
+    version = provenance.get("format_version", 1)
+    if version != output.FORMAT_VERSION:  # (a later mcrun's files, or a damaged one)
+        raise RunFolderError(
+            f"{folder}: format_version {version!r}: this mcrun reads runs of format "
+            f"{output.FORMAT_VERSION} (a later mcrun wrote it?)"
+        )
     if shots is not None:
         _check_one_run(folder, summary, provenance, shots)
     return RunFolder(folder, url, fs, root, layout, summary, provenance, shot_columns, trajectories)

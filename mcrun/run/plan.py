@@ -46,7 +46,6 @@ from mcrun.units import shown
 
 DEFAULT_CHUNK_SIZE = 65536
 RUNS_FOLDER = Path("runs")
-FORMAT_VERSION = 1
 
 # A resampled launch-monitor file varies the launch quantities it holds or jitters.
 _FILE_DRIVERS = {
@@ -416,7 +415,7 @@ def provenance(the_plan, backend, versions, threads, **facts):
     if scenario.hole is not None:
         recorded[geometry.MAP_KEY] = geometry.record_map(scenario.hole)
     return {
-        "format_version": FORMAT_VERSION,
+        "format_version": output.FORMAT_VERSION,
         "backend": backend,
         "scenario_name": scenario.name,
         "scenario_path": str(scenario.path),

@@ -259,7 +259,7 @@ def replay_file(source, destination, force=False, format=None, **conditions):
         }
         frame = replay(session, **conditions)
         metadata = {
-            "format_version": 1,
+            "format_version": output.FORMAT_VERSION,
             "backend": "local",
             "file": "replay",
             "source_path": str(source),
