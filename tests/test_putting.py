@@ -4,6 +4,7 @@ the Stimpmeter, the stopping slope, the cup's capture limit, the read, the Tour 
 calibration against the PGA Tour's make rates and average putts, and ``mcrun putt``."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -303,3 +304,20 @@ def test_a_putt_is_the_same_on_one_thread_and_on_two():
         numba.set_num_threads(previous)
     np.testing.assert_array_equal(one.putts, two.putts)
     assert one.read == two.read and one.average_putts == two.average_putts
+
+
+@pytest.mark.parametrize(
+    "args, kwargs, says",
+    [
+        (("3", 3.3, 0.02, 0.0), {}, "distance_m '3': allowed: a number"),
+        ((3.0, None, 0.02, 0.0), {}, "stimp_m None: allowed: a number"),
+        ((3.0, 3.3, 0.02, "90"), {}, "direction_deg '90': allowed: a number"),
+        ((3.0, 3.3, 0.02, 0.0), {"n": "100"}, "n '100': allowed: a number"),
+        ((3.0, 3.3, 0.02, 0.0), {"putter": None}, "putter None: allowed: tour, scratch"),
+    ],
+)
+def test_putt_names_an_argument_of_the_wrong_type(args, kwargs, says):
+    """A string or None where a number or a putter goes: InputError naming it (a TypeError of a
+    comparison, or an AttributeError, before)."""
+    with pytest.raises(InputError, match=f"^{re.escape(says)}"):
+        putt(*args, **kwargs)

@@ -10,6 +10,7 @@ holed out n times; ``mcrun putt`` prints its result.
 """
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -102,10 +103,17 @@ def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2
                drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
     """Check the inputs of ``putt`` (the seed apart, which it checks as it draws the errors):
     InputError (one line) for one out of range. Returns the ``Putter``."""
+    given = {"distance_m": distance_m, "stimp_m": stimp_m, "slope_tan": slope_tan,
+             "direction_deg": direction_deg, "n": n, "drift_mm_per_m": drift_mm_per_m}  # fmt: skip
+    for name, value in given.items():  # (a string or None was a TypeError of a comparison)
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise InputError(f"{name} {value!r}: allowed: a number")
     if isinstance(putter, str):
         if putter not in PUTTERS:
             raise InputError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")
         putter = PUTTERS[putter]
+    elif not isinstance(putter, Putter):
+        raise InputError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)} or a Putter")
     if not HOLE_RADIUS_M < distance_m <= MAX_DISTANCE_M:
         raise InputError(
             f"distance {distance_m:g} m: allowed: beyond the hole's radius "
