@@ -200,6 +200,9 @@ def test_a_player_without_dispersion_is_refused_at_load(tmp_path, capsys):
     with pytest.raises(PlayerError, match="a player needs a dispersion"):
         load_player(bag)
     assert load_player(bag, straight=True).clubs == ("7-iron",)  # tests from first principles
+    for wrong in (None, 3):  # (a TypeError of the path before)
+        with pytest.raises(PlayerError, match=rf"^player {wrong}: allowed: a preset \(tour, "):
+            load_player(wrong)
 
 
 # --- 4. a hole without a green, or its pin off it ----------------------------------------------

@@ -26,6 +26,7 @@ teed ball's, and off the ground the Tour plays a fairway wood.
 
 import dataclasses
 import math
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -233,6 +234,9 @@ def load_player(spec, putter=None, spread=None, straight=False):
     A club whose every shot is the same (no dispersion: ``check_dispersion``) is refused
     (PlayerError), unless ``straight`` (a bag of straight shots, for tests from first
     principles: a model player has a dispersion)."""
+    if not isinstance(spec, str | os.PathLike):  # (a TypeError of the path before)
+        raise PlayerError(f"player {spec!r}: allowed: a preset ({', '.join(PLAYERS)}), a "
+                          "player file or a library scenario's name")  # fmt: skip
     if str(spec) in PLAYERS:
         name = str(spec)
         bag, speed, preset, own_putter = PLAYERS[name]
