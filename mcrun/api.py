@@ -301,7 +301,6 @@ def _conditions_values(
         dt_s = default_of("models.dt", {"weather.wind_profile": profile})
     values["models.dt"] = check_range("dt_s", dt_s)
     values["turf.preset"] = resolve_turf(turf)
-    _check_keywords(conditions, _flight_values, _air_values)
     flight, wind, density = _flight_values(**conditions)
     values.update(flight)
     # The turf's fields are the Turf's (its restitution as it is).
@@ -318,6 +317,7 @@ def conditions_inputs(
     """The kernel's input columns that do not depend on the launch (turf, ground, air, wind,
     models, step), checked: {name of ``schema.INPUT_FIELDS``: float}. ``turf`` is a preset name
     or a Turf; ``conditions`` are the keyword arguments of ``flight_params``."""
+    _check_keywords(conditions, _flight_values, _air_values)
     values, wind, density = _conditions_values(turf, slope_deg, fall_line_deg, dt_s, **conditions)
     return kernel_part(kernel_columns(values, wind, density))
 

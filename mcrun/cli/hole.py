@@ -7,7 +7,14 @@ from pathlib import Path
 from mcrun.cli import CommandError
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
-from mcrun.hole.hole import M_PER_YD, hole_from_table, load_hole, read_hole_file, tee_and_pin
+from mcrun.hole.hole import (
+    M_PER_YD,
+    PAR_RANGE,
+    hole_from_table,
+    load_hole,
+    read_hole_file,
+    tee_and_pin,
+)
 from mcrun.hole.osm import ATTRIBUTION, hole_title, read_course
 from mcrun.putting.on_hole import check_putting
 
@@ -48,7 +55,7 @@ def _list_holes(path):
         head = f"{line.index:>4}  {line.ref or '-':>4}  {line.par or '-':>3}"
         title = hole_title(course_name, line)
         try:
-            if line.par is not None and line.par not in range(2, 8):  # (as load_hole checks it)
+            if line.par is not None and line.par not in PAR_RANGE:  # (as load_hole checks it)
                 raise HoleError(f"{path}: par {line.par}: allowed is a whole number 2-7 (mend "
                                 "the map, or give 'par' in a hole file)")  # fmt: skip
             tee, pin = tee_and_pin(course, line, str(path))

@@ -42,7 +42,7 @@ from numba import njit
 from mcrun.ground import IN_PLAY, PENALTY_AREA, Terrain, make_terrain
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
-from mcrun.hole.osm import ACCEPTED, ATTRIBUTION, hole_title, read_course, sniff
+from mcrun.hole.osm import ACCEPTED, ATTRIBUTION, hole_title, playable, read_course, sniff
 from mcrun.hole.zones import (
     PENALTY_COLOURS,
     PENALTY_ZONES,
@@ -107,6 +107,8 @@ PUTTING_DEFAULTS = {"model": "table", "putter": "tour", "read": "own", "n": 200,
 PUTTING_KEYS = tuple(PUTTING_DEFAULTS)
 # Putts a read is valued on (``[hole.putting] n``, ``mcrun putt -n``): the most take minutes.
 PUTTING_N_RANGE = (2, 100_000)
+# A hole's par ('par' of a hole file, or its map's tag).
+PAR_RANGE = range(2, 8)
 
 
 @njit(cache=True, nogil=True)
@@ -416,8 +418,7 @@ def tee_and_pin(course, line, where, table=None):
     ``where``) when the hole has no green or its pin is not on one."""
     table = {} if table is None else table
     map_path = course.source
-    if line.problem is not None:
-        raise HoleError(line.problem)
+    playable(line)
     tee = _lonlat(table, "tee", where) or tuple(line.lonlat[0])
     # Find the green and the pin in a provisional frame at the tee (east-north, metres).
     local = Frame(*tee, 0.0)
@@ -694,7 +695,7 @@ def hole_from_table(table, folder, source):
     elif "shape" in table:
         heights, ground = _shape_heights(table, where)
     par = table.get("par", parts.get("par"))
-    if par is not None and (isinstance(par, bool) or par not in range(2, 8)):
+    if par is not None and (isinstance(par, bool) or par not in PAR_RANGE):
         raise HoleError(f"{where}: 'par' = {par!r} must be a whole number 2-7")
     name = table.get("name", parts.get("name"))
     colour = table.get("penalty_areas")

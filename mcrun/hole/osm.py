@@ -131,7 +131,7 @@ class Course:
         if not text.startswith("#"):
             matches = [line for line in self.holes if line.ref is not None and line.ref == text]
             if len(matches) == 1:
-                return _playable(matches[0])
+                return playable(matches[0])
             if matches:
                 shown = ", ".join(
                     f"#{m.index} on {self.course_of(m) or 'no named course'}" for m in matches[:5]
@@ -144,7 +144,7 @@ class Course:
                 )
         position = text.removeprefix("#")
         if position.isascii() and position.isdigit() and 1 <= int(position) <= len(self.holes):
-            return _playable(self.holes[int(position) - 1])
+            return playable(self.holes[int(position) - 1])
         refs = list(dict.fromkeys(h.ref for h in self.holes if h.ref is not None))
         refs_text = " (the file has no ref tags)"
         if refs:
@@ -155,7 +155,7 @@ class Course:
         )
 
 
-def _playable(line):
+def playable(line):
     """``line``, or HoleError saying why its points cannot be read."""
     if line.problem is not None:
         raise HoleError(line.problem)

@@ -180,11 +180,9 @@ def _dataset(fs, root):
     )
 
 
-def _shot_columns(fs, root, layout):
-    """The columns of a run's shots, in the order of the local executor's shots.parquet."""
-    if layout == FILE_LAYOUT:
-        with fs.open_input_file(f"{root}/{output.SHOTS_FILE}") as f:
-            return list(pq.read_schema(f).names)
+def _dataset_columns(fs, root):
+    """The columns of a dataset run's shots, in the order of the local executor's
+    shots.parquet."""
     names = list(_dataset(fs, root).schema.names)
     if names.index("group") != 1:  # hive-partitioned: the group comes last, from the folders
         names.remove("group")
@@ -298,11 +296,13 @@ def open_run(folder):
         summary = pd.read_parquet(_source(url, root, output.SUMMARY_FILE))
         with fs.open_input_file(f"{root}/{output.SUMMARY_FILE}") as f:
             provenance = output.decode_provenance(pq.read_metadata(f).metadata)
-        shot_columns = _shot_columns(fs, root, layout)
-        shots = None
+        shots = None  # shots.parquet's footer: its columns, rows and provenance
         if layout == FILE_LAYOUT:
             with fs.open_input_file(f"{root}/{output.SHOTS_FILE}") as f:
                 shots = pq.read_metadata(f)
+            shot_columns = list(shots.schema.to_arrow_schema().names)
+        else:
+            shot_columns = _dataset_columns(fs, root)
     except (OSError, pa.ArrowException, ValueError) as err:
         raise RunFolderError(f"cannot read the run in {folder}: {reason_of(err)}") from None
     version = provenance.get("format_version", 1)
