@@ -515,6 +515,26 @@ def test_cli_validate_and_scenarios(tmp_path, capsys):
     ]
 
 
+def test_scenarios_marks_a_file_that_does_not_load(tmp_path, capsys):
+    """``mcrun scenarios --dir``: a file that does not load is listed with why (what ``mcrun
+    validate`` would say), in the table and in --json; the others as they are."""
+    write(tmp_path, DRIVE)
+    write(tmp_path, DRIVE.replace('sd = "250 rpm"', 'sd = "-5 rpm"'), "bad.toml")
+    code, out, err = cli(capsys, "scenarios", "--dir", str(tmp_path))
+    assert code == 0, err
+    lines = out.splitlines()
+    question = "how far does a dispersed drive go, and what drives the dispersion?"
+    assert lines[0] == f"bad       {question}" and lines[2] == f"scenario  {question}"
+    assert lines[1].startswith(f"          does not load: {tmp_path / 'bad.toml'}: ")
+    assert lines[1].endswith("launch.spin.sd: must be >= 0, got -0.523599 rad/s")
+    assert len(lines) == 3
+    code, out, err = cli(capsys, "scenarios", "--dir", str(tmp_path), "--json")
+    listed = {entry["name"]: entry["error"] for entry in json.loads(out)}
+    assert listed["scenario"] is None and listed["bad"] == lines[1].split(": ", 1)[1]
+    code, out, err = cli(capsys, "validate", str(tmp_path / "bad.toml"))
+    assert code == 2 and err == f"mcrun: error: {listed['bad']}\n"
+
+
 def bad_cases(tmp_path):
     """(argv, what the message must mention) for every user error of run/validate."""
     good = write(tmp_path, DRIVE)

@@ -215,6 +215,10 @@ def test_vectorised_over_lies_and_distances():
     assert np.isnan(got[3])
     with pytest.raises(ValueError, match="lie 'grass': allowed: tee, fairway"):
         TOUR.expected("grass", 10.0)
+    with pytest.raises(ValueError, match=r"distance_m -3: allowed: 0 or more \(m to the hole\)"):
+        TOUR.expected(lies, np.array([100 * YD, -3.0, 60 * YD, -5.0]))
+    with pytest.raises(ValueError, match="distance_m -0.5: allowed: 0 or more"):
+        TOUR.expected_by_code(0, -0.5)
 
 
 # --- a user's baseline -------------------------------------------------------------------------

@@ -15,10 +15,12 @@ import numpy as np
 
 from mcrun.cli import Interrupted, compile_if_needed, kernels_of
 from mcrun.cli.options import local_workers
+from mcrun.hole.errors import HoleError
 from mcrun.quantities import InputError
 from mcrun.results import stats
 from mcrun.run import local, plan, sampling
 from mcrun.run import scenario as scenario_module
+from mcrun.units import UnitError
 
 # --- printing ----------------------------------------------------------------------------------
 
@@ -285,21 +287,35 @@ def _cmd_scenarios(args):
     folder = Path(args.dir) if args.dir else scenario_module.library_folder()
     if not folder.is_dir():
         raise InputError(f"--dir {folder}: not a folder")
-    entries = scenario_module.list_library(folder)
+    entries = [(*entry, _load_error(entry[1])) for entry in scenario_module.list_library(folder)]
     if args.json:
         print(
             json.dumps(
-                [{"name": name, "question": q, "path": str(path)} for name, path, q in entries]
+                [
+                    {"name": name, "question": q, "path": str(path), "error": error}
+                    for name, path, q, error in entries
+                ]
             )
         )
         return 0
     if not entries:
         print(f"no scenarios in {folder}")
         return 0
-    width = max(len(name) for name, _, _ in entries)
-    for name, _, question in entries:
+    width = max(len(name) for name, _, _, _ in entries)
+    for name, _, question, error in entries:
         print(f"{name:<{width}}  {question}".rstrip())
+        if error is not None:
+            print(f"{'':<{width}}  does not load: {error}")
     return 0
+
+
+def _load_error(path):
+    """Why the scenario file ``path`` does not load, in one line; None if it loads."""
+    try:
+        scenario_module.load(path)
+    except (InputError, UnitError, HoleError) as err:
+        return " ".join(str(err).split())
+    return None
 
 
 def _add_dask_options(p):

@@ -72,8 +72,8 @@ class Baseline:
     def expected(self, lie, distance_m):
         """Expected strokes to hole out from ``distance_m`` (m, to the hole) in ``lie`` (one of
         ``LIES``, or an array of them, as ``distance_m``). Vectorised; NaN where the distance
-        is NaN."""
-        d = np.asarray(distance_m, dtype=float)
+        is NaN; ValueError for a negative distance."""
+        d = _distances(distance_m)
         lies = np.asarray(lie)
         if lies.ndim == 0:
             return self._one(str(lies), d)
@@ -91,7 +91,7 @@ class Baseline:
 
     def expected_by_code(self, codes, distance_m):
         """``expected`` with the lies given by their index in ``LIES`` (an int array)."""
-        d = np.asarray(distance_m, dtype=float)
+        d = _distances(distance_m)
         codes, d = np.broadcast_arrays(np.asarray(codes), d)
         out = np.full(d.shape, np.nan)
         for k, name in enumerate(LIES):
@@ -127,6 +127,15 @@ class Baseline:
         out = _linear(rows_d, rows_v, np.maximum(d, rows_d[0]))
         out = np.where(short, np.minimum(rows_v[0], 1.0), out)
         return np.where(holed, 0.0, out)
+
+
+def _distances(distance_m):
+    """``distance_m`` as a float array; ValueError naming the first negative one."""
+    d = np.asarray(distance_m, dtype=float)
+    if (d < 0.0).any():
+        first = d[d < 0.0].flat[0]
+        raise ValueError(f"distance_m {first:g}: allowed: 0 or more (m to the hole)")
+    return d
 
 
 def _linear(x, y, at):
