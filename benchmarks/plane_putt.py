@@ -2,14 +2,14 @@
 read of a putt on a plane green (``putting.putt``: twelve candidate reads, each struck n times
 and every sample holed out from where its first putt stopped) by thread count.
 
-The samples' hole-outs run on every thread (``putting.rest._hole_outs``); the rest (the first
-putts, struck side by side, and the candidates' means) on one. Three putts of the Tour putter
-on an 11 ft green: 10 ft level, 10 ft on 2 % falling left to right, 6 m uphill on 3 %; the best
-of ``--repeats`` after a warm-up (compilation), the putts checked equal across thread counts.
-``BEFORE_S``: the same putts before the hole-outs ran on every thread (one sample after the
-other), on 2 threads, measured on the same machine in the same hour as the table written here.
-
-Prints a Markdown table and writes ``benchmarks/results/plane-putt.md``; asserts nothing.
+The first putts (``stroke.strike_all``) and the samples' hole-outs (``putting.rest._hole_outs``)
+run on every thread; the rest (the reads' centre lines, the strikes' speeds and lines, the
+candidates' means) on one. Three putts of the Tour putter on an 11 ft green: 10 ft level, 10 ft
+on 2 % falling left to right, 6 m uphill on 3 %; the best of ``--repeats`` after a warm-up
+(compilation), the putts checked equal across thread counts. ``BEFORE_S``: the same putts before
+the first putts ran on every thread (struck one lane group after another), on 2 threads,
+measured on the same machine in the same hour as the table written here. Prints a Markdown table
+and writes ``benchmarks/results/plane-putt.md``; asserts nothing.
 """
 
 import argparse
@@ -32,10 +32,10 @@ PUTTS = (
     ("10 ft, 2 % falling right", 10.0 * FOOT_M, 0.02, 90.0),
     ("6 m uphill, 3 %", 6.0, 0.03, 180.0),
 )
-# Before the hole-outs ran on every thread: this script on the tree before, 2,000 putts, 2
-# threads (2026-11-27, 2-core AMD EPYC, the day it ran at half its usual speed; 4.24, 5.83 and
-# 8.65 s on 1 thread).
-BEFORE_S = {"10 ft, level": 4.29, "10 ft, 2 % falling right": 5.61, "6 m uphill, 3 %": 8.42}
+# Before the first putts ran on every thread: this script on the tree before, 2,000 putts, 2
+# threads, the best of two runs alternating with the tree after (2026-11-28, 2-core AMD EPYC;
+# 4.73, 4.72 and 7.94 s on 1 thread).
+BEFORE_S = {"10 ft, level": 2.88, "10 ft, 2 % falling right": 3.23, "6 m uphill, 3 %": 5.21}
 
 
 def timed(distance_m, slope_tan, direction_deg, n, threads, repeats):

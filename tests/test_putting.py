@@ -36,9 +36,11 @@ from mcrun.putting.roll import (
     roll_core,
 )
 from mcrun.putting.stroke import (
+    STRIKE_PART,
     centre_line,
     pace_speed_mps,
     plane_putt_green,
+    strike_all,
     stroke_of,
 )
 from mcrun.quantities import InputError
@@ -285,9 +287,9 @@ def test_putt_refuses_an_unknown_putter():
 
 @pytest.mark.determinism
 def test_a_putt_is_the_same_on_one_thread_and_on_two():
-    """The read's hole-outs from where the first putts stop run on every thread
-    (``rest._hole_outs``): each sample with its own errors, the same putts and the same read
-    whatever the thread count."""
+    """The read's first putts (``stroke.strike_all``, 300 in two parts) and the hole-outs from
+    where they stop (``rest._hole_outs``) run on every thread: each sample with its own errors,
+    the same putts and the same read whatever the thread count."""
     import numba
 
     args = (3.0, 3.3, 0.02, 60.0)
@@ -304,6 +306,27 @@ def test_a_putt_is_the_same_on_one_thread_and_on_two():
         numba.set_num_threads(previous)
     np.testing.assert_array_equal(one.putts, two.putts)
     assert one.read == two.read and one.average_putts == two.average_putts
+
+
+def test_first_putts_struck_in_parts_on_threads_are_those_struck_in_one_go():
+    """``strike_all`` on threads (a plane putt's parts of ``STRIKE_PART``) gives every putt the
+    status and rest of the one lane loop a map's solver strikes them with, bit for bit: a
+    putt's roll is its own, whatever part or lane it takes."""
+    n = 2 * STRIKE_PART + 37
+    rng = np.random.default_rng(11)
+    green = plane_putt_green(0.03, 0.6, 0.8, rho_g_from_stimp(3.3), drift_sd(5.0), DT_S)
+    speed, angle = 1.8 + 0.3 * rng.standard_normal(n), 0.05 * rng.standard_normal(n)
+    inputs = (np.zeros(n), np.zeros(n), speed * np.cos(angle), speed * np.sin(angle),
+              rng.integers(1, 2**63, n).astype(np.uint64), 3.0, 0.0, green)  # fmt: skip
+    struck = {}
+    for on_threads in (False, True):
+        status, end_x, end_y = np.full(n, -9), np.full(n, np.nan), np.full(n, np.nan)
+        strike_all(*inputs, status, end_x, end_y, on_threads)
+        struck[on_threads] = status, end_x, end_y
+    for alone, parts in zip(struck[False], struck[True], strict=True):
+        np.testing.assert_array_equal(alone, parts)
+    status = struck[True][0]
+    assert (status == STATUS_HOLED).any() and (status == STATUS_STOPPED).any()
 
 
 @pytest.mark.parametrize(

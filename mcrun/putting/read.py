@@ -27,9 +27,9 @@ import numpy as np
 from numba import njit
 
 from mcrun.putting.cup import HOLE_RADIUS_M
-from mcrun.putting.rest import off_value, rest_values
+from mcrun.putting.rest import MAP, off_value, rest_values
 from mcrun.putting.roll import STATUS_HOLED, STATUS_STOPPED
-from mcrun.putting.stroke import centre_line, pace_speed_mps, strike_lanes, struck_velocity, tilt
+from mcrun.putting.stroke import centre_line, pace_speed_mps, strike_all, struck_velocity, tilt
 
 __all__ = [
     "AIM_STEPS_DEG",
@@ -97,8 +97,9 @@ def score(x, y, hx, hy, pace_m, offset, lines, green, stroke, z, keys, rest, put
     read at ``pace_m`` on the perceived centre line (``read_lines``) + ``offset`` (rad), each
     putt with its errors z[i, 0] and keys[i, 0]; each sample's putts into ``putts``."""
     n = z.shape[0]
-    # Every putt's strike, then their rolls at once (``stroke.strike_lanes``: each as
-    # ``stroke.strike`` rolls it), then their values in order.
+    # Every putt's strike, then their rolls at once (``stroke.strike_all``: each as
+    # ``stroke.strike`` rolls it; on every thread but in a map's solver, whose values at rest
+    # are the map's), then their values in order.
     start_x, start_y = np.full(n, x), np.full(n, y)
     vx, vy = np.empty(n), np.empty(n)
     drift_keys = np.empty(n, dtype=keys.dtype)
@@ -110,7 +111,8 @@ def score(x, y, hx, hy, pace_m, offset, lines, green, stroke, z, keys, rest, put
         drift_keys[i] = keys[i, 0]
     status = np.empty(n, dtype=np.int64)
     end_x, end_y = np.empty(n), np.empty(n)
-    strike_lanes(start_x, start_y, vx, vy, drift_keys, hx, hy, green, status, end_x, end_y)
+    strike_all(start_x, start_y, vx, vy, drift_keys, hx, hy, green, status, end_x, end_y,
+               rest.kind != MAP)  # fmt: skip
     later, p1_later = np.zeros(n), np.zeros(n)
     rest_values(end_x, end_y, status, hx, hy, green, stroke, rest, later, p1_later)
     total, total2, ones, threes = 0.0, 0.0, 0.0, 0.0

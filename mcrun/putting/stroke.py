@@ -15,9 +15,9 @@ done here and nowhere else:
   fitted with the putter (``putter``: the Tour's leaves uphill and downhill);
 - the start line (``centre_line``): the one on which the error-free putt at that speed rolls over
   the hole's centre on the perceived green;
-- the strike (``strike``; ``struck_velocity``, then ``strike_lanes`` for many putts at once):
-  the chosen line and speed missed by the putter's start-line and relative speed errors, rolled
-  on the green as it is, with its drift;
+- the strike (``strike``; ``struck_velocity``, then ``strike_lanes`` for many putts at once,
+  ``strike_all`` on every thread): the chosen line and speed missed by the putter's start-line
+  and relative speed errors, rolled on the green as it is, with its drift;
 - holing out with the putter's own read (``hole_out_from``): the pace ``Stroke.pace_m``, the
   centre line, putt after putt until the ball drops.
 
@@ -29,11 +29,12 @@ A putt's errors are the normals ``z[k] = (line, speed, read x, read y)`` of
 import math
 from typing import NamedTuple
 
-from numba import njit, uint64
+from numba import njit, prange, uint64
 
 from mcrun.physics.constants import G_MPS2
 from mcrun.putting.cup import HOLE_RADIUS_M
 from mcrun.putting.roll import (
+    LANES,
     MAX_TIME_S,
     NO_SURFACE,
     ROLLING_FACTOR,
@@ -54,6 +55,7 @@ __all__ = [
     "pace_speed_mps",
     "plane_putt_green",
     "strike",
+    "strike_all",
     "strike_lanes",
     "struck_velocity",
     "tilt",
@@ -230,6 +232,38 @@ def strike_lanes(x, y, vx, vy, keys, hx, hy, green, status, end_x, end_y):
     roll_lanes(x, y, vx, vy, keys, green.slope_tan, green.fall_x, green.fall_y, green.rho_g, hx,
                hy, green.dt_s, MAX_TIME_S, green.surface, green.ds_max_m, green.drift_sd,
                status, end_x, end_y)  # fmt: skip
+
+
+# The putts of one task of ``strike_all`` on threads: a few lane groups (``roll.LANES``) each.
+STRIKE_PART = 16 * LANES
+
+
+@njit(cache=True)
+def strike_all(x, y, vx, vy, keys, hx, hy, green, status, end_x, end_y, on_threads):
+    """``strike_lanes``, on every thread where ``on_threads`` (a plane green's putt: thousands
+    of first putts; a map's solver, on threads of its own, strikes one lane group after
+    another), in parts of ``STRIKE_PART`` putts: each putt's roll is its own whatever part or
+    lane it takes, so that the putts are the same bit for bit either way."""
+    if on_threads and x.shape[0] > STRIKE_PART:
+        s = green.surface
+        _strike_parts(x, y, vx, vy, keys, hx, hy, s.height_m, s.on_green, s.x0_m, s.y0_m,
+                      s.cell_m, green[1:], status, end_x, end_y)  # fmt: skip
+    else:
+        strike_lanes(x, y, vx, vy, keys, hx, hy, green, status, end_x, end_y)
+
+
+@njit(cache=True, parallel=True)
+def _strike_parts(x, y, vx, vy, keys, hx, hy, height_m, on_green, x0_m, y0_m, cell_m, plane,
+                  status, end_x, end_y):  # fmt: skip
+    """``strike_all`` on threads, a part of ``STRIKE_PART`` putts a task. The green comes in its
+    parts (its surface's, then the rest of the ``PuttGreen``, ``plane``), put together in the
+    loop: Numba's parallel loops take no tuple that holds arrays."""
+    n = x.shape[0]
+    for part in prange((n + STRIKE_PART - 1) // STRIKE_PART):
+        a, b = part * STRIKE_PART, min(n, (part + 1) * STRIKE_PART)
+        green = PuttGreen(Surface(height_m, on_green, x0_m, y0_m, cell_m), *plane)
+        strike_lanes(x[a:b], y[a:b], vx[a:b], vy[a:b], keys[a:b], hx, hy, green, status[a:b],
+                     end_x[a:b], end_y[a:b])  # fmt: skip
 
 
 @njit(cache=True)
