@@ -526,7 +526,7 @@ def test_scenarios_marks_a_file_that_does_not_load(tmp_path, capsys):
     question = "how far does a dispersed drive go, and what drives the dispersion?"
     assert lines[0] == f"bad       {question}" and lines[2] == f"scenario  {question}"
     assert lines[1].startswith(f"          does not load: {tmp_path / 'bad.toml'}: ")
-    assert lines[1].endswith("launch.spin.sd: must be >= 0, got -0.523599 rad/s")
+    assert lines[1].endswith("launch.spin.sd: must be >= 0, got -5 rpm (-0.523599 rad/s)")
     assert len(lines) == 3
     code, out, err = cli(capsys, "scenarios", "--dir", str(tmp_path), "--json")
     listed = {entry["name"]: entry["error"] for entry in json.loads(out)}

@@ -207,7 +207,7 @@ ERRORS = [
         "uniform low >= high",
         BALL.replace('"10.9 deg"', '{ dist = "uniform", low = 12, high = 10 }'),
         "launch.launch_angle.low",
-        "must be < high (10 deg), got 12 deg",
+        "must be < high = 10 deg, got 12 deg",
     ),
     (
         "truncnormal low >= high",
@@ -367,6 +367,24 @@ ERRORS = [
         BALL + '[weather]\ntemperature = "80 C"\n',
         "weather.temperature",
         "must be within [-40 C, 55 C], got 80 C",
+    ),
+    (
+        "a value in another unit than the bare one is said as written, then in the bare unit",
+        BALL + '[weather]\ntemperature = "200 F"\n',
+        "weather.temperature",
+        "must be within [-40 C, 55 C], got 200 F (93.3333 C)",
+    ),
+    (
+        "a key's unit is said with its number",
+        BALL.replace('spin = "2686 rpm"', 'spin_rpm = { dist = "normal", mean = 2686, sd = -50 }'),
+        "launch.spin_rpm.sd",
+        "must be >= 0, got -50 rpm (-5.23599 rad/s)",
+    ),
+    (
+        "uniform low >= high, in mph",
+        BALL.replace('"167 mph"', '{ dist = "uniform", low = "170 mph", high = "160 mph" }'),
+        "launch.ball_speed.low",
+        "must be < high = 160 mph (71.5264 m/s), got 170 mph (75.9968 m/s)",
     ),
     (
         "rho_g and stimp",

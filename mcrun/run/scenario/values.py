@@ -119,13 +119,28 @@ def fmt(value_si, kind, spread=False):
     return f"{number:g}{bare_unit(kind)}"
 
 
-def _check_in(ctx, where, value_si, param, what="must be"):
+def as_given(raw, key_unit, value_si, kind, spread=False):
+    """``value_si`` for a message: in the kind's bare unit, after the value as written where it
+    was written in another unit (``-5 rpm (-0.523599 rad/s)``), so that a user finds it."""
+    bare = fmt(value_si, kind, spread)
+    if key_unit is not None:  # a bare number, in the key's unit (``spin_rpm = 2686``)
+        written = f"{float(raw):g} {key_unit}"
+    elif isinstance(raw, str) and _LEADING_NUMBER.sub("", raw, count=1).strip():
+        written = " ".join(raw.split())  # a number and its unit
+    else:  # a number in the bare unit
+        return bare
+    return bare if written == bare else f"{written} ({bare})"
+
+
+def _check_in(ctx, where, value_si, param, what="must be", shown=None):
+    """ScenarioError unless ``value_si`` is within ``param``'s limits; the message gives it as
+    ``shown`` (default: in the bare unit)."""
     lo, hi = param.limits
     if not lo <= value_si <= hi:
         raise ctx.error(
             where,
             f"{what} within [{fmt(lo, param.kind)}, {fmt(hi, param.kind)}], "
-            f"got {fmt(value_si, param.kind)}",
+            f"got {shown or fmt(value_si, param.kind)}",
         )
 
 
@@ -141,7 +156,7 @@ def read_dist(ctx, leaf, param):
                 "(sweep a parameter in [sweep])",
             )
         si = read_value(ctx, where, value, kind, leaf.key_unit)
-        _check_in(ctx, where, si, param)
+        _check_in(ctx, where, si, param, shown=as_given(value, leaf.key_unit, si, kind))
         return Dist(kind, "constant", (si,))
     if "dist" not in value:
         raise ctx.error(f"{where}.dist", f"missing; choose one of {', '.join(DISTRIBUTIONS)}")
@@ -172,25 +187,31 @@ def read_dist(ctx, leaf, param):
             )
     if param.constant_only and name != "constant":
         raise ctx.error(where, f"must be a constant, not a {name} distribution")
+
+    def given(key, spread=False):  # the value of ``key`` as written, for a message
+        return as_given(value[key], leaf.key_unit, args[keys.index(key)], kind, spread)
+
+    def check_in(key):
+        _check_in(ctx, f"{where}.{key}", args[keys.index(key)], param, shown=given(key))
+
     if name == "constant":
-        _check_in(ctx, f"{where}.value", args[0], param)
+        check_in("value")
     elif name in ("normal", "truncnormal"):
         mean, sd = args[:2]
         if sd < 0.0:
-            raise ctx.error(f"{where}.sd", f"must be >= 0, got {fmt(sd, kind, spread=True)}")
+            raise ctx.error(f"{where}.sd", f"must be >= 0, got {given('sd', spread=True)}")
         if name == "normal":
-            _check_in(ctx, f"{where}.mean", mean, param)
+            check_in("mean")
         else:
             low, high = args[2:]
             if sd == 0.0:
                 raise ctx.error(f"{where}.sd", "must be > 0 for a truncnormal, got 0")
             if not low < high:
                 raise ctx.error(
-                    f"{where}.low",
-                    f"must be < high ({fmt(high, kind)}), got {fmt(low, kind)}",
+                    f"{where}.low", f"must be < high = {given('high')}, got {given('low')}"
                 )
-            _check_in(ctx, f"{where}.low", low, param)
-            _check_in(ctx, f"{where}.high", high, param)
+            check_in("low")
+            check_in("high")
             if (low - mean) / sd > _TRUNCNORMAL_MAX_Z or (high - mean) / sd < -_TRUNCNORMAL_MAX_Z:
                 raise ctx.error(
                     where,
@@ -199,24 +220,22 @@ def read_dist(ctx, leaf, param):
     elif name in ("uniform", "triangular"):
         low, high = args[0], args[-1]
         if not low < high:
-            raise ctx.error(
-                f"{where}.low", f"must be < high ({fmt(high, kind)}), got {fmt(low, kind)}"
-            )
-        _check_in(ctx, f"{where}.low", low, param)
-        _check_in(ctx, f"{where}.high", high, param)
+            raise ctx.error(f"{where}.low", f"must be < high = {given('high')}, got {given('low')}")
+        check_in("low")
+        check_in("high")
         if name == "triangular" and not low <= args[1] <= high:
             raise ctx.error(
                 f"{where}.mode",
-                f"must be within [low, high] = [{fmt(low, kind)}, {fmt(high, kind)}], "
-                f"got {fmt(args[1], kind)}",
+                f"must be within [low, high] = [{given('low')}, {given('high')}], "
+                f"got {given('mode')}",
             )
     else:  # lognormal
         median, sigma = args
         if not median > 0.0:
-            raise ctx.error(f"{where}.median", f"must be > 0, got {fmt(median, kind)}")
+            raise ctx.error(f"{where}.median", f"must be > 0, got {given('median')}")
         if sigma < 0.0:
             raise ctx.error(f"{where}.sigma", f"must be >= 0, got {sigma:g}")
-        _check_in(ctx, f"{where}.median", median, param)
+        check_in("median")
     return Dist(kind, name, tuple(args))
 
 
