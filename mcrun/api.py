@@ -27,6 +27,7 @@ from mcrun.quantities import (  # RANGES, InputError and check_range: re-exporte
     check_range,
     club_launch,
     default_of,
+    finite_number,
     kernel_columns,
     kernel_part,
     to_si,
@@ -98,7 +99,7 @@ def resolve_turf(turf=DEFAULTS["turf"], **overrides):
     unknown = set(overrides) - set(Turf._fields)
     if unknown:
         raise InputError(f"unknown turf field(s): {', '.join(sorted(unknown))}")
-    turf = turf._replace(**{k: float(v) for k, v in overrides.items()})
+    turf = turf._replace(**{k: finite_number(f"turf {k}", v) for k, v in overrides.items()})
     try:
         return check_turf(turf)
     except ValueError as err:
@@ -212,6 +213,7 @@ def _flight_values(
     values = {"models.aero": aero_model, "weather.wind_profile": wind_profile}
     if wind_profile_parameter is None:
         wind_profile_parameter = default_of("weather.wind_profile_parameter", values)
+    wind_profile_parameter = finite_number("wind_profile_parameter", wind_profile_parameter)
     ref_h = check_range("wind_reference_height_m", wind_reference_height_m)
     if wind_profile == "log" and not 0.0 < wind_profile_parameter < ref_h:
         raise InputError(

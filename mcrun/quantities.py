@@ -57,6 +57,7 @@ __all__ = [
     "club_launch",
     "column_and_factor",
     "default_of",
+    "finite_number",
     "from_si",
     "kernel_columns",
     "kernel_part",
@@ -369,15 +370,24 @@ def default_of(path, chosen=None):
     return _BY_PATH[path].default_si(chosen)
 
 
-def check_range(name, value):
-    """Return ``value`` as a float, or raise InputError naming ``name`` and its allowed range."""
-    lo, hi = RANGES[name]
+def finite_number(name, value):
+    """``value`` as a float, or raise InputError naming ``name`` unless it is a finite number
+    (a bool is not: ``float(True)`` is 1)."""
+    if isinstance(value, bool | np.bool_):
+        raise InputError(f"{name} must be a number, got {shown(value)}")
     try:
         value = float(value)
     except (TypeError, ValueError):
         raise InputError(f"{name} must be a number, got {shown(value)}") from None
     if not math.isfinite(value):
         raise InputError(f"{name} must be finite, got {value}")
+    return value
+
+
+def check_range(name, value):
+    """Return ``value`` as a float, or raise InputError naming ``name`` and its allowed range."""
+    lo, hi = RANGES[name]
+    value = finite_number(name, value)
     if not lo <= value <= hi:
         raise InputError(f"{name} = {value:g} is outside the allowed range [{lo:g}, {hi:g}]")
     return value

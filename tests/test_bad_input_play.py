@@ -5,6 +5,7 @@ No test here solves a hole: ``no_solve`` fails any that would start flying."""
 
 import json
 import math
+import re
 import sys
 import textwrap
 from pathlib import Path
@@ -203,6 +204,16 @@ def test_a_player_without_dispersion_is_refused_at_load(tmp_path, capsys):
     for wrong in (None, 3):  # (a TypeError of the path before)
         with pytest.raises(PlayerError, match=rf"^player {wrong}: allowed: a preset \(tour, "):
             load_player(wrong)
+
+
+def test_a_player_s_spread_that_is_not_numbers_is_named_as_given():
+    """``load_player(spread=)``: text, a bool or an object is refused, named as given (``"1"``
+    was read as its characters, True as a factor of 1); a number or one per club is taken."""
+    for wrong, says in (("1", "'1'"), (True, "True"), ([1.0, "x"], "[1.0, 'x']")):
+        with pytest.raises(PlayerError, match=rf"spread {re.escape(says)}: allowed: one factor"):
+            load_player("tour", spread=wrong)
+    assert load_player("tour", spread=1.2).spread == (1.2,) * 12
+    assert load_player("tour", spread=np.full(12, 0.9)).spread == (0.9,) * 12
 
 
 # --- 4. a hole without a green, or its pin off it ----------------------------------------------

@@ -361,6 +361,24 @@ def test_the_api_names_an_unknown_argument_and_a_turf_that_is_none():
         api.resolve_turf("green", stimp_m=1e9)
 
 
+def test_the_api_refuses_a_bool_text_or_nan_where_a_number_goes():
+    """``simulate(ball_speed_mps=True)`` (flown at 1 m/s), a wind profile's parameter that is
+    NaN (a refused shot, not an error) or text (a TypeError), a turf's field as text (a
+    ValueError): InputError naming the argument."""
+    launch = {"ball_speed_mps": 70.0, "launch_angle_deg": 11.0, "spin_radps": 280.0}
+    with pytest.raises(api.InputError, match=r"^ball_speed_mps must be a number, got True$"):
+        api.simulate(**{**launch, "ball_speed_mps": True})
+    for given, says in ((float("nan"), "must be finite, got nan"), ("x", "must be a number")):
+        with pytest.raises(api.InputError, match=rf"^wind_profile_parameter {says}"):
+            api.simulate(**launch, wind_profile="power", wind_profile_parameter=given)
+    with pytest.raises(api.InputError, match=r"^turf mu must be a number, got 'x'$"):
+        api.resolve_turf("green", mu="x")
+    wind = {"wind_mps": (-5.0, 2.0), "wind_profile": "power"}
+    text = api.simulate(**launch, **wind, wind_profile_parameter="0.1")
+    assert text.outcome == api.simulate(**launch, **wind, wind_profile_parameter=0.1).outcome
+    assert text.outcome != api.simulate(**launch, **wind).outcome  # (1/7 by default)
+
+
 def test_error_messages_name_the_problem(capsys):
     """The one line says what is wrong and what is allowed."""
     _, _, err = run(capsys, "shot", "--ball-speed", "500", "--launch", "10.9", "--spin", "1")

@@ -215,10 +215,17 @@ def test_vectorised_over_lies_and_distances():
     assert np.isnan(got[3])
     with pytest.raises(ValueError, match="lie 'grass': allowed: tee, fairway"):
         TOUR.expected("grass", 10.0)
-    with pytest.raises(ValueError, match=r"distance_m -3: allowed: 0 or more \(m to the hole\)"):
+    with pytest.raises(ValueError, match=r"distance_m -3: allowed: 0 or more, finite \(m\)"):
         TOUR.expected(lies, np.array([100 * YD, -3.0, 60 * YD, -5.0]))
     with pytest.raises(ValueError, match="distance_m -0.5: allowed: 0 or more"):
         TOUR.expected_by_code(0, -0.5)
+    with pytest.raises(ValueError, match="distance_m inf: allowed: 0 or more, finite"):
+        TOUR.expected("rough", np.inf)
+    with pytest.raises(ValueError, match=r"distance_m 'ten': allowed: numbers \(m\)"):
+        TOUR.expected("rough", "ten")
+    for code, says in ((6, "lie code 6: allowed: 0 to 5"), (1.5, "lie codes of type float64")):
+        with pytest.raises(ValueError, match=says):
+            TOUR.expected_by_code([0, code], [10.0, 10.0])
 
 
 # --- a user's baseline -------------------------------------------------------------------------

@@ -26,6 +26,7 @@ teed ball's, and off the ground the Tour plays a fairway wood.
 
 import dataclasses
 import math
+import numbers
 import os
 from dataclasses import dataclass
 
@@ -38,6 +39,7 @@ from mcrun.run import sampling
 from mcrun.run import scenario as sc
 from mcrun.run.scenario.hole_table import Play
 from mcrun.strokes.baseline import LIES
+from mcrun.units import shown
 
 __all__ = [
     "LIE_LAUNCH",
@@ -257,19 +259,28 @@ def load_player(spec, putter=None, spread=None, straight=False):
     clubs = tuple(p.label or p.group or f"club {p.index}" for p in scenario.points)
     if len(set(clubs)) != len(clubs):
         raise PlayerError(f"{scenario.path}: each club (group) needs a name of its own")
+    given = spread
     if spread is None:
         spread = TOUR_SPREAD if scenario.name == TOUR_BAG else (1.0,) * len(clubs)
-    elif isinstance(spread, int | float):
+    elif _is_number(spread):
         spread = (float(spread),) * len(clubs)
-    spread = tuple(float(v) for v in spread)
+    elif isinstance(spread, list | tuple | np.ndarray) and all(_is_number(v) for v in spread):
+        spread = tuple(float(v) for v in spread)
+    else:
+        spread = ()  # (refused below, named as given)
     if len(spread) != len(clubs) or not all(0.0 < v <= 10.0 for v in spread):
-        raise PlayerError(f"{scenario.path}: spread {spread}: allowed: one factor in (0, 10] "
-                          f"or one per club ({len(clubs)})")  # fmt: skip
+        raise PlayerError(f"{scenario.path}: spread {shown(given)}: allowed: one factor in "
+                          f"(0, 10] or one per club ({len(clubs)})")  # fmt: skip
     if not straight:
         check_dispersion(scenario, clubs)
     tour = scenario.name == TOUR_BAG
     return Player(scenario.name, scenario, clubs, spread, putter, str(scenario.path),
                   rough=TOUR_ROUGH if tour else (), ground=TOUR_GROUND if tour else ())  # fmt: skip
+
+
+def _is_number(value):
+    """A real number, not a bool (``float(True)`` is 1)."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
 def check_dispersion(scenario, clubs):

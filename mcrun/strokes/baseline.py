@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.units import KINDS
+from mcrun.units import KINDS, shown
 
 __all__ = [
     "DEFAULT_BASELINE_PATH",
@@ -92,7 +92,7 @@ class Baseline:
     def expected_by_code(self, codes, distance_m):
         """``expected`` with the lies given by their index in ``LIES`` (an int array)."""
         d = _distances(distance_m)
-        codes, d = np.broadcast_arrays(np.asarray(codes), d)
+        codes, d = np.broadcast_arrays(_lie_codes(codes), d)
         out = np.full(d.shape, np.nan)
         for k, name in enumerate(LIES):
             chosen = codes == k
@@ -130,12 +130,27 @@ class Baseline:
 
 
 def _distances(distance_m):
-    """``distance_m`` as a float array; ValueError naming the first negative one."""
-    d = np.asarray(distance_m, dtype=float)
-    if (d < 0.0).any():
-        first = d[d < 0.0].flat[0]
-        raise ValueError(f"distance_m {first:g}: allowed: 0 or more (m to the hole)")
+    """``distance_m`` as a float array; ValueError naming the first that is not a number, 0 or
+    more (m; NaN passes, valued NaN)."""
+    try:
+        d = np.asarray(distance_m, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"distance_m {shown(distance_m)}: allowed: numbers (m)") from None
+    bad = (d < 0.0) | np.isinf(d)
+    if bad.any():
+        raise ValueError(f"distance_m {d[bad].flat[0]:g}: allowed: 0 or more, finite (m)")
     return d
+
+
+def _lie_codes(codes):
+    """``codes`` as an array of indices in ``LIES``; ValueError naming the first that is not."""
+    codes = np.asarray(codes)
+    if codes.dtype.kind not in "iu":
+        raise ValueError(f"lie codes of type {codes.dtype}: allowed: integers (indices in LIES)")
+    if codes.size and not 0 <= codes.min() <= codes.max() < len(LIES):
+        bad = codes[(codes < 0) | (codes >= len(LIES))].flat[0]
+        raise ValueError(f"lie code {bad}: allowed: 0 to {len(LIES) - 1} (an index in LIES)")
+    return codes
 
 
 def _linear(x, y, at):
