@@ -22,6 +22,7 @@ import re
 
 __all__ = [
     "KINDS",
+    "UNIT_SUFFIXES",
     "UnitError",
     "foreign_digits",
     "from_column_name",
@@ -137,7 +138,9 @@ _COLUMN_SUFFIXES: dict[str, tuple[str, str]] = {
     "mps": ("speed", "m/s"),
     "mph": ("speed", "mph"),
     "kph": ("speed", "km/h"),
+    "kmh": ("speed", "km/h"),
     "fps": ("speed", "ft/s"),
+    "kn": ("speed", "kn"),
     "deg": ("angle", "deg"),
     "rad": ("angle", "rad"),
     "radps": ("spin", "rad/s"),
@@ -158,6 +161,8 @@ _COLUMN_SUFFIXES: dict[str, tuple[str, str]] = {
     "s": ("time", "s"),
     "ms": ("time", "ms"),
 }
+# The unit suffixes a column's or a key's name may end with (``from_column_name``).
+UNIT_SUFFIXES = tuple(_COLUMN_SUFFIXES)
 
 
 def _key(unit: str) -> str:
@@ -414,8 +419,9 @@ def from_column_name(column_name: str) -> tuple[str, str, str] | None:
     ----------
     column_name : str
         E.g. ``"ball_speed_mph"``, ``"spin_rpm"``, ``"carry_yd"``, ``"temperature_c"``. The suffix
-        follows the last underscore and is matched case-insensitively; known suffixes are mps,
-        mph, kph, fps, deg, rad, radps, rpm, m, cm, mm, yd, ft, kg, g, c, f, k, pa, hpa, pct.
+        follows the last underscore and is matched case-insensitively; known suffixes are
+        ``UNIT_SUFFIXES``: mps, mph, kph, kmh, fps, kn, deg, rad, radps, rpm, m, cm, mm, yd, ft,
+        kg, g, c, f, k, pa, hpa, pct, s, ms.
 
     Returns
     -------

@@ -666,6 +666,19 @@ def test_units_in_values_and_in_key_names_give_identical_specs(tmp_path):
     assert a["models.dt"].value == pytest.approx(0.005)
 
 
+def test_every_speed_unit_a_value_takes_may_end_a_key(tmp_path):
+    """``wind_speed_kmh`` and ``_kn`` as ``"6 km/h"`` and ``"6 kn"`` (kmh was refused as an
+    unknown key); a misspelt key's message lists the units a name may end with."""
+    for key, value in (("wind_speed_kmh", "6 km/h"), ("wind_speed_kn", "6 kn")):
+        a = sc.load(write(tmp_path, BALL + f"[weather]\n{key} = 6\n", "a.toml")).points[0]
+        b = sc.load(write(tmp_path, BALL + f'[weather]\nwind_speed = "{value}"\n')).points[0]
+        assert a.params["weather.wind_speed"] == b.params["weather.wind_speed"]
+    assert b.params["weather.wind_speed"].value == pytest.approx(6 * 1852 / 3600)
+    with pytest.raises(sc.ScenarioError, match=r"wind_sped_kmh: unknown key; allowed: .* the "
+                       r"units: mps, mph, kph, kmh, fps, kn, deg, .*, ms\)$"):  # fmt: skip
+        sc.load(write(tmp_path, BALL + "[weather]\nwind_sped_kmh = 6\n"))
+
+
 def test_bare_values_are_si_but_degrees_and_celsius(tmp_path):
     text = """
     [launch]

@@ -20,6 +20,7 @@ from mcrun.run.scenario.specs import (
 )
 from mcrun.units import (
     KINDS,
+    UNIT_SUFFIXES,
     UnitError,
     foreign_digits,
     from_column_name,
@@ -279,7 +280,8 @@ def key_name(ctx, section, key, where):
     allowed = ", ".join((*names, *_SPECIAL.get(section, ())))
     raise ctx.error(
         where,
-        f"unknown key; allowed: {allowed} (a unit may end the name, e.g. ball_speed_mph)",
+        f"unknown key; allowed: {allowed} (a unit may end the name, e.g. ball_speed_mph; the "
+        f"units: {', '.join(UNIT_SUFFIXES)})",
     )
 
 
