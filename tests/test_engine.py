@@ -502,6 +502,27 @@ def test_cli_run_prints_summary_and_paths(tmp_path, capsys, monkeypatch):
     assert sorted(p.name for p in (tmp_path / "runs").iterdir()) == ["engine-test-2019"]
 
 
+def test_the_summary_says_where_correlated_inputs_shares_overlap(tmp_path):
+    """pga-driver's ball speed, launch angle and spin are correlated: their shares of total_m's
+    variance (coefficients squared) do not add up to its R^2, and the printed summary says so;
+    the lateral position's inputs (spin axis, azimuth) are independent: theirs do, unremarked."""
+    from mcrun.cli.run import OVERLAP_NOTE, SHARES_APART, format_summary
+
+    result = run.run_scenario(LIBRARY / "pga-driver.toml", n=4000, out_dir=tmp_path / "r",
+                              progress=False)  # fmt: skip
+    row = pd.read_parquet(result.out_dir / "summary.parquet").iloc[0]
+    apart = {}
+    for y in ("total_m", "final_y_m"):
+        shares = [v for k, v in row.items() if k.startswith(f"{y}_share_") and np.isfinite(v)]
+        apart[y] = abs(sum(shares) - row[f"{y}_r2"])
+    assert apart["total_m"] > 2 * SHARES_APART and apart["final_y_m"] < SHARES_APART
+    lines = format_summary(pd.read_parquet(result.out_dir / "summary.parquet")).splitlines()
+    total = next(line for line in lines if "variance of total_m" in line)
+    lateral = next(line for line in lines if "variance of final_y_m" in line)
+    assert total.endswith(f"{OVERLAP_NOTE})") and lateral.endswith(")")
+    assert OVERLAP_NOTE not in lateral
+
+
 def test_cli_validate_and_scenarios(tmp_path, capsys):
     path = write(tmp_path, DRIVE)
     code, out, err = cli(capsys, "validate", str(path))

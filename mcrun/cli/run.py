@@ -35,6 +35,12 @@ def _mean_sd(row, name, spec=".1f"):
     return f"{_fmt(row[f'{name}_mean'], spec)} ± {_fmt(row[f'{name}_std'], spec)}"
 
 
+# The inputs' variance shares (squared standardised coefficients) add up to R^2 when the inputs
+# are independent; where they miss it by more than this, they are correlated (the scenario's
+# correlation, or the sample's at small n) and the shares overlap: said so.
+SHARES_APART = 0.05
+OVERLAP_NOTE = "; the inputs correlated, the shares overlap"
+
 # The points a terminal shows of a run or a scenario; a larger sweep's are all in its files.
 SHOWN_POINTS = 40
 
@@ -108,9 +114,11 @@ def format_summary(summary, top=3):
             if y == "run_m":
                 text.append(f"point {row['point']}: run_m explained alone by {parts}")
             else:
+                r2 = row[f"{y}_r2"]
+                overlap = math.isfinite(r2) and abs(sum(shares.values()) - r2) > SHARES_APART
                 text.append(
                     f"point {row['point']}: variance of {y} from {parts} "
-                    f"(R^2 {_fmt(row[f'{y}_r2'], '.2f')})"
+                    f"(R^2 {_fmt(r2, '.2f')}{OVERLAP_NOTE if overlap else ''})"
                 )
     if total > len(summary):
         text.append(_more_points(total, len(summary), "every point is in summary.parquet"))
