@@ -72,7 +72,7 @@ class Baseline:
     def expected(self, lie, distance_m):
         """Expected strokes to hole out from ``distance_m`` (m, to the hole) in ``lie`` (one of
         ``LIES``, or an array of them, as ``distance_m``). Vectorised; NaN where the distance
-        is NaN; ValueError for a negative distance."""
+        is NaN; ValueError for a distance that is negative, infinite or not a number."""
         d = _distances(distance_m)
         lies = np.asarray(lie)
         if lies.ndim == 0:
@@ -90,7 +90,8 @@ class Baseline:
         return out
 
     def expected_by_code(self, codes, distance_m):
-        """``expected`` with the lies given by their index in ``LIES`` (an int array)."""
+        """``expected`` with the lies given by their index in ``LIES`` (an int array; ValueError
+        for another)."""
         d = _distances(distance_m)
         codes, d = np.broadcast_arrays(_lie_codes(codes), d)
         out = np.full(d.shape, np.nan)
