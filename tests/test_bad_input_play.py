@@ -206,6 +206,16 @@ def test_a_player_without_dispersion_is_refused_at_load(tmp_path, capsys):
             load_player(wrong)
 
 
+def test_a_player_with_a_sweep_is_refused(tmp_path):
+    """A player file with a [sweep] made each swept value a club of its own (the solver chose
+    the wind as it chose a club, exit 0): refused, naming the sweep's keys."""
+    bag = (Path(__file__).parents[1] / "scenarios" / "pga-tour-bag.toml").read_text()
+    path = write(tmp_path / "swept.toml", bag + '\n[sweep]\n"weather.wind_speed" = [0, 5]\n')
+    with pytest.raises(PlayerError, match=r"swept\.toml: a \[sweep\] \(weather\.wind_speed\): "
+                       r"a player is a bag of clubs"):  # fmt: skip
+        load_player(path)
+
+
 def test_a_player_s_spread_that_is_not_numbers_is_named_as_given():
     """``load_player(spread=)``: text, a bool or an object is refused, named as given (``"1"``
     was read as its characters, True as a factor of 1); a number or one per club is taken."""

@@ -379,6 +379,27 @@ def test_the_api_refuses_a_bool_text_or_nan_where_a_number_goes():
     assert text.outcome != api.simulate(**launch, **wind).outcome  # (1/7 by default)
 
 
+def test_the_api_names_a_file_argument_that_is_not_a_path():
+    """``replay``, ``read_session``, ``load_hole`` and ``load_elevation`` given None or a
+    number (a TypeError or AttributeError before): their one-line error naming it."""
+    from mcrun.hole.elevation import ElevationError, load_elevation
+    from mcrun.hole.errors import HoleError
+    from mcrun.hole.hole import load_hole
+    from mcrun.run.monitors import read_session
+    from mcrun.run.replay import replay
+
+    cases = [
+        (replay, api.InputError, "shots {}: allowed: a Session, a DataFrame or a file's path"),
+        (read_session, api.InputError, "session {}: allowed: a launch-monitor export's path"),
+        (load_hole, HoleError, "hole {}: allowed: a hole file's path"),
+        (load_elevation, ElevationError, "elevation {}: allowed: a .tif/.tiff, .asc or .csv"),
+    ]
+    for function, error, says in cases:
+        for wrong in (None, 123):
+            with pytest.raises(error, match="^" + re.escape(says.format(wrong))):
+                function(wrong)
+
+
 def test_error_messages_name_the_problem(capsys):
     """The one line says what is wrong and what is allowed."""
     _, _, err = run(capsys, "shot", "--ball-speed", "500", "--launch", "10.9", "--spin", "1")

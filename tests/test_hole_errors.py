@@ -12,6 +12,7 @@ import pytest
 
 from mcrun.hole.errors import HoleError
 from mcrun.hole.hole import hole_from_table, load_hole
+from mcrun.hole.osm import read_course
 
 HOLES = Path(__file__).resolve().parent.parent / "scenarios" / "holes"
 MAPS = Path(__file__).resolve().parent / "data" / "maps"
@@ -308,6 +309,25 @@ def test_a_feature_that_cannot_be_read_stops_only_what_needs_it(folder, capsys):
     order, note = play_order(read_course(folder / "cut.geojson"))
     assert order == {k: k for k in range(1, 19)}  # (the broken line keeps its place)
     assert note == play_order(read_course(folder / MAP))[1]  # its walks left out: the same
+
+
+def test_greens_without_a_ring_or_of_two_points_are_left_out_and_named(folder):
+    """A green whose polygon has no ring (``"coordinates": []``, an IndexError before) or a ring
+    of 2 points (the pin "outside every green" before) is left out as unreadable, and a hole
+    that has no green left says why; a map saved with a byte-order mark reads."""
+    data = json.loads((folder / MAP).read_text())
+    greens = [f for f in data["features"] if f["properties"].get("golf") == "green"]
+    for k, green in enumerate(greens):
+        ring = green["geometry"]["coordinates"][0]
+        green["geometry"]["coordinates"] = [] if k % 2 else [ring[:2]]
+    (folder / "bad-greens.geojson").write_text(json.dumps(data))
+    message = _error({"map": "bad-greens.geojson", "hole": 2}, folder)
+    assert f"has no golf=green polygon it reads ({len(greens)} feature(s) left out" in message
+    course = read_course(folder / "bad-greens.geojson")
+    assert sorted(line.split(": ", 1)[1].split(":")[0] for line in course.skipped[:2]) == [
+        "a polygon without a ring", "a ring of 2 points enclosing nothing"]  # fmt: skip
+    (folder / "bom.geojson").write_text("\ufeff" + (folder / MAP).read_text(), encoding="utf-8")
+    assert len(read_course(folder / "bom.geojson").greens) == len(greens)
 
 
 def test_the_commands_that_play_a_hole_say_what_of_its_map_was_left_out(folder, capsys):

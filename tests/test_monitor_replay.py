@@ -212,6 +212,32 @@ def test_gspro_log_replays_its_shots(tmp_path, capsys):
     assert "4 message(s) without ball data skipped" in stderr
 
 
+def test_gspro_fields_of_several_types_mark_their_shots_and_write(tmp_path, capsys):
+    """A connector's messages whose field is text or a bool in one message and a number in the
+    next (``"n/a"``, ``true``), an integer beyond a float, a field not read (ClubData): each
+    shot with a value that is not a number is invalid_input with its reason, the others fly,
+    the file is written (a pyarrow traceback before, exit 1)."""
+    ball = '"VLA": 12, "TotalSpin": 2500, "SpinAxis": 0, "HLA": 0'
+    messages = [
+        f'{{"BallData": {{"Speed": "fast", {ball}}}, "ClubData": {{"Speed": true}}}}',
+        f'{{"BallData": {{"Speed": 150, {ball}, "CarryDistance": "n/a"}}}}',
+        f'{{"BallData": {{"Speed": true, {ball}, "CarryDistance": 250}}, '
+        '"ClubData": {"Speed": 100}}',
+        f'{{"BallData": {{"Speed": 1{"0" * 400}, {ball}}}}}',
+    ]
+    log = tmp_path / "mixed.jsonl"
+    log.write_text("\n".join(messages) + "\n", encoding="utf-8")
+    out = tmp_path / "mixed.parquet"
+    assert main(["replay", str(log), "-o", str(out), "--quiet"]) == 0, capsys.readouterr().err
+    frame = pd.read_parquet(out)
+    assert list(frame["status"]) == [INVALID_INPUT, OK, INVALID_INPUT, INVALID_INPUT]
+    assert frame["invalid_reason"].iloc[0] == "BallData.Speed: 'fast' is not a number"
+    assert frame["invalid_reason"].iloc[2] == "BallData.Speed: 'True' is not a number"
+    assert frame["invalid_reason"].iloc[3].startswith("BallData.Speed: '1000")
+    want = simulate(ball_speed_mps=150 * MPH, launch_angle_deg=12.0, spin_radps=2500 * RPM)
+    assert frame["carry_m"].iloc[1] == pytest.approx(want.outcome["carry_m"], rel=1e-12)
+
+
 def test_files_without_a_valid_shot_are_refused_one_line_nothing_written(tmp_path, capsys):
     """An export whose 20 rows are all blank; one whose every row is a footer; binary bytes;
     a 20,000-column header: one line naming the file, exit 2, nothing written, no traceback,

@@ -308,6 +308,7 @@ def _table(tmp_path, rows, header=GOOD_HEADER):
             r"line 15: a second sand row at 200 yd \(line 10\); allowed: one row per lie",
         ),
         (["sand,50,,2.5,9"], GOOD_HEADER, r"line 15: 5 fields; allowed: 4"),
+        ([], GOOD_HEADER + ",expected_strokes", r"line \d+: column 'expected_strokes' twice"),
     ],
 )
 def test_a_users_baseline_errors(tmp_path, rows, header, message):
@@ -315,6 +316,13 @@ def test_a_users_baseline_errors(tmp_path, rows, header, message):
         load_baseline(_table(tmp_path, rows, header))
     assert "\n" not in str(raised.value)
     assert str(raised.value).startswith(str(tmp_path / "mine.csv"))
+
+
+def test_a_baseline_that_is_not_a_path_is_named():
+    """``load_baseline(None)`` or ``(5)``: a BaselineError naming it (an AttributeError before)."""
+    for wrong in (None, 5):
+        with pytest.raises(BaselineError, match=rf"^baseline {wrong}: allowed: a CSV file's path"):
+            load_baseline(wrong)
 
 
 def test_a_users_baseline_needs_every_lie(tmp_path):

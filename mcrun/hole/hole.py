@@ -32,6 +32,7 @@ The ``[hole]`` table of a scenario and a standalone hole TOML file have the same
 """
 
 import math
+import os
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -60,6 +61,7 @@ from mcrun.physics.turf import (
     Turf,
     check_turf,
 )
+from mcrun.units import shown
 
 M_PER_YD = 0.9144
 DEFAULT_CELL_M = 0.5
@@ -260,6 +262,8 @@ class Hole:
 
 def load_hole(path):
     """The Hole of a standalone hole TOML file (its top-level keys, or a ``[hole]`` table)."""
+    if not isinstance(path, str | os.PathLike):  # (a TypeError of Path before)
+        raise HoleError(f"hole {shown(path)}: allowed: a hole file's path")
     path = Path(path)
     table, source = read_hole_file(path)
     return hole_from_table(table, path.parent, source)
@@ -457,6 +461,9 @@ def tee_and_pin(course, line, where, table=None):
             if not course.greens
             else (f" has no golf=green polygon within {GREEN_SEARCH_M:g} m of the hole's end")
         )
+        if course.skipped:  # (a green whose geometry is broken is among them)
+            anywhere += (f" it reads ({len(course.skipped)} feature(s) left out, their geometry "
+                         f"unreadable; the first: {course.skipped[0]})")  # fmt: skip
         raise HoleError(
             f"{where}: hole {line.index} has no green: {map_path}{anywhere}, and a hole is "
             "played to a pin on its green; allowed is a map with its greens (or a hole without "

@@ -201,13 +201,26 @@ def _points(coords, where, depth):
 
 
 def _polygons(geometry, where):
-    """The polygons (lists of rings) of a Polygon or MultiPolygon geometry."""
+    """The polygons (lists of rings) of a Polygon or MultiPolygon geometry; HoleError for a
+    polygon without a ring or a ring of fewer than 3 points, which encloses nothing."""
     kind = geometry.get("type")
     if kind == "Polygon":
-        return [_points(geometry.get("coordinates"), where, 1)]
-    if kind == "MultiPolygon":
-        return _points(geometry.get("coordinates"), where, 2)
-    return []
+        polygons = [_points(geometry.get("coordinates"), where, 1)]
+    elif kind == "MultiPolygon":
+        polygons = _points(geometry.get("coordinates"), where, 2)
+    else:
+        return []
+    for polygon in polygons:
+        if not polygon:
+            raise HoleError(f"{where}: a polygon without a ring: allowed is an outer ring of at "
+                            "least 3 [lon, lat] points")  # fmt: skip
+        for ring in polygon:
+            if len(np.unique(ring, axis=0)) < 3:
+                raise HoleError(
+                    f"{where}: a ring of {len(ring)} points enclosing nothing: "
+                    "allowed is a ring of 3 distinct [lon, lat] points or more"
+                )
+    return polygons
 
 
 def _int_or_none(value):
@@ -289,7 +302,7 @@ def read_course(path):
     if what is not None:
         raise HoleError(f"{source}: is {what}, not a course map: allowed is {ACCEPTED}; {CONVERT}")
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # (a byte-order mark, as Notepad saves)
     except OSError as err:
         raise HoleError(f"{source}: cannot read the map: {err.strerror or err}") from None
     except UnicodeDecodeError:

@@ -256,6 +256,13 @@ def load_player(spec, putter=None, spread=None, straight=False):
             f"{scenario.path}: a player is a bag of clubs ([[group]]s) without a [hole]: the "
             "hole is given apart (mcrun play PLAYER HOLE)"
         )
+    swept = next((p.sweep for p in scenario.points if p.sweep), None)
+    if swept:
+        raise PlayerError(
+            f"{scenario.path}: a [sweep] ({', '.join(swept)}): a player is a bag of clubs "
+            "([[group]]s), each played as it is; allowed: no [sweep] (sweep a study with mcrun "
+            "run)"
+        )
     clubs = tuple(p.label or p.group or f"club {p.index}" for p in scenario.points)
     if len(set(clubs)) != len(clubs):
         raise PlayerError(f"{scenario.path}: each club (group) needs a name of its own")

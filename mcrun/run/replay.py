@@ -40,7 +40,7 @@ from mcrun.physics.constants import DEG
 from mcrun.quantities import InputError, by_path, column_and_factor
 from mcrun.results import output
 from mcrun.run import clubs
-from mcrun.run.monitors import read_session, session_of_frame
+from mcrun.run.monitors import Session, read_session, session_of_frame
 from mcrun.run.monitors.native import KIND
 from mcrun.units import UnitError, shown, to_unit
 
@@ -153,6 +153,8 @@ def replay(shots, source=None, format=None, **conditions):
         if len(shots) == 0:
             raise InputError(f"{source}: no shots: the table has no rows")
         shots = session_of_frame(shots, source, format)
+    elif not isinstance(shots, Session):  # (an AttributeError before)
+        raise InputError(f"shots {shown(shots)}: allowed: a Session, a DataFrame or a file's path")
     session = shots
     values, valid = launches(session)
     check_some_valid(session, values, valid)

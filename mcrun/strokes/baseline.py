@@ -21,6 +21,7 @@ Distances are in metres inside (``expected(lie, distance_m)``); yards and feet o
 
 import csv
 import math
+import os
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -183,7 +184,9 @@ def load_baseline(path):
     line and column, and what is allowed."""
     name = str(path)
     # A str or Path, or an importlib.resources Traversable (the package's table).
-    source = Path(path) if isinstance(path, str) else path
+    if not (isinstance(path, str | os.PathLike) or hasattr(path, "read_text")):
+        raise BaselineError(f"baseline {shown(path)}: allowed: a CSV file's path")
+    source = Path(path) if isinstance(path, str | os.PathLike) else path
     try:
         text = source.read_text(encoding="utf-8-sig")  # (a BOM, as Excel writes)
     except (OSError, UnicodeDecodeError) as error:
@@ -198,8 +201,15 @@ def load_baseline(path):
     header = [h.strip() for h in next(reader)]
     if sorted(header) != sorted(COLUMNS):
         unknown = [h for h in header if h not in COLUMNS]
+        twice = [c for c in COLUMNS if header.count(c) > 1]
         missing = [c for c in COLUMNS if c not in header]
-        what = f"unknown column {unknown[0]!r}" if unknown else f"no column {missing[0]!r}"
+        what = (
+            f"unknown column {unknown[0]!r}"
+            if unknown
+            else f"column {twice[0]!r} twice"
+            if twice
+            else f"no column {missing[0]!r}"
+        )
         raise BaselineError(
             f"{name}: line {lines[0][0]}: {what}; the columns are {', '.join(COLUMNS)}"
         )

@@ -24,6 +24,8 @@ import ast
 import codecs
 import csv
 import json
+import math
+import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -86,6 +88,8 @@ class Session:
 def read_session(path, format=None):
     """The ``Session`` of the file at ``path``; ``format`` forces one of ``formats.NAMES``
     (default: detected from the header). InputError, one line naming the file, otherwise."""
+    if not isinstance(path, str | os.PathLike):  # (a TypeError of Path before)
+        raise InputError(f"session {shown(path)}: allowed: a launch-monitor export's path")
     path = Path(path)
     check_file(path)
     if format is not None and format not in formats.NAMES:
@@ -437,7 +441,7 @@ def _messages(path, text):
             f"{path}: no shots: no GSPro Open Connect message with ball data "
             f"({skipped} without: heartbeats, replies)"
         )
-    frame = pd.json_normalize(records)
+    frame = _one_type_a_column(pd.json_normalize(records))
     units = None
     if "Units" in frame:
         units = frame["Units"].fillna("").astype(str).str.strip().str.lower()
@@ -453,6 +457,21 @@ def _messages(path, text):
     if skipped:
         notes = (f"{path}: {skipped} message(s) without ball data skipped (heartbeats, replies)",)
     return frame, units, np.array(reasons, dtype=object), notes
+
+
+def _one_type_a_column(frame):
+    """``frame`` with each column of Python objects that are not all text (a connector writing
+    ``"n/a"`` or ``true`` in one message and a number in the next, an integer beyond 64 bits, a
+    list) as text, its empty cells left empty: read as numbers, the text is what it is (a
+    shot's unreadable value), and the table is one Parquet can hold."""
+    for name in frame.columns:
+        column = frame[name]
+        if column.dtype != object:
+            continue
+        filled = column.notna()
+        if not all(isinstance(v, str) for v in column[filled]):
+            frame[name] = column.where(~filled, column[filled].map(str))
+    return frame
 
 
 # --- the values ----------------------------------------------------------------------------
@@ -479,13 +498,26 @@ def numbers(series):
     return _numbers(series)[0]
 
 
+def _float_or_nan(value):
+    """``value`` as a float (inf beyond a float's range), NaN where it is not a number."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
+    except (TypeError, ValueError):
+        return math.nan
+
+
 def _numbers(series):
     """(numbers, unreadable) of a column: ``numbers``, and where a cell holds text that is
     neither a number nor an L/R direction (``--``, ``T7091``, ``[mph]``)."""
     n = len(series)
     if pd.api.types.is_numeric_dtype(series.dtype) and not pd.api.types.is_bool_dtype(series):
         return np.array(series.to_numpy(dtype=float, na_value=np.nan)), np.zeros(n, dtype=bool)
-    values = np.array(pd.to_numeric(series, errors="coerce"), dtype=float)
+    try:
+        values = np.array(pd.to_numeric(series, errors="coerce"), dtype=float)
+    except OverflowError:  # an integer beyond a float's range (a JSON message's 1e400 written out)
+        values = np.array([_float_or_nan(v) for v in series], dtype=float)
     text = series.astype("string").str.replace("\u00a0", " ", regex=False).str.strip()
     filled = (text.fillna("") != "").to_numpy(dtype=bool)
     left = np.isnan(values) & filled
