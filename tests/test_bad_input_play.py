@@ -216,6 +216,19 @@ def test_a_player_with_a_sweep_is_refused(tmp_path):
         load_player(path)
 
 
+def test_a_player_whose_club_cannot_fly_its_shots_is_refused(tmp_path):
+    """A club whose spread is far too wide for its mean (spin sd 100,000 rpm: half its backspins
+    below 0) left most shots unflown, and ``mcrun play`` printed its value as inf, exit 0: the
+    player is refused, naming the club and how many of its first shots cannot be flown."""
+    bag = (Path(__file__).parents[1] / "scenarios" / "pga-tour-bag.toml").read_text()
+    wide = bag.replace('mean = "2686 rpm", sd = "270 rpm"', 'mean = "2686 rpm", sd = "100000 rpm"')
+    assert wide != bag
+    path = write(tmp_path / "wide.toml", wide)
+    says = r"wide\.toml: club 'Driver': \d+ of its first 64 shots cannot be flown \(a ball speed"
+    with pytest.raises(PlayerError, match=says):
+        load_player(path)
+
+
 def test_a_player_s_spread_that_is_not_numbers_is_named_as_given():
     """``load_player(spread=)``: text, a bool or an object is refused, named as given (``"1"``
     was read as its characters, True as a factor of 1); a number or one per club is taken."""

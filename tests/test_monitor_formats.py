@@ -384,6 +384,22 @@ def test_binary_garbage_and_a_huge_header_are_one_short_line(tmp_path):
         read_session(wide)
 
 
+@pytest.mark.parametrize("name", ["skytrak.csv", "trackman.csv", "garmin-r10-imperial.csv"])
+def test_an_export_with_lines_ended_by_cr_alone_reads_as_with_crlf(tmp_path, name):
+    """Excel for Mac's "CSV (Macintosh)" ends its lines with CR alone: read as the same rows and
+    launches as the export with CRLF (a csv module error about universal-newline mode
+    before)."""
+    text = (DATA / name).read_bytes().decode("utf-8").replace("\r\n", "\n")
+    paths = {}
+    for end in ("\r", "\r\n"):
+        paths[end] = tmp_path / f"{len(end)}-{name}"
+        paths[end].write_bytes(text.replace("\n", end).encode("utf-8"))
+    cr, crlf = (read_session(paths[end]) for end in ("\r", "\r\n"))
+    assert cr.format == crlf.format and len(cr.frame) == len(crlf.frame) > 0
+    for column in cr.frame.columns:
+        assert cr.frame[column].equals(crlf.frame[column]), column
+
+
 def test_gspro_messages_are_read_out_of_a_connectors_log():
     """Prefixes and arrows before each message, other log lines between, heartbeats and
     GSPro's replies skipped, a message logged with Python's repr (``Backspin``, TotalSpin 0:

@@ -137,6 +137,7 @@ TEE_ONLY = ("driver",)
 # A club's dispersion: its first DISPERSION_SHOTS shots must differ in some launch value; the
 # keys that give those values, by how the club's launch is given (``Point.mode``).
 DISPERSION_SHOTS = 64
+UNFLOWN_SHARE = 0.1  # of a club's first shots that cannot be flown: more, and it is refused
 DISPERSION_KEYS = {
     "ball": "launch.ball_speed, launch.launch_angle, launch.spin, launch.spin_axis and "
     "launch.azimuth are all constant",
@@ -295,10 +296,20 @@ def check_dispersion(scenario, clubs):
     the player's ``scenario`` whose first ``DISPERSION_SHOTS`` shots are all the same in every
     launch value its spread scales (``SPREAD_COLUMNS``: ball speed, launch angle, spin, spin
     axis, azimuth): a bag without dispersion hits every shot exactly where it is aimed, and its
-    solution (holes in one from wherever a pin is in reach) is no player's."""
+    solution (holes in one from wherever a pin is in reach) is no player's. And for a club
+    more than ``UNFLOWN_SHARE`` of whose first shots cannot be flown (a ball speed not above 0
+    or a backspin below 0: a spread too wide for its mean), whose values would be infinite."""
     columns = [COLUMN[name] for name in SPREAD_COLUMNS]
+    speed, spin = COLUMN["ball_speed_mps"], COLUMN["spin_radps"]
     for point, club in zip(scenario.points, clubs, strict=True):
         inputs, _ = sampling.sample(scenario, point, 0, DISPERSION_SHOTS)
+        unflown = int(np.count_nonzero(~((inputs[:, speed] > 0.0) & (inputs[:, spin] >= 0.0))))
+        if unflown > UNFLOWN_SHARE * DISPERSION_SHOTS:
+            raise PlayerError(
+                f"{scenario.path}: club {club!r}: {unflown} of its first {DISPERSION_SHOTS} "
+                "shots cannot be flown (a ball speed not above 0 or a spin below 0): allowed "
+                "is a launch whose spread leaves its shots flying (a smaller sd)"
+            )
         values = inputs[:, columns]
         if np.all(values == values[0]):
             raise PlayerError(

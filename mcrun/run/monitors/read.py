@@ -102,6 +102,11 @@ def read_session(path, format=None):
     head, encoding, lead = _decode(path, _HEAD)
     if _is_messages(head, format):
         return _session_of_messages(path, format)
+    # Lines ended by CR alone (Excel for Mac's "CSV (Macintosh)") read as by "\n", each one
+    # character still: the same offsets into the file.
+    newline = None if "\r" in head and "\n" not in head else ""
+    if newline is None:
+        head = head.replace("\r", "\n")
     header, units, sep, offset, skip = _split(path, head)
     names = [formats.split_name(c)[0] for c in header]
     fmt = formats.BY_NAME.get(format) if format else formats.detect(names)
@@ -112,10 +117,10 @@ def read_session(path, format=None):
         launch_columns(pd.DataFrame(columns=[c.strip() for c in header]), source, _KNOWN)
         return session_of_frame(read_launch_table(path), source, None)
     try:
-        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt)
+        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline)
     except UnicodeDecodeError:  # UTF-8 at its start only: the file is Latin-1
         head, encoding, lead = _decode(path, _HEAD, "latin-1")
-        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt)
+        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline)
     if len(frame) == 0:
         raise InputError(f"{path}: no shots: the file has a header only")
     # Each column's unit by its place (a name given twice may have two units): the unit row,
@@ -140,17 +145,18 @@ def _session_of_messages(path, format):
     return _session(frame, str(path), "gspro", format is None, {}, units, reasons, notes)
 
 
-def _read_table(path, encoding, start, sep, skip, fmt):
+def _read_table(path, encoding, start, sep, skip, fmt, newline=""):
     """The table of an export from the header on (``start`` characters into the file), read
     by pandas from the file itself (a copy of its text in memory would cost several times
-    the file); the rows checked for extra fields first."""
-    with open(path, encoding=encoding, newline="") as file:
+    the file); the rows checked for extra fields first. ``newline``: ``open``'s (None for a
+    file whose lines end with CR alone)."""
+    with open(path, encoding=encoding, newline=newline) as file:
         file.read(start)
         lines = enumerate(file)
         check_field_counts(
             path, (text for k, text in lines if text.strip() and (k != 1 or not skip))
         )
-    with open(path, encoding=encoding, newline="") as file:
+    with open(path, encoding=encoding, newline=newline) as file:
         file.read(start)
         try:
             return pd.read_csv(
