@@ -10,7 +10,8 @@ quantities are those of ``native.KIND``.
 import re
 from dataclasses import dataclass, field
 
-_UNIT_IN_NAME = re.compile(r"^(?P<name>.*?)\s*[\(\[](?P<unit>[^\)\]]*)[\)\]]\s*$")
+# A unit holds no bracket: a name of many brackets is matched in linear time, not quadratic.
+_UNIT_IN_NAME = re.compile(r"^(?P<name>.*?)\s*[\(\[](?P<unit>[^\(\)\[\]]*)[\)\]]\s*$")
 
 
 def split_name(column):
