@@ -26,6 +26,7 @@ __all__ = [
     "UnitError",
     "foreign_digits",
     "from_column_name",
+    "is_number",
     "parse_quantity",
     "parse_vector",
     "shown",
@@ -224,6 +225,11 @@ def _article(word: str) -> str:
 
 def _prefix(name: str | None) -> str:
     return "" if name is None else " ".join(str(name).split()) + ": "
+
+
+def is_number(value: object) -> bool:
+    """A real number (a Python or NumPy int or float), not a bool: ``float(True)`` is 1."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
 def shown(value: object, limit: int = 80) -> str:

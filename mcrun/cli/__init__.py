@@ -39,6 +39,10 @@ class CommandError(ValueError):
     unwritable output file, a missing optional package); one line meant for the user."""
 
 
+# The errors a user's input can cause: each ends a command with one line and exit code 2.
+USER_ERRORS = (InputError, UnitError, CommandError, HoleError)
+
+
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C or SIGTERM during a command's step that says what the interruption left:
     ``mcrun: interrupted: <message>``."""
@@ -250,7 +254,7 @@ def _run_command(args):
         if args.command in SIMULATING_COMMANDS:
             compile_if_needed(SIMULATING_COMMANDS[args.command], kernels_of(args))
         return args.func(args)
-    except (InputError, UnitError, CommandError, HoleError) as err:
+    except USER_ERRORS as err:
         return _error(" ".join(str(err).split()))
     except BrokenPipeError:  # e.g. `mcrun shot ... | head -3`: the reader has gone, not a bug
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit

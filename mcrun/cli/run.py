@@ -13,14 +13,12 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.cli import Interrupted, compile_if_needed, kernels_of
+from mcrun.cli import USER_ERRORS, Interrupted, compile_if_needed, kernels_of
 from mcrun.cli.options import local_workers
-from mcrun.hole.errors import HoleError
 from mcrun.quantities import InputError
 from mcrun.results import stats
 from mcrun.run import local, plan, sampling
 from mcrun.run import scenario as scenario_module
-from mcrun.units import UnitError
 
 # --- printing ----------------------------------------------------------------------------------
 
@@ -321,7 +319,7 @@ def _load_error(path):
     """Why the scenario file ``path`` does not load, in one line; None if it loads."""
     try:
         scenario_module.load(path)
-    except (InputError, UnitError, HoleError) as err:
+    except USER_ERRORS as err:
         return " ".join(str(err).split())
     return None
 

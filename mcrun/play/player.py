@@ -26,7 +26,6 @@ teed ball's, and off the ground the Tour plays a fairway wood.
 
 import dataclasses
 import math
-import numbers
 import os
 from dataclasses import dataclass
 
@@ -39,7 +38,7 @@ from mcrun.run import sampling
 from mcrun.run import scenario as sc
 from mcrun.run.scenario.hole_table import Play
 from mcrun.strokes.baseline import LIES
-from mcrun.units import shown
+from mcrun.units import is_number, shown
 
 __all__ = [
     "LIE_LAUNCH",
@@ -270,9 +269,9 @@ def load_player(spec, putter=None, spread=None, straight=False):
     given = spread
     if spread is None:
         spread = TOUR_SPREAD if scenario.name == TOUR_BAG else (1.0,) * len(clubs)
-    elif _is_number(spread):
+    elif is_number(spread):
         spread = (float(spread),) * len(clubs)
-    elif isinstance(spread, list | tuple | np.ndarray) and all(_is_number(v) for v in spread):
+    elif isinstance(spread, list | tuple | np.ndarray) and all(is_number(v) for v in spread):
         spread = tuple(float(v) for v in spread)
     else:
         spread = ()  # (refused below, named as given)
@@ -284,11 +283,6 @@ def load_player(spec, putter=None, spread=None, straight=False):
     tour = scenario.name == TOUR_BAG
     return Player(scenario.name, scenario, clubs, spread, putter, str(scenario.path),
                   rough=TOUR_ROUGH if tour else (), ground=TOUR_GROUND if tour else ())  # fmt: skip
-
-
-def _is_number(value):
-    """A real number, not a bool (``float(True)`` is 1)."""
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
 def check_dispersion(scenario, clubs):

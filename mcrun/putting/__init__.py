@@ -10,7 +10,6 @@ holed out n times; ``mcrun putt`` prints its result.
 """
 
 import math
-import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -47,6 +46,7 @@ from mcrun.putting.stroke import (
 )
 from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
+from mcrun.units import is_number
 
 __all__ = [
     "MAX_PUTTS",
@@ -106,7 +106,7 @@ def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2
     given = {"distance_m": distance_m, "stimp_m": stimp_m, "slope_tan": slope_tan,
              "direction_deg": direction_deg, "n": n, "drift_mm_per_m": drift_mm_per_m}  # fmt: skip
     for name, value in given.items():  # (a string or None was a TypeError of a comparison)
-        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        if not is_number(value):
             raise InputError(f"{name} {value!r}: allowed: a number")
     if isinstance(putter, str):
         if putter not in PUTTERS:

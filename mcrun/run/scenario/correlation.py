@@ -7,7 +7,8 @@ import math
 import numpy as np
 
 from mcrun.run.scenario.specs import PARAMETERS, Correlation
-from mcrun.run.scenario.values import as_table, is_number, short
+from mcrun.run.scenario.values import as_table, short
+from mcrun.units import is_number
 
 
 def read_correlation(ctx, leaf, section, dists, leaves, context=""):

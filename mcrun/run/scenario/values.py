@@ -3,7 +3,6 @@ distribution table, a choice; and the file's tables read into leaves (a value an
 written), sections, targets and sweeps."""
 
 import math
-import numbers
 import re
 from dataclasses import dataclass
 
@@ -24,6 +23,7 @@ from mcrun.units import (
     UnitError,
     foreign_digits,
     from_column_name,
+    is_number,
     parse_quantity,
     shown,
 )
@@ -65,10 +65,6 @@ class Leaf:
     value: object
     where: str
     key_unit: str | None = None
-
-
-def is_number(value):
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
 def read_value(ctx, where, value, kind, key_unit, spread=False):
