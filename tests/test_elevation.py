@@ -411,6 +411,16 @@ def test_bad_files_say_so_in_one_line(tmp_path):
     assert "allowed are longitudes in [-180, 180]" in one_line_error(
         file("f.csv", "lon,lat,elevation\n500000,5000000,1\n500010,5000000,1\n500000,5000010,1\n")
     )
+    # Two height columns (a GPS altitude beside a surveyed elevation): which is meant is not
+    # guessed; the same numbers in both are one column.
+    assert (
+        "columns elevation_m and alt give the same thing and differ (row 3: 2, 40)"
+    ) in one_line_error(
+        file("g.csv", "lon,lat,elevation_m,alt\n15,45,1,1\n15.1,45,2,40\n15,45.1,3,3\n")
+    )
+    same = load_elevation(file("i.csv", "lon,lat,alt,elevation\n15,45,1,1\n15.1,45,2,2\n"
+                                        "15,45.1,3,3\n"))  # fmt: skip
+    assert same.height_m(15.0, 45.1) == pytest.approx(3.0)
 
 
 def test_missing_optional_packages_say_how_to_install(tmp_path, monkeypatch):

@@ -118,6 +118,10 @@ def test_an_elevation_file_the_loader_refuses(folder, monkeypatch):
         ({"map": MAP, "hole": 2, "par": 9}, "'par' = 9 must be a whole number 2-7"),
         ({"map": "missing.geojson", "hole": 2}, "missing.geojson: cannot read the map"),
         ({"length_m": 9, "width_m": 9, "elevation": "d.tif"}, "an 'elevation' needs the hole"),
+        (
+            {"tee": [15.9, 45.78], "pin": [16.5, 45.78], "width_m": 60},
+            "the pin is 46,661 m from the tee: allowed: up to 2,000 m",  # (refused after 23 s)
+        ),
     ],
 )
 def test_bad_keys(folder, table, expected):
@@ -264,14 +268,23 @@ def test_a_hole_line_of_no_length_and_a_par_out_of_range_are_listed_as_unplayabl
     holes = [f for f in data["features"] if f["properties"].get("golf") == "hole"]
     holes[1]["geometry"]["coordinates"] = [holes[1]["geometry"]["coordinates"][0]] * 2
     holes[2]["properties"]["par"] = "99"
+    holes[3]["properties"]["par"] = "4;5"  # men's and women's: not taken for no par
+    holes[4]["properties"]["ref"] = [5, "5a"]  # a multi-valued tag as a converter's list
+    holes[5]["properties"]["name"] = "Amen\nCorner "  # (printed raw, over two lines, before)
     (folder / "odd.geojson").write_text(json.dumps(data))
     message = _error({"map": "odd.geojson", "hole": 2}, folder)
     assert "hole 2: its golf=hole line ends 0.0 m from where it starts: allowed is" in message
+    assert "'par' = '4;5' must be a whole number 2-7" in _error(
+        {"map": "odd.geojson", "hole": 4}, folder
+    )
     assert main(["hole", str(folder / "odd.geojson")]) == 0
     out = capsys.readouterr().out
     assert "  ! hole 2: its golf=hole line ends 0.0 m" in out
     assert "  ! par 99: allowed is a whole number 2-7" in out
-    assert "2 of 18 holes cannot be played as mapped" in out
+    assert "  ! par '4;5': allowed is a whole number 2-7" in out
+    assert "   5  5;5a    -     411.3" in out
+    assert "hole 6: Amen Corner\n" in out
+    assert "3 of 18 holes cannot be played as mapped" in out
 
 
 def test_a_feature_that_cannot_be_read_stops_only_what_needs_it(folder, capsys):
@@ -358,3 +371,24 @@ def test_the_commands_that_play_a_hole_say_what_of_its_map_was_left_out(folder, 
     notes = course_holes(folder / "cut.geojson", "9")[3]
     assert any(n.startswith("1 feature(s) of the map left out") for n in notes)
     assert not any("left out" in n for n in course_holes(folder / MAP, "9")[3])
+
+
+def test_a_bad_hole_elevation_ground_shape_or_baseline_is_an_input_error(tmp_path):
+    """One class catches every bad input of the Python API: a hole, an elevation file, a
+    ground shape and a strokes baseline raise mcrun.InputError (each a ValueError of its own
+    before, which ``except mcrun.InputError`` let through)."""
+    from mcrun import InputError
+    from mcrun.hole.elevation import load_elevation
+    from mcrun.hole.shapes import check_shape
+    from mcrun.strokes.baseline import load_baseline
+
+    (tmp_path / "h.toml").write_text("[hole]\nsurface = 'lava'\n")
+    (tmp_path / "b.csv").write_text("lie,distance_m\n")
+    for call in (
+        lambda: load_hole(tmp_path / "h.toml"),
+        lambda: load_elevation(tmp_path / "none.csv"),
+        lambda: check_shape("volcano"),
+        lambda: load_baseline(tmp_path / "b.csv"),
+    ):
+        with pytest.raises(InputError):
+            call()

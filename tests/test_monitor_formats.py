@@ -400,6 +400,60 @@ def test_an_export_with_lines_ended_by_cr_alone_reads_as_with_crlf(tmp_path, nam
         assert cr.frame[column].equals(crlf.frame[column]), column
 
 
+def _resaved(text, sep, decimal):
+    """An export's text as Excel saves it in another locale: fields separated by ``sep``,
+    decimals written with ``decimal``."""
+    import csv
+    import io
+    import re
+
+    number = re.compile(r"^(\s*[LR]?\s*[+-]?\d+)\.(\d+\s*[LR]?\s*)$", re.IGNORECASE)
+    out = io.StringIO()
+    writer = csv.writer(out, delimiter=sep, lineterminator="\r\n")
+    for line in text.splitlines():
+        if line.startswith("sep="):
+            out.write(f"sep={sep}\r\n")
+            continue
+        fields = next(csv.reader([line]), [])
+        writer.writerow([number.sub(rf"\1{decimal}\2", f) for f in fields])
+    return out.getvalue()
+
+
+CSV_FIXTURES = sorted(p.name for p in DATA.glob("*.csv"))
+
+
+@pytest.mark.parametrize("name", CSV_FIXTURES)
+def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(tmp_path, name):
+    """Excel saves a CSV with ';' between the fields and decimal commas where the decimal mark
+    is a comma (most of Europe), and "Unicode Text" as UTF-16 with tabs: each read as the
+    same launches and device results as the export itself (refused as a file of no known
+    columns before)."""
+    data = (DATA / name).read_bytes()
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+    original = read_session(DATA / name)
+    saved = {
+        "semicolon": ("utf-8", _resaved(text, ";", ",")),
+        "unicode-text": ("utf-16", _resaved(text, "\t", ",")),
+        "tab": ("utf-8", _resaved(text, "\t", ".")),
+    }
+    for how, (encoding, body) in saved.items():
+        path = tmp_path / f"{how}-{name}"
+        path.write_bytes(body.encode(encoding))
+        session = read_session(path)
+        assert session.format == original.format and len(session.frame) == len(original.frame)
+        for part in ("launch", "device"):
+            ours, theirs = getattr(session, part), getattr(original, part)
+            assert ours.keys() == theirs.keys(), (how, part)
+            for quantity in theirs:
+                np.testing.assert_array_equal(ours[quantity], theirs[quantity], err_msg=how)
+        assert list(session.reasons != "") == list(original.reasons != ""), how
+        said = f"fields separated by {'tabs' if how != 'semicolon' else repr(';')}"
+        assert any(said in note for note in session.notes), session.notes
+
+
 def test_gspro_messages_are_read_out_of_a_connectors_log():
     """Prefixes and arrows before each message, other log lines between, heartbeats and
     GSPro's replies skipped, a message logged with Python's repr (``Backspin``, TotalSpin 0:

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from mcrun.api import simulate
+from mcrun.api import InputError, simulate
 from mcrun.cli import main
 from mcrun.results import output
 from mcrun.run import clubs, replay
@@ -96,6 +96,21 @@ def test_club_summary_and_device_comparison_by_hand():
     assert every["shots"] == 4 and every["bias"] == pytest.approx(-0.5, rel=1e-15)
     assert every["rmse"] == pytest.approx(math.sqrt(18.0 / 4.0), rel=1e-15)
     assert table.loc[("B", "carry_m")]["shots"] == 1
+    for table in (clubs.club_summary, clubs.device_comparison):
+        with pytest.raises(InputError, match="frame None: allowed: the frame of mcrun.run.replay"):
+            table(None)  # (a TypeError before)
+
+
+def test_a_club_without_a_compared_shot_prints_dashes(tmp_path, capsys):
+    """A text line under an export's rows (a footer such as "Exported by ...") is a shot
+    without a launch, of no club: its rows of the model-minus-device table have no shots,
+    printed as '-' ('+nan' before)."""
+    path = tmp_path / "footer.csv"
+    path.write_bytes((DATA / "garmin-r10-metric.csv").read_bytes() + b"Exported by the app\n")
+    assert main(["replay", str(path), "-o", str(tmp_path / "f.parquet")]) == 0
+    out = capsys.readouterr().out
+    assert "nan" not in out
+    assert "             carry_m      0      -     -" in out
 
 
 def test_cli_says_the_format_prints_the_clubs_and_keeps_the_device(tmp_path, capsys):

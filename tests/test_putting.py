@@ -337,6 +337,7 @@ def test_first_putts_struck_in_parts_on_threads_are_those_struck_in_one_go():
         ((3.0, 3.3, 0.02, "90"), {}, "direction_deg '90': allowed: a number"),
         ((3.0, 3.3, 0.02, 0.0), {"n": "100"}, "n '100': allowed: a number"),
         ((3.0, 3.3, 0.02, 0.0), {"putter": None}, "putter None: allowed: tour, scratch"),
+        ((3.0, 3.3, 0.02, 0.0), {"read": "no"}, "read 'no': allowed: True or False"),
     ],
 )
 def test_putt_names_an_argument_of_the_wrong_type(args, kwargs, says):

@@ -222,6 +222,7 @@ def test_mcrun_rate_rates_for_the_women_s_model_players(tmp_path):
         (["--holes", "3"], "--holes '3': allowed: hole numbers 1-2"),
         (["-n", "1"], "-n '1': allowed: a whole number of at least 2"),
         (["--putts", "0"], "--putts '0'"),
+        (["--putts", "1e9"], "--putts '1e9': allowed: a whole number from 2 to 100000"),
         (["--elevation-crs", "EPSG:32633"], "--elevation-crs: is for --elevation"),
     ],
 )
@@ -311,6 +312,7 @@ def test_a_scorecard_moves_each_tee_up_its_line(tmp_path, capsys):
         ("hole,yards\n1,180\n3,300\n", "row 3: hole 3: allowed: each hole of the map once"),
         ("hole,yards\n1,far\n", "row 2: hole '1', yards 'far'"),
         ("hole,length\n1,180\n", "the columns hole,yards"),
+        ("hole,yards,yards\n1,180,150\n2,300,280\n", "column 'yards' twice"),
     ]:
         card.write_text(text)
         out = tmp_path / "r.parquet"

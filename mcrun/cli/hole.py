@@ -56,7 +56,7 @@ def _list_holes(path):
         title = hole_title(course_name, line)
         try:
             if line.par is not None and line.par not in PAR_RANGE:  # (as load_hole checks it)
-                raise HoleError(f"{path}: par {line.par}: allowed is a whole number 2-7 (mend "
+                raise HoleError(f"{path}: par {line.par!r}: allowed is a whole number 2-7 (mend "
                                 "the map, or give 'par' in a hole file)")  # fmt: skip
             tee, pin = tee_and_pin(course, line, str(path))
         except HoleError as err:

@@ -13,6 +13,7 @@ import numpy as np
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
 from mcrun.cli.options import whole
 from mcrun.cli.play import OPTION_NAMES, checked_outputs, dask_client, solve_settings
+from mcrun.hole.hole import PUTTING_N_RANGE
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
 
@@ -51,12 +52,17 @@ def read_scorecard(path, count):
     path = Path(path)
     try:
         with path.open(newline="", encoding="utf-8-sig") as f:
-            rows = list(csv.DictReader(f))
-            header = rows[0].keys() if rows else None
+            reader = csv.DictReader(f)
+            rows = list(reader)
+            header = reader.fieldnames
     except OSError as err:
         raise InputError(f"--scorecard {path}: {err.strerror}") from None
     except UnicodeDecodeError:
         raise InputError(f"--scorecard {path}: not a text file: a CSV of hole,yards") from None
+    twice = sorted({name for name in header or () if header.count(name) > 1})
+    if twice:
+        raise InputError(f"{path}: column {twice[0]!r} twice: a scorecard is a CSV with the "
+                         "columns hole,yards")  # fmt: skip
     if not rows or set(header) != {"hole", "yards"}:
         raise InputError(f"{path}: a scorecard is a CSV with the columns hole,yards and a row "
                          "per hole")  # fmt: skip
@@ -240,7 +246,7 @@ def _cmd_rate(args):
     workers, n, plays, coarse, fine, seed = solve_settings(args)
     putting = {}
     if args.putts is not None:
-        putting["n"] = whole(args.putts, "--putts", 2)
+        putting["n"] = whole(args.putts, "--putts", *PUTTING_N_RANGE)
     if args.green_resolution is not None:
         resolution = parse_quantity(args.green_resolution, "length", "--green-resolution")
         if not 0.05 <= resolution <= 5.0:

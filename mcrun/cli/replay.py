@@ -93,6 +93,10 @@ def _m(value):
     return "-" if value != value else f"{value:.1f}"
 
 
+def _signed(value):
+    return "-" if value != value else f"{value:+.2f}"
+
+
 def _gapping(summary):
     header = ["club", "shots", "ok", "carry_m", "sd", "p10", "p90", "total_m", "sd", "side_m"]
     header += ["sd", "gap_m"]
@@ -119,7 +123,7 @@ def _gapping(summary):
 def _comparison(comparison):
     header = ["club", "quantity", "shots", "bias", "rmse"]
     rows = [
-        [r.club, r.quantity, r.shots, f"{r.bias:+.2f}", f"{r.rmse:.2f}"]
+        [r.club, r.quantity, r.shots, _signed(r.bias), "-" if r.rmse != r.rmse else f"{r.rmse:.2f}"]
         for r in comparison.itertuples()
     ]
     return "model minus device (bias, rmse; in the quantity's unit):\n" + _table(header, rows)

@@ -41,6 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mcrun.quantities import InputError
 from mcrun.units import shown
 
 EARTH_RADIUS_M = 6_371_008.8  # mean radius (IUGG): cell sizes in degrees shown in metres
@@ -98,7 +99,7 @@ Z_NAMES = (
 DUPLICATE_TOLERANCE_M = 0.01
 
 
-class ElevationError(ValueError):
+class ElevationError(InputError):
     """An elevation file that cannot be used; its message is one line naming the file."""
 
 
@@ -587,7 +588,21 @@ def _load_points(path, crs):
     columns = {str(c).strip().lower(): c for c in table.columns}
 
     def find(names):
-        return next((columns[n] for n in names if n in columns), None)
+        """The first of ``names`` in the table; ElevationError where another of them is
+        there too with other values (which to read would be a guess)."""
+        given = [columns[n] for n in names if n in columns]
+        for other in given[1:]:
+            a = pd.to_numeric(table[given[0]], errors="coerce").to_numpy(dtype=np.float64)
+            b = pd.to_numeric(table[other], errors="coerce").to_numpy(dtype=np.float64)
+            differ = np.flatnonzero(~((a == b) | (np.isnan(a) & np.isnan(b))))
+            if differ.size:
+                k = differ[0]
+                raise ElevationError(
+                    f"{name}: columns {given[0]} and {other} give the same thing and differ "
+                    f"(row {k + 2}: {table[given[0]].iloc[k]}, {table[other].iloc[k]}): "
+                    "allowed is one of them: remove or rename the other"
+                )
+        return given[0] if given else None
 
     cx, cy, cz = find(LON_NAMES), find(LAT_NAMES), find(Z_NAMES)
     lonlat = cx is not None and cy is not None

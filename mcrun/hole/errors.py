@@ -1,6 +1,8 @@
 """The one error of the hole layer."""
 
+from mcrun.quantities import InputError
 
-class HoleError(ValueError):
+
+class HoleError(InputError):
     """A hole, its map or its ground cannot be used; the message is one line naming the file,
     the key or feature, and what is allowed."""

@@ -691,6 +691,12 @@ def hole_from_table(table, folder, source):
         if "hole" in table:
             raise HoleError(f"{where}: 'hole' chooses a hole of a 'map', and there is none")
         parts = _plain_hole(table, where, margin, cell)
+    length = math.hypot(*parts["pin_xy"])
+    if length > SIZE_RANGE_M[1]:  # (a grid of millions of nodes built before it is refused)
+        raise HoleError(
+            f"{where}: the pin is {length:,.0f} m from the tee: allowed: up to "
+            f"{SIZE_RANGE_M[1]:,.0f} m (the longest holes are about 1,000 m)"
+        )
     _check_nodes(parts["extent_m"], cell, where)
     heights, ground = None, "flat"
     if "elevation" in table:

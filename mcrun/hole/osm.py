@@ -42,7 +42,7 @@ class HoleLine:
 
     index: int
     ref: str | None
-    par: int | None
+    par: int | str | None  # the tag as written where it is not one whole number
     name: str | None
     lonlat: np.ndarray | None
     feature: str  # the feature's id, or "feature N"
@@ -223,11 +223,27 @@ def _polygons(geometry, where):
     return polygons
 
 
-def _int_or_none(value):
+def _par(value):
+    """A ``par`` tag: its whole number, None where there is none, the tag as written where it
+    is not one whole number (``4;5``, men's and women's: refused where the par is used, as a
+    par out of range is, rather than taken for no par)."""
+    if value is None or (isinstance(value, str) and not value.strip()):
+        return None
     try:
         return int(str(value).strip())
-    except (TypeError, ValueError):
+    except ValueError:
+        return str(value).strip()
+
+
+def _tag_text(value):
+    """A tag's text on one line (a name with a line break printed raw broke the listing's
+    lines), None where empty; a list (as some converters write a multi-valued tag) joined by
+    ';', as OpenStreetMap writes one."""
+    if value is None:
         return None
+    if isinstance(value, list):
+        value = ";".join(str(v) for v in value)
+    return " ".join(str(value).split()) or None
 
 
 def _is_number(text):
@@ -338,9 +354,9 @@ def read_course(path):
             holes.append(
                 HoleLine(
                     index=len(holes) + 1,
-                    ref=None if tags.get("ref") is None else str(tags["ref"]),
-                    par=_int_or_none(tags.get("par")),
-                    name=tags.get("name"),
+                    ref=_tag_text(tags.get("ref")),
+                    par=_par(tags.get("par")),
+                    name=_tag_text(tags.get("name")),
                     lonlat=lonlat,
                     feature=str(feature.get("id") or f"feature {k}"),
                     problem=problem,
@@ -354,7 +370,7 @@ def read_course(path):
                 elif tags.get("leisure") == "golf_course":
                     polygons = _polygons(geometry, where)
                     boundary.extend(polygons)
-                    course_name = None if tags.get("name") is None else str(tags["name"])
+                    course_name = _tag_text(tags.get("name"))
                     courses.extend((course_name, polygon) for polygon in polygons)
                     if polygons and name is None:
                         name = course_name

@@ -36,8 +36,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mcrun.quantities import InputError
 
-class ShapeError(ValueError):
+
+class ShapeError(InputError):
     """A shape or parameter that is not allowed; its message is one line."""
 
 

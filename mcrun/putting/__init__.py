@@ -153,6 +153,8 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
     on the centre line it perceives). Raises InputError for inputs out of range.
     """
     putter = check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter, n, drift_mm_per_m)
+    if not isinstance(read, bool | np.bool_):  # ("yes" or "no" would be true)
+        raise InputError(f"read {read!r}: allowed: True or False")
     n = int(n)
     try:
         z, keys = putter_errors(n, seed)

@@ -10,6 +10,8 @@ import numpy as np
 import pandas as pd
 
 from mcrun import status
+from mcrun.quantities import InputError
+from mcrun.units import shown
 
 ALL = "all"
 """The group of every shot, in the comparison; and the one club of a file without clubs."""
@@ -21,6 +23,8 @@ PERCENTILES = (10, 50, 90)
 
 def club_labels(frame):
     """The club of each row of a replay frame, as text ("" where missing; ALL without clubs)."""
+    if not isinstance(frame, pd.DataFrame) or "status" not in frame:
+        raise InputError(f"frame {shown(frame)}: allowed: the frame of mcrun.run.replay.replay")
     if "club" in frame:
         return frame["club"].astype("string").fillna("").to_numpy(dtype=object)
     return np.full(len(frame), ALL, dtype=object)
@@ -53,6 +57,7 @@ def device_comparison(frame):
     """The model minus the device, per club and for all shots (club "all"), per quantity the
     device gives: shots compared (ok, and measured by the device), bias (mean difference) and
     RMSE. Empty when the file holds none of the device's results."""
+    club_labels(frame)  # (a frame it can read)
     columns = [c for c in frame.columns if str(c).startswith("model_minus_device_")]
     if not columns:
         return pd.DataFrame(columns=["club", "quantity", "shots", "bias", "rmse"])

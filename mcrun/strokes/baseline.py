@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mcrun.quantities import InputError
 from mcrun.units import KINDS, shown
 
 __all__ = [
@@ -58,7 +59,7 @@ DEFAULT_BASELINE_PATH = resources.files("mcrun") / "data" / "pga_tour_baseline_b
 MAX_STROKES = 20.0
 
 
-class BaselineError(ValueError):
+class BaselineError(InputError):
     """A baseline table cannot be used; the message is one line meant for the user."""
 
 

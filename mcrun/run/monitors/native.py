@@ -137,12 +137,13 @@ def _data_lines(path):
                 yield line
 
 
-def check_field_counts(path, lines=None):
+def check_field_counts(path, lines=None, sep=","):
     """InputError when a data row has more fields than the header: pandas would take the
     first columns as the index (or drop the extra fields), shifting every value silently. A
     short row reads as missing values. ``lines``: the lines to check (default: the file's,
-    comments dropped); the header first."""
-    rows = csv.reader(_data_lines(path) if lines is None else lines, skipinitialspace=True)
+    comments dropped); the header first; ``sep``: their separator."""
+    lines = _data_lines(path) if lines is None else lines
+    rows = csv.reader(lines, delimiter=sep, skipinitialspace=True)
     try:
         header = next(rows, None)
         if header is None:

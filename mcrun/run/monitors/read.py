@@ -3,7 +3,9 @@ the file's own table and its launches and the device's results in SI.
 
 What real files hold and how it is read: a UTF-8 byte-order mark (dropped; also one encoded
 twice, ``ï»¿``, as a file read as Latin-1 and saved as UTF-8 has it); UTF-16 with its mark;
-bytes that are not UTF-8 (read as Latin-1); a ``sep=,`` first line (its separator used);
+bytes that are not UTF-8 (read as Latin-1); a ``sep=,`` first line (its separator used),
+else the header's separator (a comma, or a semicolon or a tab as Excel saves in locales
+whose decimal mark is a comma, where decimal commas are read: ``45,3``, ``13,8 L``);
 Square Golf's ``Dates,...`` line and the blank line after it (skipped); a unit row under the
 header (``[mph]``, ``[km/h]``, ``[m]``: it governs, column by column, a repeated name too);
 units in names (``Ball Speed (mph)``); directions written ``13.8 L``, ``R2.1`` or
@@ -123,6 +125,12 @@ def read_session(path, format=None):
         frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline)
     if len(frame) == 0:
         raise InputError(f"{path}: no shots: the file has a header only")
+    notes = []
+    if sep != ",":
+        notes.append(f"{path}: fields separated by {'tabs' if sep == chr(9) else repr(sep)}")
+    if _decimal_comma(head[offset:], sep):
+        frame = _point_decimals(frame)
+        notes[-1] += "; numbers with a decimal comma (read as points)"
     # Each column's unit by its place (a name given twice may have two units): the unit row,
     # else the unit in the name.
     file_units = {}
@@ -135,7 +143,7 @@ def read_session(path, format=None):
     cut = _cut_short(path, encoding, sep, len(header))
     if cut:
         reasons[-1] = cut
-    return _session(frame, source, fmt.name, format is None, file_units, None, reasons)
+    return _session(frame, source, fmt.name, format is None, file_units, None, reasons, notes)
 
 
 def _session_of_messages(path, format):
@@ -154,7 +162,7 @@ def _read_table(path, encoding, start, sep, skip, fmt, newline=""):
         file.read(start)
         lines = enumerate(file)
         check_field_counts(
-            path, (text for k, text in lines if text.strip() and (k != 1 or not skip))
+            path, (text for k, text in lines if text.strip() and (k != 1 or not skip)), sep
         )
     with open(path, encoding=encoding, newline=newline) as file:
         file.read(start)
@@ -300,7 +308,7 @@ def _cut_short(path, encoding, sep, width):
 def _split(path, text):
     """(header fields, unit-row units or None, separator, where the header starts in
     ``text``, the rows pandas skips after the header (the unit row)) of a CSV export."""
-    sep = ","
+    sep, given = ",", False
     start = 0
     seen = 0
     header = None
@@ -312,14 +320,16 @@ def _split(path, text):
             start = end
             continue
         if seen == 0 and line.lower().startswith("sep=") and len(line) >= 5:
-            sep = line[4]
+            sep, given = line[4], True
             seen += 1
             start = end
             continue
-        if seen == 0 and line.startswith("Dates,"):  # Square Golf's first line
+        if seen == 0 and line.startswith(("Dates,", "Dates;", "Dates\t")):  # Square Golf's
             seen += 1
             start = end
             continue
+        if not given:  # no sep= line: the separator the header is written with
+            sep = _separator(line)
         header = _fields(line, sep, path)
         break
     if header is None:
@@ -336,6 +346,48 @@ def _split(path, text):
             units = [f.strip().strip("[]").strip() for f in row]
             skip = [1]
     return header, units, sep, start, skip
+
+
+# A comma; a semicolon, as Excel writes a CSV where the decimal mark is a comma; a tab, as in
+# Excel's "Unicode Text" (UTF-16).
+_SEPARATORS = (",", ";", "\t")
+# A cell that is a number (or an L/R direction) written with a decimal comma or point.
+_COMMA_NUMBER = re.compile(r"^(\s*[LR]?\s*[+-]?\d+),(\d+\s*[LR]?\s*)$", re.IGNORECASE)
+_POINT_NUMBER = re.compile(r"^\s*[LR]?\s*[+-]?\d+\.\d+\s*[LR]?\s*$", re.IGNORECASE)
+
+
+def _separator(header):
+    """The separator of a header line: of ``_SEPARATORS``, the one that splits it into the
+    most fields (a comma on a tie)."""
+    counts = [len(_fields(header, sep)) for sep in _SEPARATORS]
+    return _SEPARATORS[counts.index(max(counts))]
+
+
+def _decimal_comma(body, sep):
+    """Whether the rows in ``body`` (text after the header) write numbers with a decimal
+    comma: never where a comma separates the fields; else where more cells are numbers with
+    a comma (``45,3``, ``13,8 L``) than with a point (a date ``01.05.2024`` is neither)."""
+    if sep == ",":
+        return False
+    comma = point = 0
+    for fields in csv.reader(body.splitlines()[:200], delimiter=sep):
+        for cell in fields:
+            comma += _COMMA_NUMBER.match(cell) is not None
+            point += _POINT_NUMBER.match(cell) is not None
+    return comma > point
+
+
+def _point_decimals(frame):
+    """The frame's text cells that are numbers with a decimal comma, written with a point."""
+
+    def point(value):
+        return _COMMA_NUMBER.sub(r"\1.\2", value) if isinstance(value, str) else value
+
+    for column in frame.columns:
+        series = frame[column]
+        if series.dtype == object or pd.api.types.is_string_dtype(series.dtype):
+            frame[column] = series.map(point)
+    return frame
 
 
 def _tidy_name(column):
