@@ -25,6 +25,7 @@ from numba import njit
 
 from mcrun.engine.schema import INPUT_FIELDS
 from mcrun.engine.shot import default_dt_s
+from mcrun.errors import InputError
 from mcrun.physics import aero, atmosphere
 from mcrun.physics.constants import (
     DEG,
@@ -64,10 +65,6 @@ __all__ = [
     "to_si",
     "with_defaults",
 ]
-
-
-class InputError(ValueError):
-    """An input out of its documented range; the message is one line meant for the user."""
 
 
 # Default parameter of each wind profile: roughness length z0 (m) of the log law over short

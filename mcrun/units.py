@@ -20,6 +20,8 @@ import math
 import numbers
 import re
 
+from mcrun.errors import InputError
+
 __all__ = [
     "KINDS",
     "UNIT_SUFFIXES",
@@ -34,7 +36,7 @@ __all__ = [
 ]
 
 
-class UnitError(ValueError):
+class UnitError(InputError):
     """A quantity given by the user cannot be read; the message is one line meant for the user."""
 
 

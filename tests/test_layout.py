@@ -10,7 +10,14 @@ PACKAGE = Path(mcrun.__file__).parent
 
 # Lowest first. A module may import modules of its own layer or of the layers below.
 LAYERS = (
-    ("mcrun.status", "mcrun.units", "mcrun.trajectory", "mcrun.exits", "mcrun.executor"),
+    (
+        "mcrun.errors",
+        "mcrun.status",
+        "mcrun.units",
+        "mcrun.trajectory",
+        "mcrun.exits",
+        "mcrun.executor",
+    ),
     ("mcrun.physics",),
     ("mcrun.ground",),
     ("mcrun.hole",),

@@ -14,8 +14,8 @@ Each family of commands lives in its own module, which adds its subcommands to t
 - ``mcrun.cli.putt``: ``putt``
 - ``mcrun.cli.warmup``: ``warm-up``
 
-A mistake the user can make (``InputError`` and its kinds, ``OutputError`` among them,
-``UnitError``, ``CommandError``, ``hole.errors.HoleError``) ends with one line,
+A mistake the user can make (``InputError`` and its kinds: ``OutputError``, ``UnitError``,
+``hole.errors.HoleError`` among them; ``CommandError``) ends with one line,
 ``mcrun: error: <message>``, on stderr and exit code 2; Ctrl-C with ``mcrun: interrupted`` and
 exit code 130, SIGTERM with 143 (``mcrun.exits``); anything else is a bug and raises. A command
 function returns its exit code and raises these; it prints no error itself.
@@ -29,9 +29,7 @@ import re
 import sys
 
 from mcrun import exits
-from mcrun.hole.errors import HoleError
 from mcrun.quantities import InputError
-from mcrun.units import UnitError
 
 
 class CommandError(ValueError):
@@ -40,7 +38,7 @@ class CommandError(ValueError):
 
 
 # The errors a user's input can cause: each ends a command with one line and exit code 2.
-USER_ERRORS = (InputError, UnitError, CommandError, HoleError)
+USER_ERRORS = (InputError, CommandError)
 
 
 class Interrupted(KeyboardInterrupt):

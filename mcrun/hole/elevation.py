@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.quantities import InputError
+from mcrun.errors import InputError
 from mcrun.units import shown
 
 EARTH_RADIUS_M = 6_371_008.8  # mean radius (IUGG): cell sizes in degrees shown in metres

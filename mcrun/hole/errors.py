@@ -1,6 +1,6 @@
 """The one error of the hole layer."""
 
-from mcrun.quantities import InputError
+from mcrun.errors import InputError
 
 
 class HoleError(InputError):

@@ -36,7 +36,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mcrun.quantities import InputError
+from mcrun.errors import InputError
 
 
 class ShapeError(InputError):

@@ -401,12 +401,13 @@ def _connect(client, scheduler, scheduler_file, workers):
         cluster = None
         try:
             # Interrupted while it starts, a cluster can be neither used nor closed.
-            # Its logs are silenced but for the critical: the run reports its failed chunks
+            # Its logs are silenced, the critical too: the run reports its failed chunks
             # itself, and after Ctrl-C or SIGTERM (sent to the whole process group, workers
             # included) the scheduler logs errors about the workers it lost ("Couldn't gather
-            # keys"), which raced the run's own one line on stderr.
+            # keys"; at CRITICAL, "Closed comm <BatchedSend: closed> while trying to write"),
+            # which raced the run's own one line on stderr.
             with exits.interrupts_deferred():
-                cluster = local_cluster(workers, silence_logs=logging.CRITICAL)
+                cluster = local_cluster(workers, silence_logs=logging.CRITICAL + 10)
             with distributed.Client(cluster) as own:
                 yield own
         finally:

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mcrun.quantities import InputError
+from mcrun.errors import InputError
 from mcrun.units import KINDS, shown
 
 __all__ = [
