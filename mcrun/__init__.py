@@ -1,6 +1,28 @@
-"""mcrun: a Numba Monte Carlo engine for golf shots (flight, Penner 2002 bounce, roll)."""
+"""mcrun: a Numba Monte Carlo engine for golf shots (flight, Penner 2002 bounce, roll).
 
-from mcrun.api import InputError, ShotResult, bounce_once, simulate
+The one-shot API (``simulate``, ``bounce_once``, ``ShotResult``) is imported on first use, so
+that importing the package starts no Numba: the command line checks its environment first
+(``mcrun.exits.threads_setting_problem``)."""
+
+from mcrun.errors import InputError
 
 __version__ = "0.1.0"
 __all__ = ["InputError", "ShotResult", "bounce_once", "simulate", "__version__"]
+_API = ("ShotResult", "bounce_once", "simulate")
+
+
+def __getattr__(name):
+    if name in _API:
+        from mcrun.exits import threads_setting_problem
+
+        problem = threads_setting_problem()  # (Numba's ValueError at its import otherwise)
+        if problem:
+            raise InputError(problem)
+        from mcrun import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'mcrun' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted({*globals(), *_API})

@@ -8,6 +8,8 @@
   (``mcrun.results.output.remove_stale``).
 - A path with a name longer than the filesystem allows (ENAMETOOLONG, 255 bytes on most) is
   one line naming the path, shortened when it is long itself: ``name_too_long``.
+- ``NUMBA_NUM_THREADS`` that Numba cannot start with (0 raised a ValueError at its import) is
+  one line too, said before anything imports Numba: ``threads_setting_problem``.
 
 Light on purpose: ``mcrun.cli`` imports it before any command module.
 """
@@ -151,3 +153,15 @@ def name_too_long(err):
     else:
         reason = f"the path is too long ({len(os.fsencode(path))} bytes)"
     return f"{shorten(path)}: {reason}"
+
+
+def threads_setting_problem(environ=None):
+    """What is wrong with the environment's ``NUMBA_NUM_THREADS`` (the threads the kernels run
+    on), one line; None where it is unset or a whole number 1 or more."""
+    text = (os.environ if environ is None else environ).get("NUMBA_NUM_THREADS")
+    if text is None or (text.strip().isdigit() and int(text) >= 1):
+        return None
+    return (
+        f"NUMBA_NUM_THREADS={text!r}: allowed: a whole number 1 or more (the threads the "
+        "kernels run on; unset, every core)"
+    )

@@ -7,6 +7,7 @@ Most tests call ``main([...])`` in the test process; one runs the installed cons
 
 import json
 import math
+import os
 import re
 import shutil
 import subprocess
@@ -280,6 +281,21 @@ def test_bad_shot_input_is_one_line_and_exit_2(capsys, argv):
     assert out == ""
     assert len(err.splitlines()) == 1
     assert err.startswith("mcrun: error: ")
+
+
+def test_a_thread_count_numba_cannot_start_with_is_one_line():
+    """NUMBA_NUM_THREADS=0 raised Numba's ValueError, a traceback, as the package imported
+    Numba; now the command line says so before anything imports it (as a new process)."""
+    env = {**os.environ, "NUMBA_NUM_THREADS": "0"}
+    done = subprocess.run(
+        [sys.executable, "-c", "from mcrun.cli import main; raise SystemExit(main())", "shot"],
+        env=env, capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr == (
+        "mcrun: error: NUMBA_NUM_THREADS='0': allowed: a whole number 1 or more (the threads "
+        "the kernels run on; unset, every core)\n"
+    )
 
 
 @pytest.mark.parametrize(

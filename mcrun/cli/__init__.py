@@ -29,7 +29,7 @@ import re
 import sys
 
 from mcrun import exits
-from mcrun.quantities import InputError
+from mcrun.errors import InputError
 
 
 class CommandError(ValueError):
@@ -233,6 +233,9 @@ def compile_if_needed(ground, kernels=("batch",)):
 def main(argv=None):
     """Run ``mcrun`` with ``argv`` (default: the process's arguments); return the exit code."""
     argv = sys.argv[1:] if argv is None else list(argv)
+    problem = exits.threads_setting_problem()  # (before a command's module imports Numba)
+    if problem:
+        return _error(problem)
     parser = build_parser(argv[0] if argv else None)
     try:
         args = parser.parse_args(_attach_negative_values(argv))
