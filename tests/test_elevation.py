@@ -412,15 +412,23 @@ def test_bad_files_say_so_in_one_line(tmp_path):
         file("f.csv", "lon,lat,elevation\n500000,5000000,1\n500010,5000000,1\n500000,5000010,1\n")
     )
     # Two height columns (a GPS altitude beside a surveyed elevation): which is meant is not
-    # guessed; the same numbers in both are one column.
+    # guessed; numbers within 1 cm in both are one column, the first's blanks filled from the
+    # other. A column named twice, in any case (pandas read the second 'alt' as 'alt.1', and
+    # the first was read silently), is refused.
     assert (
-        "columns elevation_m and alt give the same thing and differ (row 3: 2, 40)"
+        "columns elevation_m and alt give the same thing and differ by more than 0.01 (row 3: "
+        "2, 40)"
     ) in one_line_error(
         file("g.csv", "lon,lat,elevation_m,alt\n15,45,1,1\n15.1,45,2,40\n15,45.1,3,3\n")
     )
-    same = load_elevation(file("i.csv", "lon,lat,alt,elevation\n15,45,1,1\n15.1,45,2,2\n"
+    same = load_elevation(file("i.csv", "lon,lat,alt,elevation\n15,45,1,1.004\n15.1,45,,2\n"
                                         "15,45.1,3,3\n"))  # fmt: skip
     assert same.height_m(15.0, 45.1) == pytest.approx(3.0)
+    assert same.height_m(15.1, 45.0) == pytest.approx(2.0)
+    for header, says in (("alt,alt", "'alt' twice: "), ("ALT,alt", "'alt' twice (as 'ALT' and")):
+        assert f"j.csv: column {says}" in one_line_error(
+            file("j.csv", f"lon,lat,{header}\n15,45,1,5\n15.1,45,2,5\n15,45.1,3,5\n")
+        )
 
 
 def test_missing_optional_packages_say_how_to_install(tmp_path, monkeypatch):

@@ -120,7 +120,11 @@ def test_an_elevation_file_the_loader_refuses(folder, monkeypatch):
         ({"length_m": 9, "width_m": 9, "elevation": "d.tif"}, "an 'elevation' needs the hole"),
         (
             {"tee": [15.9, 45.78], "pin": [16.5, 45.78], "width_m": 60},
-            "the pin is 46,661 m from the tee: allowed: up to 2,000 m",  # (refused after 23 s)
+            "the pin is 46,661.3 m from the tee: allowed: up to 2,000 m",  # (refused after 40 s)
+        ),
+        (
+            {"tee": [15.9, 45.78], "pin": [15.925721, 45.78], "width_m": 60},  # 2,000.3 m
+            "the pin is 2,000.3 m from the tee",  # (said "2,000 m", as allowed, before)
         ),
     ],
 )
@@ -268,23 +272,36 @@ def test_a_hole_line_of_no_length_and_a_par_out_of_range_are_listed_as_unplayabl
     holes = [f for f in data["features"] if f["properties"].get("golf") == "hole"]
     holes[1]["geometry"]["coordinates"] = [holes[1]["geometry"]["coordinates"][0]] * 2
     holes[2]["properties"]["par"] = "99"
+    holes[0]["properties"]["par"] = 4.0  # a real field, as QGIS writes one: par 4
+    holes[6]["properties"]["par"] = "4_0"  # (int() read it as 40)
+    line = holes[7]["geometry"]["coordinates"]  # a point 2.8 km off the hole (half a minute,
+    line.insert(1, [line[0][0], line[0][1] - 0.025])  # 400 MB, a grid of 6 million nodes)
     holes[3]["properties"]["par"] = "4;5"  # men's and women's: not taken for no par
-    holes[4]["properties"]["ref"] = [5, "5a"]  # a multi-valued tag as a converter's list
+    holes[4]["properties"]["ref"] = [9, "18"]  # a nine played twice, as a converter's list
     holes[5]["properties"]["name"] = "Amen\nCorner "  # (printed raw, over two lines, before)
+    holes[8]["properties"]["name"] = "\u202eRed\x1b[31m"  # (reached the terminal raw)
     (folder / "odd.geojson").write_text(json.dumps(data))
     message = _error({"map": "odd.geojson", "hole": 2}, folder)
     assert "hole 2: its golf=hole line ends 0.0 m from where it starts: allowed is" in message
-    assert "'par' = '4;5' must be a whole number 2-7" in _error(
+    assert "the map's par of hole 4 is '4;5': allowed is a whole number 2-7 (mend" in _error(
         {"map": "odd.geojson", "hole": 4}, folder
     )
+    hole = hole_from_table({"map": "odd.geojson", "hole": 4, "par": 4.0}, folder, "h.toml")
+    assert hole.par == 4 and type(hole.par) is int  # (printed "par: 4.0" before)
     assert main(["hole", str(folder / "odd.geojson")]) == 0
     out = capsys.readouterr().out
     assert "  ! hole 2: its golf=hole line ends 0.0 m" in out
     assert "  ! par 99: allowed is a whole number 2-7" in out
     assert "  ! par '4;5': allowed is a whole number 2-7" in out
-    assert "   5  5;5a    -     411.3" in out
-    assert "hole 6: Amen Corner\n" in out
-    assert "3 of 18 holes cannot be played as mapped" in out
+    assert "   5  9;18    -     411.3" in out
+    course = read_course(folder / "odd.geojson")  # hole 9 is its ref's, not position 9
+    assert course.hole("9").index == course.hole("18").index == 5
+    assert "hole 6: Amen Corner\n" in out and "hole 9: Red[31m\n" in out
+    plain = hole_from_table({"length_m": 90, "width_m": 30, "name": "Short\n\tone"}, folder, "h")
+    assert plain.name == "Short one"
+    assert "   1     -    4     356.0" in out and "  ! par '4_0': allowed" in out
+    assert "  ! hole 8: its golf=hole line reaches 2,7" in out
+    assert "5 of 18 holes cannot be played as mapped" in out
 
 
 def test_a_feature_that_cannot_be_read_stops_only_what_needs_it(folder, capsys):

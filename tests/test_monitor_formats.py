@@ -400,22 +400,37 @@ def test_an_export_with_lines_ended_by_cr_alone_reads_as_with_crlf(tmp_path, nam
         assert cr.frame[column].equals(crlf.frame[column]), column
 
 
-def _resaved(text, sep, decimal):
+def _resaved(text, sep, decimal, grouped=False, sep_line=False):
     """An export's text as Excel saves it in another locale: fields separated by ``sep``,
-    decimals written with ``decimal``."""
+    decimals written with ``decimal``; with ``grouped``, thousands grouped by the other mark
+    (``7.097`` where the decimal mark is a comma, ``7,097`` where it is a point); with
+    ``sep_line``, a ``sep=`` line first."""
     import csv
     import io
     import re
 
-    number = re.compile(r"^(\s*[LR]?\s*[+-]?\d+)\.(\d+\s*[LR]?\s*)$", re.IGNORECASE)
+    number = re.compile(r"^(\s*[LR]?\s*[+-]?)(\d+)(?:\.(\d+))?(\s*[LR]?\s*)$", re.IGNORECASE)
+    group = "." if decimal == "," else ","
+
+    def written(field):
+        found = number.match(field)
+        if found is None:
+            return field
+        side, whole, decimals, end = found.groups()
+        if grouped and len(whole) > 3 and whole[0] != "0":
+            whole = f"{int(whole):,}".replace(",", group)
+        return f"{side}{whole}{decimal + decimals if decimals else ''}{end}"
+
     out = io.StringIO()
+    if sep_line and not text.startswith("sep="):
+        out.write(f"sep={sep}\r\n")
     writer = csv.writer(out, delimiter=sep, lineterminator="\r\n")
     for line in text.splitlines():
         if line.startswith("sep="):
             out.write(f"sep={sep}\r\n")
             continue
         fields = next(csv.reader([line]), [])
-        writer.writerow([number.sub(rf"\1{decimal}\2", f) for f in fields])
+        writer.writerow([written(f) for f in fields])
     return out.getvalue()
 
 
@@ -425,9 +440,11 @@ CSV_FIXTURES = sorted(p.name for p in DATA.glob("*.csv"))
 @pytest.mark.parametrize("name", CSV_FIXTURES)
 def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(tmp_path, name):
     """Excel saves a CSV with ';' between the fields and decimal commas where the decimal mark
-    is a comma (most of Europe), and "Unicode Text" as UTF-16 with tabs: each read as the
-    same launches and device results as the export itself (refused as a file of no known
-    columns before)."""
+    is a comma (most of Europe), and "Unicode Text" as UTF-16 with tabs, thousands grouped
+    where the cells are formatted so (``7.097`` or ``7,097`` rpm): each read as the same
+    launches and device results as the export itself, its columns of numbers numbers
+    (refused as a file of no known columns before; and 7.097 rpm, or 7.097 for ``7,097`` in
+    a file of decimal points, before the thousands were read)."""
     data = (DATA / name).read_bytes()
     try:
         text = data.decode("utf-8-sig")
@@ -435,9 +452,10 @@ def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(t
         text = data.decode("latin-1")
     original = read_session(DATA / name)
     saved = {
-        "semicolon": ("utf-8", _resaved(text, ";", ",")),
+        "semicolon": ("utf-8", _resaved(text, ";", ",", grouped=True)),
         "unicode-text": ("utf-16", _resaved(text, "\t", ",")),
-        "tab": ("utf-8", _resaved(text, "\t", ".")),
+        "tab": ("utf-8", _resaved(text, "\t", ".", grouped=True)),
+        "semicolon sep= line": ("utf-8-sig", _resaved(text, ";", ",", sep_line=True)),
     }
     for how, (encoding, body) in saved.items():
         path = tmp_path / f"{how}-{name}"
@@ -450,7 +468,10 @@ def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(t
             for quantity in theirs:
                 np.testing.assert_array_equal(ours[quantity], theirs[quantity], err_msg=how)
         assert list(session.reasons != "") == list(original.reasons != ""), how
-        said = f"fields separated by {'tabs' if how != 'semicolon' else repr(';')}"
+        for column in original.frame.columns:  # (the file's own columns, as written)
+            kind = original.frame[column].dtype.kind
+            assert session.frame[column].dtype.kind == kind or kind not in "fi", (how, column)
+        said = f"fields separated by {'tabs' if 'semicolon' not in how else repr(';')}"
         assert any(said in note for note in session.notes), session.notes
 
 

@@ -99,6 +99,12 @@ def test_club_summary_and_device_comparison_by_hand():
     for table in (clubs.club_summary, clubs.device_comparison):
         with pytest.raises(InputError, match="frame None: allowed: the frame of mcrun.run.replay"):
             table(None)  # (a TypeError before)
+        with pytest.raises(InputError, match="^frame: no column 'status': allowed: the frame"):
+            table(pd.DataFrame())  # (the frame's repr, over three lines, before)
+    with pytest.raises(InputError, match="^frame: no column 'carry_m'"):
+        clubs.club_summary(frame[["status"]])  # (a KeyError before)
+    none = clubs.club_summary(frame.iloc[:0])  # a club the session has not: no row
+    assert len(none) == 0 and list(none.columns) == list(clubs.club_summary(frame).columns)
 
 
 def test_a_club_without_a_compared_shot_prints_dashes(tmp_path, capsys):

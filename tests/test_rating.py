@@ -306,13 +306,17 @@ def test_a_scorecard_moves_each_tee_up_its_line(tmp_path, capsys):
     assert numbers == [1, 2]
     assert [h.length_m / YARD_M for h in holes] == pytest.approx([180.0, 300.0], abs=0.5)
     assert [h.par for h in holes] == [3, 4]
+    card.write_text("Hole; Yards\n1;180\n\n2;300\n")  # a spreadsheet's, in its locale
+    assert course_holes(course, scorecard=card)[1][1].length_m == holes[1].length_m
     for text, message in [
         ("hole,yards\n1,180\n2,400\n", "hole 2: 400 yd is longer than the hole's line"),
         ("hole,yards\n1,180\n", "no row for hole 2"),
         ("hole,yards\n1,180\n3,300\n", "row 3: hole 3: allowed: each hole of the map once"),
         ("hole,yards\n1,far\n", "row 2: hole '1', yards 'far'"),
-        ("hole,length\n1,180\n", "the columns hole,yards"),
+        ("hole,length\n1,180\n", "the columns hole,yards and a row per hole; found hole,length"),
         ("hole,yards,yards\n1,180,150\n2,300,280\n", "column 'yards' twice"),
+        ("hole,yards\n1,180,5\n2,300\n", "row 2: 3 fields: allowed: hole,yards"),  # (180 before)
+        ("hole,yards\n1,1_80\n2,300\n", "row 2: hole '1', yards '1_80'"),  # (read as 180)
     ]:
         card.write_text(text)
         out = tmp_path / "r.parquet"

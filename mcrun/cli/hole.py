@@ -4,12 +4,15 @@ and draw its map; or list the holes of a course map."""
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from mcrun.cli import CommandError
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
 from mcrun.hole.hole import (
     M_PER_YD,
     PAR_RANGE,
+    check_reach,
     hole_from_table,
     load_hole,
     read_hole_file,
@@ -59,12 +62,15 @@ def _list_holes(path):
                 raise HoleError(f"{path}: par {line.par!r}: allowed is a whole number 2-7 (mend "
                                 "the map, or give 'par' in a hole file)")  # fmt: skip
             tee, pin = tee_and_pin(course, line, str(path))
+            frame = Frame.from_tee_pin(tee, pin)
+            x, y = frame.to_xy(*np.vstack([line.lonlat, [tee, pin]]).T)
+            length_m = float(frame.to_xy(*pin)[0])
+            check_reach(length_m, max(np.ptp(x), np.ptp(y)), f"hole {line.index}")
         except HoleError as err:
             bad += 1
             why = str(err).removeprefix(f"{path}: ")
             print(f"{head}  {'-':>8}  {'-':>9}  {title}  ! {why}")
             continue
-        length_m = float(Frame.from_tee_pin(tee, pin).to_xy(*pin)[0])
         print(f"{head}  {length_m:>8.1f}  {length_m / M_PER_YD:>9.1f}  {title}")
     if bad:
         print(

@@ -5,11 +5,13 @@ table on screen, a row per hole and player to Parquet."""
 
 import contextlib
 import dataclasses
+import re
 import sys
 from pathlib import Path
 
 import numpy as np
 
+from mcrun import exits
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
 from mcrun.cli.options import whole
 from mcrun.cli.play import OPTION_NAMES, checked_outputs, dask_client, solve_settings
@@ -22,6 +24,9 @@ FAR_WALK_M = 300.0  # a green this far from the next hole's tee: the map's order
 RATED_HOLES = (9, 18)  # what the system rates: a length rating and a plays-as yardage are of these
 MARGIN_M = 60.0  # the ground kept around each hole's line (as the library's hole files)
 CELL_M = 0.5
+# A scorecard's hole number and yards as written (Python's int and float read "3_80" as 380).
+_WHOLE = re.compile(r"^[0-9]+$")
+_DECIMAL = re.compile(r"^[0-9]+(\.[0-9]*)?$|^\.[0-9]+$")
 
 
 def holes_wanted(spec, count, where="--holes"):
@@ -52,25 +57,33 @@ def read_scorecard(path, count):
     path = Path(path)
     try:
         with path.open(newline="", encoding="utf-8-sig") as f:
-            reader = csv.DictReader(f)
-            rows = list(reader)
-            header = reader.fieldnames
+            lines = [line for line in f.read().splitlines() if line.strip()]
     except OSError as err:
         raise InputError(f"--scorecard {path}: {err.strerror}") from None
     except UnicodeDecodeError:
         raise InputError(f"--scorecard {path}: not a text file: a CSV of hole,yards") from None
-    twice = sorted({name for name in header or () if header.count(name) > 1})
+    # Commas, or a spreadsheet's semicolons or tabs; names in any case.
+    sep = max((",", ";", "\t"), key=lines[0].count) if lines else ","
+    table = list(csv.reader(lines, delimiter=sep, skipinitialspace=True))
+    header = [name.strip().lower() for name in table[0]] if table else []
+    twice = sorted({name for name in header if header.count(name) > 1})
     if twice:
         raise InputError(f"{path}: column {twice[0]!r} twice: a scorecard is a CSV with the "
                          "columns hole,yards")  # fmt: skip
-    if not rows or set(header) != {"hole", "yards"}:
+    if len(table) < 2 or set(header) != {"hole", "yards"}:
+        found = ",".join(table[0]) if table else "nothing"
         raise InputError(f"{path}: a scorecard is a CSV with the columns hole,yards and a row "
-                         "per hole")  # fmt: skip
+                         f"per hole; found {exits.shorten(found)}")  # fmt: skip
     yards = {}
-    for k, row in enumerate(rows, start=2):
+    for k, fields in enumerate(table[1:], start=2):
+        if len(fields) != 2:
+            raise InputError(f"{path} row {k}: {len(fields)} fields: allowed: hole,yards")
+        row = dict(zip(header, (field.strip() for field in fields), strict=True))
         try:
+            if not (_WHOLE.match(row["hole"]) and _DECIMAL.match(row["yards"])):
+                raise ValueError
             hole, length = int(row["hole"]), float(row["yards"])
-        except (TypeError, ValueError):
+        except ValueError:
             raise InputError(f"{path} row {k}: hole {row['hole']!r}, yards {row['yards']!r}: "
                              "allowed: a hole number and a length in yards") from None  # fmt: skip
         if not 1 <= hole <= count or hole in yards:

@@ -585,29 +585,44 @@ def _load_points(path, crs):
         raise ElevationError(
             f"{name}: not a readable CSV ({type(err).__name__}): allowed columns are {CSV_COLUMNS}"
         ) from None
+    # The names as written (pandas renames a second 'alt' 'alt.1'), each once.
+    written = pd.read_csv(path, header=None, nrows=1, dtype=str, skipinitialspace=True)
+    seen = {}
+    for raw in written.iloc[0].fillna(""):
+        key = raw.strip().lower()
+        if key in seen:
+            spelt = f" (as {seen[key]!r} and {raw!r})" if seen[key] != raw else ""
+            raise ElevationError(
+                f"{name}: column {raw.strip()!r} twice{spelt}: allowed is each column once"
+            )
+        seen[key] = raw
     columns = {str(c).strip().lower(): c for c in table.columns}
 
-    def find(names):
-        """The first of ``names`` in the table; ElevationError where another of them is
-        there too with other values (which to read would be a guess)."""
+    def find(names, tolerance):
+        """The first of ``names`` in the table, its empty cells filled from another of them;
+        ElevationError where another is there too with numbers further than ``tolerance``
+        from its own (which to read would be a guess)."""
         given = [columns[n] for n in names if n in columns]
         for other in given[1:]:
             a = pd.to_numeric(table[given[0]], errors="coerce").to_numpy(dtype=np.float64)
             b = pd.to_numeric(table[other], errors="coerce").to_numpy(dtype=np.float64)
-            differ = np.flatnonzero(~((a == b) | (np.isnan(a) & np.isnan(b))))
+            differ = np.flatnonzero(np.abs(a - b) > tolerance)  # (NaN on either side: no)
             if differ.size:
                 k = differ[0]
                 raise ElevationError(
                     f"{name}: columns {given[0]} and {other} give the same thing and differ "
-                    f"(row {k + 2}: {table[given[0]].iloc[k]}, {table[other].iloc[k]}): "
-                    "allowed is one of them: remove or rename the other"
+                    f"by more than {tolerance:g} (row {k + 2}: {table[given[0]].iloc[k]}, "
+                    f"{table[other].iloc[k]}): allowed is one of them: remove or rename the other"
                 )
+            table[given[0]] = table[given[0]].where(table[given[0]].notna(), table[other])
         return given[0] if given else None
 
-    cx, cy, cz = find(LON_NAMES), find(LAT_NAMES), find(Z_NAMES)
+    # Two columns of one coordinate agree to about a centimetre (1e-7 degrees of lon/lat).
+    cx, cy = find(LON_NAMES, 1e-7), find(LAT_NAMES, 1e-7)
+    cz = find(Z_NAMES, DUPLICATE_TOLERANCE_M)
     lonlat = cx is not None and cy is not None
     if not lonlat:
-        cx, cy = find(X_NAMES), find(Y_NAMES)
+        cx, cy = find(X_NAMES, DUPLICATE_TOLERANCE_M), find(Y_NAMES, DUPLICATE_TOLERANCE_M)
     if cx is None or cy is None or cz is None:
         shown = ",".join(str(c) for c in table.columns)
         raise ElevationError(f"{name}: columns {_short(shown)}: allowed are {CSV_COLUMNS}")

@@ -43,7 +43,15 @@ from numba import njit
 from mcrun.ground import IN_PLAY, PENALTY_AREA, Terrain, make_terrain
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import Frame
-from mcrun.hole.osm import ACCEPTED, ATTRIBUTION, hole_title, playable, read_course, sniff
+from mcrun.hole.osm import (
+    ACCEPTED,
+    ATTRIBUTION,
+    hole_title,
+    playable,
+    read_course,
+    sniff,
+    tag_text,
+)
 from mcrun.hole.zones import (
     PENALTY_COLOURS,
     PENALTY_ZONES,
@@ -575,6 +583,25 @@ def _grid_of(extent_m, cell_m):
     )
 
 
+def check_reach(length_m, reach_m, where):
+    """HoleError where the pin is further than ``SIZE_RANGE_M``'s top from the tee, or the
+    hole (its line from the tee, the tee and the pin) reaches further than that along or
+    across: a point far off a hole's line made a grid of millions of nodes, built for half a
+    minute before it was refused or played."""
+    most = SIZE_RANGE_M[1]
+    if length_m > most:
+        raise HoleError(
+            f"{where}: the pin is {length_m:,.1f} m from the tee: allowed: up to {most:,.0f} m "
+            "(the longest holes are about 1,000 m)"
+        )
+    if reach_m > most:
+        raise HoleError(
+            f"{where}: its golf=hole line reaches {reach_m:,.0f} m from end to end, for a pin "
+            f"{length_m:,.0f} m from the tee: allowed: up to {most:,.0f} m (a point of the "
+            "line far off the hole: mend the map)"
+        )
+
+
 def _check_nodes(extent_m, cell_m, where):
     """HoleError, before anything is built, where the grid of ``extent_m`` at ``cell_m``
     (``_grid_of``, as ``Hole.terrain_over`` builds it) would have more than MAX_NODES nodes."""
@@ -691,12 +718,8 @@ def hole_from_table(table, folder, source):
         if "hole" in table:
             raise HoleError(f"{where}: 'hole' chooses a hole of a 'map', and there is none")
         parts = _plain_hole(table, where, margin, cell)
-    length = math.hypot(*parts["pin_xy"])
-    if length > SIZE_RANGE_M[1]:  # (a grid of millions of nodes built before it is refused)
-        raise HoleError(
-            f"{where}: the pin is {length:,.0f} m from the tee: allowed: up to "
-            f"{SIZE_RANGE_M[1]:,.0f} m (the longest holes are about 1,000 m)"
-        )
+    x0, x1, y0, y1 = parts["extent_m"]
+    check_reach(math.hypot(*parts["pin_xy"]), max(x1 - x0, y1 - y0) - 2 * margin, where)
     _check_nodes(parts["extent_m"], cell, where)
     heights, ground = None, "flat"
     if "elevation" in table:
@@ -709,8 +732,14 @@ def hole_from_table(table, folder, source):
         heights, ground = _shape_heights(table, where)
     par = table.get("par", parts.get("par"))
     if par is not None and (isinstance(par, bool) or par not in PAR_RANGE):
+        if "par" not in table:  # the map's tag
+            raise HoleError(
+                f"{where}: the map's par of hole {parts['index']} is {par!r}: allowed is a whole "
+                "number 2-7 (mend the map, or give 'par' in a hole file)"
+            )
         raise HoleError(f"{where}: 'par' = {par!r} must be a whole number 2-7")
-    name = table.get("name", parts.get("name"))
+    par = None if par is None else int(par)  # (a TOML 3.0 was printed "par: 3.0")
+    name = tag_text(table.get("name", parts.get("name")))
     colour = table.get("penalty_areas")
     if colour is not None:
         if colour not in PENALTY_COLOURS:

@@ -20,6 +20,8 @@ OpenStreetMap XML file given as a map is named as what it is, with the formats a
 
 import json
 import math
+import re
+import unicodedata
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -124,12 +126,13 @@ class Course:
         return None if best is None else best[1]
 
     def hole(self, key):
-        """The hole whose ``ref`` is ``key`` (a string), else whose position is ``key``
-        (1-based, in file order); "#N" is always the position N. HoleError saying how many
-        there are, or, when several holes share the ref (a map of many courses), which."""
+        """The hole whose ``ref`` is ``key`` (a string) or holds it among its values (``1;10``:
+        a nine played twice), else whose position is ``key`` (1-based, in file order); "#N" is
+        always the position N. HoleError saying how many there are, or, when several holes
+        share the ref (a map of many courses), which."""
         text = str(key).strip()
         if not text.startswith("#"):
-            matches = [line for line in self.holes if line.ref is not None and line.ref == text]
+            matches = [line for line in self.holes if _has_ref(line, text)]
             if len(matches) == 1:
                 return playable(matches[0])
             if matches:
@@ -153,6 +156,13 @@ class Course:
             f"{self.source}: hole {key!r} does not exist: the map has {len(self.holes)} "
             f"golf=hole lines; give a position 1-{len(self.holes)}{refs_text}"
         )
+
+
+def _has_ref(line, text):
+    """Whether the hole's ``ref`` is ``text`` or one of its ';'-separated values."""
+    if line.ref is None:
+        return False
+    return line.ref == text or text in (part.strip() for part in line.ref.split(";"))
 
 
 def playable(line):
@@ -229,21 +239,31 @@ def _par(value):
     par out of range is, rather than taken for no par)."""
     if value is None or (isinstance(value, str) and not value.strip()):
         return None
-    try:
-        return int(str(value).strip())
-    except ValueError:
-        return str(value).strip()
+    if isinstance(value, float) and value.is_integer():  # a real field's 4.0 (QGIS)
+        return int(value)
+    text = str(value).strip()
+    whole = re.fullmatch(r"\+?(\d+)(?:\.0*)?", text)  # (int() read "4_0" as 40)
+    return int(whole.group(1)) if whole else text
 
 
-def _tag_text(value):
-    """A tag's text on one line (a name with a line break printed raw broke the listing's
-    lines), None where empty; a list (as some converters write a multi-valued tag) joined by
-    ';', as OpenStreetMap writes one."""
+TAG_MOST = 200  # characters of a name or a ref kept (a longer one is cut, ending "...")
+
+
+def tag_text(value):
+    """A tag's (or a hole file's name's) text as printed: on one line (a name with a line
+    break broke the listing's lines), without control characters (an escape sequence or a
+    right-to-left override reached the terminal), at most ``TAG_MOST`` characters; None
+    where empty. A list (as some converters write a multi-valued tag) is joined by ';', as
+    OpenStreetMap writes one."""
     if value is None:
         return None
     if isinstance(value, list):
         value = ";".join(str(v) for v in value)
-    return " ".join(str(value).split()) or None
+    text = " ".join(str(value).split())
+    text = "".join(c for c in text if unicodedata.category(c)[0] != "C")
+    if len(text) > TAG_MOST:
+        text = text[: TAG_MOST - 3] + "..."
+    return text or None
 
 
 def _is_number(text):
@@ -354,9 +374,9 @@ def read_course(path):
             holes.append(
                 HoleLine(
                     index=len(holes) + 1,
-                    ref=_tag_text(tags.get("ref")),
+                    ref=tag_text(tags.get("ref")),
                     par=_par(tags.get("par")),
-                    name=_tag_text(tags.get("name")),
+                    name=tag_text(tags.get("name")),
                     lonlat=lonlat,
                     feature=str(feature.get("id") or f"feature {k}"),
                     problem=problem,
@@ -370,7 +390,7 @@ def read_course(path):
                 elif tags.get("leisure") == "golf_course":
                     polygons = _polygons(geometry, where)
                     boundary.extend(polygons)
-                    course_name = _tag_text(tags.get("name"))
+                    course_name = tag_text(tags.get("name"))
                     courses.extend((course_name, polygon) for polygon in polygons)
                     if polygons and name is None:
                         name = course_name

@@ -21,10 +21,19 @@ SPREAD = (("carry_m", "carry_m"), ("total_m", "total_m"), ("side_m", "final_y_m"
 PERCENTILES = (10, 50, 90)
 
 
+def _check(frame, columns=("status",)):
+    """InputError, one line, unless ``frame`` is a DataFrame with ``columns``."""
+    allowed = "allowed: the frame of mcrun.run.replay.replay"
+    if not isinstance(frame, pd.DataFrame):
+        raise InputError(f"frame {shown(frame)}: {allowed}")
+    missing = [c for c in columns if c not in frame.columns]
+    if missing:
+        raise InputError(f"frame: no column {missing[0]!r}: {allowed}")
+
+
 def club_labels(frame):
     """The club of each row of a replay frame, as text ("" where missing; ALL without clubs)."""
-    if not isinstance(frame, pd.DataFrame) or "status" not in frame:
-        raise InputError(f"frame {shown(frame)}: allowed: the frame of mcrun.run.replay.replay")
+    _check(frame)
     if "club" in frame:
         return frame["club"].astype("string").fillna("").to_numpy(dtype=object)
     return np.full(len(frame), ALL, dtype=object)
@@ -34,9 +43,14 @@ def club_summary(frame):
     """One row per club, longest mean carry first: shots, shots ok, and of the shots ok the
     mean, sd (n - 1) and 10th, 50th, 90th percentiles of carry, total and side (the rest
     position, positive right), and ``gap_m``: the club's mean carry minus the next club's."""
+    _check(frame, ("status", *(column for _, column in SPREAD)))
     clubs = club_labels(frame)
     ok = frame["status"].to_numpy() == status.OK
     rows = []
+    if not len(frame):  # (a club chosen that the session does not hold)
+        parts = ("mean", "sd", *(f"p{p}" for p in PERCENTILES))
+        names = [f"{name}_{part}" for name, _ in SPREAD for part in parts]
+        return pd.DataFrame(columns=["club", "shots", "shots_ok", *names, "gap_m"])
     for club in dict.fromkeys(clubs):
         mine = clubs == club
         row = {"club": club, "shots": int(mine.sum()), "shots_ok": int((mine & ok).sum())}

@@ -127,10 +127,13 @@ def read_session(path, format=None):
         raise InputError(f"{path}: no shots: the file has a header only")
     notes = []
     if sep != ",":
-        notes.append(f"{path}: fields separated by {'tabs' if sep == chr(9) else repr(sep)}")
-    if _decimal_comma(head[offset:], sep):
-        frame = _point_decimals(frame)
-        notes[-1] += "; numbers with a decimal comma (read as points)"
+        comma = _decimal_comma(head[offset:], sep)
+        frame = _plain_numbers(frame, comma)
+        notes.append(
+            f"{path}: fields separated by {'tabs' if sep == chr(9) else repr(sep)}; numbers "
+            + ("with a decimal comma (thousands grouped by points)" if comma else
+               "with a decimal point (thousands grouped by commas)")
+        )  # fmt: skip
     # Each column's unit by its place (a name given twice may have two units): the unit row,
     # else the unit in the name.
     file_units = {}
@@ -174,6 +177,10 @@ def _read_table(path, encoding, start, sep, skip, fmt, newline=""):
                 index_col=False,
                 skiprows=skip,
                 low_memory=False,
+                # Other separators: the cells as text, read as numbers by the file's locale
+                # (``_plain_numbers``; pandas would take ``7.097`` for 7.097 where the
+                # decimal mark is a comma).
+                dtype=None if sep == "," else str,
             )
         except UnicodeDecodeError:
             raise
@@ -315,7 +322,8 @@ def _split(path, text):
     while start < len(text):
         end = text.find("\n", start)
         end = len(text) if end < 0 else end + 1
-        line = text[start:end].strip("\r\n")
+        # (After a sep= line, byte-order marks are not the file's first bytes: dropped here.)
+        line = drop_marks(text[start:end].strip("\r\n"))
         if not line.strip() or line.startswith("#"):
             start = end
             continue
@@ -324,7 +332,7 @@ def _split(path, text):
             seen += 1
             start = end
             continue
-        if seen == 0 and line.startswith(("Dates,", "Dates;", "Dates\t")):  # Square Golf's
+        if seen == int(given) and line.startswith(("Dates,", "Dates;", "Dates\t")):  # Square
             seen += 1
             start = end
             continue
@@ -351,9 +359,20 @@ def _split(path, text):
 # A comma; a semicolon, as Excel writes a CSV where the decimal mark is a comma; a tab, as in
 # Excel's "Unicode Text" (UTF-16).
 _SEPARATORS = (",", ";", "\t")
-# A cell that is a number (or an L/R direction) written with a decimal comma or point.
-_COMMA_NUMBER = re.compile(r"^(\s*[LR]?\s*[+-]?\d+),(\d+\s*[LR]?\s*)$", re.IGNORECASE)
-_POINT_NUMBER = re.compile(r"^\s*[LR]?\s*[+-]?\d+\.\d+\s*[LR]?\s*$", re.IGNORECASE)
+# A cell that is a number (or an L/R direction) with decimals after a comma or a point, and
+# one whose mark may as well group thousands (``7,097``: 7.097 or 7097).
+_SIDE = r"\s*[LR]?\s*"
+_COMMA_NUMBER = re.compile(rf"^{_SIDE}[+-]?\d+,\d+{_SIDE}$", re.IGNORECASE)
+_POINT_NUMBER = re.compile(rf"^{_SIDE}[+-]?\d+\.\d+{_SIDE}$", re.IGNORECASE)
+_GROUPED = re.compile(rf"^{_SIDE}[+-]?\d{{1,3}}[.,]\d{{3}}{_SIDE}$", re.IGNORECASE)
+# A number as a file of decimal commas writes it (thousands grouped by points or not), and one
+# with thousands grouped by commas as a file of decimal points writes it.
+_DECIMAL_COMMA = re.compile(
+    rf"^({_SIDE}[+-]?)(\d{{1,3}}(?:\.\d{{3}})+|\d+)(?:,(\d+))?({_SIDE})$", re.IGNORECASE
+)
+_THOUSANDS_COMMA = re.compile(
+    rf"^({_SIDE}[+-]?)(\d{{1,3}}(?:,\d{{3}})+)((?:\.\d+)?{_SIDE})$", re.IGNORECASE
+)
 
 
 def _separator(header):
@@ -366,27 +385,47 @@ def _separator(header):
 def _decimal_comma(body, sep):
     """Whether the rows in ``body`` (text after the header) write numbers with a decimal
     comma: never where a comma separates the fields; else where more cells are numbers with
-    a comma (``45,3``, ``13,8 L``) than with a point (a date ``01.05.2024`` is neither)."""
+    a comma (``45,3``, ``13,8 L``) than with a point (a date ``01.05.2024`` is neither). A
+    mark before three digits (``7,097``, ``7.097``) may group thousands: it counts for
+    neither."""
     if sep == ",":
         return False
     comma = point = 0
     for fields in csv.reader(body.splitlines()[:200], delimiter=sep):
         for cell in fields:
+            if _GROUPED.match(cell):
+                continue
             comma += _COMMA_NUMBER.match(cell) is not None
             point += _POINT_NUMBER.match(cell) is not None
     return comma > point
 
 
-def _point_decimals(frame):
-    """The frame's text cells that are numbers with a decimal comma, written with a point."""
+def _plain_numbers(frame, decimal_comma):
+    """The frame's text cells that are numbers written as the file's locale writes them, in
+    Python's way: with decimal commas, ``45,3`` as 45.3 and ``7.097`` (thousands grouped by
+    points) as 7097; with decimal points, ``7,097`` as 7097. A column whose every cell is then
+    a number is a column of numbers, as the same export with commas between its fields
+    reads."""
+    pattern = _DECIMAL_COMMA if decimal_comma else _THOUSANDS_COMMA
 
-    def point(value):
-        return _COMMA_NUMBER.sub(r"\1.\2", value) if isinstance(value, str) else value
+    def plain(value):
+        if not isinstance(value, str):
+            return value
+        found = pattern.match(value)
+        if found is None:
+            return value
+        if decimal_comma:
+            side, whole, decimals, end = found.groups()
+            return f"{side}{whole.replace('.', '')}{'.' + decimals if decimals else ''}{end}"
+        side, whole, end = found.groups()
+        return f"{side}{whole.replace(',', '')}{end}"
 
     for column in frame.columns:
         series = frame[column]
         if series.dtype == object or pd.api.types.is_string_dtype(series.dtype):
-            frame[column] = series.map(point)
+            series = series.map(plain)
+            numbers = pd.to_numeric(series, errors="coerce")
+            frame[column] = numbers if numbers.notna().sum() == series.notna().sum() else series
     return frame
 
 
