@@ -441,8 +441,9 @@ CSV_FIXTURES = sorted(p.name for p in DATA.glob("*.csv"))
 def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(tmp_path, name):
     """Excel saves a CSV with ';' between the fields and decimal commas where the decimal mark
     is a comma (most of Europe), and "Unicode Text" as UTF-16 with tabs, thousands grouped
-    where the cells are formatted so (``7.097`` or ``7,097`` rpm): each read as the same
-    launches and device results as the export itself, its columns of numbers numbers
+    where the cells are formatted so (``7.097`` or ``7,097`` rpm; ``"7,097"`` quoted in a
+    comma-separated file, as Excel saves it where the decimal mark is a point): each read as
+    the same launches and device results as the export itself, its columns of numbers numbers
     (refused as a file of no known columns before; and 7.097 rpm, or 7.097 for ``7,097`` in
     a file of decimal points, before the thousands were read)."""
     data = (DATA / name).read_bytes()
@@ -456,6 +457,7 @@ def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(t
         "unicode-text": ("utf-16", _resaved(text, "\t", ",")),
         "tab": ("utf-8", _resaved(text, "\t", ".", grouped=True)),
         "semicolon sep= line": ("utf-8-sig", _resaved(text, ";", ",", sep_line=True)),
+        "commas, thousands quoted": ("utf-8", _resaved(text, ",", ".", grouped=True)),
     }
     for how, (encoding, body) in saved.items():
         path = tmp_path / f"{how}-{name}"
@@ -471,8 +473,9 @@ def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(t
         for column in original.frame.columns:  # (the file's own columns, as written)
             kind = original.frame[column].dtype.kind
             assert session.frame[column].dtype.kind == kind or kind not in "fi", (how, column)
-        said = f"fields separated by {'tabs' if 'semicolon' not in how else repr(';')}"
-        assert any(said in note for note in session.notes), session.notes
+        if not how.startswith("commas"):
+            said = f"fields separated by {'tabs' if 'semicolon' not in how else repr(';')}"
+            assert any(said in note for note in session.notes), session.notes
 
 
 def test_gspro_messages_are_read_out_of_a_connectors_log():

@@ -126,9 +126,10 @@ def read_session(path, format=None):
     if len(frame) == 0:
         raise InputError(f"{path}: no shots: the file has a header only")
     notes = []
+    comma = _decimal_comma(head[offset:], sep)
+    # (Where commas separate the fields, a quoted "7,097" is a spreadsheet's grouped 7097.)
+    frame = _plain_numbers(frame, comma)
     if sep != ",":
-        comma = _decimal_comma(head[offset:], sep)
-        frame = _plain_numbers(frame, comma)
         notes.append(
             f"{path}: fields separated by {'tabs' if sep == chr(9) else repr(sep)}; numbers "
             + ("with a decimal comma (thousands grouped by points)" if comma else
