@@ -128,7 +128,7 @@ def read_session(path, format=None):
     notes = []
     comma = _decimal_comma(head[offset:], sep)
     # (Where commas separate the fields, a quoted "7,097" is a spreadsheet's grouped 7097.)
-    frame = _plain_numbers(frame, comma)
+    frame = _plain_numbers(frame, comma, every=sep != ",")
     if sep != ",":
         notes.append(
             f"{path}: fields separated by {'tabs' if sep == chr(9) else repr(sep)}; numbers "
@@ -401,12 +401,13 @@ def _decimal_comma(body, sep):
     return comma > point
 
 
-def _plain_numbers(frame, decimal_comma):
+def _plain_numbers(frame, decimal_comma, every=True):
     """The frame's text cells that are numbers written as the file's locale writes them, in
     Python's way: with decimal commas, ``45,3`` as 45.3 and ``7.097`` (thousands grouped by
     points) as 7097; with decimal points, ``7,097`` as 7097. A column whose every cell is then
     a number is a column of numbers, as the same export with commas between its fields
-    reads."""
+    reads. Not ``every`` column: only those with a comma in a cell (a comma-separated file's
+    text columns are left alone)."""
     pattern = _DECIMAL_COMMA if decimal_comma else _THOUSANDS_COMMA
 
     def plain(value):
@@ -424,6 +425,8 @@ def _plain_numbers(frame, decimal_comma):
     for column in frame.columns:
         series = frame[column]
         if series.dtype == object or pd.api.types.is_string_dtype(series.dtype):
+            if not every and not series.astype("string").str.contains(",", regex=False).any():
+                continue
             series = series.map(plain)
             numbers = pd.to_numeric(series, errors="coerce")
             frame[column] = numbers if numbers.notna().sum() == series.notna().sum() else series
