@@ -17,6 +17,7 @@ clubs it was not fitted to: leave one club out, and one tour fitted to predict t
 
 import math
 import time
+import unicodedata
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -33,6 +34,7 @@ from mcrun.engine.shot import DEFAULT_DT_S
 from mcrun.physics import aero
 from mcrun.physics.constants import DEG
 from mcrun.quantities import DEFAULTS, InputError, check_range
+from mcrun.run.monitors.native import check_field_counts
 from mcrun.units import parse_quantity, shown
 
 DEFAULT_DATA = resources.files("mcrun") / "data" / "trackman_tour_averages_2019.csv"
@@ -107,20 +109,29 @@ def load_measured(path=None):
     """
     path = DEFAULT_DATA if path is None else Path(path)
     try:
-        raw = pd.read_csv(path, comment="#", skipinitialspace=True)
+        names = pd.read_csv(path, comment="#", header=None, nrows=1, dtype=str)
     except FileNotFoundError:
         _fail(f"measured table {path}: no such file")
     except (OSError, UnicodeDecodeError) as err:
         _fail(f"measured table {path}: cannot read it ({err.__class__.__name__}: {err})")
     except (pd.errors.ParserError, pd.errors.EmptyDataError) as err:
         _fail(f"measured table {path}: not a readable CSV ({err})")
-    raw.columns = [str(c).strip() for c in raw.columns]
-    missing = [c for c in MEASURED_COLUMNS if c not in raw.columns]
+    written = [str(c).strip() for c in names.iloc[0].fillna("")]
+    twice = [c for k, c in enumerate(written) if c in written[:k]]
+    if twice:  # (pandas read the second as 'carry_yd.1': the first was used, silently)
+        _fail(f"measured table {path}: column {twice[0]} twice: allowed: each column once")
+    missing = [c for c in MEASURED_COLUMNS if c not in written]
     if missing:
         _fail(
             f"measured table {path}: missing column(s) {', '.join(missing)}; "
             f"needs {', '.join(MEASURED_COLUMNS)}"
         )
+    check_field_counts(path)  # (pandas took an extra field's row for an index: shifted)
+    try:
+        raw = pd.read_csv(path, comment="#", skipinitialspace=True)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError) as err:
+        _fail(f"measured table {path}: not a readable CSV ({err})")
+    raw.columns = [str(c).strip() for c in raw.columns]
     if raw.empty:
         _fail(f"measured table {path}: no rows")
     mph = parse_quantity("1 mph", "speed")
@@ -129,17 +140,28 @@ def load_measured(path=None):
     frame = pd.DataFrame(
         {"tour": raw["tour"].astype(str).str.strip(), "club": raw["club"].astype(str).str.strip()}
     )
-    # Launches must be inside the documented input ranges (quantities.RANGES); outcomes positive,
-    # and the land angle (above the horizontal) below 90 deg.
+    for column in ("tour", "club"):  # (an escape sequence reached the terminal)
+        bad = frame[column].map(
+            lambda t: isinstance(t, str) and any(unicodedata.category(c)[0] == "C" for c in t)
+        )
+        if bad.any():
+            row = int(np.flatnonzero(bad.to_numpy())[0])
+            _fail(f"measured table {path}, data row {row + 1}, column {column}: "
+                  f"{shown(frame[column].iloc[row])} holds control characters")  # fmt: skip
+    # Launches must be inside the documented input ranges (quantities.RANGES); outcomes positive
+    # and below what a golf shot reaches (500 yd of carry, 150 yd of apex), and the land angle
+    # (above the horizontal) below 90 deg.
     for column, name, factor, checked in (
         ("ball_mph", "ball_speed_mps", mph, "ball_speed_mps"),
         ("launch_deg", "launch_angle_deg", 1.0, "launch_angle_deg"),
         ("spin_rpm", "spin_radps", rpm, "spin_radps"),
-        ("carry_yd", "carry_m", yd, None),
-        ("max_height_yd", "apex_m", yd, None),
+        ("carry_yd", "carry_m", yd, 500.0 * yd),
+        ("max_height_yd", "apex_m", yd, 150.0 * yd),
         ("land_deg", "land_angle_deg", 1.0, 90.0),
     ):
-        values = pd.to_numeric(raw[column], errors="coerce")
+        given = raw[column]
+        values = pd.to_numeric(given.where(given.map(lambda v: not isinstance(v, bool | np.bool_))),
+                               errors="coerce")  # (a cell TRUE or FALSE was 1 or 0) # fmt: skip
         bad = ~np.isfinite(values.to_numpy(dtype=float))
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
@@ -152,8 +174,8 @@ def load_measured(path=None):
             try:
                 if isinstance(checked, str):
                     check_range(checked, value)
-                elif not 0.0 < value < (checked or math.inf):
-                    bound = "" if checked is None else f" and below {checked:g}"
+                elif not 0.0 < value < checked:
+                    bound = f" and below {checked / factor:g}"
                     raise InputError(f"{value / factor:g} must be positive{bound}")
             except InputError as err:
                 _fail(f"measured table {path}, data row {row + 1}, column {column}: {err}")

@@ -77,6 +77,35 @@ def test_non_numeric_value_names_row_and_column(tmp_path):
         calibrate.load_measured(path)
 
 
+HEADER = "tour,club,ball_mph,launch_deg,spin_rpm,max_height_yd,land_deg,carry_yd"
+
+
+@pytest.mark.parametrize(
+    ("text", "says"),
+    [
+        # A column named twice: the first was read, the second dropped silently.
+        (f"{HEADER},carry_yd\nPGA,Driver,167,10.9,2686,32,38,275,251\n",
+         "column carry_yd twice: allowed: each column once"),
+        # An extra field: pandas took the first column for an index, every value shifted
+        # ("launch_angle_deg = 2686" was said of the spin).
+        (f"{HEADER}\nPGA,Driver,167,10.9,2686,32,38,275,99\n",
+         "row 1 has 9 fields, the header has 8"),
+        # A cell FALSE was a launch of 0 deg; a carry of 1e300 yd was fitted.
+        (f"{HEADER}\nPGA,Driver,167,FALSE,2686,32,38,275\n", "column launch_deg: False is not a"),
+        (f"{HEADER}\nPGA,Driver,167,10.9,2686,32,38,1e300\n",
+         "1e+300 must be positive and below 500"),
+        (f"{HEADER}\nPGA,Dr\x1b[31m,167,10.9,2686,32,38,275\n",
+         "column club: 'Dr\\x1b[31m' holds control"),
+    ],
+)  # fmt: skip
+def test_a_measured_table_s_odd_rows_are_one_line(tmp_path, text, says):
+    path = tmp_path / "odd.csv"
+    path.write_text(text)
+    with pytest.raises(InputError) as err:
+        calibrate.load_measured(path)
+    assert says in str(err.value) and "\n" not in str(err.value)
+
+
 def test_predict_uses_the_table_it_is_given(measured):
     """A copy of the table with ferguson2022's row in the trackman2019 slot flies as ferguson2022,
     and the module's table is left as it was."""

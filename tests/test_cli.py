@@ -644,3 +644,23 @@ def test_a_command_compiles_the_kernels_it_runs(argv, kernels, tmp_path, capsys,
     assert cli.main([*argv, "--quiet"] if argv[0] == "run" else argv) == 0
     capsys.readouterr()
     assert asked[0] == ("plane", kernels)
+
+
+def test_a_whole_number_in_digits_is_read_exactly():
+    """A seed or a count written in digits is read as written: through a float, --seed
+    9007199254740993 (2**53 + 1) ran, and was recorded, as 9007199254740992. A number with an
+    exponent beyond 2**53 says which to write; beyond an int64, refused."""
+    from mcrun.cli.options import whole
+    from mcrun.run.plan import positive_int
+
+    assert positive_int("9007199254740993", "seed", 0) == 2**53 + 1
+    assert whole("9007199254740993", "--seed", 0) == 2**53 + 1
+    assert positive_int("1e6", "n") == whole("1e6", "-n", 1) == 1_000_000
+    with pytest.raises(api.InputError, match=r"^seed '1e30': allowed: a number beyond 2\*\*53"):
+        positive_int("1e30", "seed", 0)
+    with pytest.raises(api.InputError, match=r"^--seed '1e30': .* \(beyond 2\*\*53, in digits"):
+        whole("1e30", "--seed", 0)
+    with pytest.raises(api.InputError, match=r"^n must be an integer up to 2\*\*63 - 1"):
+        positive_int(str(2**63), "n")
+    with pytest.raises(api.InputError, match=r"from 0 to 2\*\*63 - 1$"):
+        whole(str(10**400), "--seed", 0)  # (an OverflowError of math.isfinite)

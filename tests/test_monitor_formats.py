@@ -498,3 +498,26 @@ def test_gspro_messages_are_read_out_of_a_connectors_log():
     assert list(session.reasons[:3]) == ["", "", ""]
     assert session.reasons[3].startswith("line 14: not a JSON message")
     assert "4 message(s) without ball data skipped" in session.notes[0]
+
+
+@pytest.mark.parametrize(
+    ("rows", "want"),
+    [
+        # mcrun's own columns saved with semicolons (refused before: "row 1 has 3 fields").
+        ("150,5;12,5;2.686;1,5", (150.5, 12.5, 2686.0, 1.5)),
+        # A group of thousands never starts with 0: -0,025 is a decimal (read as -25 before).
+        ("150;12;2686;-0,025", (150.0, 12.0, 2686.0, -0.025)),
+        # Only three-decimal cells, as many with a point as with a comma: ';' is Excel's
+        # separator where the decimal mark is a comma (150250 mph before).
+        ("150,250;12,500;2686;1,380", (150.25, 12.5, 2686.0, 1.38)),
+    ],
+)
+def test_a_spreadsheet_s_numbers_are_read_as_its_locale_writes_them(tmp_path, rows, want):
+    path = tmp_path / "own.csv"
+    path.write_text(f"ball_speed_mph;launch_deg;spin_rpm;azimuth_deg\n{rows}\n")
+    session = read_session(path)
+    mph, deg, rpm = 0.44704, math.pi / 180.0, math.pi / 30.0
+    got = [session.launch[q][0] for q in ("ball_speed", "launch_angle", "spin", "azimuth")]
+    wanted = [want[0] * mph, want[1] * deg, want[2] * rpm, want[3] * deg]
+    assert got == pytest.approx(wanted, rel=1e-12)
+    assert "fields separated by ';'; numbers with a decimal comma" in session.notes[0]

@@ -220,7 +220,7 @@ def test_mcrun_rate_rates_for_the_women_s_model_players(tmp_path):
     ("args", "message"),
     [
         (["--holes", "3"], "--holes '3': allowed: hole numbers 1-2"),
-        (["-n", "1"], "-n '1': allowed: a whole number of at least 2"),
+        (["-n", "1"], "-n '1': allowed: a whole number from 2 to 2**63 - 1"),
         (["--putts", "0"], "--putts '0'"),
         (["--putts", "1e9"], "--putts '1e9': allowed: a whole number from 2 to 100000"),
         (["--elevation-crs", "EPSG:32633"], "--elevation-crs: is for --elevation"),

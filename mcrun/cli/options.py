@@ -72,14 +72,22 @@ def number(text, option):
 def whole(text, option, least, most=None):
     """A whole number of at least ``least`` (and at most ``most``: ``2000``, ``1e4``);
     InputError naming the option."""
-    try:
-        value = float(text)
+    digits = str(text).strip()
+    try:  # digits read exactly (through a float, 2**53 + 1 was 2**53)
+        value = (
+            int(digits)
+            if digits.lstrip("+-").isascii() and digits.lstrip("+-").isdigit()
+            else float(text)
+        )
     except ValueError:
         value = math.nan
-    top = math.inf if most is None else most
-    if not (math.isfinite(value) and least <= value <= top and value == int(value)):
-        allowed = f"from {least} to {most}" if most is not None else f"of at least {least}"
-        raise InputError(f"{option} {text!r}: allowed: a whole number {allowed}")
+    top = 2**63 - 1 if most is None else most  # (an int64: what the kernels take)
+    inexact = isinstance(value, float) and math.isfinite(value) and abs(value) > 2**53
+    finite = isinstance(value, int) or math.isfinite(value)  # (isfinite of 10**400 overflows)
+    if inexact or not (finite and least <= value <= top and value == int(value)):
+        allowed = f"from {least} to {most}" if most is not None else f"from {least} to 2**63 - 1"
+        beyond = " (beyond 2**53, in digits: a float is not one integer there)" * inexact
+        raise InputError(f"{option} {text!r}: allowed: a whole number {allowed}{beyond}")
     return int(value)
 
 

@@ -22,6 +22,7 @@ chunks and write them. What they share is here, written once:
 import copy
 import dataclasses
 import math
+import re
 import shutil
 import time
 from dataclasses import dataclass
@@ -72,18 +73,41 @@ SUMMARY_CONVENTIONS = {
 # --- the arguments and the scenario ------------------------------------------------------------
 
 
+# The largest whole number a float holds exactly: "1e17" cannot say which integer it means.
+EXACT_FLOAT_MOST = 2**53
+
+
 def positive_int(value, name, minimum=1):
-    """An integer >= minimum from an int, a float with an integral value or a text ("1e6")."""
+    """An integer from ``minimum`` to 2**63 - 1 (an int64) from an int, a float with an
+    integral value (up to 2**53, beyond which a float is not one integer) or a text: digits,
+    read exactly, or a number such as "1e6"."""
     wrong = InputError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
     if isinstance(value, bool):
         raise wrong
-    try:
-        number = float(value.strip().replace("_", "") if isinstance(value, str) else value)
-    except (TypeError, ValueError):
-        raise wrong from None
-    if not (math.isfinite(number) and number == int(number) and number >= minimum):
-        raise wrong
-    return int(number)
+    if isinstance(value, str) and re.fullmatch(r"[+-]?[0-9]+", value.strip().replace("_", "")):
+        number = int(value.strip().replace("_", ""))  # (through a float, 2**53 + 1 was 2**53)
+    elif isinstance(value, int | np.integer):
+        number = int(value)
+    else:
+        try:
+            number = float(value.strip().replace("_", "") if isinstance(value, str) else value)
+        except (TypeError, ValueError):
+            raise wrong from None
+        if not (math.isfinite(number) and number == int(number)):
+            raise wrong
+        if abs(number) > EXACT_FLOAT_MOST:
+            raise InputError(
+                f"{name} {shown(value)}: allowed: a number beyond 2**53 written in digits (as "
+                "a float it is not one integer)"
+            )
+        number = int(number)
+    if not minimum <= number <= 2**63 - 1:
+        raise (
+            wrong
+            if number < minimum
+            else InputError(f"{name} must be an integer up to 2**63 - 1, got {shown(value)}")
+        )
+    return number
 
 
 def with_seed(scenario, seed):

@@ -25,6 +25,7 @@ twice in units that disagree.
 import ast
 import codecs
 import csv
+import dataclasses
 import json
 import math
 import os
@@ -117,7 +118,13 @@ def read_session(path, format=None):
             return _session_of_messages(path, format)
         # Neither an export's header nor mcrun's columns: say what was found and what is known.
         launch_columns(pd.DataFrame(columns=[c.strip() for c in header]), source, _KNOWN)
-        return session_of_frame(read_launch_table(path), source, None)
+        if sep == ",":
+            return session_of_frame(read_launch_table(path), source, None)
+        # mcrun's own columns as a spreadsheet saves them, with semicolons or tabs.
+        frame = _read_table(path, encoding, lead + offset, sep, skip, None, newline)
+        frame, notes = _in_locale(frame, head[offset:], sep, path)
+        session = session_of_frame(_tidy(frame), source, None)
+        return dataclasses.replace(session, notes=(*notes, *session.notes))
     try:
         frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline)
     except UnicodeDecodeError:  # UTF-8 at its start only: the file is Latin-1
@@ -125,16 +132,7 @@ def read_session(path, format=None):
         frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline)
     if len(frame) == 0:
         raise InputError(f"{path}: no shots: the file has a header only")
-    notes = []
-    comma = _decimal_comma(head[offset:], sep)
-    # (Where commas separate the fields, a quoted "7,097" is a spreadsheet's grouped 7097.)
-    frame = _plain_numbers(frame, comma, every=sep != ",")
-    if sep != ",":
-        notes.append(
-            f"{path}: fields separated by {'tabs' if sep == chr(9) else repr(sep)}; numbers "
-            + ("with a decimal comma (thousands grouped by points)" if comma else
-               "with a decimal point (thousands grouped by commas)")
-        )  # fmt: skip
+    frame, notes = _in_locale(frame, head[offset:], sep, path)
     # Each column's unit by its place (a name given twice may have two units): the unit row,
     # else the unit in the name.
     file_units = {}
@@ -148,6 +146,21 @@ def read_session(path, format=None):
     if cut:
         reasons[-1] = cut
     return _session(frame, source, fmt.name, format is None, file_units, None, reasons, notes)
+
+
+def _in_locale(frame, body, sep, path):
+    """(frame, notes): the frame's numbers read as the file's locale writes them (``body``:
+    its text from the header on), and a note of the separator and the decimal mark where the
+    fields are not separated by commas."""
+    comma = _decimal_comma(body, sep)
+    # (Where commas separate the fields, a quoted "7,097" is a spreadsheet's grouped 7097.)
+    frame = _plain_numbers(frame, comma, every=sep != ",")
+    if sep == ",":
+        return frame, []
+    mark = ("with a decimal comma (thousands grouped by points)" if comma else
+            "with a decimal point (thousands grouped by commas)")  # fmt: skip
+    shown_sep = "tabs" if sep == "\t" else repr(sep)
+    return frame, [f"{path}: fields separated by {shown_sep}; numbers {mark}"]
 
 
 def _session_of_messages(path, format):
@@ -187,7 +200,8 @@ def _read_table(path, encoding, start, sep, skip, fmt, newline=""):
             raise
         except (pd.errors.ParserError, ValueError, csv.Error, OverflowError) as err:
             raise InputError(
-                f"{path}: cannot read it as a {fmt.title} export: {first_line(err)}"
+                f"{path}: cannot read it as a {fmt.title if fmt else 'mcrun columns'} export: "
+                f"{first_line(err)}"
             ) from None
 
 
@@ -365,14 +379,15 @@ _SEPARATORS = (",", ";", "\t")
 _SIDE = r"\s*[LR]?\s*"
 _COMMA_NUMBER = re.compile(rf"^{_SIDE}[+-]?\d+,\d+{_SIDE}$", re.IGNORECASE)
 _POINT_NUMBER = re.compile(rf"^{_SIDE}[+-]?\d+\.\d+{_SIDE}$", re.IGNORECASE)
-_GROUPED = re.compile(rf"^{_SIDE}[+-]?\d{{1,3}}[.,]\d{{3}}{_SIDE}$", re.IGNORECASE)
+# (A group of thousands never starts with 0: ``0,025`` is a decimal.)
+_GROUPED = re.compile(rf"^{_SIDE}[+-]?[1-9]\d{{0,2}}[.,]\d{{3}}{_SIDE}$", re.IGNORECASE)
 # A number as a file of decimal commas writes it (thousands grouped by points or not), and one
 # with thousands grouped by commas as a file of decimal points writes it.
 _DECIMAL_COMMA = re.compile(
-    rf"^({_SIDE}[+-]?)(\d{{1,3}}(?:\.\d{{3}})+|\d+)(?:,(\d+))?({_SIDE})$", re.IGNORECASE
+    rf"^({_SIDE}[+-]?)([1-9]\d{{0,2}}(?:\.\d{{3}})+|\d+)(?:,(\d+))?({_SIDE})$", re.IGNORECASE
 )
 _THOUSANDS_COMMA = re.compile(
-    rf"^({_SIDE}[+-]?)(\d{{1,3}}(?:,\d{{3}})+)((?:\.\d+)?{_SIDE})$", re.IGNORECASE
+    rf"^({_SIDE}[+-]?)([1-9]\d{{0,2}}(?:,\d{{3}})+)((?:\.\d+)?{_SIDE})$", re.IGNORECASE
 )
 
 
@@ -386,9 +401,10 @@ def _separator(header):
 def _decimal_comma(body, sep):
     """Whether the rows in ``body`` (text after the header) write numbers with a decimal
     comma: never where a comma separates the fields; else where more cells are numbers with
-    a comma (``45,3``, ``13,8 L``) than with a point (a date ``01.05.2024`` is neither). A
-    mark before three digits (``7,097``, ``7.097``) may group thousands: it counts for
-    neither."""
+    a comma (``45,3``, ``13,8 L``) than with a point (a date ``01.05.2024`` is neither), and
+    on a tie where semicolons separate them (Excel's separator where the decimal mark is a
+    comma). A mark before three digits (``7,097``, ``7.097``; not ``0,025``) may group
+    thousands: it counts for neither."""
     if sep == ",":
         return False
     comma = point = 0
@@ -398,7 +414,7 @@ def _decimal_comma(body, sep):
                 continue
             comma += _COMMA_NUMBER.match(cell) is not None
             point += _POINT_NUMBER.match(cell) is not None
-    return comma > point
+    return comma > point or (comma == point and sep == ";")
 
 
 def _plain_numbers(frame, decimal_comma, every=True):
