@@ -159,9 +159,9 @@ def load_measured(path=None):
         ("max_height_yd", "apex_m", yd, 150.0 * yd),
         ("land_deg", "land_angle_deg", 1.0, 90.0),
     ):
-        given = raw[column]
-        values = pd.to_numeric(given.where(given.map(lambda v: not isinstance(v, bool | np.bool_))),
-                               errors="coerce")  # (a cell TRUE or FALSE was 1 or 0) # fmt: skip
+        given = raw[column]  # (a cell TRUE or FALSE was read as 1 or 0)
+        numeric = given.where(given.map(lambda v: not isinstance(v, bool | np.bool_)))
+        values = pd.to_numeric(numeric, errors="coerce")
         bad = ~np.isfinite(values.to_numpy(dtype=float))
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
