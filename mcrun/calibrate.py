@@ -180,6 +180,17 @@ def load_measured(path=None):
             except InputError as err:
                 _fail(f"measured table {path}, data row {row + 1}, column {column}: {err}")
         frame[name] = values
+    clubs = frame["tour"] + " " + frame["club"]
+    again = clubs.duplicated().to_numpy()
+    if again.any():  # (a fold of the cross-validation would hold its copy: leaked)
+        row = int(np.flatnonzero(again)[0])
+        first = int(np.flatnonzero((clubs == clubs.iloc[row]).to_numpy())[0])
+        _fail(f"measured table {path}, data rows {first + 1} and {row + 1}: both "
+              f"{shown(clubs.iloc[row])}: allowed: each tour's club once")  # fmt: skip
+    if (frame["tour"] == "all").any():
+        row = int(np.flatnonzero((frame["tour"] == "all").to_numpy())[0])
+        _fail(f"measured table {path}, data row {row + 1}, column tour: 'all' is the name of "
+              "every tour's row of the errors: allowed: another name")  # fmt: skip
     return frame
 
 
@@ -379,6 +390,19 @@ class FitResult:
         return dict(zip(parameter_names(self.form), map(float, self.row[columns]), strict=True))
 
 
+def _check_enough(frame, form, s_max=None, fold=""):
+    """InputError where ``frame`` holds fewer measurements (three a club: carry, apex and land
+    angle) than ``form`` has parameters to fit: a fit of one club printed a row to ship."""
+    unknowns = len(parameter_names(form)) - (s_max is not None)
+    least = -(-unknowns // 3)
+    if len(frame) < least:
+        raise InputError(
+            f"{fold}{len(frame)} club(s) give {3 * len(frame)} measurements for the "
+            f"{unknowns} parameters of {form}: allowed: at least {least} clubs"
+            + (" in every fold" if fold else "")
+        )
+
+
 def _check_form(form):
     if form not in FORMS:
         _fail(f"cannot fit the form '{form}': choose one of {', '.join(FORMS)}")
@@ -424,6 +448,7 @@ def fit(frame, start="ferguson2022", s_max=None, form="trackman2019"):
             f"({', '.join(m for m in aero.MODELS if _quadratic_model(m))})"
         )
     _check_form(form)
+    _check_enough(frame, form, s_max)
     target = aero.model_id(form)
     extras = FORMS[form]
     table = aero.QUADRATIC_COEFFICIENTS.copy()
@@ -539,6 +564,12 @@ def cross_validate(frame, form="trackman2019", start="ferguson2022"):
     CrossValidation
     """
     _check_form(form)
+    _check_enough(frame.iloc[1:], form, fold="cross-validation: ")
+    tours = list(dict.fromkeys(frame["tour"]))
+    if len(tours) == 2:  # each tour's fit predicts the other (checked before any fold)
+        for tour in tours:
+            _check_enough(frame[frame["tour"] == tour], form,
+                          fold=f"cross-validation, the fit on tour {tour} alone: ")  # fmt: skip
     began = time.perf_counter()
     target = aero.model_id(form)
     names = parameter_names(form)

@@ -16,6 +16,7 @@ benchmarks/calibration.md for it).
 import json
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from mcrun import calibrate
@@ -96,6 +97,11 @@ HEADER = "tour,club,ball_mph,launch_deg,spin_rpm,max_height_yd,land_deg,carry_yd
          "1e+300 must be positive and below 500"),
         (f"{HEADER}\nPGA,Dr\x1b[31m,167,10.9,2686,32,38,275\n",
          "column club: 'Dr\\x1b[31m' holds control"),
+        # The same club twice: a fold of the cross-validation held its copy.
+        (f"{HEADER}\nPGA,Driver,167,10.9,2686,32,38,275\nPGA,Driver,167,10.9,2686,32,38,275\n",
+         "data rows 1 and 2: both 'PGA Driver'"),
+        # A tour named 'all': its row of the errors was overwritten by every tour's.
+        (f"{HEADER}\nall,Driver,167,10.9,2686,32,38,275\n", "'all' is the name of every tour's"),
     ],
 )  # fmt: skip
 def test_a_measured_table_s_odd_rows_are_one_line(tmp_path, text, says):
@@ -214,3 +220,14 @@ def test_cli_form_without_fit_is_refused(capsys):
     """--form chooses the form --fit refits: alone it would be ignored."""
     code, out, err = _run_cli(["--form", "trackman2019"], capsys)
     assert (code, out, err) == (2, "", "mcrun: error: --form: is for --fit (the form it refits)\n")
+
+
+def test_too_few_clubs_to_fit_are_refused_before_any_fit(measured):
+    """Three measurements a club (carry, apex, land angle): a fit of one club printed a row
+    to ship, and a cross-validation of one an empty fit with numpy's warnings."""
+    with pytest.raises(InputError, match=r"^cross-validation: 0 club\(s\) give 0 measurements"):
+        calibrate.cross_validate(measured.iloc[:1], form="trackman2019")
+    pga, lpga = (measured[measured["tour"] == tour] for tour in ("PGA", "LPGA"))
+    lopsided = pd.concat([pga.head(4), lpga.head(1)])  # four PGA clubs, one LPGA club
+    with pytest.raises(InputError, match=r"the fit on tour LPGA alone: 1 club\(s\) give 3"):
+        calibrate.cross_validate(lopsided, form="trackman2019")
