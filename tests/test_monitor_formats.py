@@ -521,3 +521,19 @@ def test_a_spreadsheet_s_numbers_are_read_as_its_locale_writes_them(tmp_path, ro
     wanted = [want[0] * mph, want[1] * deg, want[2] * rpm, want[3] * deg]
     assert got == pytest.approx(wanted, rel=1e-12)
     assert "fields separated by ';'; numbers with a decimal comma" in session.notes[0]
+
+
+def test_a_device_result_no_shot_can_have_is_not_measured(tmp_path):
+    """A carry of -1,234.5 yd (a cell the device or a spreadsheet got wrong) is read as not
+    measured, with a note: it made the model's bias +1,348 m."""
+    text = (DATA / "skytrak.csv").read_text(encoding="utf-8-sig")
+    path = tmp_path / "odd.csv"
+    path.write_text(text.replace(",172.0,180.5,", ",-1234.5,180.5,", 1))
+    session = read_session(path)
+    carry = session.device["carry"]
+    assert math.isnan(carry[0]) and carry[1] == pytest.approx(275.0 * 0.9144)
+    assert session.device["total"][0] == pytest.approx(180.5 * 0.9144)  # (the row's others)
+    assert any(
+        "1 value(s) of Carry (yds) no shot can have (row 1: '-1234.5' yd), read as not " in note
+        for note in session.notes
+    ), session.notes

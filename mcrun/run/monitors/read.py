@@ -52,6 +52,16 @@ from mcrun.units import KINDS, UnitError, parse_quantity, shown
 
 LAUNCH = ("ball_speed", "launch_angle", "spin", "spin_axis", "azimuth")
 DEVICE = ("carry", "total", "apex", "descent_angle", "carry_side", "total_side")
+# The device's results a golf shot can have (SI): outside, a result is not measured (a carry
+# of -1,234.5 yd made the model's bias +1,348 m).
+DEVICE_RANGES = {
+    "carry": (0.0, 500.0),
+    "total": (0.0, 600.0),
+    "apex": (0.0, 150.0),
+    "descent_angle": (0.0, math.pi / 2),
+    "carry_side": (-300.0, 300.0),
+    "total_side": (-300.0, 300.0),
+}
 
 _KNOWN = f"; or an export of a format mcrun knows: {formats.known()}"
 
@@ -222,6 +232,8 @@ def session_of_frame(frame, source, format=None):
         values = pd.to_numeric(frame[column], errors="coerce").to_numpy(dtype=float)
         (launch if quantity in LAUNCH else device)[quantity] = values * factor + offset
         sources[quantity] = column
+    notes = []
+    device = _possible(device, sources, units, source, frame, notes)
     club, club_column = _club(frame, ("club",))
     return Session(
         source,
@@ -234,6 +246,7 @@ def session_of_frame(frame, source, format=None):
         units,
         club,
         club_column,
+        notes=tuple(notes),
     )
 
 
@@ -724,6 +737,24 @@ def _choose(source, quantity, candidates, default, notes):
     return column, unit, si, bad
 
 
+def _possible(device, sources, units, source, frame, notes):
+    """The device's results with those no golf shot can have (``DEVICE_RANGES``) read as not
+    measured, each column's count and first row in a note."""
+    for quantity, si in device.items():
+        lo, hi = DEVICE_RANGES[quantity]
+        impossible = np.isfinite(si) & ((si < lo) | (si > hi))
+        if impossible.any():
+            row = int(np.flatnonzero(impossible)[0])
+            column = sources[quantity]
+            notes.append(
+                f"{source}: {int(impossible.sum())} value(s) of {column} no shot can have "
+                f"(row {row + 1}: {shown(str(frame[column].iloc[row]), 30)} {units[quantity]}), "
+                "read as not measured"
+            )
+            device[quantity] = np.where(impossible, np.nan, si)
+    return device
+
+
 def _session(frame, source, name, detected, file_units, row_units, reasons=None, notes=()):
     """A Session of an export's table: its quantities in SI by the format's columns."""
     fmt = formats.BY_NAME[name]
@@ -770,7 +801,9 @@ def _session(frame, source, name, detected, file_units, row_units, reasons=None,
     sides = {q: sources[q] for q in ("back_spin", "side_spin") if q in sources}
     _spin_from_components(values, sources, units)
     launch = {q: values[q] for q in LAUNCH if q in values}
-    device = {q: values[q] for q in DEVICE if q in values}
+    device = _possible(
+        {q: values[q] for q in DEVICE if q in values}, sources, units, source, frame, notes
+    )
     for quantity, si in launch.items():
         for part in read_from[quantity]:
             if part not in unreadable:
