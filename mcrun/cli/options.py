@@ -69,6 +69,18 @@ def number(text, option):
     return value
 
 
+def named(call, options):
+    """``call()``, an InputError that names an API value re-raised naming its option too."""
+    try:
+        return call()
+    except InputError as err:
+        text = str(err)
+        name = text.split(" ", 1)[0]
+        if name not in options:
+            raise
+        raise InputError(f"{options[name]} ({name}){text[len(name) :]}") from None
+
+
 def whole(text, option, least, most=None):
     """A whole number of at least ``least`` (and at most ``most``: ``2000``, ``1e4``);
     InputError naming the option."""

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from mcrun.cli import USER_ERRORS, Interrupted, compile_if_needed, kernels_of
-from mcrun.cli.options import local_workers
+from mcrun.cli.options import local_workers, named
 from mcrun.quantities import InputError
 from mcrun.results import stats
 from mcrun.run import local, plan, sampling
@@ -190,6 +190,11 @@ def _announcer(scenario):
     return announce
 
 
+# The run's arguments as its options name them (an error said 'n must be ...' of -n).
+RUN_OPTIONS = {"n": "-n", "seed": "--seed", "chunk_size": "--chunk-size",
+               "trajectories_every": "--trajectories", "threads": "--threads"}  # fmt: skip
+
+
 def _run_options(args):
     """The options of ``mcrun run`` that both executors take."""
     return dict(
@@ -213,9 +218,14 @@ def _cmd_run(args):
         ground, _ = plan.kernels_of(args.scenario)
         compile_if_needed(ground, kernels_of(args, plan.general_flight(args.scenario)))
         if _dask_backend(args):
-            result = _run_on_dask(args)
+            result = named(lambda: _run_on_dask(args), RUN_OPTIONS)
         else:
-            result = local.run_scenario(args.scenario, threads=args.threads, **_run_options(args))
+            result = named(
+                lambda: local.run_scenario(
+                    args.scenario, threads=args.threads, **_run_options(args)
+                ),
+                RUN_OPTIONS,
+            )
     except KeyboardInterrupt:
         raise Interrupted("the run was stopped and nothing was written") from None
     summary = result.summary()

@@ -23,11 +23,12 @@ from mcrun.cli.options import (
     conditions_kwargs,
     degrees,
     given,
+    named,
     number,
     quantity,
 )
 from mcrun.physics import aero, turf
-from mcrun.quantities import DEFAULTS, InputError
+from mcrun.quantities import DEFAULTS
 
 # --- printing ----------------------------------------------------------------------------------
 
@@ -128,18 +129,6 @@ BOUNCE_OPTIONS = {
 }
 
 
-def _named(call, options):
-    """``call()``, an InputError that names an API value re-raised naming its option too."""
-    try:
-        return call()
-    except InputError as err:
-        text = str(err)
-        name = text.split(" ", 1)[0]
-        if name not in options:
-            raise
-        raise InputError(f"{options[name]} ({name}){text[len(name) :]}") from None
-
-
 def _shot_kwargs(args):
     """Keyword arguments of ``mcrun.api.simulate`` from the ``shot`` options."""
     return given(
@@ -173,7 +162,7 @@ def _cmd_shot(args):
     kwargs = _shot_kwargs(args)
     if args.trajectory is not None:
         _check_trajectory_path(args.trajectory)
-    result = _named(
+    result = named(
         lambda: api.simulate(trajectory=args.trajectory is not None, **kwargs), SHOT_OPTIONS
     )
     if args.trajectory is not None:
@@ -200,7 +189,7 @@ def _cmd_bounce(args):
     angle = degrees(args.angle, "--angle")
     spin = quantity(args.spin, "spin", "--spin")
     overrides = given(mu=number(args.mu, "--mu"), softness=number(args.softness, "--softness"))
-    result = _named(
+    result = named(
         lambda: api.bounce_once(speed, angle, spin, turf=args.turf, **overrides), BOUNCE_OPTIONS
     )
     if args.json:
