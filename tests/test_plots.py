@@ -373,6 +373,9 @@ def test_a_folder_that_is_not_a_run_is_one_line(runs, tmp_path, capsys, command)
     (broken / output.SHOTS_FILE).write_bytes(b"not parquet")
     (broken / output.SUMMARY_FILE).write_bytes(b"not parquet either")
     one_line_error(capsys, main([command, str(broken)]), "cannot read the run")
+    (broken / output.SUMMARY_FILE).write_bytes((runs["groups"] / output.SUMMARY_FILE).read_bytes())
+    says = f"cannot read the run in {broken}: {output.SHOTS_FILE}: "  # (which file: not said)
+    one_line_error(capsys, main([command, str(broken)]), says)
 
 
 def _damaged(source, folder, shots=None, trajectories=None):

@@ -292,19 +292,24 @@ def open_run(folder):
             f"{folder} is not an mcrun run folder: it has no {output.SUMMARY_FILE} (write one "
             "with 'mcrun run')"
         )
+    reading = output.SUMMARY_FILE  # (the file a damaged run's message names)
     try:
         summary = pd.read_parquet(_source(url, root, output.SUMMARY_FILE))
         with fs.open_input_file(f"{root}/{output.SUMMARY_FILE}") as f:
             provenance = output.decode_provenance(pq.read_metadata(f).metadata)
         shots = None  # shots.parquet's footer: its columns, rows and provenance
         if layout == FILE_LAYOUT:
+            reading = output.SHOTS_FILE
             with fs.open_input_file(f"{root}/{output.SHOTS_FILE}") as f:
                 shots = pq.read_metadata(f)
             shot_columns = list(shots.schema.to_arrow_schema().names)
         else:
+            reading = f"{output.SHOTS_DIR}/"
             shot_columns = _dataset_columns(fs, root)
     except (OSError, pa.ArrowException, ValueError) as err:
-        raise RunFolderError(f"cannot read the run in {folder}: {reason_of(err)}") from None
+        raise RunFolderError(
+            f"cannot read the run in {folder}: {reading}: {reason_of(err)}"
+        ) from None
     version = provenance.get("format_version", 1)
     if version != output.FORMAT_VERSION:  # (a later mcrun's files, or a damaged one)
         raise RunFolderError(
