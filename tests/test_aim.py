@@ -201,6 +201,8 @@ def test_bad_aim_commands_give_one_line(capsys, argv, message):
         # the NaN was dropped silently
         (["--offsets", "nan,1"], "--offsets nan,1: every aim must be a finite number"),
         (["--offsets", "1,,2"], "--offsets 1,,2: every aim must be a finite number"),
+        # the step was ignored beside the aims given
+        (["--offsets", "0", "--step", "2"], "--step: is for the search; --offsets gives the"),
     ],
 )
 def test_bad_aim_options_name_the_option_and_write_nothing(

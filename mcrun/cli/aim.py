@@ -29,12 +29,24 @@ def _offsets(text):
 
 
 def _cmd_aim(args):
+    if args.offsets is not None:  # (each was ignored silently beside --offsets)
+        given = [o for o, v in (("--centre", args.centre), ("--half-width", args.half_width),
+                                ("--step", args.step), ("--resolution", args.resolution))
+                 if v is not None]  # fmt: skip
+        if given:
+            raise InputError(f"{given[0]}: is for the search; --offsets gives the aims to fly "
+                             "(give one or the other)")  # fmt: skip
     scenario = aim.load_scenario(args.scenario, args.seed)
     say_skipped(scenario.hole)
+    chosen = {  # (None: the default; beside --offsets, none is given)
+        "half_width_m": (args.half_width, aim.DEFAULT_HALF_WIDTH_M),
+        "coarse_m": (args.step, aim.DEFAULT_COARSE_M),
+        "resolution_m": (args.resolution, aim.DEFAULT_RESOLUTION_M),
+    }
+    search = {k: default if v is None else v for k, (v, default) in chosen.items()}
     checked = aim.check(
-        scenario, n=args.n, half_width_m=args.half_width, centre_m=args.centre,
-        coarse_m=args.step, resolution_m=args.resolution, offsets_m=_offsets(args.offsets),
-        names=OPTION_NAMES,
+        scenario, n=args.n, centre_m=args.centre, offsets_m=_offsets(args.offsets),
+        names=OPTION_NAMES, **search,
     )  # fmt: skip
     destination = None
     if args.output is not None:
@@ -167,19 +179,19 @@ def register(subparsers):
     )
     p.add_argument(
         "--half-width",
-        default=aim.DEFAULT_HALF_WIDTH_M,
+        default=None,
         metavar="M",
         help=f"the region reaches this far each side (m, {aim.DEFAULT_HALF_WIDTH_M:g})",
     )
     p.add_argument(
         "--step",
-        default=aim.DEFAULT_COARSE_M,
+        default=None,
         metavar="M",
         help=f"the coarse aims' spacing (m, {aim.DEFAULT_COARSE_M:g})",
     )
     p.add_argument(
         "--resolution",
-        default=aim.DEFAULT_RESOLUTION_M,
+        default=None,
         metavar="M",
         help=f"the finest spacing (m, {aim.DEFAULT_RESOLUTION_M:g})",
     )
