@@ -9,6 +9,8 @@ import inspect
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from mcrun import status
 from mcrun.engine.backend import simulate_batch, simulate_traced
 from mcrun.engine.schema import outcome_record, pack
@@ -374,6 +376,8 @@ def simulate(*, trajectory=False, **shot):
     ``shot_inputs`` and ``conditions_inputs``. Returns a ShotResult; ``trajectory=True`` adds
     its path.
     """
+    if not isinstance(trajectory, bool | np.bool_):  # ("no" was true: a path traced)
+        raise InputError(f"trajectory {trajectory!r}: allowed: True or False")
     inputs, angle_deg = shot_inputs(**shot)
     if trajectory:
         out, traj = simulate_traced(inputs)

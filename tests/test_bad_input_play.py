@@ -216,6 +216,24 @@ def test_a_player_with_a_sweep_is_refused(tmp_path):
         load_player(path)
 
 
+@pytest.mark.parametrize(
+    ("names", "says"),
+    [
+        (["7-iron\u001b[31m", "8-iron"], "club '7-iron\\x1b[31m' holds control characters"),
+        (["Iron ", "Iron"], "clubs 'Iron ' and 'Iron' print the same"),
+        (["6-Driv\u00e9", "6-Drive\u0301"], "print the same"),  # composed and decomposed
+    ],
+)
+def test_a_player_s_club_names_print_as_themselves(tmp_path, names, says):
+    """mcrun play prints the clubs: an escape sequence (or a line break) in a name reached the
+    terminal raw, and two names that print the same were two clubs it could not tell apart."""
+    head, group = STRAIGHT.split("[[group]]")
+    groups = "".join("[[group]]" + group.replace('"7-iron"', json.dumps(n)) for n in names)
+    path = write(tmp_path / "names.toml", head + groups)
+    with pytest.raises(PlayerError, match=re.escape(says)):
+        load_player(path, straight=True)
+
+
 def test_a_player_whose_club_cannot_fly_its_shots_is_refused(tmp_path):
     """A club whose spread is far too wide for its mean (spin sd 100,000 rpm: half its backspins
     below 0) left most shots unflown, and ``mcrun play`` printed its value as inf, exit 0: the

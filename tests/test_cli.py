@@ -664,3 +664,33 @@ def test_a_whole_number_in_digits_is_read_exactly():
         positive_int(str(2**63), "n")
     with pytest.raises(api.InputError, match=r"from 0 to 2\*\*63 - 1$"):
         whole(str(10**400), "--seed", 0)  # (an OverflowError of math.isfinite)
+
+
+def test_a_whole_number_in_other_digits_is_refused():
+    """Python's int and float read '١٢' (Arabic) and '１２' (full width) as 12: a seed or a
+    count that looks like a number and is not the one typed is refused, as a quantity is."""
+    from mcrun.cli.options import whole
+    from mcrun.run.plan import positive_int
+
+    with pytest.raises(api.InputError, match=r"^--seed '١٢': only ASCII digits \(0-9\)"):
+        whole("١٢", "--seed", 0)
+    with pytest.raises(api.InputError, match=r"^n '１２': only ASCII digits \(0-9\)"):
+        positive_int("１２", "n")
+
+
+def test_the_api_refuses_what_is_not_its_argument():
+    """Each a one-line InputError: a text where a bool goes (trajectory="no" traced a path),
+    a scenario that is not one (an AttributeError), a folder that is not a path (a TypeError),
+    a seed that is not a whole number (putt(seed=None) drew a new seed each call)."""
+    from mcrun.putting import putt
+    from mcrun.run.local import run_scenario
+
+    with pytest.raises(api.InputError, match=r"^trajectory 'no': allowed: True or False$"):
+        api.simulate(ball_speed_mps=70, launch_angle_deg=12, spin_radps=280, trajectory="no")
+    with pytest.raises(api.InputError, match=r"^scenario None: allowed: a scenario file"):
+        run_scenario(None, n=10, progress=False)
+    with pytest.raises(api.InputError, match=r"^out_dir 5: allowed: a folder's path$"):
+        run_scenario("pga-driver", n=10, out_dir=5, progress=False)
+    for seed in (None, True, 2**64):
+        with pytest.raises(api.InputError, match=r"^seed .*: allowed: a whole number from 0"):
+            putt(3.0, 3.3, 0.01, 0.0, n=20, seed=seed)

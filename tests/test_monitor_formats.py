@@ -537,3 +537,21 @@ def test_a_device_result_no_shot_can_have_is_not_measured(tmp_path):
         "1 value(s) of Carry (yds) no shot can have (row 1: '-1234.5' yd), read as not " in note
         for note in session.notes
     ), session.notes
+
+
+def test_mcrun_s_own_columns_read_quoted_thousands_and_refuse_infinite_results(tmp_path):
+    """mcrun's own columns: a quoted "2,855" rpm is 2855, as in an export (refused before);
+    an infinite device result, or a carry of 0 (what devices write for none), is not
+    measured (inf reached the Parquet and a bias of -inf)."""
+    path = tmp_path / "own.csv"
+    path.write_text(
+        "ball_speed_mph,launch_deg,spin_rpm,carry_yd,total_yd\n"
+        '151.0,13.4,"2,855",inf,0\n'
+        "150.0,12.9,2884,248.1,1e400\n"
+    )
+    session = read_session(path)
+    assert session.launch["spin"][0] == pytest.approx(2855 * math.pi / 30.0, rel=1e-12)
+    carry, total = session.device["carry"], session.device["total"]
+    assert math.isnan(carry[0]) and carry[1] == pytest.approx(248.1 * 0.9144)
+    assert np.isnan(total).all()
+    assert any("2 value(s) of total_yd no shot can have" in note for note in session.notes)

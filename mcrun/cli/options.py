@@ -85,6 +85,9 @@ def whole(text, option, least, most=None):
     """A whole number of at least ``least`` (and at most ``most``: ``2000``, ``1e4``);
     InputError naming the option."""
     digits = str(text).strip()
+    foreign = units.foreign_digits(digits)  # (float read "١٢" as 12)
+    if foreign:
+        raise InputError(f"{option} {text!r}: {foreign}")
     try:  # digits read exactly (through a float, 2**53 + 1 was 2**53)
         value = (
             int(digits)

@@ -27,6 +27,7 @@ teed ball's, and off the ground the Tour plays a fairway wood.
 import dataclasses
 import math
 import os
+import unicodedata
 from dataclasses import dataclass
 
 import numpy as np
@@ -264,8 +265,18 @@ def load_player(spec, putter=None, spread=None, straight=False):
             "run)"
         )
     clubs = tuple(p.label or p.group or f"club {p.index}" for p in scenario.points)
-    if len(set(clubs)) != len(clubs):
-        raise PlayerError(f"{scenario.path}: each club (group) needs a name of its own")
+    for club in clubs:  # (printed by mcrun play: an escape sequence reached the terminal)
+        if any(unicodedata.category(c)[0] == "C" for c in club):
+            raise PlayerError(f"{scenario.path}: club {club!r} holds control characters: "
+                              "allowed: a name to print")  # fmt: skip
+    # Names that print the same (one composed and one decomposed, a trailing space) are one.
+    seen = {}
+    for club in clubs:
+        key = " ".join(unicodedata.normalize("NFC", club).split())
+        if key in seen:
+            raise PlayerError(f"{scenario.path}: clubs {seen[key]!r} and {club!r} print the "
+                              "same: each club (group) needs a name of its own")  # fmt: skip
+        seen[key] = club
     given = spread
     if spread is None:
         spread = TOUR_SPREAD if scenario.name == TOUR_BAG else (1.0,) * len(clubs)

@@ -156,6 +156,8 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
     if not isinstance(read, bool | np.bool_):  # ("yes" or "no" would be true)
         raise InputError(f"read {read!r}: allowed: True or False")
     n = int(n)
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or not 0 <= seed < 2**63:
+        raise InputError(f"seed {seed!r}: allowed: a whole number from 0 to 2**63 - 1")
     try:
         z, keys = putter_errors(n, seed)
     except (TypeError, ValueError):

@@ -22,6 +22,7 @@ chunks and write them. What they share is here, written once:
 import copy
 import dataclasses
 import math
+import os
 import re
 import shutil
 import time
@@ -43,7 +44,7 @@ from mcrun.results import geometry, output, reader, stats
 from mcrun.results import on_hole as on_hole_results
 from mcrun.run import sampling
 from mcrun.run import scenario as scenario_module
-from mcrun.units import shown
+from mcrun.units import foreign_digits, shown
 
 DEFAULT_CHUNK_SIZE = 65536
 RUNS_FOLDER = Path("runs")
@@ -84,6 +85,8 @@ def positive_int(value, name, minimum=1):
     wrong = InputError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
     if isinstance(value, bool):
         raise wrong
+    if isinstance(value, str) and foreign_digits(value):  # (float read "١٢" as 12)
+        raise InputError(f"{name} {shown(value)}: {foreign_digits(value)}")
     if isinstance(value, str) and re.fullmatch(r"[+-]?[0-9]+", value.strip().replace("_", "")):
         number = int(value.strip().replace("_", ""))  # (through a float, 2**53 + 1 was 2**53)
     elif isinstance(value, int | np.integer):
@@ -337,8 +340,11 @@ def plan(
     benchmarks.
     """
     scenario = path_or_scenario
-    if isinstance(path_or_scenario, str | Path):
+    if isinstance(path_or_scenario, str | os.PathLike):
         scenario = scenario_module.load(path_or_scenario)
+    elif not (hasattr(scenario, "points") and hasattr(scenario, "seed")):  # (AttributeError)
+        raise InputError(f"scenario {shown(path_or_scenario)}: allowed: a scenario file, a "
+                         "library scenario's name or a loaded scenario")  # fmt: skip
     n = positive_int(scenario.shots if n is None else n, "n")
     seed = positive_int(scenario.seed if seed is None else seed, "seed", minimum=0)
     chunk_size = positive_int(chunk_size, "chunk_size")

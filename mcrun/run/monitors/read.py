@@ -53,7 +53,8 @@ from mcrun.units import KINDS, UnitError, parse_quantity, shown
 LAUNCH = ("ball_speed", "launch_angle", "spin", "spin_axis", "azimuth")
 DEVICE = ("carry", "total", "apex", "descent_angle", "carry_side", "total_side")
 # The device's results a golf shot can have (SI): outside, a result is not measured (a carry
-# of -1,234.5 yd made the model's bias +1,348 m).
+# of -1,234.5 yd made the model's bias +1,348 m); a carry or a total of 0 too (what devices
+# write for a result they did not measure).
 DEVICE_RANGES = {
     "carry": (0.0, 500.0),
     "total": (0.0, 600.0),
@@ -128,12 +129,13 @@ def read_session(path, format=None):
             return _session_of_messages(path, format)
         # Neither an export's header nor mcrun's columns: say what was found and what is known.
         launch_columns(pd.DataFrame(columns=[c.strip() for c in header]), source, _KNOWN)
+        # mcrun's own columns, as a spreadsheet saves them too (semicolons or tabs, "7,097").
         if sep == ",":
-            return session_of_frame(read_launch_table(path), source, None)
-        # mcrun's own columns as a spreadsheet saves them, with semicolons or tabs.
-        frame = _read_table(path, encoding, lead + offset, sep, skip, None, newline)
+            frame = read_launch_table(path)
+        else:
+            frame = _tidy(_read_table(path, encoding, lead + offset, sep, skip, None, newline))
         frame, notes = _in_locale(frame, head[offset:], sep, path)
-        session = session_of_frame(_tidy(frame), source, None)
+        session = session_of_frame(frame, source, None)
         return dataclasses.replace(session, notes=(*notes, *session.notes))
     try:
         frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline)
@@ -742,7 +744,8 @@ def _possible(device, sources, units, source, frame, notes):
     measured, each column's count and first row in a note."""
     for quantity, si in device.items():
         lo, hi = DEVICE_RANGES[quantity]
-        impossible = np.isfinite(si) & ((si < lo) | (si > hi))
+        above = si > lo if quantity in ("carry", "total") else si >= lo  # (0: not measured)
+        impossible = ~np.isnan(si) & ~(above & (si <= hi))  # (inf too)
         if impossible.any():
             row = int(np.flatnonzero(impossible)[0])
             column = sources[quantity]
