@@ -29,10 +29,9 @@ def _offsets(text):
 
 
 def _cmd_aim(args):
-    if args.offsets is not None:  # (each was ignored silently beside --offsets)
-        given = [o for o, v in (("--centre", args.centre), ("--half-width", args.half_width),
-                                ("--step", args.step), ("--resolution", args.resolution))
-                 if v is not None]  # fmt: skip
+    if args.offsets is not None:  # (each was ignored silently; --centre is the reference)
+        given = [o for o, v in (("--half-width", args.half_width), ("--step", args.step),
+                                ("--resolution", args.resolution)) if v is not None]  # fmt: skip
         if given:
             raise InputError(f"{given[0]}: is for the search; --offsets gives the aims to fly "
                              "(give one or the other)")  # fmt: skip
