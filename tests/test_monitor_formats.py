@@ -458,6 +458,10 @@ def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(t
         "tab": ("utf-8", _resaved(text, "\t", ".", grouped=True)),
         "semicolon sep= line": ("utf-8-sig", _resaved(text, ";", ",", sep_line=True)),
         "commas, thousands quoted": ("utf-8", _resaved(text, ",", ".", grouped=True)),
+        # Google Sheets where the decimal mark is a comma: commas between the fields, the
+        # decimals quoted ("45,3"), thousands grouped by points (7.097, which pandas read as
+        # 7.097)
+        "commas, decimal commas quoted": ("utf-8", _resaved(text, ",", ",", grouped=True)),
     }
     for how, (encoding, body) in saved.items():
         path = tmp_path / f"{how}-{name}"
@@ -475,6 +479,9 @@ def test_an_export_saved_with_semicolons_tabs_or_decimal_commas_reads_the_same(t
             assert session.frame[column].dtype.kind == kind or kind not in "fi", (how, column)
         if not how.startswith("commas"):
             said = f"fields separated by {'tabs' if 'semicolon' not in how else repr(';')}"
+            assert any(said in note for note in session.notes), session.notes
+        if how == "commas, decimal commas quoted":
+            said = "fields separated by ','; numbers with a decimal comma"
             assert any(said in note for note in session.notes), session.notes
 
 

@@ -130,21 +130,26 @@ def read_session(path, format=None):
         # Neither an export's header nor mcrun's columns: say what was found and what is known.
         launch_columns(pd.DataFrame(columns=[c.strip() for c in header]), source, _KNOWN)
         # mcrun's own columns, as a spreadsheet saves them too (semicolons or tabs, "7,097").
-        if sep == ",":
+        comma = _decimal_comma(head[offset:], sep)
+        if sep == "," and not comma:
             frame = read_launch_table(path)
         else:
-            frame = _tidy(_read_table(path, encoding, lead + offset, sep, skip, None, newline))
-        frame, notes = _in_locale(frame, head[offset:], sep, path)
+            frame = _tidy(
+                _read_table(path, encoding, lead + offset, sep, skip, None, newline, text=True)
+            )
+        frame, notes = _in_locale(frame, comma, sep, path)
         session = session_of_frame(frame, source, None)
         return dataclasses.replace(session, notes=(*notes, *session.notes))
+    comma = _decimal_comma(head[offset:], sep)
+    text = sep != "," or comma  # (the cells as text, read as numbers by the file's locale)
     try:
-        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline)
+        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline, text)
     except UnicodeDecodeError:  # UTF-8 at its start only: the file is Latin-1
         head, encoding, lead = _decode(path, _HEAD, "latin-1")
-        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline)
+        frame = _read_table(path, encoding, lead + offset, sep, skip, fmt, newline, text)
     if len(frame) == 0:
         raise InputError(f"{path}: no shots: the file has a header only")
-    frame, notes = _in_locale(frame, head[offset:], sep, path)
+    frame, notes = _in_locale(frame, comma, sep, path)
     # Each column's unit by its place (a name given twice may have two units): the unit row,
     # else the unit in the name.
     file_units = {}
@@ -160,14 +165,13 @@ def read_session(path, format=None):
     return _session(frame, source, fmt.name, format is None, file_units, None, reasons, notes)
 
 
-def _in_locale(frame, body, sep, path):
-    """(frame, notes): the frame's numbers read as the file's locale writes them (``body``:
-    its text from the header on), and a note of the separator and the decimal mark where the
-    fields are not separated by commas."""
-    comma = _decimal_comma(body, sep)
+def _in_locale(frame, comma, sep, path):
+    """(frame, notes): the frame's numbers read as the file's locale writes them (``comma``:
+    with decimal commas, ``_decimal_comma``), and a note of the separator and the decimal
+    mark where either is not the comma and the point of most exports."""
     # (Where commas separate the fields, a quoted "7,097" is a spreadsheet's grouped 7097.)
-    frame = _plain_numbers(frame, comma, every=sep != ",")
-    if sep == ",":
+    frame = _plain_numbers(frame, comma, every=sep != "," or comma)
+    if sep == "," and not comma:
         return frame, []
     mark = ("with a decimal comma (thousands grouped by points)" if comma else
             "with a decimal point (thousands grouped by commas)")  # fmt: skip
@@ -182,11 +186,12 @@ def _session_of_messages(path, format):
     return _session(frame, str(path), "gspro", format is None, {}, units, reasons, notes)
 
 
-def _read_table(path, encoding, start, sep, skip, fmt, newline=""):
+def _read_table(path, encoding, start, sep, skip, fmt, newline="", text=False):
     """The table of an export from the header on (``start`` characters into the file), read
     by pandas from the file itself (a copy of its text in memory would cost several times
     the file); the rows checked for extra fields first. ``newline``: ``open``'s (None for a
-    file whose lines end with CR alone)."""
+    file whose lines end with CR alone); ``text``: every cell as text (for ``_in_locale``;
+    pandas would take ``7.097`` for 7.097 where the decimal mark is a comma)."""
     with open(path, encoding=encoding, newline=newline) as file:
         file.read(start)
         lines = enumerate(file)
@@ -203,10 +208,7 @@ def _read_table(path, encoding, start, sep, skip, fmt, newline=""):
                 index_col=False,
                 skiprows=skip,
                 low_memory=False,
-                # Other separators: the cells as text, read as numbers by the file's locale
-                # (``_plain_numbers``; pandas would take ``7.097`` for 7.097 where the
-                # decimal mark is a comma).
-                dtype=None if sep == "," else str,
+                dtype=str if text else None,
             )
         except UnicodeDecodeError:
             raise
@@ -415,13 +417,11 @@ def _separator(header):
 
 def _decimal_comma(body, sep):
     """Whether the rows in ``body`` (text after the header) write numbers with a decimal
-    comma: never where a comma separates the fields; else where more cells are numbers with
-    a comma (``45,3``, ``13,8 L``) than with a point (a date ``01.05.2024`` is neither), and
-    on a tie where semicolons separate them (Excel's separator where the decimal mark is a
-    comma). A mark before three digits (``7,097``, ``7.097``; not ``0,025``) may group
-    thousands: it counts for neither."""
-    if sep == ",":
-        return False
+    comma: where more cells are numbers with a comma (``45,3``, ``13,8 L``; where commas
+    separate the fields, quoted, as Google Sheets writes them in such a locale) than with a
+    point (a date ``01.05.2024`` is neither), and on a tie where semicolons separate them
+    (Excel's separator where the decimal mark is a comma). A mark before three digits
+    (``7,097``, ``7.097``; not ``0,025``) may group thousands: it counts for neither."""
     comma = point = 0
     for fields in csv.reader(body.splitlines()[:200], delimiter=sep):
         for cell in fields:
