@@ -17,7 +17,6 @@ clubs it was not fitted to: leave one club out, and one tour fitted to predict t
 
 import math
 import time
-import unicodedata
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -35,7 +34,7 @@ from mcrun.physics import aero
 from mcrun.physics.constants import DEG
 from mcrun.quantities import DEFAULTS, InputError, check_range
 from mcrun.run.monitors.native import check_field_counts
-from mcrun.units import parse_quantity, shown
+from mcrun.units import control_free, parse_quantity, shown
 
 DEFAULT_DATA = resources.files("mcrun") / "data" / "trackman_tour_averages_2019.csv"
 
@@ -141,9 +140,7 @@ def load_measured(path=None):
         {"tour": raw["tour"].astype(str).str.strip(), "club": raw["club"].astype(str).str.strip()}
     )
     for column in ("tour", "club"):  # (an escape sequence reached the terminal)
-        bad = frame[column].map(
-            lambda t: isinstance(t, str) and any(unicodedata.category(c)[0] == "C" for c in t)
-        )
+        bad = frame[column].map(lambda t: isinstance(t, str) and control_free(t) != t)
         if bad.any():
             row = int(np.flatnonzero(bad.to_numpy())[0])
             _fail(f"measured table {path}, data row {row + 1}, column {column}: "

@@ -19,6 +19,7 @@ temperature (K), pressure (Pa), fraction (dimensionless, 1 = 100 %), time (s).
 import math
 import numbers
 import re
+import unicodedata
 
 from mcrun.errors import InputError
 
@@ -227,6 +228,46 @@ def _article(word: str) -> str:
 
 def _prefix(name: str | None) -> str:
     return "" if name is None else " ".join(str(name).split()) + ": "
+
+
+# The largest whole number a float holds exactly: "1e17" cannot say which integer it means.
+EXACT_FLOAT_MOST = 2**53
+INEXACT = "inexact"  # ``whole_number``'s reason for a number beyond EXACT_FLOAT_MOST via a float
+
+
+def whole_number(value: object) -> tuple[int | None, str]:
+    """(``value`` as the int it writes, ""), or (None, why not): an int (not a bool), a float
+    of an integral value up to ``EXACT_FLOAT_MOST``, or a text: digits read exactly (through
+    a float, 2**53 + 1 was 2**53), else a number such as "1e6" up to ``EXACT_FLOAT_MOST``.
+    Why not: ``INEXACT`` for a larger number through a float, ``foreign_digits``' reason for a
+    text in other digits (float read "١٢" as 12), "" for anything else."""
+    if isinstance(value, bool):
+        return None, ""
+    if isinstance(value, numbers.Integral):
+        return int(value), ""
+    if isinstance(value, str):
+        foreign = foreign_digits(value)
+        if foreign:
+            return None, foreign
+        try:
+            return int(value), ""
+        except ValueError:
+            pass
+    try:
+        number = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        return None, ""
+    if not (math.isfinite(number) and number.is_integer()):
+        return None, ""
+    if abs(number) > EXACT_FLOAT_MOST:
+        return None, INEXACT
+    return int(number), ""
+
+
+def control_free(text: str) -> str:
+    """``text`` without its control and format characters (an escape sequence, a
+    right-to-left override, a line break): what it prints as."""
+    return "".join(c for c in text if unicodedata.category(c)[0] != "C")
 
 
 def is_number(value: object) -> bool:

@@ -84,26 +84,15 @@ def named(call, options):
 def whole(text, option, least, most=None):
     """A whole number of at least ``least`` (and at most ``most``: ``2000``, ``1e4``);
     InputError naming the option."""
-    digits = str(text).strip()
-    foreign = units.foreign_digits(digits)  # (float read "١٢" as 12)
-    if foreign:
-        raise InputError(f"{option} {text!r}: {foreign}")
-    try:  # digits read exactly (through a float, 2**53 + 1 was 2**53)
-        value = (
-            int(digits)
-            if digits.lstrip("+-").isascii() and digits.lstrip("+-").isdigit()
-            else float(text)
-        )
-    except ValueError:
-        value = math.nan
+    value, why = units.whole_number(str(text).strip())
+    if why and why != units.INEXACT:
+        raise InputError(f"{option} {text!r}: {why}")
     top = 2**63 - 1 if most is None else most  # (an int64: what the kernels take)
-    inexact = isinstance(value, float) and math.isfinite(value) and abs(value) > 2**53
-    finite = isinstance(value, int) or math.isfinite(value)  # (isfinite of 10**400 overflows)
-    if inexact or not (finite and least <= value <= top and value == int(value)):
+    if value is None or not least <= value <= top:
         allowed = f"from {least} to {most}" if most is not None else f"from {least} to 2**63 - 1"
-        beyond = " (beyond 2**53, in digits: a float is not one integer there)" * inexact
+        beyond = " (beyond 2**53, in digits: a float is not one integer there)" * (why != "")
         raise InputError(f"{option} {text!r}: allowed: a whole number {allowed}{beyond}")
-    return int(value)
+    return value
 
 
 # A local Dask cluster's workers (``--dask local --workers N``) are processes of one thread

@@ -54,6 +54,8 @@ def read_scorecard(path, count):
     InputError naming the file, the row and the field."""
     import csv
 
+    from mcrun.run.monitors.read import separator_of
+
     path = Path(path)
     try:
         with path.open(newline="", encoding="utf-8-sig") as f:
@@ -62,8 +64,8 @@ def read_scorecard(path, count):
         raise InputError(f"--scorecard {path}: {err.strerror}") from None
     except UnicodeDecodeError:
         raise InputError(f"--scorecard {path}: not a text file: a CSV of hole,yards") from None
-    # Commas, or a spreadsheet's semicolons or tabs; names in any case.
-    sep = max((",", ";", "\t"), key=lines[0].count) if lines else ","
+    # Commas, or a spreadsheet's semicolons or tabs (as replay tells them); names in any case.
+    sep = separator_of(lines[0]) if lines else ","
     table = list(csv.reader(lines, delimiter=sep, skipinitialspace=True))
     header = [name.strip().lower() for name in table[0]] if table else []
     twice = sorted({name for name in header if header.count(name) > 1})

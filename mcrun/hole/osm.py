@@ -21,7 +21,6 @@ OpenStreetMap XML file given as a map is named as what it is, with the formats a
 import json
 import math
 import re
-import unicodedata
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -31,6 +30,7 @@ import numpy as np
 from mcrun.hole.errors import HoleError
 from mcrun.hole.geo import MEAN_RADIUS_M
 from mcrun.hole.zones import contains, shoelace_area_m2, zone_of_tags
+from mcrun.units import control_free
 
 ATTRIBUTION = "(c) OpenStreetMap contributors, ODbL"
 
@@ -260,7 +260,7 @@ def tag_text(value):
     if isinstance(value, list):
         value = ";".join(str(v) for v in value)
     text = " ".join(str(value).split())
-    text = "".join(c for c in text if unicodedata.category(c)[0] != "C")
+    text = control_free(text)
     if len(text) > TAG_MOST:
         text = text[: TAG_MOST - 3] + "..."
     return text or None

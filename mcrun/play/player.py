@@ -39,7 +39,7 @@ from mcrun.run import sampling
 from mcrun.run import scenario as sc
 from mcrun.run.scenario.hole_table import Play
 from mcrun.strokes.baseline import LIES
-from mcrun.units import is_number, shown
+from mcrun.units import control_free, is_number, shown
 
 __all__ = [
     "LIE_LAUNCH",
@@ -266,7 +266,7 @@ def load_player(spec, putter=None, spread=None, straight=False):
         )
     clubs = tuple(p.label or p.group or f"club {p.index}" for p in scenario.points)
     for club in clubs:  # (printed by mcrun play: an escape sequence reached the terminal)
-        if any(unicodedata.category(c)[0] == "C" for c in club):
+        if control_free(club) != club:
             raise PlayerError(f"{scenario.path}: club {club!r} holds control characters: "
                               "allowed: a name to print")  # fmt: skip
     # Names that print the same (one composed and one decomposed, a trailing space) are one.

@@ -158,10 +158,7 @@ def putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000, s
     n = int(n)
     if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or not 0 <= seed < 2**63:
         raise InputError(f"seed {seed!r}: allowed: a whole number from 0 to 2**63 - 1")
-    try:
-        z, keys = putter_errors(n, seed)
-    except (TypeError, ValueError):
-        raise InputError(f"seed {seed!r}: allowed: a whole number 0 or more") from None
+    z, keys = putter_errors(n, seed)
     d = math.radians(direction_deg)
     green = plane_putt_green(slope_tan, math.cos(d), math.sin(d),
                              float(rho_g_from_stimp(stimp_m)), drift_sd(drift_mm_per_m),

@@ -21,9 +21,7 @@ chunks and write them. What they share is here, written once:
 
 import copy
 import dataclasses
-import math
 import os
-import re
 import shutil
 import time
 from dataclasses import dataclass
@@ -44,7 +42,7 @@ from mcrun.results import geometry, output, reader, stats
 from mcrun.results import on_hole as on_hole_results
 from mcrun.run import sampling
 from mcrun.run import scenario as scenario_module
-from mcrun.units import foreign_digits, shown
+from mcrun.units import INEXACT, shown, whole_number
 
 DEFAULT_CHUNK_SIZE = 65536
 RUNS_FOLDER = Path("runs")
@@ -74,42 +72,23 @@ SUMMARY_CONVENTIONS = {
 # --- the arguments and the scenario ------------------------------------------------------------
 
 
-# The largest whole number a float holds exactly: "1e17" cannot say which integer it means.
-EXACT_FLOAT_MOST = 2**53
-
-
 def positive_int(value, name, minimum=1):
     """An integer from ``minimum`` to 2**63 - 1 (an int64) from an int, a float with an
     integral value (up to 2**53, beyond which a float is not one integer) or a text: digits,
-    read exactly, or a number such as "1e6"."""
+    read exactly, or a number such as "1e6" (``units.whole_number``)."""
     wrong = InputError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
-    if isinstance(value, bool):
-        raise wrong
-    if isinstance(value, str) and foreign_digits(value):  # (float read "١٢" as 12)
-        raise InputError(f"{name} {shown(value)}: {foreign_digits(value)}")
-    if isinstance(value, str) and re.fullmatch(r"[+-]?[0-9]+", value.strip().replace("_", "")):
-        number = int(value.strip().replace("_", ""))  # (through a float, 2**53 + 1 was 2**53)
-    elif isinstance(value, int | np.integer):
-        number = int(value)
-    else:
-        try:
-            number = float(value.strip().replace("_", "") if isinstance(value, str) else value)
-        except (TypeError, ValueError):
-            raise wrong from None
-        if not (math.isfinite(number) and number == int(number)):
-            raise wrong
-        if abs(number) > EXACT_FLOAT_MOST:
-            raise InputError(
-                f"{name} {shown(value)}: allowed: a number beyond 2**53 written in digits (as "
-                "a float it is not one integer)"
-            )
-        number = int(number)
-    if not minimum <= number <= 2**63 - 1:
-        raise (
-            wrong
-            if number < minimum
-            else InputError(f"{name} must be an integer up to 2**63 - 1, got {shown(value)}")
+    number, why = whole_number(value.strip().replace("_", "") if isinstance(value, str) else value)
+    if why == INEXACT:
+        raise InputError(
+            f"{name} {shown(value)}: allowed: a number beyond 2**53 written in digits (as a "
+            "float it is not one integer)"
         )
+    if why:
+        raise InputError(f"{name} {shown(value)}: {why}")
+    if number is None or number < minimum:
+        raise wrong
+    if number > 2**63 - 1:
+        raise InputError(f"{name} must be an integer up to 2**63 - 1, got {shown(value)}")
     return number
 
 

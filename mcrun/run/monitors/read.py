@@ -369,7 +369,7 @@ def _split(path, text):
             start = end
             continue
         if not given:  # no sep= line: the separator the header is written with
-            sep = _separator(line)
+            sep = separator_of(line)
         header = _fields(line, sep, path)
         break
     if header is None:
@@ -408,7 +408,7 @@ _THOUSANDS_COMMA = re.compile(
 )
 
 
-def _separator(header):
+def separator_of(header):
     """The separator of a header line: of ``_SEPARATORS``, the one that splits it into the
     most fields (a comma on a tie)."""
     counts = [len(_fields(header, sep)) for sep in _SEPARATORS]
