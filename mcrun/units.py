@@ -18,8 +18,10 @@ temperature (K), pressure (Pa), fraction (dimensionless, 1 = 100 %), time (s).
 
 import math
 import numbers
+import os
 import re
 import unicodedata
+from pathlib import Path
 
 from mcrun.errors import InputError
 
@@ -268,6 +270,14 @@ def control_free(text: str) -> str:
     """``text`` without its control and format characters (an escape sequence, a
     right-to-left override, a line break): what it prints as."""
     return "".join(c for c in text if unicodedata.category(c)[0] != "C")
+
+
+def path_of(value: object, what: str, allowed: str, error: type = InputError) -> Path:
+    """``value`` as a Path, where it is text or a path; else ``error``, one line: ``{what}
+    {value}: allowed: {allowed}`` (``Path(None)`` raises a TypeError naming no argument)."""
+    if not isinstance(value, str | os.PathLike):
+        raise error(f"{what} {shown(value)}: allowed: {allowed}")
+    return Path(value)
 
 
 def is_number(value: object) -> bool:

@@ -34,15 +34,13 @@ with one line naming the file, what is wrong and what is allowed. ``tifffile``, 
 """
 
 import math
-import os
 import re
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from mcrun.errors import InputError
-from mcrun.units import shown
+from mcrun.units import path_of
 
 EARTH_RADIUS_M = 6_371_008.8  # mean radius (IUGG): cell sizes in degrees shown in metres
 MAX_NODES = 25_000_000  # a grid gridded from points: 200 MB of float64 at most
@@ -241,9 +239,7 @@ def load_elevation(path, crs=None):
     """The Elevation of a GeoTIFF DEM (.tif, .tiff), an ESRI ASCII grid (.asc) or a CSV of
     survey points (.csv). ``crs`` (an EPSG code such as 'EPSG:32633', or a WKT) gives or
     overrides the file's coordinate system."""
-    if not isinstance(path, str | os.PathLike):  # (a TypeError of Path before)
-        raise ElevationError(f"elevation {shown(path)}: allowed: a .tif/.tiff, .asc or .csv path")
-    path = Path(path)
+    path = path_of(path, "elevation", "a .tif/.tiff, .asc or .csv path", ElevationError)
     name = path.name
     if path.is_dir():
         raise ElevationError(

@@ -32,7 +32,6 @@ The ``[hole]`` table of a scenario and a standalone hole TOML file have the same
 """
 
 import math
-import os
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -69,7 +68,7 @@ from mcrun.physics.turf import (
     Turf,
     check_turf,
 )
-from mcrun.units import shown
+from mcrun.units import path_of
 
 M_PER_YD = 0.9144
 DEFAULT_CELL_M = 0.5
@@ -270,9 +269,7 @@ class Hole:
 
 def load_hole(path):
     """The Hole of a standalone hole TOML file (its top-level keys, or a ``[hole]`` table)."""
-    if not isinstance(path, str | os.PathLike):  # (a TypeError of Path before)
-        raise HoleError(f"hole {shown(path)}: allowed: a hole file's path")
-    path = Path(path)
+    path = path_of(path, "hole", "a hole file's path", HoleError)
     table, source = read_hole_file(path)
     return hole_from_table(table, path.parent, source)
 

@@ -26,7 +26,6 @@ teed ball's, and off the ground the Tour plays a fairway wood.
 
 import dataclasses
 import math
-import os
 import unicodedata
 from dataclasses import dataclass
 
@@ -39,7 +38,7 @@ from mcrun.run import sampling
 from mcrun.run import scenario as sc
 from mcrun.run.scenario.hole_table import Play
 from mcrun.strokes.baseline import LIES
-from mcrun.units import control_free, is_number, shown
+from mcrun.units import control_free, is_number, path_of, shown
 
 __all__ = [
     "LIE_LAUNCH",
@@ -237,9 +236,8 @@ def load_player(spec, putter=None, spread=None, straight=False):
     A club whose every shot is the same (no dispersion: ``check_dispersion``) is refused
     (PlayerError), unless ``straight`` (a bag of straight shots, for tests from first
     principles: a model player has a dispersion)."""
-    if not isinstance(spec, str | os.PathLike):  # (a TypeError of the path before)
-        raise PlayerError(f"player {spec!r}: allowed: a preset ({', '.join(PLAYERS)}), a "
-                          "player file or a library scenario's name")  # fmt: skip
+    path_of(spec, "player", f"a preset ({', '.join(PLAYERS)}), a player file or a library "
+            "scenario's name", PlayerError)  # fmt: skip
     if str(spec) in PLAYERS:
         name = str(spec)
         bag, speed, preset, own_putter = PLAYERS[name]

@@ -20,7 +20,6 @@ The command line: ``mcrun run``, ``mcrun validate``, ``mcrun scenarios`` (``regi
 """
 
 import concurrent.futures
-import os
 import sys
 import threading
 import time
@@ -34,7 +33,7 @@ from mcrun.executor import on_threads
 from mcrun.quantities import InputError
 from mcrun.results import output, stats
 from mcrun.run import plan
-from mcrun.units import shown
+from mcrun.units import path_of
 
 # The chunks a thread's tasks may run ahead of the writer (each holds its table until written).
 AHEAD_PER_THREAD = 2
@@ -105,11 +104,9 @@ def run_scenario(
     the_plan = plan.plan(path_or_scenario, n, seed, chunk_size, trajectories_every)
     threads = _check_threads(threads)
     budget_bytes = plan.positive_int(budget_bytes, "budget_bytes")
-    if out_dir is not None and not isinstance(out_dir, str | os.PathLike):
-        raise InputError(f"out_dir {shown(out_dir)}: allowed: a folder's path")
     if out_dir is None:
         out_dir = plan.default_out_dir(the_plan.scenario, the_plan.seed)
-    out_dir = Path(out_dir)
+    out_dir = path_of(out_dir, "out_dir", "a folder's path")
     if not ignore_disk_space:
         plan.check_disk_space(the_plan, out_dir)
     points = the_plan.points

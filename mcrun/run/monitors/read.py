@@ -28,10 +28,8 @@ import csv
 import dataclasses
 import json
 import math
-import os
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -48,7 +46,7 @@ from mcrun.run.monitors.native import (
     names_shown,
     read_launch_table,
 )
-from mcrun.units import KINDS, UnitError, parse_quantity, shown
+from mcrun.units import KINDS, UnitError, parse_quantity, path_of, shown
 
 LAUNCH = ("ball_speed", "launch_angle", "spin", "spin_axis", "azimuth")
 DEVICE = ("carry", "total", "apex", "descent_angle", "carry_side", "total_side")
@@ -102,9 +100,7 @@ class Session:
 def read_session(path, format=None):
     """The ``Session`` of the file at ``path``; ``format`` forces one of ``formats.NAMES``
     (default: detected from the header). InputError, one line naming the file, otherwise."""
-    if not isinstance(path, str | os.PathLike):  # (a TypeError of Path before)
-        raise InputError(f"session {shown(path)}: allowed: a launch-monitor export's path")
-    path = Path(path)
+    path = path_of(path, "session", "a launch-monitor export's path")
     check_file(path)
     if format is not None and format not in formats.NAMES:
         raise InputError(f"{path}: unknown format {format!r}; known: {', '.join(formats.NAMES)}")
