@@ -11,6 +11,7 @@ percentiles; they must agree with pandas to 1e-9 relative.
 import json
 import math
 import os
+import shutil
 from datetime import datetime
 from pathlib import Path
 
@@ -560,9 +561,17 @@ def bad_cases(tmp_path):
     """(argv, what the message must mention) for every user error of run/validate."""
     good = write(tmp_path, DRIVE)
     bad_sd = write(tmp_path, DRIVE.replace('sd = "250 rpm"', 'sd = "-5 rpm"'), "bad.toml")
-    existing = tmp_path / "existing"
+    existing = tmp_path / "existing"  # an earlier run's files, as far as --force looks
     existing.mkdir()
-    (existing / "summary.parquet").write_bytes(b"an earlier run")
+    earlier = pa.table({"point": [0]}).replace_schema_metadata({"mcrun.seed": "1"})
+    pq.write_table(earlier, existing / "summary.parquet")
+    (existing / "plots").mkdir()
+    with_notes = tmp_path / "with-notes"  # the same with a file of the user's, kept
+    shutil.copytree(existing, with_notes)
+    (with_notes / "notes.txt").write_text("mine")
+    not_mcrun = tmp_path / "not-mcrun"  # a summary.parquet that mcrun did not write
+    not_mcrun.mkdir()
+    (not_mcrun / "summary.parquet").write_bytes(b"an earlier run")
     other = tmp_path / "other"
     other.mkdir()
     (other / "notes.txt").write_text("mine")
@@ -579,7 +588,9 @@ def bad_cases(tmp_path):
         (["run", str(good), "--chunk-size", "0"], "--chunk-size (chunk_size) must be"),
         (["run", str(good), "--trajectories", "0"], "--trajectories (trajectories_every) must"),
         (["run", str(good), "-o", str(existing)], "--force"),
-        (["run", str(good), "-o", str(other)], "not an mcrun run folder"),
+        (["run", str(good), "-o", str(other)], "holds 'notes.txt', which no run writes"),
+        (["run", str(good), "-o", str(with_notes), "--force"], "holds 'notes.txt', which no"),
+        (["run", str(good), "-o", str(not_mcrun), "--force"], "not an mcrun run folder (no"),
         (["run", str(good), "-o", str(a_file)], "not a folder"),
         (["run", str(good), "-o", str(a_file / "run")], "cannot write"),
         (["validate", str(bad_sd)], "must be >= 0"),
@@ -598,6 +609,25 @@ def test_every_bad_input_exits_2_with_one_line_and_writes_nothing(tmp_path, caps
         assert err.count("\n") == 1 and err.startswith("mcrun: error: "), (argv, err)
         assert needle in err, (argv, err)
         assert listing(tmp_path) == before, argv
+
+
+def test_force_replaces_a_run_with_its_pictures_and_nothing_of_the_user_s(tmp_path, capsys):
+    """--force replaces a run folder whole, the pictures mcrun wrote into it included; a folder
+    that also holds a file no run writes is refused, and nothing in it is touched."""
+    path = write(tmp_path, DRIVE)
+    out = tmp_path / "run"
+    assert cli(capsys, "run", str(path), "-n", "20", "-o", str(out), "--quiet")[0] == 0
+    (out / output.PLOTS_FOLDER).mkdir()
+    (out / output.PLOTS_FOLDER / "point00-positions.png").write_bytes(b"png")
+    (out / output.REPORT_FILE).write_text("<html>")
+    assert cli(capsys, "run", str(path), "-n", "30", "-o", str(out), "--force", "--quiet")[0] == 0
+    assert sorted(p.name for p in out.iterdir()) == [output.SHOTS_FILE, output.SUMMARY_FILE]
+    assert len(pd.read_parquet(out / output.SHOTS_FILE)) == 4 * 30
+    (out / "notes.txt").write_text("mine")
+    before = listing(tmp_path)
+    code, _, err = cli(capsys, "run", str(path), "-n", "20", "-o", str(out), "--force")
+    assert code == 2 and "holds 'notes.txt', which no run writes" in err
+    assert listing(tmp_path) == before
 
 
 def interrupt_on_second_chunk(monkeypatch):

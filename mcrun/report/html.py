@@ -23,10 +23,10 @@ from mcrun.report.plots import figures
 from mcrun.report.run_view import SCATTER_MAX_SHOTS, TRAJECTORIES_PER_POINT, PlotError, open_run
 from mcrun.report.style import png_bytes, require_matplotlib
 from mcrun.results import geometry, output, stats
+from mcrun.results.output import REPORT_FILE
 from mcrun.results.reader import reason_of
 
 DEFAULT_REPORT_DPI = 100
-REPORT_FILE = "report.html"
 REPORT_SUFFIXES = (".html", ".htm")
 
 # --- the report --------------------------------------------------------------------------------

@@ -59,9 +59,9 @@ from mcrun.report.run_view import (
 )
 from mcrun.report.style import Pictures, require_matplotlib
 from mcrun.results import reader
+from mcrun.results.output import PLOTS_FOLDER
 
 DEFAULT_PLOT_DPI = 150
-PLOTS_FOLDER = "plots"
 
 
 def point_name(run, point):

@@ -67,6 +67,12 @@ RUN_FILES = (SHOTS_FILE, SUMMARY_FILE, TRAJECTORIES_FILE)
 SHOTS_DIR = "shots"
 TRAJECTORIES_DIR = "trajectories"
 SUCCESS_FILE = "_SUCCESS"
+# What mcrun puts in a run folder besides the run: `mcrun plot`'s and `mcrun report`'s defaults.
+PLOTS_FOLDER = "plots"
+REPORT_FILE = "report.html"
+# Every name a run folder may hold: what --force replaces, and nothing else.
+RUN_FOLDER_NAMES = (*RUN_FILES, SHOTS_DIR, TRAJECTORIES_DIR, SUCCESS_FILE, PLOTS_FOLDER,
+                    REPORT_FILE)  # fmt: skip
 _PART = re.compile(r"part-(\d+)\.parquet")
 # Parquet's codec: LZ4 (LZ4_RAW in the file; pandas, polars, DuckDB and Spark read it). Measured
 # on pga-driver and par3-over-water (2-core AMD EPYC): zstd at its default level took 0.57 us a
@@ -601,8 +607,35 @@ def _remove_created(created):
             break
 
 
-def _is_run_folder(path):
-    return any((path / name).exists() for name in RUN_FILES)
+def not_a_run(shown, names, metadata_of):
+    """Why a folder ``shown`` that holds ``names`` (not empty) is not a run that a new run may
+    replace, or None: it holds neither a summary.parquet nor a shots.parquet (or shots/) with
+    mcrun's provenance (``metadata_of(name)``: a file's key-value metadata; OSError or an Arrow
+    error where it cannot be read), or it holds a name no run writes (RUN_FOLDER_NAMES), which
+    replacing the run would delete."""
+    foreign = sorted(set(names) - set(RUN_FOLDER_NAMES))
+    if foreign:
+        more = f" (and {len(foreign) - 1} more)" if len(foreign) > 1 else ""
+        return (f"the output folder {shown} holds {foreign[0]!r}{more}, which no run writes: a "
+                "run replaces only a run folder's own files: move it, or choose another "
+                "folder with -o")  # fmt: skip
+    for name in (SUMMARY_FILE, SHOTS_FILE):
+        if name in names:
+            try:
+                metadata = metadata_of(name) or {}
+            except (OSError, pa.ArrowException):
+                metadata = {}
+            if any((k.decode() if isinstance(k, bytes) else k).startswith(PREFIX)
+                   for k in metadata):  # fmt: skip
+                return None
+    if SUCCESS_FILE in names and SHOTS_DIR in names:  # a Dask run whose summary is gone
+        return None
+    return (f"the output folder {shown} exists and is not an mcrun run folder (no "
+            f"{SUMMARY_FILE} that mcrun wrote): choose another with -o")  # fmt: skip
+
+
+def _local_metadata(path):
+    return lambda name: pq.read_metadata(path / name).metadata
 
 
 def _immutable(path):
@@ -723,12 +756,11 @@ class AtomicFolder:
         if path.exists() or path.is_symlink():
             if not path.is_dir():
                 raise OutputError(f"the output {path} exists and is not a folder")
-            if any(path.iterdir()):
-                if not _is_run_folder(path):
-                    raise OutputError(
-                        f"the output folder {path} exists and is not an mcrun run folder: "
-                        "choose another with -o"
-                    )
+            names = [entry.name for entry in path.iterdir()]
+            if names:
+                problem = not_a_run(path, names, _local_metadata(path))
+                if problem is not None:
+                    raise OutputError(problem)
                 if not self.force:
                     raise OutputError(
                         f"the output folder {path} already holds a run: use --force to "

@@ -208,11 +208,9 @@ class _UrlDestination:
         if info.type == pafs.FileType.Directory:
             names = {e.base_name for e in self.fs.get_file_info(pafs.FileSelector(self.root))}
             if names:
-                if not names & {SUCCESS_FILE, SHOTS_DIR, *output.RUN_FILES}:
-                    raise output.OutputError(
-                        f"the output folder {self.url} exists and is not an mcrun run folder: "
-                        "choose another with -o"
-                    )
+                problem = output.not_a_run(self.url, names, self._metadata)
+                if problem is not None:
+                    raise output.OutputError(problem)
                 if not self.force:
                     raise output.OutputError(
                         f"the output folder {self.url} already holds a run: use --force to "
@@ -221,6 +219,10 @@ class _UrlDestination:
                 self.fs.delete_dir_contents(self.root)
         self.fs.create_dir(self.root)
         return self
+
+    def _metadata(self, name):
+        with self.fs.open_input_file(f"{self.root}/{name}") as f:
+            return pq.read_metadata(f).metadata
 
     def commit(self):
         self._committed = True
