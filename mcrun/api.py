@@ -33,6 +33,7 @@ from mcrun.quantities import (  # RANGES, InputError and check_range: re-exporte
     kernel_columns,
     kernel_part,
     to_si,
+    wind_profile_problem,
     with_defaults,
 )
 from mcrun.trajectory import PHASE_NAMES
@@ -217,13 +218,9 @@ def _flight_values(
         wind_profile_parameter = default_of("weather.wind_profile_parameter", values)
     wind_profile_parameter = finite_number("wind_profile_parameter", wind_profile_parameter)
     ref_h = check_range("wind_reference_height_m", wind_reference_height_m)
-    if wind_profile == "log" and not 0.0 < wind_profile_parameter < ref_h:
-        raise InputError(
-            "the log wind profile's roughness length must be positive and below "
-            "the reference height"
-        )
-    if wind_profile == "power" and not 0.0 <= wind_profile_parameter <= 1.0:
-        raise InputError("the power wind profile's exponent must be within [0, 1]")
+    problem = wind_profile_problem(wind_profile, ref_h, wind_profile_parameter)
+    if problem is not None:
+        raise InputError(f"wind_profile_parameter: {problem}")
     weather, density = _air_values(**air_args)
     values.update(weather)
     values["weather.wind_reference_height"] = ref_h

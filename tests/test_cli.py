@@ -389,6 +389,18 @@ def test_the_api_refuses_a_bool_text_or_nan_where_a_number_goes():
             api.simulate(**launch, wind_profile="power", wind_profile_parameter=given)
     with pytest.raises(api.InputError, match=r"^turf mu must be a number, got 'x'$"):
         api.resolve_turf("green", mu="x")
+    with pytest.raises(api.InputError, match=r"^wind_profile_parameter: the power profile with "
+                       r"an exponent of 1 from a reference height of 0.1 m makes the wind at 50 m "
+                       r"500 times the reference wind; allowed: at most 4 \("):  # fmt: skip
+        api.simulate(**launch, wind_profile="power", wind_reference_height_m=0.1,
+                     wind_profile_parameter=1.0)  # fmt: skip
+    # The atmosphere's profiles fly: a power law's steepest exponent from 10 m, a log law over
+    # a forest's roughness, the 1/7 law from a handheld 2 m reading.
+    atmosphere = (("power", 10.0, 0.6), ("log", 10.0, 2.0), ("power", 2.0, 1 / 7))
+    for profile, height, parameter in atmosphere:
+        assert api.simulate(**launch, wind_mps=(5.0, 0.0), wind_profile=profile,
+                            wind_reference_height_m=height,
+                            wind_profile_parameter=parameter).outcome["status"] == 0  # fmt: skip
     wind = {"wind_mps": (-5.0, 2.0), "wind_profile": "power"}
     text = api.simulate(**launch, **wind, wind_profile_parameter="0.1")
     assert text.outcome == api.simulate(**launch, **wind, wind_profile_parameter=0.1).outcome

@@ -477,6 +477,26 @@ ERRORS = [
         "weather.wind_profile_parameter",
         "must be > 0 and below the reference height",
     ),
+    (
+        # A 5 m/s wind flown at 1,500 m/s at 30 m, the shots reported ok.
+        "power wind profile from 0.1 m",
+        BALL + '[weather]\nwind_profile = "power"\nwind_reference_height = "0.1 m"\n'
+        "wind_profile_parameter = 1\n",
+        "weather.wind_profile_parameter",
+        "makes the wind at 50 m 500 times the reference wind; allowed: at most 4",
+    ),
+    (
+        "log wind profile from within its roughness",
+        BALL + '[weather]\nwind_profile = "log"\nwind_profile_parameter = 9.9\n',
+        "weather.wind_profile_parameter",
+        "a roughness length of 9.9 m from a reference height of 10 m makes the wind at 50 m 161",
+    ),
+    (
+        "log wind profile's default roughness from 0.1 m",
+        BALL + '[weather]\nwind_profile = "log"\nwind_reference_height = "0.1 m"\n',
+        "weather.wind_reference_height",
+        "makes the wind at 50 m 6.16 times",
+    ),
     ("invalid TOML", BALL + "spin_axis = \n", "not valid TOML", "Invalid value"),
 ]
 

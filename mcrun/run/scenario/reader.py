@@ -6,7 +6,7 @@ import math
 import tomllib
 from pathlib import Path
 
-from mcrun.quantities import default_of
+from mcrun.quantities import InputError, default_of, wind_profile_problem
 from mcrun.run.scenario.correlation import read_correlation
 from mcrun.run.scenario.hole_table import GROUP_KEYS, read_hole, read_play
 from mcrun.run.scenario.launch_file import read_launch_file
@@ -173,23 +173,13 @@ def _resolve(ctx, sections, scenario_dir, context):
         profile = params["weather.wind_profile"]
         reference = params["weather.wind_reference_height"].value
         parameter = params["weather.wind_profile_parameter"].value
-        if "wind_profile_parameter" in weather:
-            where = weather["wind_profile_parameter"].where
-            if profile == "log" and not 0.0 < parameter < reference:
-                raise ctx.error(
-                    where,
-                    "the log profile's roughness length (m) must be > 0 and below the reference "
-                    f"height ({reference:g} m), got {parameter:g}{context}",
-                )
-            if profile == "power" and not 0.0 <= parameter <= 1.0:
-                raise ctx.error(
-                    where, f"the power profile's exponent must be within [0, 1], got {parameter:g}"
-                )
-        elif profile == "log" and not parameter < reference:
-            raise ctx.error(
-                weather["wind_reference_height"].where,
-                f"must be above the log profile's roughness length ({parameter:g} m){context}",
-            )
+        problem = wind_profile_problem(profile, reference, parameter)
+        if problem is not None:
+            key = next((k for k in ("wind_profile_parameter", "wind_reference_height",
+                                    "wind_profile") if k in weather), None)  # fmt: skip
+            if key is None:
+                raise InputError(problem)  # (a default profile is never refused)
+            raise ctx.error(weather[key].where, f"{problem}{context}")
 
     def check_air():
         if "altitude" in weather and "pressure" in weather:
