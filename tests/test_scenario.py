@@ -497,6 +497,19 @@ ERRORS = [
         "weather.wind_reference_height",
         "makes the wind at 50 m 6.16 times",
     ),
+    (
+        "swept quoted and nested",
+        BALL + '[sweep]\n"launch.spin" = ["2000 rpm", "2500 rpm"]\n[sweep.launch]\n'
+        'spin = ["3000 rpm"]\n',
+        'sweep."launch.spin"',
+        "launch.spin is swept twice",
+    ),
+    (
+        "a value swept twice",
+        BALL + '[sweep]\n"launch.spin" = ["2000 rpm", "2500 rpm", "2000 rpm"]\n',
+        'sweep."launch.spin"[2]',
+        "'2000 rpm' is swept twice: give each value once",
+    ),
     ("invalid TOML", BALL + "spin_axis = \n", "not valid TOML", "Invalid value"),
 ]
 
@@ -779,6 +792,14 @@ def test_groups_times_sweep_points_and_labels(tmp_path):
         else:
             assert point.params["launch.ball_speed"].dist == "constant"
             assert point.target_m == (150.0, 0.0)
+
+
+def test_swept_values_a_millionth_apart_have_labels_apart(tmp_path):
+    """A swept number is labelled in six digits where they tell it apart (0.25), else in as many
+    as it takes (both points of [0.1000001, 0.1000002] were labelled turf.mu=0.1)."""
+    text = BALL + '[sweep]\n"turf.mu" = [0.1000001, 0.1000002, 0.25]\n'
+    labels = [p.label for p in sc.load(write(tmp_path, text)).points]
+    assert labels == ["turf.mu=0.1000001", "turf.mu=0.1000002", "turf.mu=0.25"]
 
 
 def test_groups_alone_and_sweep_alone(tmp_path):

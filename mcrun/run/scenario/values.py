@@ -320,10 +320,12 @@ def _flatten_sweep(ctx, table, prefix=""):
     out = {}
     for key, value in table.items():
         path = f"{prefix}{key}"
-        if isinstance(value, dict):
-            out.update(_flatten_sweep(ctx, value, path + "."))
-        else:
-            out[path] = value
+        leaves = _flatten_sweep(ctx, value, path + ".") if isinstance(value, dict) else {
+            path: value}  # fmt: skip
+        for leaf, values in leaves.items():
+            if leaf in out:  # ("launch.spin" quoted and spin in [sweep.launch])
+                raise ctx.error(f'sweep."{leaf}"', f"{leaf} is swept twice")
+            out[leaf] = values
     return out
 
 
@@ -346,6 +348,10 @@ def sweep_leaves(ctx, table):
         seen[section, name] = where
         if not isinstance(values, list) or not values:
             raise ctx.error(where, f"must be a non-empty list of values, got {short(values)}")
+        twice = next((k for k, v in enumerate(values) if v in values[:k]), None)
+        if twice is not None:
+            raise ctx.error(f"{where}[{twice}]", f"{short(values[twice])} is swept twice: "
+                            "give each value once")  # fmt: skip
         leaves = [Leaf(v, f"{where}[{k}]", unit) for k, v in enumerate(values)]
         entries.append((section, name, path, leaves))
     return entries
@@ -358,6 +364,6 @@ def as_written(value):
     if isinstance(value, dict):
         inner = ", ".join(f"{k}={as_written(v)}" for k, v in value.items() if k != "dist")
         return f"{value.get('dist', '')}({inner})"
-    if isinstance(value, float):
-        return f"{value:g}"
+    if isinstance(value, float):  # (six digits, else as many as tell it apart: 0.1000001)
+        return f"{value:g}" if float(f"{value:g}") == value else repr(value)
     return str(value)
