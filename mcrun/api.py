@@ -37,6 +37,7 @@ from mcrun.quantities import (  # RANGES, InputError and check_range: re-exporte
     with_defaults,
 )
 from mcrun.trajectory import PHASE_NAMES
+from mcrun.units import shown
 
 __all__ = [
     "RANGES",
@@ -211,7 +212,11 @@ def _flight_values(
         raise InputError(
             f"unknown wind profile '{wind_profile}': choose one of {', '.join(WIND_PROFILES)}"
         )
-    wind_x, wind_right = (float(w) for w in wind_mps)
+    if not (isinstance(wind_mps, list | tuple | np.ndarray) and np.shape(wind_mps) == (2,)):
+        raise InputError(f"wind_mps {shown(wind_mps)}: allowed: two numbers (m/s), along the "
+                         "target line (a tailwind > 0) and blowing to the right, such as (5.0, "
+                         "0.0)")  # fmt: skip
+    wind_x, wind_right = (finite_number("wind_mps", w) for w in wind_mps)
     check_range("wind_speed_mps", math.hypot(wind_x, wind_right))
     values = {"models.aero": aero_model, "weather.wind_profile": wind_profile}
     if wind_profile_parameter is None:

@@ -410,6 +410,8 @@ def finite_number(name, value):
         raise InputError(f"{name} must be a number, got {shown(value)}")
     try:
         value = float(value)
+    except OverflowError:  # (an int beyond a float: 10**400)
+        raise InputError(f"{name} must be finite, got {shown(value, 40)}") from None
     except (TypeError, ValueError):
         raise InputError(f"{name} must be a number, got {shown(value)}") from None
     if not math.isfinite(value):

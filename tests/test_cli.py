@@ -14,6 +14,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -375,6 +376,24 @@ def test_the_api_names_an_unknown_argument_and_a_turf_that_is_none():
             api.simulate(ball_speed_mps=70.0, turf=wrong, **launch)
     with pytest.raises(api.InputError, match=r"^stimp_m = 1e\+09 is outside .*\[0.1, 6\]"):
         api.resolve_turf("green", stimp_m=1e9)
+
+
+def test_the_api_takes_its_wind_as_two_numbers_in_order():
+    """A set (no order: {5.0, 0.0} flew as a crosswind), text (split into its characters: "50"
+    flew as (5, 0)), one number or three are refused, and a number beyond a float (10**400, an
+    OverflowError before) is not finite; a list, a tuple or an array of two flies alike."""
+    launch = {"ball_speed_mps": 74.66, "launch_angle_deg": 10.9, "spin_radps": 281.3}
+    for wind in ({5.0, 0.0}, "50", "5,0", 5.0, (1.0, 2.0, 3.0), {"x": 1.0}):
+        with pytest.raises(api.InputError, match=r"^wind_mps .*: allowed: two numbers \(m/s\)"):
+            api.simulate(**launch, wind_mps=wind)
+    with pytest.raises(api.InputError, match=r"^wind_mps must be finite, got 1000"):
+        api.simulate(**launch, wind_mps=(10**400, 0.0))
+    with pytest.raises(api.InputError, match=r"^ball_speed_mps must be finite, got 1000"):
+        api.simulate(**{**launch, "ball_speed_mps": 10**400})
+    tail = api.simulate(**launch, wind_mps=(5.0, 0.0)).outcome
+    for wind in ([5.0, 0.0], np.array([5.0, 0.0]), (5, 0)):
+        assert api.simulate(**launch, wind_mps=wind).outcome == tail
+    assert tail["final_y_m"] == api.simulate(**launch).outcome["final_y_m"]
 
 
 def test_the_api_refuses_a_bool_text_or_nan_where_a_number_goes():
