@@ -378,6 +378,24 @@ def test_the_api_names_an_unknown_argument_and_a_turf_that_is_none():
         api.resolve_turf("green", stimp_m=1e9)
 
 
+def test_a_turf_is_numbers_and_rolls_a_hop_below_its_critical_height():
+    """A Turf whose field is text or a bool is refused (text was a TypeError of a comparison),
+    and a critical height of 0, which the kernel takes for an invalid input (every shot
+    invalid_input, exit 0, from a scenario that validated), is out of range."""
+    launch = {"ball_speed_mps": 50.0, "launch_angle_deg": 20.0, "spin_radps": 500.0}
+    green = turf.PRESETS["green"]
+    cases = (
+        ("mu", "0.4", "must be a number, got '0.4'"),
+        ("rho_g", True, "must be a number, got True"),
+        ("critical_height_m", 0.0, "= 0.0 is outside [0.0001, 1.0]"),
+    )
+    for field, value, says in cases:
+        with pytest.raises(api.InputError, match=rf"^turf {field} {re.escape(says)}$"):
+            api.simulate(**launch, turf=green._replace(**{field: value}))
+    low = api.simulate(**launch, turf=green._replace(critical_height_m=1e-4)).outcome
+    assert low["status"] == status.OK
+
+
 def test_the_api_takes_its_wind_as_two_numbers_in_order():
     """A set (no order: {5.0, 0.0} flew as a crosswind), text (split into its characters: "50"
     flew as (5, 0)), one number or three are refused, and a number beyond a float (10**400, an

@@ -21,7 +21,7 @@ from mcrun.api import RANGES, simulate
 from mcrun.physics.aero import MODELS
 from mcrun.physics.bounce import bounce
 from mcrun.physics.constants import BALL_INERTIA_FACTOR, BALL_RADIUS_M
-from mcrun.physics.turf import PRESETS, Turf, check_turf
+from mcrun.physics.turf import LIMITS, PRESETS, Turf, check_turf
 
 SETTINGS = settings(
     max_examples=150,
@@ -62,7 +62,7 @@ def turfs(draw):
             e_break_speed_mps=e_break,
             e_high=draw(st.floats(0.0, 1.0)) * min(max(at_break, 0.0), 1.0),
             rho_g=draw(st.floats(0.0, 5.0)),
-            critical_height_m=draw(st.floats(0.0, 1.0)),
+            critical_height_m=draw(st.floats(*LIMITS["critical_height_m"])),
         )
     )
 

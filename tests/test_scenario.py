@@ -510,6 +510,12 @@ ERRORS = [
         'sweep."launch.spin"[2]',
         "'2000 rpm' is swept twice: give each value once",
     ),
+    (
+        "critical height 0",
+        BALL + "[turf]\ncritical_height = 0\n",
+        "turf.critical_height",
+        "must be within [0.0001 m, 1 m], got 0 m",
+    ),
     ("invalid TOML", BALL + "spin_axis = \n", "not valid TOML", "Invalid value"),
 ]
 

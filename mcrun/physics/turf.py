@@ -5,6 +5,7 @@ ESTIMATES (no published bounce measurements exist for them), labelled so in ``PR
 fairway's softness is calibrated to the Tour's driver roll-out.
 """
 
+import numbers
 from typing import NamedTuple
 
 import numpy as np
@@ -122,12 +123,17 @@ LIMITS = {
     "e_break_speed_mps": (0.0, 200.0),
     "e_high": (0.0, 1.0),
     "rho_g": (0.0, 5.0),
-    "critical_height_m": (0.0, 1.0),
+    # A hop below it rolls: 0 would never roll, which the kernel refuses as an invalid input.
+    "critical_height_m": (1e-4, 1.0),
 }
 
 
 def check_turf(turf):
     """ValueError with one line naming the first out-of-range field of ``turf``."""
+    for field in turf._fields:
+        value = getattr(turf, field)
+        if not isinstance(value, numbers.Real) or isinstance(value, bool):
+            raise ValueError(f"turf {field} must be a number, got {value!r}")
     for field, (lo, hi) in LIMITS.items():
         value = getattr(turf, field)
         if not lo <= value <= hi:
