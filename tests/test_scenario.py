@@ -511,6 +511,12 @@ ERRORS = [
         "'2000 rpm' is swept twice: give each value once",
     ),
     (
+        "lognormal temperature",
+        BALL + '[weather]\ntemperature = {dist="lognormal", median="-5 C", sigma=0.05}\n',
+        "weather.temperature",
+        "a temperature cannot be lognormal (it would spread in kelvin",
+    ),
+    (
         "critical height 0",
         BALL + "[turf]\ncritical_height = 0\n",
         "turf.critical_height",

@@ -228,6 +228,10 @@ def read_dist(ctx, leaf, param):
             )
     else:  # lognormal
         median, sigma = args
+        if kind == "temperature":  # (its log is of kelvin: sigma 0.05 of -5 C spread 13.5 C)
+            raise ctx.error(where, "a temperature cannot be lognormal (it would spread in "
+                            "kelvin whatever unit it is written in): use a normal or "
+                            "truncnormal")  # fmt: skip
         if not median > 0.0:
             raise ctx.error(f"{where}.median", f"must be > 0, got {given('median')}")
         if sigma < 0.0:
