@@ -727,7 +727,7 @@ def test_a_whole_number_in_other_digits_is_refused():
         positive_int("１２", "n")
 
 
-def test_the_api_refuses_what_is_not_its_argument():
+def test_the_api_refuses_what_is_not_its_argument(tmp_path):
     """Each a one-line InputError: a text where a bool goes (trajectory="no" traced a path),
     a scenario that is not one (an AttributeError), a folder that is not a path (a TypeError),
     a seed that is not a whole number (putt(seed=None) drew a new seed each call)."""
@@ -740,6 +740,15 @@ def test_the_api_refuses_what_is_not_its_argument():
         run_scenario(None, n=10, progress=False)
     with pytest.raises(api.InputError, match=r"^out_dir 5: allowed: a folder's path$"):
         run_scenario("pga-driver", n=10, out_dir=5, progress=False)
+    # force="no" replaced an earlier run (any text is true); announce=5 failed after the
+    # output folder was made.
+    with pytest.raises(api.InputError, match=r"^force 'no': allowed: True or False$"):
+        run_scenario("pga-driver", n=10, out_dir=tmp_path / "r", progress=False, force="no")
+    with pytest.raises(api.InputError, match=r"^progress 'no': allowed: True or False$"):
+        run_scenario("pga-driver", n=10, out_dir=tmp_path / "r", progress="no")
+    with pytest.raises(api.InputError, match=r"^announce 5: allowed: a function"):
+        run_scenario("pga-driver", n=10, out_dir=tmp_path / "r", progress=False, announce=5)
+    assert not (tmp_path / "r").exists()
     for seed in (None, True, 2**64):
         with pytest.raises(api.InputError, match=r"^seed .*: allowed: a whole number from 0"):
             putt(3.0, 3.3, 0.01, 0.0, n=20, seed=seed)

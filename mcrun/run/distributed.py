@@ -564,6 +564,9 @@ def run_scenario(
         tasks are cancelled and the output removed.
     """
     the_plan = plan.plan(path_or_scenario, n, seed, chunk_size, trajectories_every)
+    plan.check_run_switches(announce, force=force, progress=progress,
+                            ignore_disk_space=ignore_disk_space,
+                            prepare_kernels=prepare_kernels)  # fmt: skip
     if workers is not None:
         workers = plan.positive_int(workers, "workers")
     retries = plan.positive_int(retries, "retries", minimum=0)

@@ -103,6 +103,8 @@ def run_scenario(
     """
     the_plan = plan.plan(path_or_scenario, n, seed, chunk_size, trajectories_every)
     threads = _check_threads(threads)
+    plan.check_run_switches(announce, force=force, progress=progress,
+                            ignore_disk_space=ignore_disk_space)  # fmt: skip
     budget_bytes = plan.positive_int(budget_bytes, "budget_bytes")
     if out_dir is None:
         out_dir = plan.default_out_dir(the_plan.scenario, the_plan.seed)

@@ -92,6 +92,17 @@ def positive_int(value, name, minimum=1):
     return number
 
 
+def check_run_switches(announce=None, **switches):
+    """Refuse a run's switch (``force``, ``progress``, ``ignore_disk_space``) that is not a
+    bool (``force="no"`` replaced the run: any text is true) and an ``announce`` that cannot
+    be called, before anything is written."""
+    for name, value in switches.items():
+        if not isinstance(value, bool | np.bool_):
+            raise InputError(f"{name} {shown(value)}: allowed: True or False")
+    if announce is not None and not callable(announce):
+        raise InputError(f"announce {shown(announce)}: allowed: a function of the plan's line")
+
+
 def with_seed(scenario, seed):
     """The scenario with another seed (the sampler reads ``scenario.seed``)."""
     if scenario.seed == seed:
