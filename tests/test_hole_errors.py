@@ -2,6 +2,7 @@
 allowed (mcrun.hole.errors.HoleError)."""
 
 import json
+import re
 import shutil
 import sys
 import types
@@ -138,6 +139,22 @@ def test_a_hole_file_that_is_not_toml(tmp_path):
     with pytest.raises(HoleError, match=r"h.toml: is not valid TOML") as info:
         load_hole(path)
     assert "\n" not in str(info.value)
+
+
+def test_a_hole_file_that_is_no_file(tmp_path):
+    """A device (/dev/zero was read until memory ran out), a folder, a NUL in the path (a
+    ValueError traceback) or a file far larger than a hole's keys: one line each."""
+    big = tmp_path / "big.toml"
+    big.write_text("# padding\n" * 200_000)
+    cases = [
+        ("/dev/zero", "/dev/zero: is not a regular file (a device or a pipe)"),
+        (tmp_path, "is a folder, not a hole file"),
+        (tmp_path / "a\0b.toml", "a path cannot hold a NUL character"),
+        (big, "2,000,000 bytes: a hole TOML file is at most 1,000,000"),
+    ]
+    for path, says in cases:
+        with pytest.raises(HoleError, match=re.escape(says)):
+            load_hole(path)
 
 
 def test_a_hole_without_a_green_is_refused(tmp_path):

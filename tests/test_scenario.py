@@ -517,6 +517,24 @@ ERRORS = [
         "a temperature cannot be lognormal (it would spread in kelvin",
     ),
     (
+        "hole file a number",
+        BALL + "[hole]\nfile = 5\n",
+        "hole.file",
+        "must be a hole TOML file's path, got 5",  # (it said "cannot read .../5")
+    ),
+    (
+        "hole file a course map",
+        BALL + '[hole]\nfile = "holes/riverside-zagreb.osm.geojson"\n',
+        "hole.file",
+        "is a course map: give it as [hole] map = \"FILE\" with hole = N",
+    ),
+    (
+        "hole file with a NUL",
+        BALL + '[hole]\nfile = "holes/riverside-2.toml\\u0000x"\n',
+        "hole.file",
+        "a path cannot hold a NUL character",  # (a ValueError traceback)
+    ),
+    (
         "critical height 0",
         BALL + "[turf]\ncritical_height = 0\n",
         "turf.critical_height",

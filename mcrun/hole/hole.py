@@ -68,7 +68,7 @@ from mcrun.physics.turf import (
     Turf,
     check_turf,
 )
-from mcrun.units import path_of
+from mcrun.units import path_of, shown
 
 M_PER_YD = 0.9144
 DEFAULT_CELL_M = 0.5
@@ -274,11 +274,26 @@ def load_hole(path):
     return hole_from_table(table, path.parent, source)
 
 
+# A hole TOML file holds a few kB of keys; its course map and elevation are files of their own.
+MAX_HOLE_FILE_BYTES = 1_000_000
+
+
 def read_hole_file(path):
     """(table, source) of a hole TOML file: its ``[hole]`` table (source "FILE [hole]"), else
     its top-level keys (source "FILE"); HoleError saying what the file is when it is no TOML
     (a KML, a GPX, a GeoJSON under another name ...)."""
     path = Path(path)
+    if "\0" in str(path):
+        raise HoleError(f"{shown(str(path))}: a path cannot hold a NUL character")
+    if path.is_dir():
+        raise HoleError(f"{path}: is a folder, not a hole file")
+    if path.exists() and not path.is_file():  # (/dev/zero was read until memory ran out)
+        raise HoleError(f"{path}: is not a regular file (a device or a pipe): allowed is a "
+                        "hole TOML file")  # fmt: skip
+    if path.is_file() and path.stat().st_size > MAX_HOLE_FILE_BYTES:
+        raise HoleError(f"{path}: {path.stat().st_size:,} bytes: a hole TOML file is at most "
+                        f"{MAX_HOLE_FILE_BYTES:,} (its map and elevation are files of their "
+                        "own)")  # fmt: skip
     what = sniff(path)
     if what is not None:
         raise HoleError(

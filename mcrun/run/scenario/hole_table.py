@@ -9,7 +9,7 @@ from mcrun.hole.errors import HoleError
 from mcrun.hole.hole import hole_from_table, read_hole_file
 from mcrun.putting.on_hole import check_putting
 from mcrun.run.scenario.specs import ScenarioError
-from mcrun.run.scenario.values import as_table
+from mcrun.run.scenario.values import as_table, short
 
 
 @dataclass(frozen=True)
@@ -39,7 +39,18 @@ def read_hole(ctx, data, path):
     folder = path.parent.resolve()
     if "file" in table:
         # A hole file, its keys (paths relative to its folder) under those given here.
-        hole_path = folder / str(table.pop("file"))
+        given_path = table.pop("file")
+        if not isinstance(given_path, str):  # (5 was read as a file named 5)
+            raise ctx.error("hole.file", f"must be a hole TOML file's path, got "
+                            f"{short(given_path)}")  # fmt: skip
+        if "\0" in given_path:
+            raise ctx.error("hole.file", f"{short(given_path)}: a path cannot hold a NUL "
+                            "character")  # fmt: skip
+        if given_path.lower().endswith((".geojson", ".json")):
+            raise ctx.error("hole.file", f"{short(given_path)} is a course map: give it as "
+                            "[hole] map = \"FILE\" with hole = N, or hole.file a hole TOML "
+                            "file")  # fmt: skip
+        hole_path = folder / given_path
         try:
             given_file, _ = read_hole_file(hole_path)
         except HoleError as err:
