@@ -105,6 +105,26 @@ def test_plan_counts_points_shots_time_and_size(tmp_path):
     assert "s of simulation" in line and "of Parquet" in line
 
 
+def test_plan_counts_the_samples_its_chunks_draw(tmp_path):
+    """Each chunk draws the whole blocks it touches: 40 chunks of one shot in blocks of
+    1,048,576 draw 40 blocks (12 s on a loaded machine, where the plan said "under 0.1 s");
+    the default chunks and blocks draw what they fly."""
+    assert run_plan.drawn_samples(40, 1, 1 << 20) == 40 << 20
+    # 100 chunks, 157 blocks: of their 156 boundaries, every 25th (1,600 shots) is a chunk's
+    assert run_plan.drawn_samples(10_000, 100, 64) == 64 * (100 + 156 - 156 // 25)
+    assert run_plan.drawn_samples(1 << 20, run_plan.DEFAULT_CHUNK_SIZE, 4096) == 1 << 20
+    path = tmp_path / "blocks.toml"
+    path.write_text('[scenario]\nname = "blocks"\nblock_size = 1048576\n[launch]\n'
+                    'ball_speed = "40 m/s"\nlaunch_angle = "30 deg"\nspin = "900 rad/s"\n',
+                    encoding="utf-8")  # fmt: skip
+    loaded = scenario.load(path)
+    assert run_plan.plan(loaded, 40, chunk_size=1).seconds == pytest.approx(
+        40 / run_plan.SHOTS_PER_S + run_plan.SECONDS_PER_POINT
+        + ((40 << 20) - 4096) * run_plan.SECONDS_PER_DRAWN_SAMPLE
+    )  # fmt: skip
+    assert run_plan.plan(loaded, 40, chunk_size=1).line().split("; ")[1].startswith("about 6.3 s")
+
+
 def test_plan_size_is_an_upper_bound_of_what_a_run_writes(tmp_path):
     loaded = scenario.load(sweep(tmp_path, 2))
     for n, every in ((3, None), (700, 50)):

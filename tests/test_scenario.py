@@ -526,7 +526,7 @@ ERRORS = [
         "hole file a course map",
         BALL + '[hole]\nfile = "holes/riverside-zagreb.osm.geojson"\n',
         "hole.file",
-        "is a course map: give it as [hole] map = \"FILE\" with hole = N",
+        'is a course map: give it as [hole] map = "FILE" with hole = N',
     ),
     (
         "hole file with a NUL",
