@@ -535,6 +535,24 @@ ERRORS = [
         "a path cannot hold a NUL character",  # (a ValueError traceback)
     ),
     (
+        "an escape sequence in the name",
+        '[scenario]\nname = "x\\u001b]0;pwned\\u0007"\n' + BALL,
+        "scenario.name",
+        "allowed: text without control characters",
+    ),
+    (
+        "a line break in the question",
+        '[scenario]\nquestion = "why\\nnot"\n' + BALL,
+        "scenario.question",
+        "allowed: text without control characters",
+    ),
+    (
+        "an escape sequence in a group's name",
+        BALL + '[[group]]\nname = "a\\u001b[2Jb"\n',
+        "group[0].name",
+        "allowed: text without control characters",
+    ),
+    (
         "critical height 0",
         BALL + "[turf]\ncritical_height = 0\n",
         "turf.critical_height",

@@ -32,6 +32,7 @@ from mcrun.run.scenario.values import (
     short,
     sweep_leaves,
 )
+from mcrun.units import control_free
 
 _TOP_KEYS = ("scenario", *SECTION_NAMES, "group", "sweep", "hole")
 # A scenario's name is its default run folder's (``runs/<name>-<seed>``), with room for the seed.
@@ -258,6 +259,12 @@ def loads(text, path):
     for key in ("name", "question", "description"):
         if key in head and not isinstance(head[key], str):
             raise ctx.error(f"scenario.{key}", f"must be a string, got {short(head[key])}")
+        # Printed by validate, run and scenarios: an escape sequence would reach the terminal
+        # (a window's title set, the screen cleared); a description may have lines and tabs.
+        plain = "".join(c for c in head.get(key, "") if key != "description" or c not in "\n\t")
+        if control_free(plain) != plain:
+            raise ctx.error(f"scenario.{key}", f"{short(head[key])}: allowed: text without "
+                            "control characters (an escape sequence, a line break)")  # fmt: skip
     name = head.get("name", path.stem)
     if "name" in head and (
         not name.strip() or name.startswith(".") or any(c in name for c in "/\\\0")
@@ -304,6 +311,9 @@ def loads(text, path):
             if not isinstance(gname, str) or not gname.strip():
                 got = "" if gname is None else f", got {short(gname)}"
                 raise ctx.error(f"{where}.name", f"missing: every group needs a name{got}")
+            if control_free(gname) != gname:
+                raise ctx.error(f"{where}.name", f"{short(gname)}: allowed: text without control "
+                                "characters (an escape sequence, a line break)")  # fmt: skip
             if gname in names:
                 raise ctx.error(f"{where}.name", f"group name {gname!r} is used twice")
             names.add(gname)
