@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from mcrun.cli import main
+from mcrun.errors import InputError
 from mcrun.hole.hole import load_hole
 from mcrun.play import PlayerError, PlayResult, load_player
 from mcrun.run import scenario as sc
@@ -219,7 +220,8 @@ def test_a_player_with_a_sweep_is_refused(tmp_path):
 @pytest.mark.parametrize(
     ("names", "says"),
     [
-        (["7-iron\u001b[31m", "8-iron"], "club '7-iron\\x1b[31m' holds control characters"),
+        (["7-iron\u001b[31m", "8-iron"], "group[0].name: '7-iron\\x1b[31m': allowed: text "
+         "without control characters"),  # (where any scenario's file is read)
         (["Iron ", "Iron"], "clubs 'Iron ' and 'Iron' print the same"),
         (["6-Driv\u00e9", "6-Drive\u0301"], "print the same"),  # composed and decomposed
     ],
@@ -230,7 +232,7 @@ def test_a_player_s_club_names_print_as_themselves(tmp_path, names, says):
     head, group = STRAIGHT.split("[[group]]")
     groups = "".join("[[group]]" + group.replace('"7-iron"', json.dumps(n)) for n in names)
     path = write(tmp_path / "names.toml", head + groups)
-    with pytest.raises(PlayerError, match=re.escape(says)):
+    with pytest.raises(InputError, match=re.escape(says)):
         load_player(path, straight=True)
 
 
@@ -271,9 +273,10 @@ def _ring(points):
     return [[_lonlat(x, y) for x, y in [*points, points[0]]]]
 
 
-def course(green=True):
+def course(green=True, extra=()):
     """A made-up course (not real data): a 150 m hole played north, a fairway and (or not) a
-    green 20 m square about the pin."""
+    green 20 m square about the pin; ``extra``: more (key, value, rectangle (x0, y0, x1, y1) m)
+    polygons."""
     boundary = _ring([(-30, -60), (-30, 60), (200, 60), (200, -60)])
     shapes = [
         ("leisure", "golf_course", "Polygon", boundary),
@@ -283,6 +286,8 @@ def course(green=True):
     if green:
         shapes.append(("golf", "green", "Polygon", _ring([(140, -10), (140, 10), (160, 10),
                                                           (160, -10)])))  # fmt: skip
+    for key, value, (x0, y0, x1, y1) in extra:
+        shapes.append((key, value, "Polygon", _ring([(x0, y0), (x0, y1), (x1, y1), (x1, y0)])))
     return {"type": "FeatureCollection", "features": [
         {"type": "Feature", "properties": {key: value, **({"ref": "1"} if value == "hole" else {})},
          "geometry": {"type": kind, "coordinates": coordinates}}
@@ -306,6 +311,62 @@ def test_a_hole_without_a_green_or_its_pin_off_it_says_so(green, pin, says, tmp_
     err = refused(["play", "tour", str(hole)], tmp_path, capsys)
     assert says in err and "unknown key" not in err
     assert err.startswith(f"mcrun: error: {hole}: ")
+
+
+WEDGE = """
+[scenario]
+name = "wedge"
+
+[launch]
+ball_speed = "100 mph"
+launch_angle = "24 deg"
+spin = "8000 rpm"
+
+[hole]
+file = "hole.toml"
+"""
+
+
+@pytest.mark.parametrize(
+    "extra, says",
+    [
+        # A bunker mapped over the pin: its putting map held a three-putt everywhere.
+        ([("golf", "bunker", (147, -3, 153, 3))], "hole: the pin (149.7, 0.0) m is on bunker on "
+         "the hole's grid of 1 m, not on a green (a bunker mapped over it there"),
+        # A pond over the tee: every shot scored from a tee in play, 100 % in water, exit 0.
+        ([("natural", "water", (-20, -20, 20, 20))], "hole.start: [0.0, 0.0] is in a penalty "
+         "area (water) (the default start: give one in play): a shot starts in play"),
+    ],
+)  # fmt: skip
+def test_a_hole_whose_pin_or_tee_is_not_in_play_is_not_run(extra, says, tmp_path, capsys):
+    (tmp_path / "in").mkdir()
+    (tmp_path / "in" / "course.geojson").write_text(json.dumps(course(extra=extra)))
+    write(tmp_path / "in" / "hole.toml", 'map = "course.geojson"\nhole = "1"\ncell_m = 1.0\n')
+    scenario = write(tmp_path / "in" / "wedge.toml", WEDGE)
+    assert says in refused(["run", str(scenario), "-n", "10"], tmp_path, capsys)
+
+
+@pytest.mark.parametrize(
+    "extra, green, says",
+    [
+        ([("golf", "bunker", (147, -3, 153, 3))], True, "the pin (149.7, 0.0) m is on bunker on "
+         "the hole's grid of 0.25 m, not on a green"),
+        # A green of 1 cm, on one node of its grid: a map of no point (NaN, exit 0); of none,
+        # it was said to be steeper than its stopping slope everywhere.
+        ([("golf", "green", (149.995, -0.005, 150.005, 0.005))], False, "no point of the map's "
+         "grid of 3 m is on the green (0.06 m^2): a finer resolution, or a green mapped larger"),
+        ([("golf", "green", (149.9995, -0.0005, 150.0005, 0.0005))], False, "the green around "
+         "the pin covers no node of its grid of 0.25 m: a green mapped smaller than its cell"),
+    ],
+)  # fmt: skip
+def test_putts_on_a_green_without_its_pin_are_refused(extra, green, says, tmp_path, capsys):
+    (tmp_path / "in").mkdir()
+    (tmp_path / "in" / "course.geojson").write_text(json.dumps(course(green, extra)))
+    hole = write(tmp_path / "in" / "hole.toml", 'map = "course.geojson"\nhole = "1"\n')
+    out = tmp_path / "map.parquet"
+    code = main(["putt", "--hole", str(hole), "-n", "2", "--resolution", "3m", "-o", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and says in err and err.count("\n") == 1 and not out.exists()
 
 
 def test_a_hole_whose_pin_is_not_on_a_green_is_not_played(tmp_path, capsys):

@@ -107,7 +107,7 @@ def _cmd_green(args):
     from mcrun.hole.hole import load_hole
     from mcrun.physics.turf import stimp_from_rho_g
     from mcrun.putting.green import GreenError, green_of_hole
-    from mcrun.putting.green_map import expected_putts_map
+    from mcrun.putting.green_map import expected_putts_map, map_grid
     from mcrun.putting.on_hole import check_putting
     from mcrun.results import output
     from mcrun.run import aim
@@ -140,6 +140,7 @@ def _cmd_green(args):
     try:
         green = green_of_hole(hole, spec["cell_m"], spec["elevation"], spec["elevation_crs"],
                               stimp_m, drift)  # fmt: skip
+        map_grid(green, resolution)  # (before anything is said of the map)
     except GreenError as err:
         raise InputError(str(err)) from None
     speed = f"Stimp {green.stimp_m / FOOT_M:.1f} ft"

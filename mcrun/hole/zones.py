@@ -180,3 +180,11 @@ def rasterize(zones, x0_m, y0_m, cell_m, nx, ny, boundary=()):
             inside |= polygon_mask(polygon, x0_m, y0_m, cell_m, nx, ny)
         grid[~inside] = OUT
     return grid
+
+
+def pin_off_green(kind, x_m, y_m, cell_m):
+    """What is wrong with a hole whose pin (x_m, y_m) is on the zone ``kind`` of its grid of
+    ``cell_m``, not on a green: a zone mapped over the green there, or a green too small."""
+    return (f"the pin ({x_m:.1f}, {y_m:.1f}) m is on {kind} on the hole's grid of {cell_m:g} m, "
+            f"not on a green (a {kind} mapped over it there, or a green smaller than a cell): "
+            "a hole is played to a pin on its green")  # fmt: skip

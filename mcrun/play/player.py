@@ -38,7 +38,7 @@ from mcrun.run import sampling
 from mcrun.run import scenario as sc
 from mcrun.run.scenario.hole_table import Play
 from mcrun.strokes.baseline import LIES
-from mcrun.units import control_free, is_number, path_of, shown
+from mcrun.units import is_number, path_of, shown
 
 __all__ = [
     "LIE_LAUNCH",
@@ -263,10 +263,7 @@ def load_player(spec, putter=None, spread=None, straight=False):
             "run)"
         )
     clubs = tuple(p.label or p.group or f"club {p.index}" for p in scenario.points)
-    for club in clubs:  # (printed by mcrun play: an escape sequence reached the terminal)
-        if control_free(club) != club:
-            raise PlayerError(f"{scenario.path}: club {club!r} holds control characters: "
-                              "allowed: a name to print")  # fmt: skip
+    # (Control characters in a club's name are refused where the file is read, as a group's.)
     # Names that print the same (one composed and one decomposed, a trailing space) are one.
     seen = {}
     for club in clubs:

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcrun.hole.errors import HoleError
-from mcrun.hole.zones import ZONE_INDEX, contains
+from mcrun.hole.zones import ZONE_INDEX, ZONE_KINDS, contains, pin_off_green
 from mcrun.physics.turf import rho_g_from_stimp, stimp_from_rho_g
 from mcrun.putting.greens import (
     DRIFT_MM_PER_M_BENTGRASS,
@@ -170,6 +170,13 @@ def green_of_hole(hole, cell_m=None, elevation=None, elevation_crs=None, stimp_m
     x0, y0 = ground.x0_m, ground.y0_m
     ny, nx = ground.height_m.shape
     on = np.ascontiguousarray(ground.zone == GREEN, dtype=np.uint8)
+    if not on.any():  # (a sliver of a green: it was said to be too steep to rest on)
+        raise GreenError(f"{hole.source}: the green around the pin covers no node of its grid "
+                         f"of {cell:g} m: a green mapped smaller than its cell")  # fmt: skip
+    ix, iy = round((px - x0) / cell), round((py - y0) / cell)
+    if 0 <= iy < ny and 0 <= ix < nx and not on[iy, ix]:
+        kind = ZONE_KINDS[ground.zone[iy, ix]]  # (a bunker over the pin: every putt 3 putts)
+        raise GreenError(f"{hole.source}: {pin_off_green(kind, px, py, cell)}")
     if elevation is not None:
         height = _surveyed(hole, elevation, elevation_crs, x0, y0, cell, nx, ny, on)
     else:

@@ -39,6 +39,7 @@ from numba import njit
 
 from mcrun.executor import on_threads
 from mcrun.hole.hole import PUTTING_READS as READS
+from mcrun.putting.green import GreenError
 from mcrun.putting.putter import PUTTERS, putter_errors
 from mcrun.putting.read import AIM_STEPS_DEG, PACES_M, READ_NODES, search, value_read
 from mcrun.putting.rest import (
@@ -229,6 +230,24 @@ def read_candidates(read, putter):
     return np.array(PACES_M, dtype=float), np.radians(np.array(AIM_STEPS_DEG, dtype=float))
 
 
+def map_grid(green, resolution_m):
+    """The grid of a map of ``green`` at ``resolution_m``, over the green's grid: its first
+    node (gx0, gy0), its nodes' x and y (m, hole frame) and which are on the green; GreenError
+    where none is (a map of no point was NaN everywhere)."""
+    xs_g, ys_g = green.nodes_xy()
+    gx0 = math.floor(xs_g.min() / resolution_m) * resolution_m
+    gy0 = math.floor(ys_g.min() / resolution_m) * resolution_m
+    nx = int(math.floor((xs_g.max() - gx0) / resolution_m)) + 1
+    ny = int(math.floor((ys_g.max() - gy0) / resolution_m)) + 1
+    mx, my = np.meshgrid(gx0 + np.arange(nx) * resolution_m, gy0 + np.arange(ny) * resolution_m)
+    on = _on_green(green, mx, my)
+    if not on.any():
+        raise GreenError(f"{green.source}: no point of the map's grid of {resolution_m:g} m is "
+                         f"on the green ({green.area_m2():.2f} m^2): a finer resolution, or a "
+                         "green mapped larger")  # fmt: skip
+    return gx0, gy0, mx, my, on
+
+
 def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
                        resolution_m=DEFAULT_RESOLUTION_M, threads=None, progress=None,
                        read=DEFAULT_READ):  # fmt: skip
@@ -262,14 +281,7 @@ def expected_putts_map(green, putter="tour", n=DEFAULT_N, seed=0,
     polar_p1 = np.zeros(px.shape)
     polar_out = np.zeros(px.shape + (_OUT,))
 
-    # The grid of the map, over the green's grid.
-    xs_g, ys_g = green.nodes_xy()
-    gx0 = math.floor(xs_g.min() / resolution_m) * resolution_m
-    gy0 = math.floor(ys_g.min() / resolution_m) * resolution_m
-    nx = int(math.floor((xs_g.max() - gx0) / resolution_m)) + 1
-    ny = int(math.floor((ys_g.max() - gy0) / resolution_m)) + 1
-    mx, my = np.meshgrid(gx0 + np.arange(nx) * resolution_m, gy0 + np.arange(ny) * resolution_m)
-    on = _on_green(green, mx, my)
+    gx0, gy0, mx, my, on = map_grid(green, resolution_m)
     grid = (float(gx0), float(gy0), float(resolution_m))
     grid_v = np.ascontiguousarray(np.where(on, base.expected("green", np.hypot(mx - hx, my - hy)),
                                            0.0))  # fmt: skip

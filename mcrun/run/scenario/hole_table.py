@@ -5,8 +5,11 @@ import math
 import numbers
 from dataclasses import dataclass
 
+import numpy as np
+
 from mcrun.hole.errors import HoleError
 from mcrun.hole.hole import hole_from_table, read_hole_file
+from mcrun.hole.zones import ZONE_KINDS, pin_off_green
 from mcrun.putting.on_hole import check_putting
 from mcrun.run.scenario.specs import ScenarioError
 from mcrun.run.scenario.values import as_table, short
@@ -82,14 +85,21 @@ def read_play(ctx, where, given, hole, default):
     what it leaves out is ``default``'s, except that a new start aims at the pin by default.
     A start must be in play on the hole's map; an aim ahead of it (further from the tee)."""
     start = default.start_m
+    if hole.map_source is not None and where == "hole":  # (a plain rectangle's pin is not)
+        code = int(hole.zone_at(*(np.array([v]) for v in hole.pin_xy))[0])
+        if ZONE_KINDS[code] != "green":
+            px, py = hole.pin_xy
+            raise ctx.error("hole", pin_off_green(ZONE_KINDS[code], px, py, hole.cell_m))
     if "start" in given:
         start = _pair(ctx, f"{where}.start", given["start"], "a point of the hole's map")
-        why = hole.why_not_playable(*start)
-        if why is not None:
-            raise ctx.error(
-                f"{where}.start",
-                f"{list(start)} is {why}: a shot starts in play on the hole's map",
-            )
+    # The default too: a tee in a penalty area or out of bounds scored every shot from it.
+    why = hole.why_not_playable(*start)
+    if why is not None:
+        told = "" if "start" in given else " (the default start: give one in play)"
+        raise ctx.error(
+            f"{where}.start",
+            f"{list(start)} is {why}{told}: a shot starts in play on the hole's map",
+        )
     aim = default.aim_m if start == default.start_m else tuple(float(v) for v in hole.pin_xy)
     if "aim" in given:
         aim = _pair(ctx, f"{where}.aim", given["aim"], "a point ahead of the start (x > start)")
