@@ -220,8 +220,10 @@ def test_a_player_with_a_sweep_is_refused(tmp_path):
 @pytest.mark.parametrize(
     ("names", "says"),
     [
-        (["7-iron\u001b[31m", "8-iron"], "group[0].name: '7-iron\\x1b[31m': allowed: text "
-         "without control characters"),  # (where any scenario's file is read)
+        (
+            ["7-iron\u001b[31m", "8-iron"],
+            "group[0].name: '7-iron\\x1b[31m': allowed: text without control characters",
+        ),  # (where any scenario's file is read)
         (["Iron ", "Iron"], "clubs 'Iron ' and 'Iron' print the same"),
         (["6-Driv\u00e9", "6-Drive\u0301"], "print the same"),  # composed and decomposed
     ],

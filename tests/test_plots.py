@@ -539,3 +539,27 @@ def test_pictures_are_renamed_with_interrupts_deferred(tmp_path, monkeypatch, ct
         pictures.commit()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["0.png", "1.png", "2.png"]
     assert raised.value.paths == paths
+
+
+def test_a_run_whose_files_lost_their_provenance_says_so(runs, tmp_path, capsys):
+    """A run rewritten by a tool that keeps no key-value metadata: the report said "mcrun ?"
+    without a word; now a note on stderr and in the page. A question or versions of another
+    type than mcrun writes (a list, a string) were a traceback."""
+    copy = tmp_path / "groups"
+    shutil.copytree(runs["groups"], copy)
+    for name in (output.SHOTS_FILE, output.SUMMARY_FILE):
+        table = pq.read_table(copy / name)
+        pq.write_table(table.replace_schema_metadata({}), copy / name)
+    page = tmp_path / "page.html"
+    assert main(["report", str(copy), "-o", str(page), "--dpi", str(DPI)]) == 0
+    err = capsys.readouterr().err
+    assert err == (f"mcrun: note: {copy}: its files hold no mcrun provenance (rewritten by "
+                   "another tool?): the scenario, seed and versions are unknown\n")  # fmt: skip
+    text = page.read_text(encoding="utf-8")
+    assert "no mcrun provenance in the files" in text and "mcrun ?" not in text
+    assert output.question_of({"question": [1]}) == ""
+    run = run_view.open_run(runs["groups"])
+    run.folder.provenance = {**run.provenance, "versions": "v", "question": "why " * 100_000}
+    assert "mcrun " not in report.report_html(run, dpi=DPI).split("Run folder")[0][-200:]
+    fig = style.new_figure("positions", run, "positions")
+    assert fig._suptitle.get_text().count("\n") == style.QUESTION_LINES + 1

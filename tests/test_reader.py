@@ -8,10 +8,15 @@ seed and chunk size (so bit for bit the same shots), small and once per module; 
 on a LocalCluster of one worker.
 """
 
+import re
+import shutil
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
+import pyarrow.compute  # noqa: F401  (pa.compute)
+import pyarrow.parquet as pq
 import pytest
 
 pytest.importorskip("dask.distributed")
@@ -138,3 +143,93 @@ def test_an_incomplete_dask_run_is_one_line(runs, tmp_path, capsys):
     assert err == f"mcrun: error: {copy}: not a complete Dask run (no _SUCCESS)\n"
     with pytest.raises(reader.RunFolderError, match="not a complete Dask run"):
         reader.open_run(copy)
+
+
+def _altered(runs, tmp_path, which, alter):
+    """A copy of the local (0) or Dask (1) run, ``alter(copy)`` applied to it."""
+    copy = tmp_path / "copy"
+    shutil.copytree(runs[which], copy)
+    alter(copy)
+    return copy
+
+
+def _part(copy, chunk):
+    return next(copy.rglob(output.part_name(chunk)))
+
+
+@pytest.mark.parametrize(
+    ("alter", "says"),
+    [
+        (lambda c: _part(c, 4).unlink(), "shots/ has 1 of its 6 parts missing (part 4 the first)"),
+        # A copy of a part beside it, as a file manager names it (read twice before).
+        (lambda c: shutil.copy(_part(c, 4), _part(c, 4).with_name("part-00004 (1).parquet")),
+         "part-00004 (1).parquet is not a part of the run (part-NNNNN.parquet)"),
+        (lambda c: shutil.copy(_part(c, 4), _part(c, 0).parent),
+         "part 4 twice: shots/group="),
+        (lambda c: (_part(c, 2).parent / "notes.txt").write_text("mine"),
+         "notes.txt is not a part of the run"),
+    ],
+)  # fmt: skip
+def test_a_dask_run_with_a_part_missing_or_twice_is_refused(runs, tmp_path, alter, says):
+    """Its shots were read without the missing part's, or with a copy's twice, and drawn
+    without a word; the local layout counted its rows against the summary already."""
+    copy = _altered(runs, tmp_path, 1, alter)
+    with pytest.raises(reader.RunFolderError, match=re.escape(says)):
+        reader.open_run(copy)
+
+
+def _rewrite(path, change):
+    table = pq.read_table(path)
+    pq.write_table(change(table), path)
+
+
+def _points_plus(table, k):
+    j = table.schema.get_field_index("point")
+    return table.set_column(j, "point", pa.compute.add(table["point"], k))
+
+
+@pytest.mark.parametrize(
+    ("alter", "says"),
+    [
+        # Another run's trajectories (the same scenario, another seed), drawn as this run's.
+        (lambda c: _rewrite(c / output.TRAJECTORIES_FILE, lambda t: t.replace_schema_metadata(
+            {**t.schema.metadata, b"mcrun.seed": b"5"})),
+         "trajectories.parquet and summary.parquet are not of one run (seed 5 against 3)"),
+        (lambda c: _rewrite(c / output.TRAJECTORIES_FILE, lambda t: _points_plus(t, 3)),
+         "trajectories.parquet holds points 3 to 4 where summary.parquet has 2"),
+        # Shots renumbered: every figure empty, its title the summary's, exit 0.
+        (lambda c: _rewrite(c / output.SHOTS_FILE, lambda t: _points_plus(t, 7)),
+         "shots.parquet holds points 7 to 8 where summary.parquet has 2"),
+        (lambda c: _rewrite(c / output.SUMMARY_FILE, lambda t: t.set_column(
+            t.schema.get_field_index("n_shots"), "n_shots", pa.array([900.0, float("nan")]))),
+         "summary.parquet's n_shots holds a value that is not a count"),
+        (lambda c: _rewrite(c / output.SUMMARY_FILE, lambda t: t.replace_schema_metadata(
+            {**t.schema.metadata, b"mcrun.format_version": b'"1"'})),
+         "format_version '1' is not a format's number (this mcrun writes 1)"),
+    ],
+)  # fmt: skip
+def test_files_of_another_run_or_points_are_refused(runs, tmp_path, alter, says):
+    copy = _altered(runs, tmp_path, 0, alter)
+    with pytest.raises(reader.RunFolderError, match=re.escape(says)):
+        reader.open_run(copy)
+
+
+def test_the_reader_names_what_it_cannot_read(runs, tmp_path):
+    """One-line RunFolderErrors where a TypeError, a KeyError, pandas' or pyarrow's (with the
+    schema over many lines) came out."""
+    local_run = reader.open_run(runs[0])
+    for folder in (None, 5, b"run", "run\0"):
+        with pytest.raises(reader.RunFolderError, match=r"^run folder .*: allowed: a folder's"):
+            reader.open_run(folder)
+    for run in (local_run, reader.open_run(runs[1])):
+        with pytest.raises(reader.RunFolderError, match=r": no column nope in the shots$"):
+            run.shots(["nope"])
+    with pytest.raises(reader.RunFolderError, match=r"^columns 'carry_m': allowed: a list"):
+        local_run.shots("carry_m")
+    with pytest.raises(reader.RunFolderError, match=r": no column zzz in the shots$"):
+        local_run.shot_batches(0, ["zzz"], 10)
+    with pytest.raises(reader.RunFolderError, match=r"^batch_rows 0: allowed: a whole number"):
+        list(local_run.shot_batches(0, ["carry_m"], 0))
+    empty = _altered(runs, tmp_path, 1, lambda c: _part(c, 4).write_bytes(b""))
+    with pytest.raises(reader.RunFolderError, match=r"^cannot read the shots of .*size is 0"):
+        reader.open_run(empty).shots()

@@ -1,12 +1,14 @@
 """``mcrun plot`` and ``mcrun report``: the pictures of a finished run (``mcrun.report.plots``)
 and its self-contained HTML page (``mcrun.report.html``)."""
 
+import sys
 from pathlib import Path
 
 from mcrun.cli import Interrupted
 from mcrun.cli.options import DPI_RANGE, dpi_value
 from mcrun.report import hole_plots, html, plots, replay_plots, style
 from mcrun.report.run_view import PlotError
+from mcrun.results import reader
 
 
 def _cmd_plot(args):
@@ -24,6 +26,7 @@ def _cmd_plot(args):
         raise Interrupted(f"after writing the {len(err.paths)} pictures") from None
     except KeyboardInterrupt:
         raise Interrupted("nothing was written") from None
+    _say_if_unknown(args.run_dir)
     for path, _ in written:
         print(f"wrote {path}")
     return 0
@@ -69,8 +72,17 @@ def _add_plot(subparsers):
     p.set_defaults(func=_cmd_plot)
 
 
+def _say_if_unknown(run_dir):
+    """A note on stderr where the run's files hold no provenance (rewritten by a tool that
+    keeps no key-value metadata): what is drawn is the files' values, of a run unknown."""
+    if not reader.open_run(run_dir).provenance:
+        print(f"mcrun: note: {run_dir}: its files hold no mcrun provenance (rewritten by another "
+              "tool?): the scenario, seed and versions are unknown", file=sys.stderr)  # fmt: skip
+
+
 def _cmd_report(args):
     path = html.write_report(args.run_dir, args.out, args.dpi)
+    _say_if_unknown(args.run_dir)
     print(f"wrote {path}")
     return 0
 

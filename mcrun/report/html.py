@@ -378,6 +378,7 @@ def _provenance_table(run):
 def report_html(run, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER_MAX_SHOTS):
     """The report of an open run: one self-contained HTML page (str)."""
     p = run.provenance
+    versions = p.get("versions") if isinstance(p.get("versions"), dict) else {}
     figures_html = []
     for stem, caption, fig in figures(run, scatter_max, point_figures=hole_plots.point_figures):
         data = base64.b64encode(png_bytes(fig, dpi)).decode("ascii")
@@ -394,8 +395,11 @@ def report_html(run, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER_MAX_SHOTS):
         f"{p['elapsed_s']:g} s on {p.get('threads', '?')} threads ({p.get('backend', '?')})"
         if isinstance(p.get("elapsed_s"), int | float)
         else None,
-        f"mcrun {p.get('versions', {}).get('mcrun', '?')}",
+        f"mcrun {versions['mcrun']}" if isinstance(versions.get("mcrun"), str) else None,
     ]
+    if not p:  # (its files rewritten by a tool that keeps no key-value metadata)
+        facts = ["no mcrun provenance in the files (rewritten by another tool?): the scenario, "
+                 "seed and versions are unknown", *facts[:2]]  # fmt: skip
     facts = ", ".join(f for f in facts if f)
     how = (
         f"How the plots read the shots: positions are drawn as dots (every shot) for a point "

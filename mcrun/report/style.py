@@ -64,6 +64,10 @@ def short_label(run, row):
     return ", ".join(parts) or row.get("label") or f"point {row['point']}"
 
 
+# The lines of a figure's title that its question may take.
+QUESTION_LINES = 3
+
+
 def new_figure(kind, run, what, row=None):
     """A Figure of ``FIGURE_SIZES_IN[kind]`` titled with the run: scenario, what the plot
     shows, the question, N and seed (and the point)."""
@@ -73,8 +77,8 @@ def new_figure(kind, run, what, row=None):
     canvas_class(fig)
     chars = int(width * 72.0 / (10.0 * 0.55))
     lines = [f"{run.name}: {what}"]
-    if run.question:
-        lines += textwrap.wrap(run.question, chars)
+    if run.question:  # (at most QUESTION_LINES: a question of 300 kB took minutes to draw)
+        lines += textwrap.wrap(run.question, chars, max_lines=QUESTION_LINES, placeholder=" ...")
     facts = []
     if run.n is not None:
         facts.append(f"N = {int(run.n):,} shots per point")

@@ -171,8 +171,9 @@ _QUESTION = re.compile(r"^#\s*Question:\s*(.*?)\s*$")
 def question_of(provenance):
     """The question a run's scenario answers: its recorded ``question``, else (a run written
     before it was recorded) the one its scenario text asks (``question_in``)."""
-    if "question" in provenance:
-        return provenance["question"] or ""
+    if "question" in provenance:  # (text, as mcrun writes it; anything else says nothing)
+        question = provenance["question"]
+        return question if isinstance(question, str) else ""
     return question_in(provenance.get("scenario_text") or "")
 
 

@@ -33,6 +33,7 @@ import pyarrow.fs as pafs
 import pyarrow.parquet as pq
 
 from mcrun.results import geometry, location, output
+from mcrun.units import shown
 
 FILE_LAYOUT = "file"
 DATASET_LAYOUT = "dataset"
@@ -101,33 +102,51 @@ class RunFolder:
         """The shots as one DataFrame, as pandas reads the local executor's shots.parquet: rows
         by point and shot, the same columns in the same order and types (``group`` a
         categorical of the groups in point order). ``columns``: a subset to read."""
-        if self.layout == FILE_LAYOUT:
-            return pd.read_parquet(_source(self.url, self.root, output.SHOTS_FILE), columns=columns)
-        names = self.shot_columns
-        wanted = names if columns is None else list(columns)
-        unknown = [c for c in wanted if c not in names]
-        if unknown:
-            raise RunFolderError(f"{self.path}: no column {', '.join(unknown)} in the shots")
-        read = list(dict.fromkeys(["point", "shot", *wanted]))
-        frame = _dataset(self.fs, self.root).to_table(columns=read).to_pandas()
+        wanted = self._columns(columns)
+        try:
+            if self.layout == FILE_LAYOUT:
+                return pd.read_parquet(_source(self.url, self.root, output.SHOTS_FILE),
+                                       columns=columns if columns is None else wanted)  # fmt: skip
+            read = list(dict.fromkeys(["point", "shot", *wanted]))
+            frame = _dataset(self.fs, self.root).to_table(columns=read).to_pandas()
+        except (OSError, pa.ArrowException) as err:
+            why = reason_of(err)
+            raise RunFolderError(f"cannot read the shots of {self.path}: {why}") from None
         frame = frame.sort_values(["point", "shot"], kind="stable").reset_index(drop=True)
         if "group" in frame:
             categories = list(dict.fromkeys(self.provenance["groups"]))
             frame["group"] = pd.Categorical(frame["group"].astype(str), categories=categories)
         return frame[wanted]
 
+    def _columns(self, columns):
+        """``columns`` (None: all of the shots') as a list, each one of the shots'."""
+        if columns is None:
+            return list(self.shot_columns)
+        if isinstance(columns, str) or not isinstance(columns, list | tuple):
+            raise RunFolderError(f"columns {shown(columns)}: allowed: a list of the shots' "
+                                 "column names")  # fmt: skip
+        unknown = [c for c in columns if c not in self.shot_columns]
+        if unknown:
+            raise RunFolderError(f"{self.path}: no column {', '.join(map(str, unknown))} in the "
+                                 "shots")  # fmt: skip
+        return list(columns)
+
     def trajectories(self):
         """The trajectories as one DataFrame, rows by point, shot and time (None when the run
         wrote none)."""
         if not self.has_trajectories:
             return None
-        if self.layout == FILE_LAYOUT:
-            return pd.read_parquet(_source(self.url, self.root, output.TRAJECTORIES_FILE))
-        tables = []
-        for parts in self._parts(output.TRAJECTORIES_DIR).values():
-            for name in parts:
-                with self.fs.open_input_file(name) as f:
-                    tables.append(pq.read_table(f))
+        try:
+            if self.layout == FILE_LAYOUT:
+                return pd.read_parquet(_source(self.url, self.root, output.TRAJECTORIES_FILE))
+            tables = []
+            for parts in self._parts(output.TRAJECTORIES_DIR).values():
+                for name in parts:
+                    with self.fs.open_input_file(name) as f:
+                        tables.append(pq.read_table(f))
+        except (OSError, pa.ArrowException) as err:
+            raise RunFolderError(f"cannot read the trajectories of {self.path}: "
+                                 f"{reason_of(err)}") from None  # fmt: skip
         if not tables:
             return output.TRAJECTORY_SCHEMA.empty_table().to_pandas()
         frame = pa.concat_tables(tables).to_pandas()
@@ -136,7 +155,8 @@ class RunFolder:
     def shot_batches(self, point, columns, batch_rows):
         """Batches (dict column -> numpy array) of the shots of ``point``, ``batch_rows`` at
         most, in shot order; text columns as object arrays. One row group at a time."""
-        return self._batches(output.SHOTS_FILE, output.SHOTS_DIR, point, columns, batch_rows)
+        return self._batches(output.SHOTS_FILE, output.SHOTS_DIR, point, self._columns(columns),
+                             batch_rows)  # fmt: skip
 
     def trajectory_batches(self, point, columns, batch_rows):
         """``shot_batches`` of the trajectories: rows of ``point`` by shot and time."""
@@ -165,6 +185,8 @@ class RunFolder:
         return self._parts(folder).get(point, [])
 
     def _batches(self, file, folder, point, columns, batch_rows):
+        if isinstance(batch_rows, bool) or not isinstance(batch_rows, int) or batch_rows < 1:
+            raise RunFolderError(f"batch_rows {shown(batch_rows)}: allowed: a whole number >= 1")
         for path in self._files(file, folder, point):
             try:
                 with self.fs.open_input_file(path) as source, pq.ParquetFile(source) as f:
@@ -235,6 +257,48 @@ def _point_batches(parquet_file, point, columns, batch_rows):
 RUN_KEYS = ("scenario_name", "start_time_utc", "seed", "n")
 
 
+def _counts(values):
+    """Whether a column of the summary holds whole numbers >= 0 (no NaN: summed as 0)."""
+    v = pd.to_numeric(values, errors="coerce").to_numpy(dtype=float)
+    return bool(np.all(np.isfinite(v) & (v >= 0) & (v == np.round(v))))
+
+
+def _point_span(metadata):
+    """(least, greatest) ``point`` of a Parquet file by its row groups' statistics, or None
+    where they do not say."""
+    names = [metadata.schema.column(j).name for j in range(metadata.num_columns)]
+    if "point" not in names or metadata.num_row_groups == 0:
+        return None
+    j = names.index("point")
+    spans = []
+    for i in range(metadata.num_row_groups):
+        st = metadata.row_group(i).column(j).statistics
+        if st is None or not st.has_min_max or not isinstance(st.min, int):
+            return None  # (a point column of text is refused where it is read)
+        spans.append((st.min, st.max))
+    return min(a for a, _ in spans), max(b for _, b in spans)
+
+
+def _check_trajectories(folder, fs, root, provenance, points):
+    """RunFolderError unless trajectories.parquet is of the run (its provenance) and of its
+    points (a copy from another run's folder, or its points renumbered, was drawn)."""
+    with fs.open_input_file(f"{root}/{output.TRAJECTORIES_FILE}") as f:
+        metadata = pq.read_metadata(f)
+    theirs = output.decode_provenance(metadata.metadata)
+    for key in RUN_KEYS:
+        if key in provenance and key in theirs and provenance[key] != theirs[key]:
+            raise RunFolderError(
+                f"{folder}: {output.TRAJECTORIES_FILE} and {output.SUMMARY_FILE} are not of one "
+                f"run ({key} {theirs[key]!r} against {provenance[key]!r})"
+            )
+    span = _point_span(metadata)
+    if span is not None and not (0 <= span[0] and span[1] < points):
+        raise RunFolderError(
+            f"{folder}: {output.TRAJECTORIES_FILE} holds points {span[0]} to {span[1]} where "
+            f"{output.SUMMARY_FILE} has {points}: not one run's files"
+        )
+
+
 def _check_one_run(folder, summary, provenance, shots):
     """RunFolderError unless the shots (``shots``, the Parquet metadata of shots.parquet) are
     the summary's: the same run in their provenance, as many rows as the summary counts."""
@@ -245,11 +309,51 @@ def _check_one_run(folder, summary, provenance, shots):
                 f"{folder}: {output.SHOTS_FILE} and {output.SUMMARY_FILE} are not of one run "
                 f"({key} {theirs[key]!r} against {provenance[key]!r})"
             )
+    if "n_shots" in summary and not _counts(summary["n_shots"]):
+        raise RunFolderError(f"{folder}: {output.SUMMARY_FILE}'s n_shots holds a value that is "
+                             "not a count: not a run's summary")  # fmt: skip
+    span = _point_span(shots)
+    if span is not None and not (0 <= span[0] and span[1] < len(summary)):
+        raise RunFolderError(
+            f"{folder}: {output.SHOTS_FILE} holds points {span[0]} to {span[1]} where "
+            f"{output.SUMMARY_FILE} has {len(summary)}: not one run's files"
+        )
     if "n_shots" in summary and int(summary["n_shots"].sum()) != shots.num_rows:
         raise RunFolderError(
             f"{folder}: {output.SHOTS_FILE} has {shots.num_rows:,} shots where "
             f"{output.SUMMARY_FILE} counts {int(summary['n_shots'].sum()):,}: not one run's files"
         )
+
+
+def _check_parts(run):
+    """RunFolderError unless a dataset run's shots/ holds every part of its plan once (the
+    chunks of each point: ceil(n / chunk_size) of them) and no other file that a dataset reader
+    would read (a part copied as "part-00014 (1).parquet" was read twice, one missing left its
+    shots out, without a word)."""
+    p = run.provenance
+    if not all(isinstance(p.get(k), int) and p[k] > 0 for k in ("n", "chunk_size")):
+        return  # (a damaged provenance: the parts cannot be told; the files are read as they are)
+    selector = pafs.FileSelector(f"{run.root}/{output.SHOTS_DIR}", recursive=True)
+    found = {}
+    for info in run.fs.get_file_info(selector):
+        if info.type != pafs.FileType.File or info.base_name.startswith((".", "_")):
+            continue  # (what a dataset reader leaves out)
+        chunk = output.part_chunk(info.base_name)
+        where = info.path.removeprefix(f"{run.root}/")
+        if chunk is None:
+            raise RunFolderError(f"{run.path}: {where} is not a part of the run (part-NNNNN"
+                                 ".parquet), and a dataset reader would read it as shots: remove "
+                                 "it")  # fmt: skip
+        if chunk in found:
+            raise RunFolderError(f"{run.path}: part {chunk} twice: {found[chunk]} and {where}")
+        found[chunk] = where
+    expected = len(run.summary) * -(-p["n"] // p["chunk_size"])
+    missing = sorted(set(range(expected)) - set(found))
+    extra = sorted(set(found) - set(range(expected)))
+    if missing or extra:
+        what = (f"{len(missing)} of its {expected} parts missing (part {missing[0]} the first)"
+                if missing else f"a part {extra[0]} beyond its {expected}")  # fmt: skip
+        raise RunFolderError(f"{run.path}: {output.SHOTS_DIR}/ has {what}: not a complete run")
 
 
 def open_run(folder):
@@ -258,7 +362,12 @@ def open_run(folder):
     Raises RunFolderError, one line, when ``folder`` is not a complete run folder or its
     summary or the schema of its shots cannot be read.
     """
-    url, fs, root = location.locate(folder)
+    if not isinstance(folder, str | os.PathLike) or "\0" in str(folder):  # (a TypeError)
+        raise RunFolderError(f"run folder {shown(folder)}: allowed: a folder's path or a URL")
+    try:
+        url, fs, root = location.locate(folder)
+    except (ImportError, ValueError) as err:  # (a URL whose filesystem is not installed)
+        raise RunFolderError(f"{folder}: cannot reach it: {reason_of(err)}") from None
     folder = url or Path(folder)
 
     def kind(name=None):
@@ -311,6 +420,10 @@ def open_run(folder):
             f"cannot read the run in {folder}: {reading}: {reason_of(err)}"
         ) from None
     version = provenance.get("format_version", 1)
+    if not isinstance(version, int) or isinstance(version, bool):
+        raise RunFolderError(f"{folder}: format_version {version!r} is not a format's number "
+                             f"(this mcrun writes {output.FORMAT_VERSION}): a damaged "
+                             "provenance")  # fmt: skip
     if version != output.FORMAT_VERSION:  # (a later mcrun's files, or a damaged one)
         raise RunFolderError(
             f"{folder}: format_version {version!r}: this mcrun reads runs of format "
@@ -318,7 +431,20 @@ def open_run(folder):
         )
     if shots is not None:
         _check_one_run(folder, summary, provenance, shots)
-    return RunFolder(folder, url, fs, root, layout, summary, provenance, shot_columns, trajectories)
+        if trajectories:
+            reading = output.TRAJECTORIES_FILE
+            try:
+                _check_trajectories(folder, fs, root, provenance, len(summary))
+            except (OSError, pa.ArrowException, ValueError) as err:
+                if isinstance(err, RunFolderError):
+                    raise
+                raise RunFolderError(
+                    f"cannot read the run in {folder}: {reading}: {reason_of(err)}"
+                ) from None
+    run = RunFolder(folder, url, fs, root, layout, summary, provenance, shot_columns, trajectories)
+    if layout == DATASET_LAYOUT:
+        _check_parts(run)
+    return run
 
 
 def read_shots(folder, columns=None):
