@@ -275,8 +275,8 @@ def control_free(text: str) -> str:
 def path_of(value: object, what: str, allowed: str, error: type = InputError) -> Path:
     """``value`` as a Path, where it is text or a path; else ``error``, one line: ``{what}
     {value}: allowed: {allowed}`` (``Path(None)`` raises a TypeError naming no argument)."""
-    if not isinstance(value, str | os.PathLike):
-        raise error(f"{what} {shown(value)}: allowed: {allowed}")
+    if not isinstance(value, str | os.PathLike) or (isinstance(value, str) and not value.strip()):
+        raise error(f"{what} {shown(value)}: allowed: {allowed}")  # ("" was the current folder)
     return Path(value)
 
 

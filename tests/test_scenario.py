@@ -889,6 +889,13 @@ def test_club_scenario_and_file_scenario(tmp_path):
     assert set(spec.columns) == {"ball_speed", "launch_angle", "spin", "spin_axis"}
     assert spec.jitter == {"spin": pytest.approx(50 * math.pi / 30)}
     assert resampled.params["launch.azimuth"].value == 0.0  # not in the file
+    # A jitter's unknown key lists a jitter's keys (it listed [launch]'s: file, club, ...).
+    bad = text.replace("spin_rpm = 50", "foo = 1")
+    with pytest.raises(sc.ScenarioError, match=r"launch.jitter.foo: unknown key; allowed: "
+                       r"ball_speed, launch_angle, spin, azimuth, spin_axis \(a unit"):  # fmt: skip
+        sc.load(write(tmp_path, bad, "bad.toml"))
+    with pytest.raises(sc.ScenarioError, match=r"launch.file: /dev/null: not a regular file"):
+        sc.load(write(tmp_path, '[launch]\nfile = "/dev/null"\n', "null.toml"))
 
 
 # The scenario's turf quantities that are fields of a Turf, by the field's name.

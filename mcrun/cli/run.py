@@ -192,7 +192,8 @@ def _announcer(scenario):
 
 # The run's arguments as its options name them (an error said 'n must be ...' of -n).
 RUN_OPTIONS = {"n": "-n", "seed": "--seed", "chunk_size": "--chunk-size",
-               "trajectories_every": "--trajectories", "threads": "--threads"}  # fmt: skip
+               "trajectories_every": "--trajectories", "threads": "--threads",
+               "out_dir": "-o"}  # fmt: skip
 
 
 def _run_options(args):

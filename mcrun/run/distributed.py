@@ -122,6 +122,7 @@ from mcrun.results.output import SHOTS_DIR, SUCCESS_FILE, TRAJECTORIES_DIR
 from mcrun.results.reader import read_shots  # a Dask run's shots, as the local file reads
 from mcrun.run import plan
 from mcrun.run import scenario as scenario_module
+from mcrun.units import path_of
 
 DEFAULT_CHUNK_SIZE = plan.DEFAULT_CHUNK_SIZE
 RETRIES = 2
@@ -573,6 +574,7 @@ def run_scenario(
     scenario, points, n, seed = the_plan.scenario, the_plan.points, the_plan.n, the_plan.seed
     if out_dir is None:
         out_dir = plan.default_out_dir(scenario, seed)
+    path_of(out_dir, "out_dir", "a folder's path or a URL")
     url = str(out_dir).rstrip("/") if location.is_url(str(out_dir)) else None
     if not (ignore_disk_space or url):
         plan.check_disk_space(the_plan, out_dir)

@@ -118,7 +118,8 @@ def check_file(path):
     if path.is_dir():
         raise InputError(f"{path}: is a directory, not a CSV or Parquet file")
     if not path.is_file():
-        raise InputError(f"{path}: no such file")
+        what = "not a regular file (a device or a pipe)" if path.exists() else "no such file"
+        raise InputError(f"{path}: {what}")
 
 
 def _data_lines(path):

@@ -246,9 +246,7 @@ def read_launch_file(
         table = as_table(ctx, jitter_leaf.where, jitter_leaf.value)
         for key, value in table.items():
             jwhere = f"{jitter_leaf.where}.{key}"
-            name, unit = key_name(ctx, "launch", key, jwhere)
-            if name not in FILE_COLUMNS:
-                raise ctx.error(jwhere, f"unknown key; allowed: {', '.join(FILE_COLUMNS)}")
+            name, unit = key_name(ctx, "launch", key, jwhere, only=FILE_COLUMNS)
             if name in jitter:
                 raise ctx.error(jwhere, f"jitter of {name} is given twice")
             param = PARAMETERS["launch"][name]

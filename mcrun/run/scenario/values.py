@@ -258,10 +258,14 @@ def as_table(ctx, where, value):
     return value
 
 
-def key_name(ctx, section, key, where):
-    """(parameter name, key unit) of a key of a section; units may be in the name."""
+def key_name(ctx, section, key, where, only=None):
+    """(parameter name, key unit) of a key of a section; units may be in the name. ``only``:
+    the parameters allowed there (default every one of the section, and its special keys)."""
     names = PARAMETERS[section]
-    if key in names or key in _SPECIAL.get(section, ()):
+    special = _SPECIAL.get(section, ())
+    if only is not None:
+        names, special = {k: v for k, v in names.items() if k in only}, ()
+    if key in names or key in special:
         return key, None
     found = from_column_name(key)
     if found is not None and found[0] in names:
@@ -277,7 +281,7 @@ def key_name(ctx, section, key, where):
             )
             raise ctx.error(where, f"{unit} is a {kind} unit, but {base} takes {allowed}")
         return base, unit
-    allowed = ", ".join((*names, *_SPECIAL.get(section, ())))
+    allowed = ", ".join((*names, *special))
     raise ctx.error(
         where,
         f"unknown key; allowed: {allowed} (a unit may end the name, e.g. ball_speed_mph; the "
