@@ -563,3 +563,21 @@ def test_a_run_whose_files_lost_their_provenance_says_so(runs, tmp_path, capsys)
     assert "mcrun " not in report.report_html(run, dpi=DPI).split("Run folder")[0][-200:]
     fig = style.new_figure("positions", run, "positions")
     assert fig._suptitle.get_text().count("\n") == style.QUESTION_LINES + 1
+
+
+def test_an_ok_shot_whose_position_is_not_finite_is_refused(runs, tmp_path, capsys):
+    """A run writes finite values of its ok shots: an infinite final_y_m (a file altered) drew
+    with numpy's warnings on stderr and exit 0; now one line, and no picture."""
+    copy = tmp_path / "groups"
+    shutil.copytree(runs["groups"], copy)
+    table = pq.read_table(copy / output.SHOTS_FILE)
+    y = table["final_y_m"].to_numpy().copy()
+    y[3] = np.inf
+    j = table.schema.get_field_index("final_y_m")
+    pq.write_table(table.set_column(j, "final_y_m", pa.array(y)), copy / output.SHOTS_FILE)
+    out = tmp_path / "plots"
+    assert main(["plot", str(copy), "-o", str(out), "--dpi", str(DPI)]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"mcrun: error: {copy}: point 0: an ok shot's final_y_m is not finite: not a "
+                   "value a run writes (its file altered?)\n")  # fmt: skip
+    assert not out.exists() or not list(out.iterdir())

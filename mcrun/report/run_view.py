@@ -258,6 +258,10 @@ class PointShots:
 
     def update(self, batch):
         ok = batch["status"] == status_codes.OK
+        for name in SHOT_COLUMNS[2:]:  # (a run writes finite values of its ok shots)
+            if not np.isfinite(batch[name][ok]).all():
+                raise PlotError(f"an ok shot's {name} is not finite: not a value a run writes "
+                                "(its file altered?)")  # fmt: skip
         self.n_failed += int((~ok).sum())
         self.n_ok += int(ok.sum())
         for name in self.hist:
@@ -297,8 +301,11 @@ def read_point_shots(run, point, scatter_max=SCATTER_MAX_SHOTS):
     """PointShots of ``point`` (one pass over its row groups, the plotted columns only)."""
     row = run.summary.loc[run.summary["point"] == point].iloc[0].to_dict()
     shots = PointShots(row, scatter_max)
-    for batch in run.folder.shot_batches(point, SHOT_COLUMNS, BATCH_ROWS):
-        shots.update(batch)
+    try:
+        for batch in run.folder.shot_batches(point, SHOT_COLUMNS, BATCH_ROWS):
+            shots.update(batch)
+    except PlotError as err:
+        raise PlotError(f"{run.path}: point {point}: {err}") from None
     return shots
 
 
