@@ -130,13 +130,23 @@ def launch_conditions(
     if club:
         if club_speed_mps is None or loft_deg is None:
             raise InputError("a club delivery needs both the club speed and the dynamic loft")
-        return club_launch(
+        launch = club_launch(
             check_range("club_speed_mps", club_speed_mps),
             check_range(
                 "club_mass_kg", DEFAULTS["club_mass_kg"] if club_mass_kg is None else club_mass_kg
             ),
             _checked_si("loft_deg", loft_deg),
         )
+        # The launch the delivery gives is held to the ranges of a launch given directly (a
+        # loft of 0 with a club of 1 kg launched at 137.6 m/s, where 120 is the most).
+        for name, value in zip(("ball_speed_mps", "launch_angle_deg", "spin_radps"), launch,
+                               strict=True):  # fmt: skip
+            lo, hi = RANGES[name]
+            if not lo <= value <= hi:
+                raise InputError(f"the club's delivery launches the ball with {name} = "
+                                 f"{value:.4g}, outside the allowed range [{lo:g}, "
+                                 f"{hi:g}]")  # fmt: skip
+        return launch
     missing = [
         n
         for n, v in (

@@ -396,6 +396,15 @@ def test_a_turf_is_numbers_and_rolls_a_hop_below_its_critical_height():
     assert low["status"] == status.OK
 
 
+def test_a_club_delivery_launches_within_a_launch_s_ranges():
+    """A loft of 0 with a club of 1 kg launched the ball at 137.6 m/s, a launch refused when
+    given directly (at most 120 m/s)."""
+    says = r"^the club's delivery launches the ball with ball_speed_mps = 137.6, outside the "
+    with pytest.raises(api.InputError, match=says + r"allowed range \[0.5, 120\]$"):
+        api.simulate(club_speed_mps=90.0, loft_deg=0.0, club_mass_kg=1.0)
+    assert api.simulate(club_speed_mps=45.0, loft_deg=13.3).outcome["status"] == status.OK
+
+
 def test_the_api_takes_its_wind_as_two_numbers_in_order():
     """A set (no order: {5.0, 0.0} flew as a crosswind), text (split into its characters: "50"
     flew as (5, 0)), one number or three are refused, and a number beyond a float (10**400, an
