@@ -233,6 +233,19 @@ def test_memory_is_checked_against_what_there_is(tmp_path):
         aim.check(s, n=1000, offsets_m=[0.0, 1.0], memory=planned.bytes)
 
 
+def test_the_api_s_offsets_are_a_list_of_numbers(tmp_path):
+    """offsets_m="12" flew aims at 1 and 2 m (its characters), [True] at 1 m, a generator was
+    used up by its message ("give at least one aim"), a numpy scalar was a TypeError."""
+    s = scenario(tmp_path, FLAT, [("7-iron", 0.0, 3.0, 1.5)])
+    for given in ("12", {1: 2}, np.float64(3.0), (o for o in [1.0, 2.0])):
+        with pytest.raises(aim.AimError, match=r"^offsets_m .*: allowed: a list of aims, m right"):
+            aim.check(s, n=10, offsets_m=given)
+    with pytest.raises(aim.AimError, match=r"^offsets_m True: every aim must be a finite number"):
+        aim.check(s, n=10, offsets_m=[True])
+    assert aim.check(s, n=10, offsets_m=np.array([1.0, -2.0])).offsets_m == [1.0, -2.0]
+    assert aim.check(s, n=10, offsets_m=["3", "4.5"]).offsets_m == [3.0, 4.5]  # (as --offsets)
+
+
 @pytest.mark.parametrize("option", ["-o", "--plot"])
 def test_outputs_are_checked_before_the_search(tmp_path, capsys, monkeypatch, option):
     """An output in a folder that cannot be made, or one that exists without --force, is one

@@ -17,7 +17,7 @@ import pytest
 from mcrun.cli import main
 from mcrun.errors import InputError
 from mcrun.hole.hole import load_hole
-from mcrun.play import PlayerError, PlayResult, load_player
+from mcrun.play import PlayerError, PlayResult, load_player, plan_play
 from mcrun.run import scenario as sc
 from mcrun.run import starts
 
@@ -437,3 +437,33 @@ def test_without_a_par_the_plays_are_counted_in_strokes():
     assert line == ("4 plays: 3 strokes 50.0 %, 4 strokes 25.0 %, 5 strokes 25.0 %; mean 3.750 "
                     "(the hole's par is not known)")  # fmt: skip
     assert "par 50.0 %" in _score_line(result(3)) and "bogey 25.0 %" in _score_line(result(3))
+
+
+def test_a_spread_is_held_to_a_player_s_and_checked_as_played():
+    """A spread of 1e-9 was a player without dispersion in all but name (75 % birdies); one of
+    10 left 9 of the driver's first 64 shots unflown, which the solve dropped without a word:
+    the dispersion's checks ran on the file's own spread."""
+    with pytest.raises(PlayerError, match=r"spread 1e-09: allowed: one factor in \[0.1, 10\]"):
+        load_player("pga-tour-bag", spread=1e-9)
+    with pytest.raises(PlayerError, match=r"club 'Driver': 9 of its first 64 shots at a spread "
+                       r"of 10 cannot be flown"):  # fmt: skip
+        load_player("pga-tour-bag", spread=10)
+    with pytest.raises(PlayerError, match=r"^putter \['tour'\]: allowed: tour, "):
+        load_player("pga-tour-bag", putter=["tour"])  # (a TypeError: unhashable)
+
+
+def test_a_solve_s_seed_and_lattice_are_checked(tmp_path, capsys):
+    """plan_play's seed was int()-ed (1.7 ran as 1, True as 1, 2**70 solved, text a ValueError);
+    --fine coarser than --coarse made "near the pin" the coarser part, without a word."""
+    player, hole = load_player("tour"), load_hole(PAR3)
+    for seed, says in ((1.7, "seed must be an integer >= 0, got 1.7"), (True, "got True"),
+                       (2**70, "seed must be an integer up to 2**63 - 1")):  # fmt: skip
+        with pytest.raises(InputError, match=re.escape(says)):
+            plan_play(player, hole, n=4, seed=seed, plays=10, coarse_m=40.0, fine_m=20.0)
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    err = refused(["play", "tour", str(PAR3), "--coarse", "8m", "--fine", "40m"],
+                  tmp_path / "a", capsys)  # fmt: skip
+    assert "--fine 40 m: allowed: at most --coarse (8 m)" in err
+    err = refused(["play", "tour", str(PAR3), "--vs", "nobody"], tmp_path / "b", capsys)
+    assert err.startswith("mcrun: error: --vs: nobody: no such file")

@@ -3,11 +3,13 @@ line on stderr naming the file and the field and what is allowed, exit code 2 an
 written; a damaged cached map is built again with a warning."""
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 from mcrun.cli import COMMAND_MODULES, main
+from mcrun.errors import InputError
 from mcrun.hole.hole import load_hole
 from mcrun.physics.turf import stimp_from_rho_g
 from mcrun.putting import green as putting_green
@@ -266,3 +268,21 @@ def test_putt_on_a_hole_reads_as_read_says(tmp_path, capsys):
                  "best", "-n", "20"]) == 0  # fmt: skip
     assert "(best read)" in capsys.readouterr().err
     assert read_provenance(out)["read"] == "best"
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "says"),
+    [
+        ("line_sd_deg", math.nan, "line_sd_deg nan: allowed: a number from 0 to 10 deg"),
+        ("speed_sd_pct", 1e4, "speed_sd_pct 10000.0: allowed: a number from 0 to 50 %"),
+        ("pace_m", -0.43, "pace_m -0.43: allowed: a number from 0 to 3 m"),
+        ("pace_slope_share", 5.0, "pace_slope_share 5.0: allowed: a number from 0 to 1"),
+        ("read_sd_pct", "0.4", "read_sd_pct '0.4': allowed: a number from 0 to 50 % of slope"),
+    ],
+)
+def test_a_putter_s_errors_are_in_range(field, value, says):
+    """A Putter built by hand was putted as it was: NaN errors struck every putt to the cap
+    (make 0 %, 10 putts, exit 0), a negative pace was a SystemError of the compiled read."""
+    fields = {"name": "x", "line_sd_deg": 1.0, "speed_sd_pct": 3.3, field: value}
+    with pytest.raises(InputError, match=re.escape(f"Putter {says}")):
+        Putter(**fields)

@@ -223,6 +223,10 @@ def test_vectorised_over_lies_and_distances():
         TOUR.expected("rough", np.inf)
     with pytest.raises(ValueError, match=r"distance_m 'ten': allowed: numbers \(m\)"):
         TOUR.expected("rough", "ten")
+    # Text of digits was read as metres, True as 1 m, a date as 72.7 strokes.
+    for given in ("100", True, np.datetime64("2020-01-01"), np.array([True])):
+        with pytest.raises(ValueError, match=r"^distance_m .*: allowed: numbers \(m\)$"):
+            TOUR.expected("fairway", given)
     for code, says in ((6, "lie code 6: allowed: 0 to 5"), (1.5, "lie codes of type float64")):
         with pytest.raises(ValueError, match=says):
             TOUR.expected_by_code([0, code], [10.0, 10.0])

@@ -129,7 +129,10 @@ def _cmd_play(args):
     hole = _hole_of(args.hole)
     players = [player]
     if args.vs is not None:
-        players.append(load_player(args.vs))
+        try:
+            players.append(load_player(args.vs))
+        except InputError as err:  # (the first player's is the positional argument)
+            raise InputError(f"--vs: {err}") from None
     if args.longer is not None:
         from mcrun.play.calibration import longer
 

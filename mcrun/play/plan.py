@@ -59,6 +59,7 @@ ARGUMENT_NAMES = {
     "coarse_m": "coarse_m",
     "fine_m": "fine_m",
     "fine_within_m": "fine_within_m",
+    "seed": "seed",
 }
 # A club that flies: its mean carry on the level (full power) at least this. A putt skids and
 # rolls from the face (a 4 m/s putt carries about 0.1 m); a pitch carries tens of metres.
@@ -293,7 +294,12 @@ def plan_play(player, hole, n=100, seed=None, coarse_m=DEFAULT_COARSE_M, fine_m=
     coarse_m = _spacing(coarse_m, names["coarse_m"])
     fine_m = _spacing(fine_m, names["fine_m"])
     fine_within_m = _spacing(fine_within_m, names["fine_within_m"])
+    if fine_m > coarse_m:  # ("near the pin" coarser than elsewhere, without a word)
+        raise PlayerError(f"{names['fine_m']} {fine_m:g} m: allowed: at most {names['coarse_m']} "
+                          f"({coarse_m:g} m), the lattice's spacing away from the pin")  # fmt: skip
     workers = _count(workers, "workers", 0)
+    if seed is not None:  # (1.7 was 1, True 1, 2**70 solved; a text a ValueError)
+        seed = run_plan.positive_int(seed, names["seed"], minimum=0)
     check_pin(hole)
     check_putting(hole, green=True, putter=player.putter)  # its green, where a map values it
     memory = available_memory() if memory is None else memory
@@ -301,7 +307,7 @@ def plan_play(player, hole, n=100, seed=None, coarse_m=DEFAULT_COARSE_M, fine_m=
     lat = lattice(hole, base, coarse_m, fine_m, fine_within_m)
     scenario = on_hole(player, hole)
     if seed is not None:
-        scenario = replace(scenario, seed=int(seed))
+        scenario = replace(scenario, seed=seed)
     # The first PROBE_SHOTS shots of each option first: what the bag reaches, and the rows
     # (states x the actions that fit them; exact when n is no more), before n are sampled.
     flown = options_of(scenario, min(n, PROBE_SHOTS), player)

@@ -137,6 +137,9 @@ TEE_ONLY = ("driver",)
 # keys that give those values, by how the club's launch is given (``Point.mode``).
 DISPERSION_SHOTS = 64
 UNFLOWN_SHARE = 0.1  # of a club's first shots that cannot be flown: more, and it is refused
+# The least spread: a tenth of the file's dispersion (1e-9 was a player without dispersion in
+# all but name, 75 % birdies, which a bag without dispersion is refused for).
+MIN_SPREAD = 0.1
 DISPERSION_KEYS = {
     "ball": "launch.ball_speed, launch.launch_angle, launch.spin, launch.spin_axis and "
     "launch.azimuth are all constant",
@@ -247,7 +250,7 @@ def load_player(spec, putter=None, spread=None, straight=False):
                       player.source, (speed,) * len(player.clubs), player.rough,
                       player.ground)  # fmt: skip
     putter = "tour" if putter is None else putter
-    if putter not in PUTTERS:
+    if not isinstance(putter, str) or putter not in PUTTERS:  # (a list: a TypeError)
         raise PlayerError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")
     scenario = sc.load(spec)
     if scenario.hole is not None:
@@ -281,34 +284,39 @@ def load_player(spec, putter=None, spread=None, straight=False):
         spread = tuple(float(v) for v in spread)
     else:
         spread = ()  # (refused below, named as given)
-    if len(spread) != len(clubs) or not all(0.0 < v <= 10.0 for v in spread):
+    if len(spread) != len(clubs) or not all(MIN_SPREAD <= v <= 10.0 for v in spread):
         raise PlayerError(f"{scenario.path}: spread {shown(given)}: allowed: one factor in "
-                          f"(0, 10] or one per club ({len(clubs)})")  # fmt: skip
+                          f"[{MIN_SPREAD:g}, 10] or one per club ({len(clubs)})")  # fmt: skip
     if not straight:
-        check_dispersion(scenario, clubs)
+        check_dispersion(scenario, clubs, spread)
     tour = scenario.name == TOUR_BAG
     return Player(scenario.name, scenario, clubs, spread, putter, str(scenario.path),
                   rough=TOUR_ROUGH if tour else (), ground=TOUR_GROUND if tour else ())  # fmt: skip
 
 
-def check_dispersion(scenario, clubs):
+def check_dispersion(scenario, clubs, spread=None):
     """PlayerError (one line naming the file, the club and its launch's keys) for a club of
     the player's ``scenario`` whose first ``DISPERSION_SHOTS`` shots are all the same in every
     launch value its spread scales (``SPREAD_COLUMNS``: ball speed, launch angle, spin, spin
     axis, azimuth): a bag without dispersion hits every shot exactly where it is aimed, and its
     solution (holes in one from wherever a pin is in reach) is no player's. And for a club
     more than ``UNFLOWN_SHARE`` of whose first shots cannot be flown (a ball speed not above 0
-    or a backspin below 0: a spread too wide for its mean), whose values would be infinite."""
+    or a backspin below 0: a spread too wide for its mean), whose values would be infinite.
+    ``spread``: each club's factor on its dispersion (``spread_inputs``), as it is played (a
+    factor of 10 left a tenth of some clubs' shots unflown, which the solve dropped)."""
     columns = [COLUMN[name] for name in SPREAD_COLUMNS]
     speed, spin = COLUMN["ball_speed_mps"], COLUMN["spin_radps"]
-    for point, club in zip(scenario.points, clubs, strict=True):
+    spread = (1.0,) * len(clubs) if spread is None else spread
+    for point, club, factor in zip(scenario.points, clubs, spread, strict=True):
         inputs, _ = sampling.sample(scenario, point, 0, DISPERSION_SHOTS)
+        inputs = spread_inputs(inputs, factor)
         unflown = int(np.count_nonzero(~((inputs[:, speed] > 0.0) & (inputs[:, spin] >= 0.0))))
         if unflown > UNFLOWN_SHARE * DISPERSION_SHOTS:
+            at = "" if factor == 1.0 else f" at a spread of {factor:g}"
             raise PlayerError(
                 f"{scenario.path}: club {club!r}: {unflown} of its first {DISPERSION_SHOTS} "
-                "shots cannot be flown (a ball speed not above 0 or a spin below 0): allowed "
-                "is a launch whose spread leaves its shots flying (a smaller sd)"
+                f"shots{at} cannot be flown (a ball speed not above 0 or a spin below 0): "
+                "allowed is a launch whose spread leaves its shots flying (a smaller sd)"
             )
         values = inputs[:, columns]
         if np.all(values == values[0]):

@@ -34,7 +34,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mcrun.errors import InputError
 from mcrun.putting.stroke import MAX_PUTTS
+from mcrun.units import is_number, shown
 
 __all__ = ["DEFAULT_PACE_M", "PUTTERS", "Putter", "putter_errors"]
 
@@ -53,6 +55,28 @@ class Putter:
     read_sd_pct: float = 0.0
     pace_m: float = DEFAULT_PACE_M
     pace_slope_share: float = 1.0
+
+    def __post_init__(self):
+        """InputError, one line, for a field out of ``PUTTER_RANGES`` (NaN errors struck every
+        putt to the 10-putt cap; a negative pace was a SystemError from the compiled read)."""
+        if not isinstance(self.name, str):
+            raise InputError(f"Putter name {self.name!r}: allowed: text")
+        for field, (lo, hi, unit) in PUTTER_RANGES.items():
+            value = getattr(self, field)
+            if not is_number(value) or not lo <= value <= hi:
+                raise InputError(f"Putter {field} {shown(value)}: allowed: a number from {lo:g} "
+                                 f"to {hi:g}{unit}")  # fmt: skip
+
+
+# What a putter's fields may be: errors of none to several times the 15-handicap's (1.8 deg,
+# 5.9 %, 0.7 % of slope), a pace up to 3 m past the hole, a share of the slope from 0 to 1.
+PUTTER_RANGES = {
+    "line_sd_deg": (0.0, 10.0, " deg"),
+    "speed_sd_pct": (0.0, 50.0, " %"),
+    "read_sd_pct": (0.0, 50.0, " % of slope"),
+    "pace_m": (0.0, 3.0, " m"),
+    "pace_slope_share": (0.0, 1.0, ""),
+}
 
 
 # CALIBRATED (docs/putting.md): tests/test_putting.py checks the table.

@@ -49,6 +49,7 @@ from mcrun.results import on_hole, output
 from mcrun.run import plan, sampling
 from mcrun.run import scenario as scenario_module
 from mcrun.strokes import start_of, tour_baseline
+from mcrun.units import shown
 
 AZIMUTH = COLUMN["azimuth_rad"]
 DEFAULT_HALF_WIDTH_M = 20.0
@@ -297,8 +298,15 @@ def check(
     coarse_m = _finite(coarse_m, names["coarse_m"], positive=True)
     resolution_m = _finite(resolution_m, names["resolution_m"], positive=True)
     if offsets_m is not None:
+        if isinstance(offsets_m, str | bytes) or not isinstance(offsets_m, list | tuple |
+                                                                   np.ndarray):  # fmt: skip
+            raise AimError(f"{names['offsets_m']} {shown(offsets_m)}: allowed: a list of aims, "
+                           "m right of the pin")  # fmt: skip
+        offsets_m = list(np.ravel(offsets_m)) if isinstance(offsets_m, np.ndarray) else offsets_m
         given = ",".join(str(o) for o in offsets_m)
         try:
+            if any(isinstance(o, bool | np.bool_) for o in offsets_m):  # (True flew 1 m)
+                raise AimError("")
             offsets_m = [_finite(o, "") for o in offsets_m]
         except AimError:
             raise AimError(

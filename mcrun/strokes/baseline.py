@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from mcrun.errors import InputError
-from mcrun.units import KINDS, shown
+from mcrun.units import KINDS, is_number, shown
 
 __all__ = [
     "DEFAULT_BASELINE_PATH",
@@ -135,6 +135,11 @@ class Baseline:
 def _distances(distance_m):
     """``distance_m`` as a float array; ValueError naming the first that is not a number, 0 or
     more (m; NaN passes, valued NaN)."""
+    given = np.asarray(distance_m)
+    if given.dtype.kind not in "iuf" and not (given.dtype == object and all(
+            is_number(v) or v is None for v in given.flat)):  # fmt: skip
+        # (text "100" was 100 m, True 1 m, a date 72.7 strokes)
+        raise ValueError(f"distance_m {shown(distance_m)}: allowed: numbers (m)")
     try:
         d = np.asarray(distance_m, dtype=float)
     except (TypeError, ValueError):
