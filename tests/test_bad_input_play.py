@@ -246,7 +246,10 @@ def test_a_player_whose_club_cannot_fly_its_shots_is_refused(tmp_path):
     wide = bag.replace('mean = "2686 rpm", sd = "270 rpm"', 'mean = "2686 rpm", sd = "100000 rpm"')
     assert wide != bag
     path = write(tmp_path / "wide.toml", wide)
-    says = r"wide\.toml: club 'Driver': \d+ of its first 64 shots cannot be flown \(a ball speed"
+    says = (
+        r"wide\.toml: club 'Driver': \d+ of its first 64 shots at a spread of 1\.654 "
+        r"cannot be flown \(a ball speed"
+    )
     with pytest.raises(PlayerError, match=says):
         load_player(path)
 

@@ -269,7 +269,7 @@ BAD_SHOTS = {
     "pressure and altitude": [*DRIVE_ARGS, "--pressure", "1000hPa", "--altitude", "100"],
     "humidity over 100 %": [*DRIVE_ARGS, "--humidity", "150%"],
     "temperature unit": [*DRIVE_ARGS, "--temperature", "20X"],
-    "unwritable trajectory": [*DRIVE_ARGS, "--trajectory", "/nonexistent-dir/t.csv"],
+    "unwritable trajectory": [*DRIVE_ARGS, "--trajectory", "/dev/null/t.csv"],
     "unknown option": [*DRIVE_ARGS, "--bogus"],
     "option without value": [*DRIVE_ARGS, "--wind"],
 }
@@ -311,8 +311,33 @@ def test_a_thread_count_numba_cannot_start_with_is_one_line():
         ("bounce", ["--speed", "20", "--angle", "45", "--spin", "1e9"],
          "--spin (backspin_radps) = 1e+09 is outside the allowed range [-2000, 2000]"),
         # (1e9 m ran a shot that never stopped; 0.01mm named a rho_g never given)
-        ("shot", [*DRIVE_ARGS, "--stimp", "1e9"],
-         "--stimp 1e9: allowed: 0.33 ft to 19.7 ft (a Stimpmeter reading)"),
+        ("shot", [*DRIVE_ARGS, "--stimp", "1e9ft"],
+         "--stimp 1e9ft: allowed: 0.33 ft to 19.7 ft (a Stimpmeter reading)"),
+        # A Stimp reading in bare numbers is feet to its users: 5 was read as 5 m (16.4 ft).
+        ("shot", [*DRIVE_ARGS, "--stimp", "5"], "--stimp 5: give its unit, e.g. 10ft"),
+        # The conditions' range errors named the API's field alone.
+        ("shot", [*DRIVE_ARGS, "--slope", "89"],
+         "--slope (slope_deg) = 89 is outside the allowed range [0, 45]"),
+        ("shot", [*DRIVE_ARGS, "--humidity", "50"],
+         "--humidity (relative_humidity) = 50 is outside the allowed range [0, 1]"),
+        ("shot", ["--ball-speed", "60"],
+         "a ball launch needs --launch, --spin (or a club delivery: --club-speed and --loft)"),
+        # Ignored before: the same numbers with or without them.
+        ("shot", [*DRIVE_ARGS, "--wind", "5,0", "--wind-height", "2"],
+         "--wind-height: is for --wind-profile log or power (a uniform wind is the same at "
+         "every height)"),
+        ("shot", [*DRIVE_ARGS, "--air-density", "1.2", "--altitude", "3000"],
+         "--altitude: the air's density is given (--air-density), which is all the pressure "
+         "sets: give one or the other"),
+        ("shot", [*DRIVE_ARGS, "--trajectory", "-"],
+         "--trajectory -: a file's path (the shot's table goes to stdout)"),
+        # An empty value: -o '' wrote into the current folder, --plot '' drew nothing.
+        ("shot", [*DRIVE_ARGS, "--trajectory", ""],
+         "--trajectory: empty: give a value (see 'mcrun shot --help')"),
+        ("scenarios", ["--dir", " "], "--dir: empty: give a value (see 'mcrun scenarios --help')"),
+        ("paper", ["-o", ""], "-o: empty: give a value (see 'mcrun paper --help')"),
+        ("paper", ["-o", "p", "--dpi", "٧٢"], "argument --dpi: '٧٢': only ASCII digits (0-9) "
+         "are accepted, not '٧' (see 'mcrun paper --help')"),
         ("shot", [*DRIVE_ARGS, "--stimp", "0.01mm"],
          "--stimp 0.01mm: allowed: 0.33 ft to 19.7 ft (a Stimpmeter reading)"),
     ],
@@ -324,11 +349,19 @@ def test_a_value_out_of_range_names_its_option(capsys, command, argv, says):
     assert (code, out, err) == (2, "", f"mcrun: error: {says}\n")
 
 
+def test_a_trajectory_s_missing_folder_is_made(capsys, tmp_path):
+    """As every command's output: a folder that is missing is made (it was refused)."""
+    path = tmp_path / "paths" / "drive.csv"
+    code, _, _ = run(capsys, "shot", *DRIVE_ARGS, "--trajectory", str(path))
+    assert code == 0 and path.read_text().startswith("t_s,x_m,y_m,z_m,phase")
+
+
 def test_a_trajectory_that_cannot_be_written_is_refused_before_the_shot(
     capsys, tmp_path, monkeypatch
 ):
     monkeypatch.setattr(api, "simulate", lambda **k: pytest.fail("the shot was flown"))
-    for path, says in ((tmp_path / "none" / "t.csv", "is not a folder"),
+    (tmp_path / "a-file").write_text("")
+    for path, says in ((tmp_path / "a-file" / "t.csv", "is not a folder"),
                        (tmp_path, "is a folder; give a file name")):  # fmt: skip
         code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--trajectory", str(path))
         assert code == 2 and out == "" and err.count("\n") == 1

@@ -592,7 +592,7 @@ def bad_cases(tmp_path):
         (["run", str(good), "-o", str(with_notes), "--force"], "holds 'notes.txt', which no"),
         (["run", str(good), "-o", str(not_mcrun), "--force"], "not an mcrun run folder (no"),
         (["run", str(good), "-o", str(a_file)], "not a folder"),
-        (["run", str(good), "-o", ""], "-o (out_dir) '': allowed: a folder's path"),  # (".")
+        (["run", str(good), "-o", ""], "-o: empty: give a value"),  # (".")
         (["run", str(good), "-o", str(a_file / "run")], "cannot write"),
         (["validate", str(bad_sd)], "must be >= 0"),
         (["validate", str(tmp_path / "missing.toml")], "missing.toml"),

@@ -133,3 +133,15 @@ def test_a_plot_of_an_unknown_picture_format_is_one_line(capsys, tmp_path):
     assert err.count("\n") == 1 and "--plot" in err and ".png" in err, err
     assert out == ""  # refused before the hole is described
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_picture_that_cannot_be_written_is_refused_before_the_description(capsys, tmp_path):
+    """A folder where the picture goes, or a file where its folder goes: refused in one line
+    naming --plot before the hole is described (the description came first, then the error)."""
+    (tmp_path / "dir.png").mkdir()
+    (tmp_path / "a-file").write_text("")
+    for plot, says in ((tmp_path / "dir.png", "is a folder; give a file name"),
+                       (tmp_path / "a-file" / "x.png", "a-file is not a folder")):  # fmt: skip
+        assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(plot)]) == 2
+        out, err = capsys.readouterr()
+        assert out == "" and err.startswith(f"mcrun: error: --plot {plot}: ") and says in err

@@ -241,12 +241,29 @@ def main(argv=None):
         args = parser.parse_args(_attach_negative_values(argv))
     except SystemExit as exit_:  # --help, or a usage error argparse has already reported
         return exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
+    blank = _blank_argument(parser, args)
+    if blank is not None:
+        return _error(f"{blank}: empty: give a value (see 'mcrun {args.command} --help')")
     # SIGTERM stops a command as Ctrl-C does (the commands clean up on KeyboardInterrupt).
     with exits.sigterm_interrupts() as terminated:
         code = _run_command(args)
     if terminated and code == exits.EXIT_INTERRUPTED:
         return exits.EXIT_TERMINATED
     return code
+
+
+def _blank_argument(parser, args):
+    """The name of an argument given as empty text (or blanks), or None: no option takes one,
+    and some read it as the current folder (``-o ''`` wrote there) or as not given
+    (``--plot ''`` drew nothing, ``--dir ''`` listed the library)."""
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    command = commands.choices.get(getattr(args, "command", None))
+    for action in [] if command is None else command._actions:
+        value = getattr(args, action.dest, None)
+        if isinstance(value, str) and not value.strip() and value != action.default:
+            return action.option_strings[0] if action.option_strings else (
+                action.metavar or action.dest.upper())  # fmt: skip
+    return None
 
 
 def _run_command(args):

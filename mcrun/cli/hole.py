@@ -118,6 +118,10 @@ def _cmd_hole(args):
     if args.plot and suffix not in PICTURE_SUFFIXES:  # before the hole is described
         raise CommandError(f"--plot {args.plot}: a picture is {', '.join(PICTURE_SUFFIXES)}, "
                            f"got {suffix or 'no suffix'}")  # fmt: skip
+    if args.plot:  # a folder there, a file for a folder, a name too long: said before, too
+        from mcrun.run.aim import check_output
+
+        check_output(args.plot, True, "--plot", PICTURE_SUFFIXES, "picture")
     if path.suffix.lower() in GEOJSON_SUFFIXES:
         if args.hole is None:
             if args.plot:

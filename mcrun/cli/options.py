@@ -75,7 +75,7 @@ def named(call, options):
         return call()
     except InputError as err:
         text = str(err)
-        name = text.split(" ", 1)[0]
+        name = text.split(" ", 1)[0].removesuffix(":")
         if name not in options:
             raise
         raise InputError(f"{options[name]} ({name}){text[len(name) :]}") from None
@@ -159,7 +159,8 @@ def given(**kwargs):
 
 def turf_from_args(args):
     """The turf preset named by ``--turf`` with the overrides given on the command line."""
-    stimp_m = quantity(args.stimp, "length", "--stimp")
+    # A bare number is refused (5, meaning feet as Stimp readings are quoted, was 5 m).
+    stimp_m = None if args.stimp is None else with_unit(args.stimp, "length", "--stimp", "10ft")
     if stimp_m is not None:  # named as given (the API names stimp_m, in m)
         lo, hi = api.RANGES["stimp_m"]
         if not lo <= stimp_m <= hi:
@@ -184,6 +185,13 @@ def conditions_kwargs(args):
     profile = args.wind_profile
     if args.wind_param is not None and profile == "uniform":
         raise InputError("--wind-param: is for --wind-profile log or power (uniform has none)")
+    if args.wind_height is not None and profile == "uniform":  # (ignored: the same numbers)
+        raise InputError("--wind-height: is for --wind-profile log or power (a uniform wind is "
+                         "the same at every height)")  # fmt: skip
+    if args.air_density is not None and (args.altitude or args.pressure) is not None:
+        given_air = "--altitude" if args.altitude is not None else "--pressure"
+        raise InputError(f"{given_air}: the air's density is given (--air-density), which is "
+                         "all the pressure sets: give one or the other")  # fmt: skip
     if profile == "log":  # the log law's parameter is a roughness length, e.g. 3cm
         wind_param = quantity(args.wind_param, "length", "--wind-param")
     else:  # the power law's is an exponent
@@ -232,7 +240,7 @@ def add_conditions_options(p):
     ground.add_argument(
         "--stimp",
         metavar="LENGTH",
-        help="override rho_g by a Stimpmeter reading, e.g. 10ft (bare: m)",
+        help="override rho_g by a Stimpmeter reading, with its unit: 10ft",
     )
     ground.add_argument(
         "--critical-height",
@@ -329,10 +337,11 @@ def add_conditions_options(p):
 
 def dpi_value(text):
     """argparse type of --dpi: a whole number within DPI_RANGE."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"cannot read {text!r} as a whole number") from None
+    value, why = units.whole_number(text.strip())  # (int() read ٧٢ as 72)
+    if why:
+        raise argparse.ArgumentTypeError(f"{text!r}: {why}")
+    if value is None:
+        raise argparse.ArgumentTypeError(f"cannot read {text!r} as a whole number")
     lo, hi = DPI_RANGE
     if not lo <= value <= hi:
         raise argparse.ArgumentTypeError(f"{value} is outside [{lo}, {hi}]")

@@ -121,6 +121,21 @@ SHOT_OPTIONS = {
     "club_speed_mps": "--club-speed",
     "club_mass_kg": "--club-mass",
     "loft_deg": "--loft",
+    # The conditions' (their errors named the API's field alone)
+    "slope_deg": "--slope",
+    "fall_line_deg": "--fall-line",
+    "temperature_c": "--temperature",
+    "relative_humidity": "--humidity",
+    "wind_speed_mps": "--wind",
+    "wind_mps": "--wind",
+    "wind_profile_parameter": "--wind-param",
+    "wind_reference_height_m": "--wind-height",
+    "altitude_m": "--altitude",
+    "pressure_pa": "--pressure",
+    "air_density_kgpm3": "--air-density",
+    "dt_s": "--dt",
+    "cd_scale": "--cd-scale",
+    "cl_scale": "--cl-scale",
 }
 BOUNCE_OPTIONS = {
     "ball_speed_mps": "--speed",
@@ -144,11 +159,16 @@ def _shot_kwargs(args):
 
 
 def _check_trajectory_path(text):
-    """CommandError, before the shot is flown, where ``--trajectory`` cannot be written."""
+    """CommandError, before the shot is flown, where ``--trajectory`` cannot be written (a
+    folder that is missing is made, as every command's output makes it)."""
     path = Path(text)
     where = path.parent if str(path.parent) else Path(".")
+    while not where.exists() and where.parent != where:
+        where = where.parent
     reason = None
-    if path.is_dir():
+    if text == "-":  # (a file named "-" was written; stdout holds the shot's table)
+        reason = "a file's path (the shot's table goes to stdout)"
+    elif path.is_dir():
         reason = "is a folder; give a file name"
     elif not where.is_dir():
         reason = f"{where} is not a folder"
@@ -158,7 +178,20 @@ def _check_trajectory_path(text):
         raise CommandError(f"--trajectory {text}: {reason}")
 
 
+def _check_launch_given(args):
+    """A ball launch needs --ball-speed, --launch and --spin, unless a club delivery is given
+    (the API's message named its fields: launch_angle_deg, spin_radps)."""
+    if args.club_speed is not None or args.loft is not None:
+        return
+    missing = [option for option, value in (("--ball-speed", args.ball_speed),
+               ("--launch", args.launch), ("--spin", args.spin)) if value is None]  # fmt: skip
+    if missing:
+        raise CommandError(f"a ball launch needs {', '.join(missing)} (or a club delivery: "
+                           "--club-speed and --loft)")  # fmt: skip
+
+
 def _cmd_shot(args):
+    _check_launch_given(args)
     kwargs = _shot_kwargs(args)
     if args.trajectory is not None:
         _check_trajectory_path(args.trajectory)
@@ -167,6 +200,7 @@ def _cmd_shot(args):
     )
     if args.trajectory is not None:
         try:
+            Path(args.trajectory).parent.mkdir(parents=True, exist_ok=True)
             result.trajectory.to_csv(args.trajectory, index=False)
         except OSError as err:
             reason = err.strerror or str(err)
@@ -308,7 +342,8 @@ def _add_shot(subparsers):
     out.add_argument(
         "--trajectory",
         metavar="FILE.csv",
-        help="write the path to a CSV: t_s, x_m, y_m (positive right), z_m, phase",
+        help="write the path to a CSV (replaced if it exists; its folder made if missing): "
+        "t_s, x_m, y_m (positive right), z_m, phase",
     )
     out.add_argument("--json", action="store_true", help="print one JSON object instead")
     p.set_defaults(func=_cmd_shot)
@@ -332,7 +367,9 @@ def _add_bounce(subparsers):
         "--angle",
         metavar="ANGLE",
         required=True,
-        help="impact angle from the vertical, [0, 90) (bare: deg)",
+        help="impact angle from the vertical, {:g} to {:g} (bare: deg)".format(
+            *api.RANGES["impact_angle_deg"]
+        ),
     )
     p.add_argument(
         "--spin",
