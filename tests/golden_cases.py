@@ -6,8 +6,9 @@ the package: every library scenario at N shots with a fixed seed (its shots and 
 and one-shot cases over every aerodynamic model, wind profile, turf preset, slope and club
 delivery, some with their trajectory.
 
-``python tests/golden_cases.py [SCENARIO ...]`` writes the file anew (``tests/data/golden/``;
-with names, only those library scenarios' files); do that only
+``python tests/golden_cases.py [SCENARIO ... | --shots]`` writes the file anew
+(``tests/data/golden/``; with names, only those library scenarios' files; with ``--shots``, only
+the one-shot cases); do that only
 when a change moves numbers on purpose, and say which and why. ``tests/test_golden.py``
 compares the current tree with it: at the tolerance of ``tests/tolerance.py`` on any CPU, bit
 for bit with ``pytest --bit-for-bit`` on the machine that wrote it.
@@ -115,9 +116,10 @@ def run_scenario(name, out_dir):
 
 
 def write(names=None):
-    """Write the golden file anew; with ``names``, only those library scenarios' files."""
+    """Write the golden file anew; with ``names``, only those library scenarios' files, or
+    with ``--shots`` only the one-shot cases (shots.json, trajectories.parquet)."""
     GOLDEN.mkdir(parents=True, exist_ok=True)
-    if names:
+    if names and names != ["--shots"]:
         _write_scenarios(names)
         return
     outcomes, trajectories = {}, []
@@ -128,7 +130,8 @@ def write(names=None):
             trajectories.append(trajectory.assign(case=name))
     (GOLDEN / "shots.json").write_text(json.dumps(outcomes, indent=1, sort_keys=True) + "\n")
     pd.concat(trajectories, ignore_index=True).to_parquet(GOLDEN / "trajectories.parquet")
-    _write_scenarios(library_scenarios())
+    if names != ["--shots"]:
+        _write_scenarios(library_scenarios())
 
 
 def _write_scenarios(names):

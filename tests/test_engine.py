@@ -691,3 +691,25 @@ def test_failure_while_summarising_leaves_nothing(tmp_path, monkeypatch):
     with pytest.raises(RuntimeError, match="summary failed"):
         run.run_scenario(path, n=100, out_dir=tmp_path / "runs" / "x", progress=False)
     assert listing(tmp_path) == before
+
+
+def test_a_ball_that_never_stops_is_stopped_at_the_roll_s_bounds():
+    """The roll is bounded (``status.MAX_ROLL_TIME_S``, ``MAX_ROLL_DISTANCE_M``): a ball that
+    slides without friction (mu 0) was let slide 240 s on the level, one step of 120 s past
+    the first, and 36 km down a slope of 45 deg (the sliding phase checked the time only).
+    Now its last step ends at the bound; a ball that stops is stopped as before (the golden
+    file's)."""
+    from mcrun.physics.turf import PRESETS
+    from mcrun.status import MAX_ROLL_DISTANCE_M, MAX_ROLL_TIME_S, NOT_STOPPED
+
+    frictionless = PRESETS["fairway"]._replace(mu=0.0, rho_g=0.0)
+    for slope in (0.0, 45.0):
+        shot = simulate(ball_speed_mps=60.0, launch_angle_deg=12.0, spin_radps=300.0,
+                        turf=frictionless, slope_deg=slope, trajectory=True)  # fmt: skip
+        assert shot.outcome["status"] == NOT_STOPPED
+        roll = shot.trajectory[shot.trajectory["phase"] == "roll"]
+        assert roll["t_s"].iloc[-1] - roll["t_s"].iloc[0] <= MAX_ROLL_TIME_S
+        far = math.hypot(roll["x_m"].iloc[-1] - roll["x_m"].iloc[0],
+                         roll["y_m"].iloc[-1] - roll["y_m"].iloc[0])  # fmt: skip
+        assert far <= MAX_ROLL_DISTANCE_M
+    assert shot.outcome["total_time_s"] < MAX_ROLL_TIME_S  # (1,000 m down the slope first)

@@ -36,7 +36,7 @@ from mcrun.physics.roll import (
     slide_step,
     turned,
 )
-from mcrun.status import MAX_ROLL_TIME_S, NOT_STOPPED, OK
+from mcrun.status import MAX_ROLL_DISTANCE_M, MAX_ROLL_TIME_S, NOT_STOPPED, OK
 from mcrun.trajectory import ROLL, record
 
 
@@ -118,12 +118,13 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, terrain, plane, t0, traj, n, t_next
         u = math.sqrt(ux * ux + uy * uy + uz * uz)
         if u <= 1e-12:
             break
-        if t - t0 > MAX_ROLL_TIME_S:
-            return px, py, pz, t, NOT_STOPPED, n, qx, qy
         speed = math.sqrt(vx * vx + vy * vy + vz * vz)
+        left = _bounds_left(t - t0, px - x0, py - y0, speed)
+        if left <= 0.0:  # (the distance too: a ball sliding on mu 0 went 36 km)
+            return px, py, pz, t, NOT_STOPPED, n, qx, qy
         (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1, ux, uy, uz = slide_step(
             px, py, pz, vx, vy, vz, ux, uy, uz, u, gx, gy, gz, k_slide,
-            min(h_max, ds / speed), snap,
+            min(h_max, ds / speed, left), snap,
         )  # fmt: skip
         n, t_next = _record_segment(
             traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
@@ -249,8 +250,11 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, terrain, plane, t0, traj, n, t_next
             dx = vx * (1.0 / v)
             dy = vy * (1.0 / v)
             dz = vz * (1.0 / v)
+        left = _bounds_left(t - t0, px - x0, py - y0, v)
+        if left <= 0.0:
+            return px, py, pz, t, NOT_STOPPED, n, qx, qy
         (ax, ay, az), h, done, x1, y1, z1, vx1, vy1, vz1 = roll_step(
-            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, min(h_max, h_cap), snap
+            px, py, pz, vx, vy, vz, dx, dy, dz, gx, gy, gz, k_roll, min(h_max, h_cap, left), snap
         )
         n, t_next = _record_segment(
             traj, n, t_next, dt_record, t, h, px, py, pz, vx, vy, vz, ax, ay, az
@@ -280,6 +284,21 @@ def roll(px, py, pz, vx, vy, vz, wx, wy, wz, terrain, plane, t0, traj, n, t_next
         if done and static:
             break
     return px, py, pz, t, OK, n, qx, qy
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _bounds_left(elapsed_s, dx_m, dy_m, speed_mps):
+    """The longest step (s) a ball at ``speed_mps``, ``elapsed_s`` into its roll and (dx_m,
+    dy_m) from where it began, may take within the roll's bounds (MAX_ROLL_TIME_S,
+    MAX_ROLL_DISTANCE_M); 0 where it has reached one of them (to the nanosecond or
+    nanometre). A step that stops the ball within them is shorter, and so unchanged."""
+    time_left = MAX_ROLL_TIME_S - elapsed_s
+    distance_left = MAX_ROLL_DISTANCE_M - math.sqrt(dx_m * dx_m + dy_m * dy_m)
+    if time_left <= 1e-9 or distance_left <= 1e-9:
+        return 0.0
+    if speed_mps > 0.0:
+        return min(time_left, distance_left / speed_mps)
+    return time_left
 
 
 @njit(cache=True)
