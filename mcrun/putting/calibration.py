@@ -26,7 +26,7 @@ from mcrun.putting.greens import (
     tour_greens,
 )
 from mcrun.putting.holeout import hole_out_batch
-from mcrun.putting.putter import putter_errors
+from mcrun.putting.putter import PUTTER_RANGES, putter_errors
 from mcrun.strokes.baseline import FOOT_M
 
 __all__ = [
@@ -169,6 +169,9 @@ def refit(start, n=FIT_N, rounds=3, report=print):
             for sign in (1.0, -1.0):
                 while True:
                     value = round(getattr(best, name) + sign * step, 4)
+                    lo, hi, _ = PUTTER_RANGES[name]
+                    if not lo <= value <= hi:  # (a share above 1, a negative sd: no putter's)
+                        break
                     trial = dataclasses.replace(best, **{name: value})
                     trial_loss, trial_errors = loss(trial)
                     if trial_loss >= best_loss:
