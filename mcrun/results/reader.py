@@ -279,45 +279,40 @@ def _point_span(metadata):
     return min(a for a, _ in spans), max(b for _, b in spans)
 
 
-def _check_trajectories(folder, fs, root, provenance, points):
-    """RunFolderError unless trajectories.parquet is of the run (its provenance) and of its
-    points (a copy from another run's folder, or its points renumbered, was drawn)."""
-    with fs.open_input_file(f"{root}/{output.TRAJECTORIES_FILE}") as f:
-        metadata = pq.read_metadata(f)
+def _check_of_run(folder, name, metadata, provenance, points):
+    """RunFolderError unless the file ``name`` of the run folder (its Parquet ``metadata``) is
+    of the run whose summary has ``provenance`` and ``points`` rows: the same run in their
+    provenance (``RUN_KEYS``), its points among the summary's (a copy from another run's
+    folder, or its points renumbered, was drawn)."""
     theirs = output.decode_provenance(metadata.metadata)
     for key in RUN_KEYS:
         if key in provenance and key in theirs and provenance[key] != theirs[key]:
             raise RunFolderError(
-                f"{folder}: {output.TRAJECTORIES_FILE} and {output.SUMMARY_FILE} are not of one "
-                f"run ({key} {theirs[key]!r} against {provenance[key]!r})"
+                f"{folder}: {name} and {output.SUMMARY_FILE} are not of one run "
+                f"({key} {theirs[key]!r} against {provenance[key]!r})"
             )
     span = _point_span(metadata)
     if span is not None and not (0 <= span[0] and span[1] < points):
         raise RunFolderError(
-            f"{folder}: {output.TRAJECTORIES_FILE} holds points {span[0]} to {span[1]} where "
+            f"{folder}: {name} holds points {span[0]} to {span[1]} where "
             f"{output.SUMMARY_FILE} has {points}: not one run's files"
         )
 
 
+def _check_trajectories(folder, fs, root, provenance, points):
+    """``_check_of_run`` of trajectories.parquet."""
+    with fs.open_input_file(f"{root}/{output.TRAJECTORIES_FILE}") as f:
+        metadata = pq.read_metadata(f)
+    _check_of_run(folder, output.TRAJECTORIES_FILE, metadata, provenance, points)
+
+
 def _check_one_run(folder, summary, provenance, shots):
     """RunFolderError unless the shots (``shots``, the Parquet metadata of shots.parquet) are
-    the summary's: the same run in their provenance, as many rows as the summary counts."""
-    theirs = output.decode_provenance(shots.metadata)
-    for key in RUN_KEYS:
-        if key in provenance and key in theirs and provenance[key] != theirs[key]:
-            raise RunFolderError(
-                f"{folder}: {output.SHOTS_FILE} and {output.SUMMARY_FILE} are not of one run "
-                f"({key} {theirs[key]!r} against {provenance[key]!r})"
-            )
+    the summary's (``_check_of_run``), and as many rows as the summary counts."""
+    _check_of_run(folder, output.SHOTS_FILE, shots, provenance, len(summary))
     if "n_shots" in summary and not _counts(summary["n_shots"]):
         raise RunFolderError(f"{folder}: {output.SUMMARY_FILE}'s n_shots holds a value that is "
                              "not a count: not a run's summary")  # fmt: skip
-    span = _point_span(shots)
-    if span is not None and not (0 <= span[0] and span[1] < len(summary)):
-        raise RunFolderError(
-            f"{folder}: {output.SHOTS_FILE} holds points {span[0]} to {span[1]} where "
-            f"{output.SUMMARY_FILE} has {len(summary)}: not one run's files"
-        )
     if "n_shots" in summary and int(summary["n_shots"].sum()) != shots.num_rows:
         raise RunFolderError(
             f"{folder}: {output.SHOTS_FILE} has {shots.num_rows:,} shots where "
