@@ -183,9 +183,9 @@ def _rewrite(path, change):
     pq.write_table(change(table), path)
 
 
-def _points_plus(table, k):
-    j = table.schema.get_field_index("point")
-    return table.set_column(j, "point", pa.compute.add(table["point"], k))
+def _plus(table, k, column="point"):
+    j = table.schema.get_field_index(column)
+    return table.set_column(j, column, pa.compute.add(table[column], k))
 
 
 @pytest.mark.parametrize(
@@ -195,10 +195,13 @@ def _points_plus(table, k):
         (lambda c: _rewrite(c / output.TRAJECTORIES_FILE, lambda t: t.replace_schema_metadata(
             {**t.schema.metadata, b"mcrun.seed": b"5"})),
          "trajectories.parquet and summary.parquet are not of one run (seed 5 against 3)"),
-        (lambda c: _rewrite(c / output.TRAJECTORIES_FILE, lambda t: _points_plus(t, 3)),
+        (lambda c: _rewrite(c / output.TRAJECTORIES_FILE, lambda t: _plus(t, 3)),
          "trajectories.parquet holds points 3 to 4 where summary.parquet has 2"),
+        # The paths of shots the run never flew, drawn as its sample.
+        (lambda c: _rewrite(c / output.TRAJECTORIES_FILE, lambda t: _plus(t, 10**6, "shot")),
+         "trajectories.parquet holds shots 1000000 to "),
         # Shots renumbered: every figure empty, its title the summary's, exit 0.
-        (lambda c: _rewrite(c / output.SHOTS_FILE, lambda t: _points_plus(t, 7)),
+        (lambda c: _rewrite(c / output.SHOTS_FILE, lambda t: _plus(t, 7)),
          "shots.parquet holds points 7 to 8 where summary.parquet has 2"),
         (lambda c: _rewrite(c / output.SUMMARY_FILE, lambda t: t.set_column(
             t.schema.get_field_index("n_shots"), "n_shots", pa.array([900.0, float("nan")]))),

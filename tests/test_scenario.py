@@ -98,6 +98,15 @@ def test_find_library_scenario_by_name(monkeypatch):
     assert sc.load("pga-driver").name == "pga-driver"
 
 
+def test_find_names_a_link_that_leads_nowhere(tmp_path):
+    """A loop of links, or a link to a file removed, was "no such file"."""
+    (tmp_path / "loop.toml").symlink_to(tmp_path / "loop.toml")
+    (tmp_path / "gone.toml").symlink_to(tmp_path / "removed.toml")
+    for name in ("loop.toml", "gone.toml"):
+        with pytest.raises(sc.ScenarioError, match=r"\.toml: a link that leads to no file$"):
+            sc.find(tmp_path / name)
+
+
 def test_pga_driver_is_the_2019_table_average():
     """The reference scenario's means are the TrackMan 2019 PGA Tour driver row."""
     point = sc.load(LIBRARY / "pga-driver.toml").points[0]

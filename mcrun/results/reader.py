@@ -263,18 +263,18 @@ def _counts(values):
     return bool(np.all(np.isfinite(v) & (v >= 0) & (v == np.round(v))))
 
 
-def _point_span(metadata):
-    """(least, greatest) ``point`` of a Parquet file by its row groups' statistics, or None
-    where they do not say."""
+def _span(metadata, column):
+    """(least, greatest) value of the whole-number ``column`` of a Parquet file by its row
+    groups' statistics, or None where they do not say."""
     names = [metadata.schema.column(j).name for j in range(metadata.num_columns)]
-    if "point" not in names or metadata.num_row_groups == 0:
+    if column not in names or metadata.num_row_groups == 0:
         return None
-    j = names.index("point")
+    j = names.index(column)
     spans = []
     for i in range(metadata.num_row_groups):
         st = metadata.row_group(i).column(j).statistics
         if st is None or not st.has_min_max or not isinstance(st.min, int):
-            return None  # (a point column of text is refused where it is read)
+            return None  # (a column of text is refused where it is read)
         spans.append((st.min, st.max))
     return min(a for a, _ in spans), max(b for _, b in spans)
 
@@ -282,8 +282,8 @@ def _point_span(metadata):
 def _check_of_run(folder, name, metadata, provenance, points):
     """RunFolderError unless the file ``name`` of the run folder (its Parquet ``metadata``) is
     of the run whose summary has ``provenance`` and ``points`` rows: the same run in their
-    provenance (``RUN_KEYS``), its points among the summary's (a copy from another run's
-    folder, or its points renumbered, was drawn)."""
+    provenance (``RUN_KEYS``), its points among the summary's and its shots among a point's
+    (a copy from another run's folder, or its points or shots renumbered, was drawn)."""
     theirs = output.decode_provenance(metadata.metadata)
     for key in RUN_KEYS:
         if key in provenance and key in theirs and provenance[key] != theirs[key]:
@@ -291,11 +291,18 @@ def _check_of_run(folder, name, metadata, provenance, points):
                 f"{folder}: {name} and {output.SUMMARY_FILE} are not of one run "
                 f"({key} {theirs[key]!r} against {provenance[key]!r})"
             )
-    span = _point_span(metadata)
+    span = _span(metadata, "point")
     if span is not None and not (0 <= span[0] and span[1] < points):
         raise RunFolderError(
             f"{folder}: {name} holds points {span[0]} to {span[1]} where "
             f"{output.SUMMARY_FILE} has {points}: not one run's files"
+        )
+    n = provenance.get("n")
+    span = _span(metadata, "shot")
+    if span is not None and isinstance(n, int) and not (0 <= span[0] and span[1] < n):
+        raise RunFolderError(
+            f"{folder}: {name} holds shots {span[0]} to {span[1]} where the run flew {n:,} "
+            "a point (shots 0 to n - 1): not one run's files"
         )
 
 

@@ -66,6 +66,8 @@ def find(name_or_path):
                 return candidate
     if path.exists():
         raise ScenarioError(f"{name_or_path}: not a file")
+    if path.is_symlink():  # (exists() follows it: a link to nothing, or a loop of links)
+        raise ScenarioError(f"{name_or_path}: a link that leads to no file")
     raise ScenarioError(
         f"{name_or_path}: no such file, nor a scenario of the library (mcrun scenarios lists it)"
     )
