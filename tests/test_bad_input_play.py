@@ -455,6 +455,28 @@ def test_a_spread_is_held_to_a_player_s_and_checked_as_played():
         load_player("pga-tour-bag", putter=["tour"])  # (a TypeError: unhashable)
 
 
+@pytest.mark.parametrize(
+    ("change", "says"),
+    [
+        ({"ground": (math.nan,) * 12}, r"ground \(nan, nan, .*\): allowed: 12 factors in "
+                                       r"\[0.1, 10\], one per club \(or none\)$"),
+        ({"spread": (1.0,) * 3}, r"spread \(1.0, 1.0, 1.0\): allowed: 12 factors in \[0.1, 10\], "
+                                 r"one per club$"),
+        ({"speed": (1.0,) * 11}, r"speed \(1.0, .*\): allowed: 12 factors"),
+        ({"clubs": ()}, r"clubs \(\): allowed: a tuple of names$"),
+        ({"putter": "scratchy"}, r"putter 'scratchy': allowed: tour, scratch, 15-handicap$"),
+    ],
+)  # fmt: skip
+def test_a_bag_built_by_hand_is_checked_where_it_is_made(change, says):
+    """A Player replaced with a NaN ground factor, or a tuple of another length, was an
+    IndexError (or NaN strokes) deep in the solve."""
+    import dataclasses
+
+    tour = load_player("tour")
+    with pytest.raises(PlayerError, match=r"^player 'tour' \(.*pga-tour-bag.toml\): " + says):
+        dataclasses.replace(tour, **change)
+
+
 def test_a_solve_s_seed_and_lattice_are_checked(tmp_path, capsys):
     """plan_play's seed was int()-ed (1.7 ran as 1, True as 1, 2**70 solved, text a ValueError);
     --fine coarser than --coarse made "near the pin" the coarser part, without a word."""

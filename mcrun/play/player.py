@@ -169,6 +169,28 @@ class Player:
     rough: tuple = ()  # each club's pattern factor from the rough (empty: LIE_LAUNCH's)
     ground: tuple = ()  # each club's spread off the ground over its spread (empty: 1)
 
+    def __post_init__(self):
+        """PlayerError for a bag that cannot be played (one built by hand, or replaced: a NaN
+        factor or a tuple of another length was an IndexError deep in the solve)."""
+        where = f"player {self.name!r} ({self.source})"
+        if not (isinstance(self.clubs, tuple) and self.clubs
+                and all(isinstance(c, str) for c in self.clubs)):  # fmt: skip
+            raise PlayerError(f"{where}: clubs {shown(self.clubs)}: allowed: a tuple of names")
+        n = len(self.clubs)
+        for field, least, most, empty in (("spread", MIN_SPREAD, 10.0, False),
+                                          ("speed", 0.1, 10.0, True),
+                                          ("rough", 0.1, 10.0, True),
+                                          ("ground", 0.1, 10.0, True)):  # fmt: skip
+            value = getattr(self, field)
+            if not (isinstance(value, tuple) and (len(value) == n or (empty and not value))
+                    and all(is_number(v) and least <= v <= most for v in value)):  # fmt: skip
+                allowed = f"{n} factors in [{least:g}, {most:g}], one per club"
+                raise PlayerError(f"{where}: {field} {shown(value)}: allowed: "
+                                  f"{allowed}{' (or none)' if empty else ''}")  # fmt: skip
+        if not isinstance(self.putter, str) or self.putter not in PUTTERS:
+            raise PlayerError(f"{where}: putter {shown(self.putter)}: allowed: "
+                              f"{', '.join(PUTTERS)}")  # fmt: skip
+
     def speed_of(self, club):
         """The ball speed factor of ``club`` (an index)."""
         return self.speed[club] if self.speed else 1.0
