@@ -442,6 +442,27 @@ def test_without_a_par_the_plays_are_counted_in_strokes():
     assert "par 50.0 %" in _score_line(result(3)) and "bogey 25.0 %" in _score_line(result(3))
 
 
+def test_a_gap_between_the_plays_and_the_solve_beyond_chance_is_noted():
+    """``mcrun play bogey riverside-8 --coarse 40m``: an expected score of 6.868 +- 0.114 from
+    the tee where its plays scored 9.050, without a word. A gap is noted beyond 4 standard
+    errors of the two together and 0.1 strokes."""
+    scores = np.array([4.0, 5.0] * 200)  # mean 4.5, se 0.5 / sqrt(400) x 1.0013 = 0.025
+
+    def result(tee_value, tee_se):
+        solution = SimpleNamespace(values=[tee_value], q_se=[tee_se], best_row=[0])
+        return PlayResult(None, None, None, None, solution, None, scores, 2, 0, 0.0)
+
+    gap, se = result(4.0, 0.1).plays_gap()
+    assert gap == 0.5 and se == pytest.approx(math.hypot(0.1, 0.5 / math.sqrt(399)), rel=1e-12)
+    note = result(4.0, 0.1).gap_note()
+    assert note.startswith("the plays' mean is +0.500 strokes from the expected score from the "
+                           "tee (+- 0.103)")  # fmt: skip
+    assert result(4.1, 0.1).gap_note() is None  # 0.4 < 4 x 0.103
+    assert result(4.45, 0.001).gap_note() is None  # 0.05 < 4 x 0.025
+    assert result(4.41, 0.001).gap_note() is None  # 0.09 < 0.1 stroke
+    assert result(4.38, 0.001).gap_note() is not None  # 0.12
+
+
 def test_a_spread_is_held_to_a_player_s_and_checked_as_played():
     """A spread of 1e-9 was a player without dispersion in all but name (75 % birdies); one of
     10 left 9 of the driver's first 64 shots unflown, which the solve dropped without a word:

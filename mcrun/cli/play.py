@@ -191,6 +191,10 @@ def _cmd_play(args):
     for name, (value, saved) in result.savings().items():
         print(f"against {name}: {value:.3f}, the best saves {saved:.3f}")
     print(_score_line(result))
+    for o in results:
+        note = o.gap_note()
+        if note is not None:
+            print(f"mcrun: warning: {o.player.name}: {note}", file=sys.stderr)
     for o in others:
         other = o.player
         print(f"{other.name}: {o.tee_value:.3f} +- {o.tee_se:.3f} from the tee (best: "

@@ -41,6 +41,10 @@ __all__ = [
 
 DEFAULT_N = 100
 DEFAULT_PLAYS = 4000
+# The plays' mean against the solve's expected score (``PlayResult.gap_note``): a gap beyond
+# both is noted.
+GAP_SES = 4.0
+GAP_STROKES = 0.1
 SCORE_NAMES = ("eagle or better", "birdie", "par", "bogey", "double bogey or worse")
 
 
@@ -70,6 +74,25 @@ class PlayResult:
     @property
     def tee_se(self):
         return float(self.solution.q_se[self.solution.best_row[0]])
+
+    def plays_gap(self):
+        """(the plays' mean score less the expected score from the tee, its standard error):
+        the solve values states on a lattice, each action's shots snapped to its nodes; the
+        plays follow its policy shot by shot. Where the two disagree by more than
+        ``GAP_SES`` standard errors and ``GAP_STROKES``, the lattice is too coarse for the
+        hole (``gap_note``)."""
+        scores = np.asarray(self.scores, dtype=float)
+        se_plays = float(scores.std(ddof=1)) / math.sqrt(len(scores)) if len(scores) > 1 else 0.0
+        return float(scores.mean()) - self.tee_value, math.hypot(self.tee_se, se_plays)
+
+    def gap_note(self):
+        """A line for a gap between the plays and the solve beyond chance, else None."""
+        gap, se = self.plays_gap()
+        if abs(gap) <= max(GAP_SES * se, GAP_STROKES):
+            return None
+        return (f"the plays' mean is {gap:+.3f} strokes from the expected score from the tee "
+                f"(+- {se:.3f}): the lattice is too coarse for this hole to value it; a finer "
+                "--coarse (and --fine) holds it closer")  # fmt: skip
 
     def tee_rows(self):
         """Every row of the tee (state 0): (row, name, Q, se), best first."""
