@@ -208,7 +208,7 @@ def _flight_values(
     cl_scale=DEFAULTS["cl_scale"],
     wind_mps=(0.0, 0.0),
     wind_profile=DEFAULTS["wind_profile"],
-    wind_reference_height_m=DEFAULTS["wind_reference_height_m"],
+    wind_reference_height_m=None,
     wind_profile_parameter=None,
     **air_args,
 ):
@@ -229,6 +229,14 @@ def _flight_values(
     wind_x, wind_right = (finite_number("wind_mps", w) for w in wind_mps)
     check_range("wind_speed_mps", math.hypot(wind_x, wind_right))
     values = {"models.aero": aero_model, "weather.wind_profile": wind_profile}
+    profile_args = {"wind_reference_height_m": wind_reference_height_m,
+                    "wind_profile_parameter": wind_profile_parameter}  # fmt: skip
+    given = [name for name, value in profile_args.items() if value is not None]
+    if wind_profile == "uniform" and given:  # (ignored: the same numbers)
+        raise InputError(f"{given[0]}: is for wind_profile 'log' or 'power' (a uniform wind is "
+                         "the same at every height)")  # fmt: skip
+    if wind_reference_height_m is None:
+        wind_reference_height_m = DEFAULTS["wind_reference_height_m"]
     if wind_profile_parameter is None:
         wind_profile_parameter = default_of("weather.wind_profile_parameter", values)
     wind_profile_parameter = finite_number("wind_profile_parameter", wind_profile_parameter)
@@ -251,12 +259,14 @@ def flight_params(
     cl_scale=DEFAULTS["cl_scale"],
     wind_mps=(0.0, 0.0),
     wind_profile=DEFAULTS["wind_profile"],
-    wind_reference_height_m=DEFAULTS["wind_reference_height_m"],
+    wind_reference_height_m=None,
     wind_profile_parameter=None,
     **air_args,
 ):
     """FlightParams (core frame) from user-frame arguments; ``air_args`` as for
-    ``air_properties``."""
+    ``air_properties``. ``wind_reference_height_m`` (default 10 m) and
+    ``wind_profile_parameter`` (default the profile's, ``WIND_PROFILE_DEFAULTS``) are a log or
+    power profile's: a uniform wind refuses them."""
     values, (wind_x, wind_right), density = _flight_values(
         aero_model,
         cd_scale,

@@ -459,7 +459,7 @@ def test_the_api_takes_its_wind_as_two_numbers_in_order():
 def test_the_api_refuses_a_bool_text_or_nan_where_a_number_goes():
     """``simulate(ball_speed_mps=True)`` (flown at 1 m/s), a wind profile's parameter that is
     NaN (a refused shot, not an error) or text (a TypeError), a turf's field as text (a
-    ValueError): InputError naming the argument."""
+    ValueError), a number as text: InputError naming the argument."""
     launch = {"ball_speed_mps": 70.0, "launch_angle_deg": 11.0, "spin_radps": 280.0}
     with pytest.raises(api.InputError, match=r"^ball_speed_mps must be a number, got True$"):
         api.simulate(**{**launch, "ball_speed_mps": True})
@@ -480,10 +480,17 @@ def test_the_api_refuses_a_bool_text_or_nan_where_a_number_goes():
         assert api.simulate(**launch, wind_mps=(5.0, 0.0), wind_profile=profile,
                             wind_reference_height_m=height,
                             wind_profile_parameter=parameter).outcome["status"] == 0  # fmt: skip
-    wind = {"wind_mps": (-5.0, 2.0), "wind_profile": "power"}
-    text = api.simulate(**launch, **wind, wind_profile_parameter="0.1")
-    assert text.outcome == api.simulate(**launch, **wind, wind_profile_parameter=0.1).outcome
-    assert text.outcome != api.simulate(**launch, **wind).outcome  # (1/7 by default)
+    # A uniform wind has no reference height nor parameter: given, they were ignored.
+    for given in ("wind_reference_height_m", "wind_profile_parameter"):
+        with pytest.raises(api.InputError, match=rf"^{given}: is for wind_profile 'log' or "):
+            api.simulate(**launch, wind_mps=(5.0, 0.0), **{given: 2.0})
+    # Text is not a number, "70" no more than "70 m/s" (which was refused where "70" flew).
+    for given in ("70", "70 m/s", np.str_("70")):
+        with pytest.raises(api.InputError, match=r"^ball_speed_mps must be a number, got "):
+            api.simulate(**{**launch, "ball_speed_mps": given})
+    with pytest.raises(api.InputError, match=r"^wind_profile_parameter must be a number, got "):
+        api.simulate(**launch, wind_mps=(-5.0, 2.0), wind_profile="power",
+                     wind_profile_parameter="0.1")  # fmt: skip
 
 
 def test_the_api_names_a_file_argument_that_is_not_a_path():

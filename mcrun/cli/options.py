@@ -293,7 +293,7 @@ def add_conditions_options(p):
         "--wind-height",
         metavar="LENGTH",
         help="height at which --wind is given (bare: m; default "
-        f"{api_default(fp, 'wind_reference_height_m'):g})",
+        f"{api.DEFAULTS['wind_reference_height_m']:g})",
     )
     flight.add_argument(
         "--wind-param",
