@@ -415,7 +415,9 @@ def register(subparsers):
     p.add_argument("--seed", metavar="S", help="random seed (the players')")
     p.add_argument("--coarse", default="8m", help="states' spacing (8m)")
     p.add_argument("--fine", default="3m", help="near the pin (3m)")
-    p.add_argument("--plays", default="4000", help="plays of each hole's policy (4000)")
+    p.add_argument(
+        "--plays", default="4000", help="plays of each hole's policy (4000; at least 100)"
+    )
     p.add_argument("--putts", metavar="N", help="putts a read of the greens' maps (200)")
     p.add_argument("--green-resolution", metavar="M", help="the greens' maps' spacing (0.5m)")
     p.add_argument("--obstacles", action="store_true",

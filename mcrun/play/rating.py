@@ -85,6 +85,10 @@ LENGTH_RATING = {"scratch": (220.0, 40.9), "bogey": (160.0, 50.7),
 SLOPE_RANGE = (55, 155)
 EXPECTED, BETTER_HALF = "expected", "better half"
 ROUNDS = 10_000  # 18-hole rounds drawn from the holes' plays
+# The fewest plays of a hole's policy a rating takes: its better half is dealt from each hole's
+# plays, so a few of them make rounds of a few scores repeated (one play: every round the same,
+# its better half its average, without a word).
+MIN_PLAYS = 100
 # The day's form: the correlation of a model player's holes' latents within a round (module
 # docstring), fitted by ``fit_day_form`` to a better half 3.0 strokes below the average [Knuth]
 # over the open courses of ``benchmarks.rating`` (which prints the fit beside these): an
@@ -286,10 +290,14 @@ def plan_rating(holes, players=MODEL_PLAYERS["men"], n=100, seed=None, coarse_m=
     ``obstacles``]}, in the order they are solved. ``workers``: the local Dask workers that
     will solve them, each a whole solve at once (each solve then fits in their share of the
     memory)."""
-    from mcrun.play import DEFAULT_N, load_player, plan_play
+    from mcrun.play import DEFAULT_N, PlayerError, load_player, plan_play
     from mcrun.play.lattice import DEFAULT_COARSE_M, DEFAULT_FINE_M
     from mcrun.run.aim import available_memory
 
+    label = (names or {}).get("plays", "plays")
+    if isinstance(plays, bool) or not isinstance(plays, int | np.integer) or plays < MIN_PLAYS:
+        raise PlayerError(f"{label} {plays!r}: allowed: a whole number of at least {MIN_PLAYS} "
+                          "for a rating (its better half is dealt from each hole's plays)")  # fmt: skip
     loaded = [load_player(p) if isinstance(p, str) else p for p in players]
     numbers = list(numbers or range(1, len(holes) + 1))
     memory = available_memory()
