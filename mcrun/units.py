@@ -201,9 +201,15 @@ _NUMBER = re.compile(
 def foreign_digits(text: str) -> str | None:
     """Why ``text`` cannot be read when it holds a decimal digit other than 0-9 (``１６７``, full
     width), else None. Python's ``float`` reads any Unicode decimal digit, but a value that
-    looks like a number and is not the one typed is refused: only ASCII digits are accepted."""
+    looks like a number and is not the one typed is refused: only ASCII digits are accepted.
+    So is a digit separator: Python's ``int`` and ``float`` read "1_000" as 1000 (and "3_80" as
+    380), which ``parse_quantity`` refuses."""
     digit = next((c for c in text if c.isdecimal() and not c.isascii()), None)
-    return None if digit is None else f"only ASCII digits (0-9) are accepted, not {digit!r}"
+    if digit is not None:
+        return f"only ASCII digits (0-9) are accepted, not {digit!r}"
+    if "_" in text:
+        return "'_' is not read in a number (write 1000, or 1e3)"
+    return None
 
 
 class _Unreadable(Exception):

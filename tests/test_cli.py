@@ -762,6 +762,10 @@ def test_a_whole_number_in_digits_is_read_exactly():
         positive_int(str(2**63), "n")
     with pytest.raises(api.InputError, match=r"from 0 to 2\*\*63 - 1$"):
         whole(str(10**400), "--seed", 0)  # (an OverflowError of math.isfinite)
+    # A digit separator, as parse_quantity refuses it: -n 1_000 ran 1,000 shots and 3_80 380.
+    for read in (lambda t: positive_int(t, "n"), lambda t: whole(t, "-n", 1)):
+        with pytest.raises(api.InputError, match=r"'3_80': '_' is not read in a number"):
+            read("3_80")
 
 
 def test_a_whole_number_in_other_digits_is_refused():

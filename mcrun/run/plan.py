@@ -79,7 +79,7 @@ def positive_int(value, name, minimum=1):
     integral value (up to 2**53, beyond which a float is not one integer) or a text: digits,
     read exactly, or a number such as "1e6" (``units.whole_number``)."""
     wrong = InputError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
-    number, why = whole_number(value.strip().replace("_", "") if isinstance(value, str) else value)
+    number, why = whole_number(value.strip() if isinstance(value, str) else value)
     if why == INEXACT:
         raise InputError(
             f"{name} {shown(value)}: allowed: a number beyond 2**53 written in digits (as a "
