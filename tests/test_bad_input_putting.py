@@ -8,12 +8,13 @@ import re
 import numpy as np
 import pytest
 
+from mcrun import putting
 from mcrun.cli import COMMAND_MODULES, main
 from mcrun.errors import InputError
 from mcrun.hole.hole import load_hole
 from mcrun.physics.turf import stimp_from_rho_g
+from mcrun.putting import calibration, on_hole
 from mcrun.putting import green as putting_green
-from mcrun.putting import on_hole
 from mcrun.putting.putter import PUTTERS, Putter
 from mcrun.putting.roll import Surface, grid_slope
 from mcrun.results.output import read_provenance
@@ -286,3 +287,63 @@ def test_a_putter_s_errors_are_in_range(field, value, says):
     fields = {"name": "x", "line_sd_deg": 1.0, "speed_sd_pct": 3.3, field: value}
     with pytest.raises(InputError, match=re.escape(f"Putter {says}")):
         Putter(**fields)
+
+
+# --- 5. a putt that does not finish, and the putting API's other arguments ----------------------
+
+
+def test_putts_counted_at_the_cap_are_said(capsys):
+    """3 m downhill on a 7 % slope at Stimp 11 (its stopping slope 7.13 %): a miss rolls on past
+    the roll's 60 s, each counted as 10 putts (6.8 on average, exit 0), without a word."""
+    assert main(["putt", "--distance", "3m", "--slope", "7%", "-n", "200"]) == 0
+    captured = capsys.readouterr()
+    assert "average putts:   6.805" in captured.out
+    assert captured.err.startswith("mcrun: warning: 64.5 % of the holings-out were counted as 10 "
+                                   "putts: a ball still rolling after 60 s")  # fmt: skip
+    assert "stopping slope, 7.13 %" in captured.err
+    assert main(["putt", "--distance", "3m", "--slope", "3%", "-n", "200"]) == 0
+    assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize(
+    ("call", "says"),
+    [
+        (lambda: putting.putt(10**400, 3.353, 0.02, 90.0, n=20),
+         r"^distance_m 1000000.*\.\.\.: allowed: a finite number$"),
+        (lambda: putting.putt(3.0, 3.353, 0.02, 90.0, n=10**400), r"^n 10000.*: allowed: a whole"),
+        (lambda: putting.check_stimp("11ft"), r"^stimp_m '11ft': allowed: a number \(m\)$"),
+        (lambda: putting.check_stimp(np.array([3.0, 4.0])), r"^stimp_m array\(\[3., 4.\]\)"),
+        (lambda: calibration.calibration_table("tour", 10),
+         r"^putter 'tour': allowed: a Putter"),
+        (lambda: calibration.tour_holeouts(PUTTERS["tour"], 2.5), r"^n 2.5: allowed: a whole"),
+        (lambda: calibration.slope_checks(PUTTERS["tour"], 1), r"^n 1: allowed: a whole number "
+                                                               r"from 2 to 100000$"),
+        (lambda: calibration.tour_holeouts(PUTTERS["tour"], 10, seed=-1), r"^seed -1: allowed"),
+        # A NaN or negative drift gave a perfect green's numbers, to every digit.
+        (lambda: calibration.calibration_table(PUTTERS["tour"], 10, drift_mm_per_m=math.nan),
+         r"^drift_mm_per_m nan: allowed: 0 to 34 mm/m$"),
+        (lambda: calibration.slope_checks(PUTTERS["tour"], 10, drift_mm_per_m=-5.0),
+         r"^drift_mm_per_m -5.0: allowed: 0 to 34 mm/m$"),
+    ],
+)  # fmt: skip
+def test_the_putting_api_names_an_argument_that_is_not_one(call, says):
+    """An OverflowError formatting the message, TypeErrors of comparisons, numpy's errors."""
+    with pytest.raises(InputError, match=says):
+        call()
+
+
+@pytest.mark.parametrize(
+    ("options", "says"),
+    [
+        (["--drift", "４.９"], "--drift ４.９: cannot read it as a number: only ASCII digits"),
+        (["--drift", "1_0"], "--drift 1_0: cannot read it as a number: '_' is not read in a "
+                             "number"),
+        (["-n", "1_000"], "-n '1_000': '_' is not read in a number"),
+        (["--force"], "--force: is for a green's map"),
+    ],
+)  # fmt: skip
+def test_putt_reads_its_numbers_as_every_option_does(capsys, options, says):
+    """--drift read ４.９ as 4.9 and 1_0 as 10, -n 1_000 as 1000 (``parse_quantity`` refuses
+    both); --force on a plane green was taken and did nothing."""
+    assert main(["putt", "--distance", "10ft", "-n", "20", *options]) == 2
+    assert _one_line(capsys, says).out == ""

@@ -5,12 +5,18 @@ with ``--hole``, the expected-putts map of a hole's green to Parquet (and a pict
 import math
 import sys
 
-from mcrun import exits
+from mcrun import exits, units
 from mcrun.cli import compile_if_needed
 from mcrun.cli.options import whole, with_unit
 from mcrun.hole.hole import PUTTING_N_RANGE, PUTTING_READS
-from mcrun.putting import MAX_SLOPE_TAN, PUTTERS, check_putt, check_stimp, putt
-from mcrun.putting.greens import DRIFT_MM_PER_M_BENTGRASS, DRIFT_RANGE_MM_PER_M, STIMP_RANGE_FT
+from mcrun.putting import MAX_PUTTS, MAX_SLOPE_TAN, PUTTERS, check_putt, check_stimp, putt
+from mcrun.putting.greens import (
+    DRIFT_MM_PER_M_BENTGRASS,
+    DRIFT_RANGE_MM_PER_M,
+    STIMP_RANGE_FT,
+    stopping_slope,
+)
+from mcrun.putting.roll import MAX_TIME_S
 from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
 from mcrun.units import parse_quantity
@@ -41,8 +47,12 @@ def _stimp_m(text):
 def _drift(text):
     """The --drift (mm of sideways spread per metre rolled), within ``DRIFT_RANGE_MM_PER_M``."""
     lo, hi = DRIFT_RANGE_MM_PER_M
+    bare = text.strip().removesuffix("mm/m")
+    foreign = units.foreign_digits(bare)
+    if foreign is not None:  # (float read "４.９" as 4.9 and "1_0" as 10)
+        raise InputError(f"--drift {text}: cannot read it as a number: {foreign}")
     try:
-        value = float(text.removesuffix("mm/m"))
+        value = float(bare)
     except ValueError:
         value = math.nan
     if not lo <= value <= hi:
@@ -61,6 +71,8 @@ def _cmd_putt(args):
     for name in ("resolution", "read", "output", "plot"):
         if getattr(args, name) is not None:
             raise InputError(f"--{name}: is for a green's map (with --hole)")
+    if args.force:
+        raise InputError("--force: is for a green's map (with --hole and -o or --plot)")
     args.slope = "0%" if args.slope is None else args.slope
     args.direction = "0" if args.direction is None else args.direction
     args.putter = "tour" if args.putter is None else args.putter
@@ -85,10 +97,13 @@ def _cmd_putt(args):
         line = "at the hole"
     else:
         line = f"{abs(r.aim_deg):.2f} deg {'left' if r.aim_deg > 0 else 'right'} of the hole"
+    typed = {
+        k: units.control_free(getattr(args, k)) for k in ("distance", "stimp", "slope", "seed")
+    }
     print(
-        f"putt: {args.distance} on a plane green, Stimp {args.stimp}, slope {args.slope} "
-        f"falling at {given['direction_deg']:g} deg, drift {drift:g} mm/m; putter {args.putter}; "
-        f"n {result.n}, seed {args.seed}"
+        f"putt: {typed['distance']} on a plane green, Stimp {typed['stimp']}, slope "
+        f"{typed['slope']} falling at {given['direction_deg']:g} deg, drift {drift + 0.0:g} mm/m; "
+        f"putter {args.putter}; n {result.n}, seed {typed['seed']}"
     )
     print(f"read: start line {line}, pace {r.pace_m:.2f} m past")
     print(f"make rate:       {100 * result.make_rate:5.1f} % +- {100 * result.make_rate_se:.1f}")
@@ -97,6 +112,13 @@ def _cmd_putt(args):
         f"+- {100 * result.three_putt_rate_se:.1f}"
     )
     print(f"average putts:   {result.average_putts:.3f} +- {result.average_putts_se:.3f}")
+    if result.unfinished_share > 0.0:
+        rest = stopping_slope(given["stimp_m"])
+        print(f"mcrun: warning: {100 * result.unfinished_share:.1f} % of the holings-out were "
+              f"counted as {MAX_PUTTS} putts: a ball still rolling after {MAX_TIME_S:g} s (on a "
+              f"slope this near the green's stopping slope, {100 * rest:.2f} %, a miss rolls on "
+              f"for tens of metres) or not down after {MAX_PUTTS}; the rates and the average are "
+              "not a green's", file=sys.stderr)  # fmt: skip
     return 0
 
 

@@ -46,7 +46,7 @@ from mcrun.putting.stroke import (
 )
 from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
-from mcrun.units import is_number
+from mcrun.units import is_number, shown
 
 __all__ = [
     "MAX_PUTTS",
@@ -79,6 +79,22 @@ class PuttResult:
     read: Read
     putts: np.ndarray  # putts of each holing-out (MAX_PUTTS where not holed by then)
 
+    @property
+    def unfinished_share(self):
+        """The share of holings-out that reached ``MAX_PUTTS`` and were counted so: a ball
+        still rolling at the roll's cap (``roll.MAX_TIME_S``), on a slope near the green's
+        stopping slope, where a plane green has no edge to roll off."""
+        return float(np.mean(self.putts >= MAX_PUTTS))
+
+
+def finite(value):
+    """``value`` (a number) as a float; inf for an int beyond a float (10**400: an
+    OverflowError where a message formatted it)."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf
+
 
 def _rate(flags):
     n = flags.size
@@ -90,7 +106,9 @@ def check_stimp(stimp_m, what=None):
     """``stimp_m`` (m), a Stimp reading within ``greens.STIMP_RANGE_M``; InputError (one line,
     beginning with ``what``, default "Stimp <reading> ft") otherwise."""
     lo, hi = STIMP_RANGE_M
-    if not lo <= stimp_m <= hi:
+    if not is_number(stimp_m):  # (a text, None or an array was a TypeError of a comparison)
+        raise InputError(f"{what or 'stimp_m'} {shown(stimp_m)}: allowed: a number (m)")
+    if not lo <= finite(stimp_m) <= hi:
         raise InputError(
             f"{what or f'Stimp {stimp_m / FOOT_M:g} ft'}: allowed: "
             f"{STIMP_RANGE_FT[0]:g} ft to {STIMP_RANGE_FT[1]:g} ft (a green's Stimpmeter "
@@ -108,6 +126,8 @@ def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2
     for name, value in given.items():  # (a string or None was a TypeError of a comparison)
         if not is_number(value):
             raise InputError(f"{name} {value!r}: allowed: a number")
+        if not math.isfinite(finite(value)) and name != "n":  # (n's range says it)
+            raise InputError(f"{name} {shown(value, 40)}: allowed: a finite number")
     if isinstance(putter, str):
         if putter not in PUTTERS:
             raise InputError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")
@@ -136,7 +156,7 @@ def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2
                          f"({DRIFT_MM_PER_M_BENTGRASS:g}: pure bentgrass)")  # fmt: skip
     lo, hi = PUTTING_N_RANGE
     if not lo <= n <= hi or int(n) != n:  # (the range first: NaN and inf are out of it)
-        raise InputError(f"n {n}: allowed: a whole number from {lo} to {hi}")
+        raise InputError(f"n {shown(n, 40)}: allowed: a whole number from {lo} to {hi}")
     return putter
 
 

@@ -19,15 +19,19 @@ import math
 
 import numpy as np
 
+from mcrun.hole.hole import PUTTING_N_RANGE
 from mcrun.putting.greens import (
     DRIFT_MM_PER_M_BENTGRASS,
+    DRIFT_RANGE_MM_PER_M,
     TOUR_GREENS_SEED,
     drift_sd,
     tour_greens,
 )
 from mcrun.putting.holeout import hole_out_batch
-from mcrun.putting.putter import PUTTER_RANGES, putter_errors
+from mcrun.putting.putter import PUTTER_RANGES, Putter, putter_errors
+from mcrun.quantities import InputError
 from mcrun.strokes.baseline import FOOT_M
+from mcrun.units import is_number, shown
 
 __all__ = [
     "SLOPE_TARGETS",
@@ -59,10 +63,31 @@ ERRORS_SEED = 7
 SECTOR_DEG = 45.0
 
 
+def check_calibration(putter, n, seed, greens_seed, drift_mm_per_m):
+    """InputError (one line) for an argument of the calibration's functions that is not one
+    (a putter's name, n under 2 or not whole, a NaN or negative drift: a perfect green's
+    numbers, or a traceback)."""
+    if not isinstance(putter, Putter):
+        raise InputError(f"putter {shown(putter)}: allowed: a Putter (putting.PUTTERS's)")
+    lo, hi = PUTTING_N_RANGE
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not lo <= n <= hi:
+        raise InputError(f"n {shown(n, 40)}: allowed: a whole number from {lo} to {hi}")
+    for name, value in (("seed", seed), ("greens_seed", greens_seed)):
+        if (isinstance(value, bool) or not isinstance(value, int | np.integer)
+                or not 0 <= value < 2**63):  # fmt: skip
+            raise InputError(f"{name} {shown(value, 40)}: allowed: a whole number from 0 to "
+                             "2**63 - 1")  # fmt: skip
+    lo, hi = DRIFT_RANGE_MM_PER_M
+    if not (is_number(drift_mm_per_m) and lo <= drift_mm_per_m <= hi):
+        raise InputError(f"drift_mm_per_m {shown(drift_mm_per_m, 40)}: allowed: {lo:g} to "
+                         f"{hi:g} mm/m")  # fmt: skip
+
+
 def tour_holeouts(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
                   drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
     """{distance_ft: ``holeout.HoleOut``} of n putts from each of ``DISTANCES_FT`` on Tour-like
     greens, with the putter's own read."""
+    check_calibration(putter, n, seed, greens_seed, drift_mm_per_m)
     greens = tour_greens(n, greens_seed)
     errors = putter_errors(n, seed)
     drift = drift_sd(drift_mm_per_m)
@@ -74,6 +99,7 @@ def calibration_table(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
     """Rows (distance_ft, make_pct, make_se_pct, tour_make_pct, putts, putts_se, tour_putts)
     for every distance of the Tour's two lists (None where the Tour's list has no value), from
     ``holeouts`` (``tour_holeouts``'s, made here where not given)."""
+    check_calibration(putter, n, seed, greens_seed, drift_mm_per_m)
     if holeouts is None:
         holeouts = tour_holeouts(putter, n, seed, greens_seed, drift_mm_per_m)
     rows = []
@@ -100,6 +126,7 @@ def slope_checks(putter, n, seed=ERRORS_SEED, greens_seed=TOUR_GREENS_SEED,
     uphill and downhill make rates at 8 ft ("make_uphill_pct_8ft", "make_downhill_pct_8ft") and
     the standard error of their difference ("..._se"). ``ten_ft``: ``tour_holeouts``'s 10 ft,
     where it was made already."""
+    check_calibration(putter, n, seed, greens_seed, drift_mm_per_m)
     drift = drift_sd(drift_mm_per_m)
     errors = putter_errors(n, seed)
     out = {}
