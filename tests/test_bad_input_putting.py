@@ -340,10 +340,15 @@ def test_the_putting_api_names_an_argument_that_is_not_one(call, says):
                              "number"),
         (["-n", "1_000"], "-n '1_000': '_' is not read in a number"),
         (["--force"], "--force: is for a green's map"),
+        # The range of a value converted: named by its field and the value converted.
+        (["--slope", "2"], "--slope 2: allowed: 0 to 20 %"),
+        (["--direction", "1e308"], "--direction 1e308: allowed: a finite number"),
+        (["--distance", "inf"], "--distance: cannot read 'inf' as a length: not a finite"),
     ],
 )  # fmt: skip
 def test_putt_reads_its_numbers_as_every_option_does(capsys, options, says):
     """--drift read ４.９ as 4.9 and 1_0 as 10, -n 1_000 as 1000 (``parse_quantity`` refuses
-    both); --force on a plane green was taken and did nothing."""
+    both); --force on a plane green was taken and did nothing; "slope 200 %" and "direction
+    inf deg" named no option, "--distance inf" was asked for its unit."""
     assert main(["putt", "--distance", "10ft", "-n", "20", *options]) == 2
     assert _one_line(capsys, says).out == ""

@@ -260,7 +260,7 @@ def test_mcrun_putt_prints_the_make_rate_and_the_read(capsys):
         (["--distance", "10ft", "--stimp", "-3ft"], "Stimp"),
         (["--distance", "10ft", "--stimp", "3"], "--stimp 3: give its unit, e.g. 11ft"),
         (["--distance", "10"], "--distance 10: give its unit, e.g. 10ft"),  # (10 m or 10 ft?)
-        (["--distance", "10ft", "--direction", "1e300"], "direction 1e+300 deg: allowed: -360 to"),
+        (["--distance", "10ft", "--direction", "1e300"], "--direction 1e300: allowed: -360 to"),
         (["--distance", "10ft", "--drift", "40"], "--drift 40: allowed: 0 to 34"),
         (["--distance", "10ft", "--drift", "lots"], "--drift lots: allowed"),
         (["--distance", "10ft", "--read", "best"], "--read: is for a green's map (with --hole)"),

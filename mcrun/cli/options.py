@@ -37,8 +37,10 @@ def with_unit(text, kind, option, example):
     unit its users do not quote it in (a Stimp reading in metres, a drive in metres):
     InputError naming the option and an ``example``."""
     try:
-        float(text)
+        bare = float(text)
     except ValueError:
+        return units.parse_quantity(text, kind, option)
+    if not math.isfinite(bare):  # ("inf" wants no unit: it is no length)
         return units.parse_quantity(text, kind, option)
     raise InputError(f"{option} {text}: give its unit, e.g. {example}")
 

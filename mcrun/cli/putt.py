@@ -24,6 +24,11 @@ from mcrun.units import parse_quantity
 DEFAULT_STIMP = "11ft"
 
 
+# The options of the fields ``check_putt`` names (a distance_m, direction_deg, slope_tan, ...).
+PUTT_OPTIONS = {"distance": "--distance", "slope": "--slope", "slope_tan": "--slope",
+                "direction": "--direction", "drift": "--drift", "n": "-n"}  # fmt: skip
+
+
 def _slope_tan(text):
     """A slope as rise over run: a percentage ("2%") or a fraction ("0.02"), or an angle with
     its unit ("1.1deg", "0.02rad"); an angle beyond the steepest slope allowed is refused as it
@@ -89,7 +94,15 @@ def _cmd_putt(args):
         seed=whole(args.seed, "--seed", 0),
         drift_mm_per_m=drift,
     )
-    check_putt(**{k: v for k, v in given.items() if k != "seed"})
+    try:
+        check_putt(**{k: v for k, v in given.items() if k != "seed"})
+    except InputError as err:  # (it names the API's field, a value converted: the option typed)
+        field, _, rest = str(err).partition(" ")
+        option = PUTT_OPTIONS.get(field.removesuffix("_m").removesuffix("_deg"))
+        if option is None:
+            raise
+        typed = args.n if option == "-n" else getattr(args, option.removeprefix("--"))
+        raise InputError(f"{option} {typed}: {rest.partition(': ')[2]}") from None
     compile_if_needed("green", ("putt",))
     result = exits.interruptible(putt, **given)
     r = result.read
