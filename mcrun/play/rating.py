@@ -296,8 +296,10 @@ def plan_rating(holes, players=MODEL_PLAYERS["men"], n=100, seed=None, coarse_m=
 
     label = (names or {}).get("plays", "plays")
     if isinstance(plays, bool) or not isinstance(plays, int | np.integer) or plays < MIN_PLAYS:
-        raise PlayerError(f"{label} {plays!r}: allowed: a whole number of at least {MIN_PLAYS} "
-                          "for a rating (its better half is dealt from each hole's plays)")  # fmt: skip
+        raise PlayerError(
+            f"{label} {plays!r}: allowed: a whole number of at least {MIN_PLAYS} for a rating "
+            "(its better half is dealt from each hole's plays)"
+        )
     loaded = [load_player(p) if isinstance(p, str) else p for p in players]
     numbers = list(numbers or range(1, len(holes) + 1))
     memory = available_memory()
