@@ -426,3 +426,21 @@ def test_a_bad_hole_elevation_ground_shape_or_baseline_is_an_input_error(tmp_pat
     ):
         with pytest.raises(InputError):
             call()
+
+
+def test_a_hole_line_drawn_backwards_is_refused(folder):
+    """A golf=hole line drawn from the green to the tee starts on its green; its end found the
+    nearest other green, and the hole was played (and rated) to another hole's pin."""
+    data = json.loads((folder / MAP).read_text())
+    hole = [f for f in data["features"] if f["properties"].get("golf") == "hole"][1]
+    before = hole_from_table({"map": MAP, "hole": 2}, folder, "h.toml")
+    hole["geometry"]["coordinates"].reverse()
+    (folder / "reversed.geojson").write_text(json.dumps(data))
+    message = _error({"map": "reversed.geojson", "hole": 2}, folder)
+    assert message.endswith("hole 2: its golf=hole line starts on a green and ends off one: "
+                            "drawn backwards? allowed is a line from the tee to the green (or a "
+                            "'tee' and a 'pin' in a hole file)")  # fmt: skip
+    # Its tee and pin given, the line's direction does not matter.
+    table = {"map": "reversed.geojson", "hole": 2, "tee": list(before.tee_lonlat),
+             "pin": list(before.pin_lonlat)}  # fmt: skip
+    assert hole_from_table(table, folder, "h.toml").length_m == pytest.approx(before.length_m)

@@ -434,6 +434,11 @@ def _in_frame(frame, polygon):
     return [np.column_stack(frame.to_xy(ring[:, 0], ring[:, 1])) for ring in polygon]
 
 
+def contains_any(polygons, x, y):
+    """Whether the point (x, y) is in any of ``polygons`` (each a list of rings)."""
+    return any(bool(contains(p, x, y)) for p in polygons)
+
+
 def tee_and_pin(course, line, where, table=None):
     """The tee and the pin ((lon, lat) deg) of ``line``, a hole of ``course`` (an
     ``osm.Course``): the table's 'tee' and 'pin' when given, else the line's first point and
@@ -457,6 +462,16 @@ def tee_and_pin(course, line, where, table=None):
             "starts: allowed is a line from the tee to the green (or a 'tee' and a 'pin' in a "
             "hole file)"
         )
+    if "tee" not in table and pin is None and not contains_any(greens, *end_xy):
+        # A line drawn from the green back to the tee starts on its green, and its end finds
+        # the nearest other green: the hole was played to another hole's pin, without a word.
+        starts_on = [_in_frame(local, p) for p in course.greens_near(tee, 1.0)]
+        if contains_any(starts_on, 0.0, 0.0):
+            raise HoleError(
+                f"{where}: hole {line.index}: its golf=hole line starts on a green and ends off "
+                "one: drawn backwards? allowed is a line from the tee to the green (or a 'tee' "
+                "and a 'pin' in a hole file)"
+            )
     if pin is None:
         pin = tuple(line.lonlat[-1])
         if greens:
