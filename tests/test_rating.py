@@ -454,3 +454,26 @@ def test_the_holes_are_numbered_by_their_refs_else_taken_in_the_map_s_order(tmp_
     order, note = play_order(read_course(COURSE))
     assert order == {k: k for k in range(1, 19)}
     assert note.endswith("taken in its order (each green 39-127 m from the next tee)")
+
+
+def test_a_map_of_two_courses_or_a_hole_drawn_twice_is_not_one_course(tmp_path):
+    """A map of two courses 178 km apart was rated as one (Course Rating 11.0 for five holes of
+    both); a hole's line copied in the map was rated twice. Holes chosen across courses are
+    rated, with a note."""
+    two = Path(__file__).parent / "data" / "maps" / "two-courses.geojson"
+    with pytest.raises(InputError, match=r"two-courses.geojson: its holes lie on 2 courses "
+                       r"\(North Links: holes 1-2; South Park Golf: holes 3-5\): a rating is of "
+                       r"one course; allowed: its holes, chosen with --holes$"):  # fmt: skip
+        course_holes(two)
+    numbers, holes, _, notes = course_holes(two, "1-2")
+    assert numbers == [1, 2] and not any("courses" in note for note in notes)
+    notes = course_holes(two, "2-3")[3]
+    assert notes[-1] == ("the holes rated lie on 2 courses of the map (North Links: hole 2; "
+                         "South Park Golf: hole 3)")  # fmt: skip
+    course = open_course(700, pars=(4, 3))
+    hole = next(f for f in course["features"] if f["properties"].get("golf") == "hole")
+    course["features"].append(json.loads(json.dumps(hole)))
+    (tmp_path / "twice.geojson").write_text(json.dumps(course))
+    with pytest.raises(InputError, match=r"twice.geojson: holes 1 and 3 are one golf=hole line "
+                       r"drawn twice \(the same points\)"):  # fmt: skip
+        course_holes(tmp_path / "twice.geojson")

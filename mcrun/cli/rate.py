@@ -178,6 +178,42 @@ def play_order(course):
     return {k: k for k in range(1, len(lines) + 1)}, note
 
 
+def _ranges(numbers):
+    """Hole numbers as "1-3, 7"."""
+    runs = []
+    for k in numbers:
+        if runs and k == runs[-1][1] + 1:
+            runs[-1][1] = k
+        else:
+            runs.append([k, k])
+    return ", ".join(f"{a}" if a == b else f"{a}-{b}" for a, b in runs)
+
+
+def check_one_course(course, path, numbers, position, spec, notes):
+    """InputError for a golf=hole line drawn twice (its copy was rated as a hole of its own),
+    and for holes on more than one of the map's named courses (``leisure=golf_course``: a map
+    of two courses was rated as one) unless chosen (``spec``: then a note in ``notes``)."""
+    lines = {k: course.hole(f"#{position[k]}") for k in numbers}
+    seen, courses = {}, {}
+    for k, line in lines.items():
+        key = None if line.lonlat is None else np.asarray(line.lonlat).tobytes()
+        if key is not None and key in seen:
+            raise InputError(f"{path}: holes {seen[key]} and {k} are one golf=hole line drawn "
+                             "twice (the same points): allowed is each hole once; mend the map, "
+                             "or leave one out with --holes")  # fmt: skip
+        seen[key] = k
+        courses.setdefault(course.course_of(line), []).append(k)
+    named = {name: ks for name, ks in courses.items() if name is not None}
+    if len(named) < 2:
+        return
+    listed = "; ".join(f"{name}: hole{'s' * (len(ks) > 1)} {_ranges(ks)}"
+                       for name, ks in named.items())  # fmt: skip
+    if spec is None:
+        raise InputError(f"{path}: its holes lie on {len(named)} courses ({listed}): a rating is "
+                         "of one course; allowed: its holes, chosen with --holes")  # fmt: skip
+    notes.append(f"the holes rated lie on {len(named)} courses of the map ({listed})")
+
+
 def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tees=None,
                  elevation=None, elevation_crs=None):  # fmt: skip
     """The Holes of the course map ``path`` (a GeoJSON course map, as ``mcrun hole`` reads),
@@ -221,6 +257,7 @@ def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tee
         if missing:
             raise InputError(f"{scorecard}: no row for hole {missing[0]}: the scorecard must "
                              "give every hole rated")  # fmt: skip
+    check_one_course(course, path, numbers, position, spec, notes)
     holes, by_length = [], []
     for number in numbers:
         where = f"{path} hole {number}"
