@@ -55,6 +55,8 @@ STANDARD_CONDITIONS = {
     name: DEFAULTS[name] for name in ("temperature_c", "pressure_pa", "relative_humidity")
 }
 
+# The names of the errors' rows that are not a tour's (and a transfer's "A->B").
+RESERVED_TOURS = ("all", "fit (training)")
 # Models compared by ``--compare``: every model, in the order aero.MODELS lists them.
 COMPARED_MODELS = tuple(aero.MODELS)
 
@@ -136,6 +138,12 @@ def load_measured(path=None):
     mph = parse_quantity("1 mph", "speed")
     rpm = parse_quantity("1 rpm", "spin")
     yd = parse_quantity("1 yd", "length")
+    for column in ("tour", "club"):  # (an empty cell was the tour "nan", its rows NaN)
+        empty = raw[column].isna().to_numpy() | (raw[column].astype(str).str.strip() == "")
+        if empty.any():
+            row = int(np.flatnonzero(empty)[0])
+            _fail(f"measured table {path}, data row {row + 1}, column {column}: empty: allowed: "
+                  "a name")  # fmt: skip
     frame = pd.DataFrame(
         {"tour": raw["tour"].astype(str).str.strip(), "club": raw["club"].astype(str).str.strip()}
     )
@@ -178,16 +186,22 @@ def load_measured(path=None):
                 _fail(f"measured table {path}, data row {row + 1}, column {column}: {err}")
         frame[name] = values
     clubs = frame["tour"] + " " + frame["club"]
-    again = clubs.duplicated().to_numpy()
+    # A club written twice, as "Driver" and "driver " (case and spacing apart, one club).
+    keys = clubs.map(lambda t: " ".join(t.split()).casefold())
+    again = keys.duplicated().to_numpy()
     if again.any():  # (a fold of the cross-validation would hold its copy: leaked)
         row = int(np.flatnonzero(again)[0])
-        first = int(np.flatnonzero((clubs == clubs.iloc[row]).to_numpy())[0])
-        _fail(f"measured table {path}, data rows {first + 1} and {row + 1}: both "
-              f"{shown(clubs.iloc[row])}: allowed: each tour's club once")  # fmt: skip
-    if (frame["tour"] == "all").any():
-        row = int(np.flatnonzero((frame["tour"] == "all").to_numpy())[0])
-        _fail(f"measured table {path}, data row {row + 1}, column tour: 'all' is the name of "
-              "every tour's row of the errors: allowed: another name")  # fmt: skip
+        first = int(np.flatnonzero((keys == keys.iloc[row]).to_numpy())[0])
+        _fail(f"measured table {path}, data rows {first + 1} and {row + 1}: "
+              f"{shown(clubs.iloc[first])} and {shown(clubs.iloc[row])} are one club: allowed: "
+              "each tour's club once")  # fmt: skip
+    for column in ("tour", "club"):
+        for k, name in enumerate(frame[column]):
+            reserved = (column == "tour" and name in RESERVED_TOURS) or "->" in name
+            if reserved:  # (the cross-validation's rows: one was written over the other)
+                _fail(f"measured table {path}, data row {k + 1}, column {column}: {name!r} is a "
+                      "name of the errors' rows ('all', 'fit (training)', 'A->B' a tour's fit on "
+                      "another): allowed: another name")  # fmt: skip
     return frame
 
 

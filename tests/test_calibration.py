@@ -99,9 +99,21 @@ HEADER = "tour,club,ball_mph,launch_deg,spin_rpm,max_height_yd,land_deg,carry_yd
          "column club: 'Dr\\x1b[31m' holds control"),
         # The same club twice: a fold of the cross-validation held its copy.
         (f"{HEADER}\nPGA,Driver,167,10.9,2686,32,38,275\nPGA,Driver,167,10.9,2686,32,38,275\n",
-         "data rows 1 and 2: both 'PGA Driver'"),
-        # A tour named 'all': its row of the errors was overwritten by every tour's.
-        (f"{HEADER}\nall,Driver,167,10.9,2686,32,38,275\n", "'all' is the name of every tour's"),
+         "data rows 1 and 2: 'PGA Driver' and 'PGA Driver' are one club"),
+        (f"{HEADER}\nPGA,Driver,167,10.9,2686,32,38,275\nPGA, driver ,167,10.9,2686,32,38,275\n",
+         "data rows 1 and 2: 'PGA Driver' and 'PGA driver' are one club"),
+        # A tour named as a row of the errors: its row was overwritten by every tour's, by the
+        # fit to every club, or by a transfer's.
+        (f"{HEADER}\nall,Driver,167,10.9,2686,32,38,275\n", "column tour: 'all' is a name of "
+                                                            "the errors' rows"),
+        (f"{HEADER}\nfit (training),Driver,167,10.9,2686,32,38,275\n",
+         "column tour: 'fit (training)' is a name of the errors' rows"),
+        (f"{HEADER}\nPGA,A->B,167,10.9,2686,32,38,275\n", "column club: 'A->B' is a name"),
+        # An empty cell: the tour "nan", its RMSE NaN (and bare NaN in --json).
+        (f"{HEADER}\n,Driver,167,10.9,2686,32,38,275\n",
+         "data row 1, column tour: empty: allowed: a name"),
+        (f"{HEADER}\nPGA, ,167,10.9,2686,32,38,275\n",
+         "data row 1, column club: empty: allowed: a name"),
     ],
 )  # fmt: skip
 def test_a_measured_table_s_odd_rows_are_one_line(tmp_path, text, says):
@@ -214,6 +226,16 @@ def test_cli_bad_path_exits_2_with_one_line(tmp_path, capsys):
     out, err = capsys.readouterr()
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and err.startswith("mcrun: error: ")
+
+
+def test_an_unknown_model_names_its_option(capsys):
+    """The message "unknown aerodynamic model 'nosuch'" named no option (calibrate, shot)."""
+    for argv in (["calibrate", "--model", "nosuch"],
+                 ["shot", "--ball-speed", "70", "--launch", "12", "--spin", "300", "--aero",
+                  "nosuch"]):  # fmt: skip
+        assert main(argv) == 2
+        out, err = capsys.readouterr()
+        assert out == "" and err.startswith(f"mcrun: error: {argv[-2]} nosuch: allowed: ")
 
 
 def test_cli_form_without_fit_is_refused(capsys):

@@ -19,6 +19,7 @@ from mcrun.calibrate import (
     parameter_stability,
     row_literal,
 )
+from mcrun.cli.options import aero_model
 from mcrun.physics import aero
 from mcrun.quantities import InputError
 
@@ -134,6 +135,7 @@ def _cmd_calibrate(args):
     """Run ``mcrun calibrate``; returns the exit code (bad input raises InputError)."""
     if args.form is not None and not args.fit:
         raise InputError("--form: is for --fit (the form it refits)")
+    aero_model(args.model, "--model")
     frame = load_measured(args.data)
     output = {}
     text = []

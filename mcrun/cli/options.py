@@ -45,6 +45,14 @@ def with_unit(text, kind, option, example):
     raise InputError(f"{option} {text}: give its unit, e.g. {example}")
 
 
+def aero_model(text, option):
+    """``text``, a name of ``aero.MODELS``; InputError naming the option otherwise."""
+    if text not in aero.MODELS:
+        raise InputError(f"{option} {text}: allowed: {', '.join(aero.MODELS)} (mcrun models "
+                         "lists them)")  # fmt: skip
+    return text
+
+
 def from_si(value, kind, unit):
     """``value`` (SI) in ``unit``, or None when the option was not given."""
     return None if value is None else units.to_unit(value, kind, unit)
@@ -203,7 +211,7 @@ def conditions_kwargs(args):
         slope_deg=degrees(args.slope, "--slope"),
         fall_line_deg=degrees(args.fall_line, "--fall-line"),
         dt_s=number(args.dt, "--dt"),
-        aero_model=args.aero,
+        aero_model=aero_model(args.aero, "--aero"),
         cd_scale=number(args.cd_scale, "--cd-scale"),
         cl_scale=number(args.cl_scale, "--cl-scale"),
         wind_mps=wind,
