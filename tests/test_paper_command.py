@@ -228,3 +228,23 @@ def test_bad_dpi_is_a_usage_error(dpi, capsys):
     assert main(["paper", "-o", "x", "--dpi", dpi]) == 2
     err = capsys.readouterr().err
     assert err.startswith("mcrun: error: argument --dpi: ") and err.count("\n") == 1
+
+
+def test_existing_figures_are_replaced_only_with_force(out_dir, tmp_path, capsys, monkeypatch):
+    """-o DIR wrote over a user's targets.md and figures without a word; a folder where a
+    figure goes was a traceback after half the figures were written."""
+    before = (out_dir / "targets.md").read_bytes()
+    assert main(["paper", "-o", str(out_dir), "--dpi", str(DPI)]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"mcrun: error: --out {out_dir}: fig3.png already exists: use --force to "
+                   "replace the figures and targets.md\n")  # fmt: skip
+    assert (out_dir / "targets.md").read_bytes() == before
+    (tmp_path / "p" / "fig8.png").mkdir(parents=True)
+    assert main(["paper", "-o", str(tmp_path / "p"), "--force"]) == 2
+    assert "p: fig8.png is a folder: allowed: a folder where fig8.png can be" in (
+        capsys.readouterr().err
+    )
+    assert sorted(p.name for p in (tmp_path / "p").iterdir()) == ["fig8.png"]
+    drawn = []
+    monkeypatch.setattr(paper, "write_paper", lambda folder, dpi: drawn.append(folder) or [])
+    assert main(["paper", "-o", str(out_dir), "--force"]) == 0 and drawn == [out_dir]

@@ -1,6 +1,7 @@
 """``mcrun paper -o DIR``: Penner (2002) Figs. 3-8 redrawn from our model, and targets.md
 beside the paper (``mcrun.paper``)."""
 
+import tempfile
 from pathlib import Path
 
 from mcrun import paper
@@ -16,11 +17,21 @@ def _cmd_paper(args):
         raise CommandError(paper.MISSING_MATPLOTLIB) from None
     matplotlib.use("Agg")  # headless, whatever the user's default backend
     out_dir = Path(args.out)
+    # What the command writes, checked before any is drawn: each replaced only with --force
+    # (a user's targets.md was written over), none a folder (a traceback, half written).
+    written = [out_dir / f"{name}.png" for name in paper.FIGURES] + [out_dir / "targets.md"]
+    there = [path for path in written if path.exists() or path.is_symlink()]
+    folder = next((path for path in there if path.is_dir()), None)
+    if folder is not None:
+        raise CommandError(f"--out {out_dir}: {folder.name} is a folder: allowed: a folder where "
+                           f"{folder.name} can be written")  # fmt: skip
+    if there and not args.force:
+        raise CommandError(f"--out {out_dir}: {there[0].name} already exists: use --force to "
+                           "replace the figures and targets.md")  # fmt: skip
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
-        probe = out_dir / ".mcrun-write-test"
-        probe.write_bytes(b"")
-        probe.unlink()
+        with tempfile.TemporaryFile(dir=out_dir):  # (a name of its own: none of the user's)
+            pass
     except OSError as err:
         reason = err.strerror or str(err)
         raise CommandError(f"--out: cannot write to {out_dir}: {reason}") from None
@@ -44,6 +55,9 @@ def register(subparsers):
     )
     parser.add_argument(
         "-o", "--out", metavar="DIR", required=True, help="output folder (created if missing)"
+    )
+    parser.add_argument(
+        "--force", action="store_true", help="replace the figures and targets.md if they exist"
     )
     parser.add_argument(
         "--dpi",

@@ -38,6 +38,7 @@ matplotlib is optional (``mcrun[plot]``): imported only when drawing, used throu
 objects and the Agg canvas (no pyplot, no display, no global state).
 """
 
+import tempfile
 from pathlib import Path
 
 from mcrun import exits
@@ -132,9 +133,8 @@ def writable_folder(out_dir):
     out_dir = Path(out_dir)
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
-        probe = out_dir / ".mcrun-write-test"
-        probe.write_bytes(b"")
-        probe.unlink()
+        with tempfile.TemporaryFile(dir=out_dir):  # (a name of its own: none of the user's)
+            pass
     except OSError as err:
         if exits.is_name_too_long(err):
             raise  # the command line's one line for every path too long
