@@ -224,6 +224,10 @@ def test_mcrun_rate_rates_for_the_women_s_model_players(tmp_path):
         (["--putts", "0"], "--putts '0'"),
         (["--putts", "1e9"], "--putts '1e9': allowed: a whole number from 2 to 100000"),
         (["--elevation-crs", "EPSG:32633"], "--elevation-crs: is for --elevation"),
+        (
+            ["--elevation", "/nonexistent.tif"],
+            "--elevation /nonexistent.tif: no such file: allowed: a GeoTIFF",
+        ),
         # One play a hole: every round the same, its better half its average, without a word.
         (["--plays", "1"], "--plays 1: allowed: a whole number of at least 100 for a rating"),
     ],

@@ -239,6 +239,10 @@ def course_holes(path, spec=None, putting=None, scorecard=None, women=False, tee
         raise InputError("--tees and --scorecard: give one tee set, from the map or from a "
                          "scorecard")  # fmt: skip
     path = Path(path)
+    if elevation is not None and not Path(elevation).is_file():  # (named a hole file's key)
+        why = "a folder" if Path(elevation).is_dir() else "no such file"
+        raise InputError(f"--elevation {elevation}: {why}: allowed: a GeoTIFF, an ESRI ASCII "
+                         "grid or a CSV of survey points")  # fmt: skip
     course = read_course(path)
     if not course.holes:
         raise InputError(f"{path}: no golf=hole lines: a course map needs its holes' lines "
