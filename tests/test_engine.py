@@ -629,6 +629,15 @@ def test_force_replaces_a_run_with_its_pictures_and_nothing_of_the_user_s(tmp_pa
     code, _, err = cli(capsys, "run", str(path), "-n", "20", "-o", str(out), "--force")
     assert code == 2 and "holds 'notes.txt', which no run writes" in err
     assert listing(tmp_path) == before
+    # A file of the user's in plots/ (plots/ is a run's own name: it was deleted with it).
+    (out / "notes.txt").unlink()
+    (out / output.PLOTS_FOLDER).mkdir()
+    (out / output.PLOTS_FOLDER / "point00-hole.png").write_bytes(b"png")
+    (out / output.PLOTS_FOLDER / "my-annotated.png").write_bytes(b"mine")
+    before = listing(tmp_path)
+    code, _, err = cli(capsys, "run", str(path), "-n", "20", "-o", str(out), "--force")
+    assert code == 2 and "holds 'plots/my-annotated.png', which no run writes" in err
+    assert listing(tmp_path) == before
 
 
 def interrupt_on_second_chunk(monkeypatch):

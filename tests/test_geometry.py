@@ -144,6 +144,7 @@ def test_the_report_draws_the_map_from_the_record_without_the_scenario_files(par
     out = tmp_path / "plots"
     assert main(["plot", str(run_dir), "-o", str(out), "--dpi", str(DPI)]) == 0
     assert (out / "point00-hole.png").is_file()
+    assert output.PLOT_NAME.fullmatch("point00-hole.png")  # (what --force may delete)
     page = tmp_path / "report.html"
     assert main(["report", str(run_dir), "-o", str(page), "--dpi", str(DPI)]) == 0
     text = page.read_text(encoding="utf-8")

@@ -145,6 +145,8 @@ def test_plot_writes_one_png_per_plot(plotted, name, points, trajectories):
     folder, code = plotted[name]
     assert code == 0
     assert {p.name for p in folder.iterdir()} == expected_files(points, trajectories)
+    # What --force may delete with a run: its pictures' names, and no other.
+    assert all(output.PLOT_NAME.fullmatch(p.name) for p in folder.iterdir())
 
 
 @pytest.mark.parametrize("name", ["single", "sweep", "groups"])

@@ -69,6 +69,13 @@ TRAJECTORIES_DIR = "trajectories"
 SUCCESS_FILE = "_SUCCESS"
 # What mcrun puts in a run folder besides the run: `mcrun plot`'s and `mcrun report`'s defaults.
 PLOTS_FOLDER = "plots"
+# The names ``mcrun plot`` writes into a run's plots/ (``report.plots.figures``, and the hole's
+# map of ``report.hole_plots``; a picture's temporary name, left by a plot killed): a file of
+# another name there is the user's.
+PLOT_NAME = re.compile(
+    r"\.?(summary|finish|point\d+-(positions|distances|trajectories|hole))"
+    r"\.png(\.partial-.+)?"
+)
 REPORT_FILE = "report.html"
 # Every name a run folder may hold: what --force replaces, and nothing else.
 RUN_FOLDER_NAMES = (*RUN_FILES, SHOTS_DIR, TRAJECTORIES_DIR, SUCCESS_FILE, PLOTS_FOLDER,
@@ -608,13 +615,17 @@ def _remove_created(created):
             break
 
 
-def not_a_run(shown, names, metadata_of):
+def not_a_run(shown, names, metadata_of, plots_of=None):
     """Why a folder ``shown`` that holds ``names`` (not empty) is not a run that a new run may
     replace, or None: it holds neither a summary.parquet nor a shots.parquet (or shots/) with
     mcrun's provenance (``metadata_of(name)``: a file's key-value metadata; OSError or an Arrow
-    error where it cannot be read), or it holds a name no run writes (RUN_FOLDER_NAMES), which
-    replacing the run would delete."""
+    error where it cannot be read), or it holds a name no run writes (RUN_FOLDER_NAMES), or its
+    plots/ (``plots_of()``: the names in it) one that ``mcrun plot`` does not (``PLOT_NAME``),
+    which replacing the run would delete."""
     foreign = sorted(set(names) - set(RUN_FOLDER_NAMES))
+    if not foreign and PLOTS_FOLDER in names and plots_of is not None:
+        foreign = sorted(f"{PLOTS_FOLDER}/{name}" for name in plots_of()
+                         if not PLOT_NAME.fullmatch(name))  # fmt: skip
     if foreign:
         more = f" (and {len(foreign) - 1} more)" if len(foreign) > 1 else ""
         return (f"the output folder {shown} holds {foreign[0]!r}{more}, which no run writes: a "
@@ -633,6 +644,11 @@ def not_a_run(shown, names, metadata_of):
         return None
     return (f"the output folder {shown} exists and is not an mcrun run folder (no "
             f"{SUMMARY_FILE} that mcrun wrote): choose another with -o")  # fmt: skip
+
+
+def _names_in(folder):
+    """The names in ``folder`` ([] where it is not a folder)."""
+    return [entry.name for entry in folder.iterdir()] if folder.is_dir() else []
 
 
 def _local_metadata(path):
@@ -759,7 +775,8 @@ class AtomicFolder:
                 raise OutputError(f"the output {path} exists and is not a folder")
             names = [entry.name for entry in path.iterdir()]
             if names:
-                problem = not_a_run(path, names, _local_metadata(path))
+                problem = not_a_run(path, names, _local_metadata(path),
+                                    lambda: _names_in(path / PLOTS_FOLDER))  # fmt: skip
                 if problem is not None:
                     raise OutputError(problem)
                 if not self.force:

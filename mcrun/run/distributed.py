@@ -209,7 +209,7 @@ class _UrlDestination:
         if info.type == pafs.FileType.Directory:
             names = {e.base_name for e in self.fs.get_file_info(pafs.FileSelector(self.root))}
             if names:
-                problem = output.not_a_run(self.url, names, self._metadata)
+                problem = output.not_a_run(self.url, names, self._metadata, self._plots)
                 if problem is not None:
                     raise output.OutputError(problem)
                 if not self.force:
@@ -220,6 +220,11 @@ class _UrlDestination:
                 self.fs.delete_dir_contents(self.root)
         self.fs.create_dir(self.root)
         return self
+
+    def _plots(self):
+        """The names in the folder's plots/."""
+        selector = pafs.FileSelector(f"{self.root}/{output.PLOTS_FOLDER}", allow_not_found=True)
+        return [e.base_name for e in self.fs.get_file_info(selector)]
 
     def _metadata(self, name):
         with self.fs.open_input_file(f"{self.root}/{name}") as f:
