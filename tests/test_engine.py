@@ -594,6 +594,11 @@ def bad_cases(tmp_path):
         (["run", str(good), "-o", str(a_file)], "not a folder"),
         (["run", str(good), "-o", ""], "-o: empty: give a value"),  # (".")
         (["run", str(good), "-o", str(a_file / "run")], "cannot write"),
+        # A URL with the local executor: a traceback (a path named file:, or a bucket).
+        (
+            ["run", str(good), "-o", f"file://{tmp_path}/url-run"],
+            "is a URL: the local executor writes to a folder's path",
+        ),
         (["validate", str(bad_sd)], "must be >= 0"),
         (["validate", str(tmp_path / "missing.toml")], "missing.toml"),
     ]

@@ -31,7 +31,8 @@ import pyarrow as pa
 from mcrun import executor
 from mcrun.executor import on_threads
 from mcrun.quantities import InputError
-from mcrun.results import output, stats
+from mcrun.results import location, output, stats
+from mcrun.results.output import OutputError
 from mcrun.run import plan
 from mcrun.units import path_of
 
@@ -108,6 +109,10 @@ def run_scenario(
     budget_bytes = plan.positive_int(budget_bytes, "budget_bytes")
     if out_dir is None:
         out_dir = plan.default_out_dir(the_plan.scenario, the_plan.seed)
+    if location.is_url(out_dir):  # (a path of that name was a traceback, or one made here)
+        raise OutputError(f"the output {out_dir} is a URL: the local executor writes to a "
+                          "folder's path; a URL output needs the Dask backend (--dask local, "
+                          "--scheduler)")  # fmt: skip
     out_dir = path_of(out_dir, "out_dir", "a folder's path")
     if not ignore_disk_space:
         plan.check_disk_space(the_plan, out_dir)
