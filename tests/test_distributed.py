@@ -27,6 +27,7 @@ import cloudpickle  # noqa: E402 (a dependency of dask.distributed)
 from dask.distributed import Client  # noqa: E402
 
 from mcrun.cli import main  # noqa: E402
+from mcrun.quantities import InputError  # noqa: E402
 from mcrun.results import output  # noqa: E402
 from mcrun.run import distributed  # noqa: E402
 from mcrun.run import local as run  # noqa: E402
@@ -406,6 +407,8 @@ def test_without_dask_the_backend_says_how_to_install_it(tmp_path, capsys, monke
         (["--workers", "2"], "--workers is for --dask local"),
         (["--scheduler-file", "missing.json"], "--scheduler-file missing.json: no such file"),
         (["--scheduler", "tcp://127.0.0.1:9"], "cannot reach the Dask scheduler tcp://"),
+        # (it started a local cluster, and --workers was refused as for an existing one)
+        (["--scheduler", "local"], "--scheduler local: a local cluster is --dask local"),
     ],
 )
 def test_cli_errors_exit_2_with_one_line_and_write_nothing(
@@ -418,6 +421,44 @@ def test_cli_errors_exit_2_with_one_line_and_write_nothing(
     err = capsys.readouterr().err
     assert err.startswith("mcrun: error: ") and err.count("\n") == 1 and message in err
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("text", "says"),
+    [("garbage", "not a Dask scheduler file (JSON with an \"address\""),
+     ("", "not a Dask scheduler file"), ("{}", "not a Dask scheduler file"),
+     ("[1, 2]", "not a Dask scheduler file")],
+)  # fmt: skip
+def test_a_scheduler_file_without_an_address_is_one_line(tmp_path, capsys, text, says):
+    """Dask's own reading of such a file was an AssertionError (or a TypeError), a traceback."""
+    (tmp_path / "in").mkdir()
+    (tmp_path / "in" / "scheduler.json").write_text(text)
+    out = tmp_path / "run"
+    argv = ["run", DRIVER, "-n", "100", "-o", str(out), "--scheduler-file"]
+    assert main([*argv, str(tmp_path / "in" / "scheduler.json")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mcrun: error: --scheduler-file ") and says in err
+    assert main([*argv, str(tmp_path / "in")]) == 2
+    assert capsys.readouterr().err.endswith(f"--scheduler-file {tmp_path / 'in'}: a folder\n")
+    assert not out.exists()
+
+
+def test_the_api_holds_a_local_cluster_s_workers_as_the_command_line_does(tmp_path):
+    """workers=1000 started worker processes one by one (69 after 40 s), without a word;
+    workers beside an existing cluster's address were ignored; a scheduler given as a number
+    was Dask's TypeError."""
+    out = tmp_path / "run"
+    with pytest.raises(InputError, match=r"^workers 1000: allowed: a whole number of worker "
+                       r"processes from 1 to \d+ \(4 a core"):  # fmt: skip
+        distributed.run_scenario(DRIVER, n=50, progress=False, out_dir=out, workers=1000)
+    with pytest.raises(InputError, match=r"^workers 0: allowed"):
+        distributed.local_cluster(0)
+    with pytest.raises(InputError, match=r"^workers: is for a local cluster"):
+        distributed.run_scenario(DRIVER, n=50, progress=False, out_dir=out, workers=2,
+                                 scheduler="tcp://127.0.0.1:9")  # fmt: skip
+    with pytest.raises(InputError, match=r"^scheduler 8799: allowed: an address such as"):
+        distributed.run_scenario(DRIVER, n=50, progress=False, out_dir=out, scheduler=8799)
+    assert not out.exists()
 
 
 def test_shots_from_many_starts_on_dask_are_the_local_ones_bit_for_bit(client):

@@ -10,7 +10,6 @@ that of ``mcrun plot``, ``mcrun report`` and ``mcrun paper``.
 import argparse
 import inspect
 import math
-import os
 
 from mcrun import api, units
 from mcrun.physics import aero, atmosphere, turf
@@ -105,58 +104,19 @@ def whole(text, option, least, most=None):
     return value
 
 
-# A local Dask cluster's workers (``--dask local --workers N``) are processes of one thread
-# each: more than a few a core only share the cores.
-WORKERS_PER_CORE = 4
-
-
-def local_cores():
-    """The cores a local Dask cluster counts (its default workers): Dask's count where Dask is
-    installed, else this process's CPUs."""
-    try:
-        from dask.system import CPU_COUNT
-
-        return int(CPU_COUNT)
-    except ImportError:
-        cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else None
-        return cores or os.cpu_count() or 1
-
-
-def most_local_workers():
-    """(the most workers of a local Dask cluster here, why): ``WORKERS_PER_CORE`` a core, and
-    no more than the memory available holds at ``mcrun.run.distributed.WORKER_BYTES`` each
-    (a process with mcrun, Numba, Dask and a kernel loaded)."""
-    cores = local_cores()
-    from mcrun.run.aim import available_memory
-    from mcrun.run.distributed import WORKER_BYTES
-    from mcrun.run.plan import size_text
-
-    most = WORKERS_PER_CORE * cores
-    why = f"{WORKERS_PER_CORE} a core, {cores} core{'s' if cores != 1 else ''} here"
-    memory = available_memory()
-    if memory is not None:
-        most = max(1, min(most, memory // WORKER_BYTES))
-        why += (f"; each worker process takes about {size_text(WORKER_BYTES)}, "
-                f"{size_text(memory)} is available")  # fmt: skip
-    return int(most), why
-
-
 def local_workers(text, option="--workers"):
     """The workers of a local Dask cluster from ``option`` (None when not given: the cores):
-    a whole number from 1 to ``most_local_workers()``; InputError naming the option."""
+    a whole number from 1 to ``distributed.most_local_workers()``; InputError naming the
+    option."""
     if text is None:
         return None
-    most, why = most_local_workers()
+    from mcrun.run.distributed import check_local_workers
+
     try:
         value = float(text)
     except ValueError:
         value = math.nan
-    if not (math.isfinite(value) and value == int(value) and 1 <= value <= most):
-        raise InputError(
-            f"{option} {text!r}: allowed: a whole number of worker processes from 1 to "
-            f"{most} ({why})"
-        )
-    return int(value)
+    return check_local_workers(value, f"{option} {text!r}")
 
 
 def given(**kwargs):

@@ -6,7 +6,7 @@ import contextlib
 import sys
 
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
-from mcrun.cli.options import local_cores, local_workers, whole, with_unit
+from mcrun.cli.options import local_workers, whole, with_unit
 from mcrun.putting.putter import PUTTERS
 from mcrun.quantities import InputError
 from mcrun.units import parse_quantity
@@ -63,7 +63,7 @@ def _workers(args):
 
     distributed._dask()  # installed, else one line: pip install 'mcrun[dask]'
     workers = local_workers(args.workers)
-    return local_cores() if workers is None else workers
+    return distributed.local_cores() if workers is None else workers
 
 
 def _score_line(result):

@@ -150,6 +150,9 @@ def _run_on_dask(args):
             "--threads is for the local engine; the Dask backend runs one Numba thread per "
             "Dask thread (use --workers N with --dask local)"
         )
+    if args.scheduler == "local":  # (the API's name of a local cluster, not an address)
+        raise InputError("--scheduler local: a local cluster is --dask local (--scheduler is an "
+                         "existing cluster's address, e.g. tcp://HOST:8786)")  # fmt: skip
     if args.workers is not None and args.dask != "local":
         raise InputError("--workers is for --dask local (an existing cluster has its workers)")
     return distributed.run_scenario(

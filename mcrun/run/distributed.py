@@ -98,6 +98,8 @@ import functools
 import importlib
 import json
 import logging
+import math
+import os
 import secrets
 import sys
 import time
@@ -122,7 +124,7 @@ from mcrun.results.output import SHOTS_DIR, SUCCESS_FILE, TRAJECTORIES_DIR
 from mcrun.results.reader import read_shots  # a Dask run's shots, as the local file reads
 from mcrun.run import plan
 from mcrun.run import scenario as scenario_module
-from mcrun.units import path_of
+from mcrun.units import is_number, path_of, shown
 
 DEFAULT_CHUNK_SIZE = plan.DEFAULT_CHUNK_SIZE
 RETRIES = 2
@@ -359,6 +361,53 @@ def run_chunk(chunk, point, start, stop, job):
 # --- the cluster -------------------------------------------------------------------------------
 
 
+# A local Dask cluster's workers (``--dask local --workers N``) are processes of one thread
+# each: more than a few a core only share the cores.
+WORKERS_PER_CORE = 4
+
+
+def local_cores():
+    """The cores a local Dask cluster counts (its default workers): Dask's count where Dask is
+    installed, else this process's CPUs."""
+    try:
+        from dask.system import CPU_COUNT
+
+        return int(CPU_COUNT)
+    except ImportError:
+        cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else None
+        return cores or os.cpu_count() or 1
+
+
+def most_local_workers():
+    """(the most workers of a local Dask cluster here, why): ``WORKERS_PER_CORE`` a core, and
+    no more than the memory available holds at ``mcrun.run.distributed.WORKER_BYTES`` each
+    (a process with mcrun, Numba, Dask and a kernel loaded)."""
+    cores = local_cores()
+    from mcrun.run.aim import available_memory
+
+    most = WORKERS_PER_CORE * cores
+    why = f"{WORKERS_PER_CORE} a core, {cores} core{'s' if cores != 1 else ''} here"
+    memory = available_memory()
+    if memory is not None:
+        most = max(1, min(most, memory // WORKER_BYTES))
+        why += (f"; each worker process takes about {plan.size_text(WORKER_BYTES)}, "
+                f"{plan.size_text(memory)} is available")  # fmt: skip
+    return int(most), why
+
+
+def check_local_workers(workers, shown_as=None):
+    """``workers`` (an int, or a float of a whole value) as an int from 1 to
+    ``most_local_workers()``; InputError (``shown_as``: how the message names it, default
+    "workers N") otherwise: a million workers were started one by one, without a word."""
+    most, why = most_local_workers()
+    shown_as = f"workers {shown(workers)}" if shown_as is None else shown_as
+    ok = is_number(workers) and math.isfinite(workers) and workers == int(workers)
+    if not (ok and 1 <= workers <= most):
+        raise InputError(f"{shown_as}: allowed: a whole number of worker processes from 1 to "
+                         f"{most} ({why})")  # fmt: skip
+    return int(workers)
+
+
 def local_cluster(workers=None, **kwargs):
     """A Dask ``LocalCluster`` as ``--dask local`` starts it: ``workers`` processes (default:
     the cores) of one Dask thread each, with ``NUMBA_NUM_THREADS=1``, no dashboard.
@@ -369,8 +418,7 @@ def local_cluster(workers=None, **kwargs):
     distributed = _dask()
     import dask
 
-    if workers is None:
-        workers = dask.system.CPU_COUNT
+    workers = dask.system.CPU_COUNT if workers is None else check_local_workers(workers)
     options = {
         "n_workers": workers,
         "threads_per_worker": 1,
@@ -388,19 +436,41 @@ def local_cluster(workers=None, **kwargs):
     return distributed.LocalCluster(**{**options, "env": env, **kwargs})
 
 
+def scheduler_address(path):
+    """The address in a Dask scheduler file (``dask scheduler --scheduler-file``: JSON with
+    an "address"); InputError, one line, where there is none (Dask's own reading was an
+    AssertionError or a TypeError)."""
+    path = Path(path)
+    if not path.is_file():
+        why = "a folder" if path.is_dir() else "no such file"
+        raise InputError(f"--scheduler-file {path}: {why}")
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, ValueError):
+        data = None
+    if not (isinstance(data, dict) and isinstance(data.get("address"), str) and data["address"]):
+        raise InputError(f"--scheduler-file {path}: not a Dask scheduler file (JSON with an "
+                         '"address", as dask scheduler --scheduler-file writes)')  # fmt: skip
+    return data["address"]
+
+
 @contextlib.contextmanager
 def _connect(client, scheduler, scheduler_file, workers):
     """The client of the cluster asked for (a local cluster is started and closed here)."""
     distributed = _dask()
     if sum(x is not None for x in (client, scheduler, scheduler_file)) > 1:
         raise InputError("give one of a client, a scheduler address or a scheduler file")
+    existing = client is not None or scheduler_file is not None or scheduler not in (None, "local")
+    if workers is not None and existing:  # (ignored: the cluster has its workers)
+        raise InputError("workers: is for a local cluster (an existing cluster has its workers)")
+    if scheduler is not None and not isinstance(scheduler, str):  # (a TypeError of Dask's)
+        raise InputError(f"scheduler {shown(scheduler)}: allowed: an address such as "
+                         "'tcp://host:8786', or 'local'")  # fmt: skip
     if client is not None:
         yield client
         return
     if scheduler_file is not None:
-        if not Path(scheduler_file).is_file():
-            raise InputError(f"--scheduler-file {scheduler_file}: no such file")
-        target = {"scheduler_file": str(scheduler_file)}
+        target = {"address": scheduler_address(scheduler_file)}
         where = f"the Dask scheduler of {scheduler_file}"
     elif scheduler not in (None, "local"):
         target = {"address": scheduler}
@@ -574,7 +644,7 @@ def run_scenario(
                             ignore_disk_space=ignore_disk_space,
                             prepare_kernels=prepare_kernels)  # fmt: skip
     if workers is not None:
-        workers = plan.positive_int(workers, "workers")
+        workers = check_local_workers(plan.positive_int(workers, "workers"))
     retries = plan.positive_int(retries, "retries", minimum=0)
     scenario, points, n, seed = the_plan.scenario, the_plan.points, the_plan.n, the_plan.seed
     if out_dir is None:
