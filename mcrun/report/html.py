@@ -392,7 +392,8 @@ def report_html(run, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER_MAX_SHOTS):
         f"{run.points} point" + ("s" if run.points != 1 else ""),
         f"seed {p['seed']}" if p.get("seed") is not None else None,
         f"run {p['start_time_utc']}" if p.get("start_time_utc") else None,
-        f"{p['elapsed_s']:g} s on {p.get('threads', '?')} threads ({p.get('backend', '?')})"
+        f"{p['elapsed_s']:g} s on {p.get('threads', '?')} "
+        f"thread{'' if p.get('threads') == 1 else 's'} ({p.get('backend', '?')})"
         if isinstance(p.get("elapsed_s"), int | float)
         else None,
         f"mcrun {versions['mcrun']}" if isinstance(versions.get("mcrun"), str) else None,

@@ -576,7 +576,8 @@ class DaskRunResult(plan.RunResult):
     @property
     def where(self):
         """How it ran, for the line ``mcrun run`` prints: "2 Dask workers, 2 threads"."""
-        return f"{self.workers} Dask workers, {self.threads} threads"
+        return (f"{self.workers} Dask worker{'s' * (self.workers != 1)}, {self.threads} "
+                f"thread{'s' * (self.threads != 1)}")  # fmt: skip
 
 
 def run_scenario(
