@@ -491,8 +491,8 @@ def test_the_report_reads_the_question_as_the_scenario_does(tmp_path):
 def test_ctrl_c_during_plot_leaves_no_picture(runs, tmp_path, capsys, monkeypatch):
     """Ctrl-C while the third picture is saved once left the first two: now the pictures are
     drawn under temporary names and renamed together at the end, so none is left (nor any
-    temporary file), and the pictures of an earlier plot into the folder are kept as they
-    were."""
+    temporary file, nor the folder it made), and the pictures of an earlier plot into the
+    folder are kept as they were."""
     folder = tmp_path / "plots"
     saved = []
     png_bytes = style.png_bytes
@@ -506,7 +506,7 @@ def test_ctrl_c_during_plot_leaves_no_picture(runs, tmp_path, capsys, monkeypatc
     monkeypatch.setattr(style, "png_bytes", third_interrupted)
     assert main(["plot", str(runs["groups"]), "-o", str(folder), "--dpi", "30"]) == 130
     assert capsys.readouterr().err == "mcrun: interrupted: nothing was written\n"
-    assert list(folder.iterdir()) == []
+    assert not folder.exists()  # (nor the folder it made for them)
     monkeypatch.undo()
     assert main(["plot", str(runs["groups"]), "-o", str(folder), "--dpi", "30"]) == 0
     before = {p.name: p.read_bytes() for p in folder.iterdir()}
@@ -582,4 +582,7 @@ def test_an_ok_shot_whose_position_is_not_finite_is_refused(runs, tmp_path, caps
     err = capsys.readouterr().err
     assert err == (f"mcrun: error: {copy}: point 0: an ok shot's final_y_m is not finite: not a "
                    "value a run writes (its file altered?)\n")  # fmt: skip
-    assert not out.exists() or not list(out.iterdir())
+    assert not out.exists()  # (the folder it made was left empty)
+    out.mkdir()
+    assert main(["plot", str(copy), "-o", str(out), "--dpi", str(DPI)]) == 2
+    assert out.is_dir() and not list(out.iterdir())  # (a folder of the user's is kept)

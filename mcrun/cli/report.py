@@ -20,8 +20,9 @@ def _cmd_plot(args):
         raise PlotError(replay_plots.not_a_replay(args.run_dir))
     try:
         written = plots.write_plots(
-            args.run_dir, args.out, args.dpi, point_figures=hole_plots.point_figures
-        )
+            args.run_dir, args.out, args.dpi, point_figures=hole_plots.point_figures,
+            progress=sys.stderr.isatty(),
+        )  # fmt: skip
     except style.WrittenThenInterrupted as err:
         raise Interrupted(f"after writing the {len(err.paths)} pictures") from None
     except KeyboardInterrupt:

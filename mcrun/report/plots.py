@@ -38,8 +38,11 @@ matplotlib is optional (``mcrun[plot]``): imported only when drawing, used throu
 objects and the Agg canvas (no pyplot, no display, no global state).
 """
 
+import sys
 import tempfile
 from pathlib import Path
+
+from tqdm import tqdm
 
 from mcrun import exits
 from mcrun.report.figures import (
@@ -143,27 +146,45 @@ def writable_folder(out_dir):
 
 
 def write_plots(
-    run_dir, out_dir=None, dpi=DEFAULT_PLOT_DPI, scatter_max=SCATTER_MAX_SHOTS, point_figures=None
+    run_dir,
+    out_dir=None,
+    dpi=DEFAULT_PLOT_DPI,
+    scatter_max=SCATTER_MAX_SHOTS,
+    point_figures=None,
+    progress=False,
 ):
     """Write the PNGs of a run folder into ``out_dir`` (default RUN_DIR/plots); return
-    [(path, caption)]. ``point_figures``: as ``figures``.
+    [(path, caption)]. ``point_figures``: as ``figures``; ``progress``: a bar on stderr
+    counting the pictures drawn (a sweep of 60 points draws for minutes).
 
     All or nothing (``style.Pictures``): each PNG is drawn under a temporary name and all are
     renamed into place at the end, so that an error or Ctrl-C leaves none of this call's
-    pictures (and those of an earlier call as they were), never a part of the set."""
+    pictures (and those of an earlier call as they were), never a part of the set, nor the
+    folder where it made one."""
     run = open_run(run_dir)
     require_matplotlib()
-    out_dir = writable_folder(run.beside(PLOTS_FOLDER) if out_dir is None else out_dir)
+    out_dir = Path(run.beside(PLOTS_FOLDER) if out_dir is None else out_dir)
+    made = not (out_dir.exists() or out_dir.is_symlink())
+    out_dir = writable_folder(out_dir)
     written = []
-    with Pictures(force=True) as pictures:
-        for stem, caption, fig in figures(run, scatter_max, point_figures=point_figures):
-            path = out_dir / f"{stem}.png"
-            try:
-                pictures.add(path, fig, dpi)
-            except OSError as err:
-                if exits.is_name_too_long(err):
-                    raise
-                raise PlotError(f"cannot write {path}: {reader.reason_of(err)}") from None
-            written.append((path, caption))
-        pictures.commit()
+    try:
+        with (
+            Pictures(force=True) as pictures,
+            tqdm(unit="picture", file=sys.stderr, disable=not progress, leave=False) as bar,
+        ):
+            for stem, caption, fig in figures(run, scatter_max, point_figures=point_figures):
+                path = out_dir / f"{stem}.png"
+                try:
+                    pictures.add(path, fig, dpi)
+                except OSError as err:
+                    if exits.is_name_too_long(err):
+                        raise
+                    raise PlotError(f"cannot write {path}: {reader.reason_of(err)}") from None
+                written.append((path, caption))
+                bar.update(1)
+            pictures.commit()
+    except BaseException:
+        if made and out_dir.is_dir() and not any(out_dir.iterdir()):
+            out_dir.rmdir()  # (the folder it made for them, left empty)
+        raise
     return written
