@@ -409,6 +409,8 @@ def test_without_dask_the_backend_says_how_to_install_it(tmp_path, capsys, monke
         (["--scheduler", "tcp://127.0.0.1:9"], "cannot reach the Dask scheduler tcp://"),
         # (it started a local cluster, and --workers was refused as for an existing one)
         (["--scheduler", "local"], "--scheduler local: a local cluster is --dask local"),
+        # (tried for the connection's 30 s)
+        (["--scheduler", "tcp://127.0.0.1:99999"], "its port is not one: allowed: 1 to 65535"),
     ],
 )
 def test_cli_errors_exit_2_with_one_line_and_write_nothing(

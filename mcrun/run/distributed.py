@@ -436,6 +436,19 @@ def local_cluster(workers=None, **kwargs):
     return distributed.LocalCluster(**{**options, "env": env, **kwargs})
 
 
+def check_port(address):
+    """InputError for an address whose port is no TCP port (tcp://host:99999 was tried for
+    the connection's 30 s); what else is wrong with it, Dask says."""
+    port = urllib.parse.urlsplit(address if "://" in address else f"tcp://{address}")
+    try:
+        number = port.port
+    except ValueError:  # (out of 0-65535, or not digits)
+        number = -1
+    if number is not None and not 1 <= number <= 65535:
+        raise InputError(f"--scheduler {address}: its port is not one: allowed: 1 to 65535, as "
+                         "in tcp://HOST:8786")  # fmt: skip
+
+
 def scheduler_address(path):
     """The address in a Dask scheduler file (``dask scheduler --scheduler-file``: JSON with
     an "address"); InputError, one line, where there is none (Dask's own reading was an
@@ -473,6 +486,7 @@ def _connect(client, scheduler, scheduler_file, workers):
         target = {"address": scheduler_address(scheduler_file)}
         where = f"the Dask scheduler of {scheduler_file}"
     elif scheduler not in (None, "local"):
+        check_port(scheduler)
         target = {"address": scheduler}
         where = f"the Dask scheduler {scheduler}"
     else:
