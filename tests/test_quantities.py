@@ -57,7 +57,7 @@ def test_the_limits_are_the_ranges_in_si():
         (api.air_properties, "temperature_c"),
         (api.air_properties, "relative_humidity"),
         (api.flight_params, "cd_scale"),
-        (api.flight_params, "wind_reference_height_m"),
+        (api.flight_params, "cl_scale"),  # (a wind's reference height: None, for a uniform wind)
         (api.conditions_inputs, "slope_deg"),
         (api.conditions_inputs, "turf"),
         (api.shot_inputs, "azimuth_deg"),
