@@ -105,6 +105,27 @@ def test_the_summary_s_expected_strokes_are_the_shots_as_the_strokes_module_sums
         assert row[f"expected_strokes_after_part_{name}"] == pytest.approx(part, rel=1e-12), name
 
 
+def test_the_expected_strokes_from_the_start_do_not_hang_on_the_first_shot(tmp_path):
+    """A point whose first shot failed (its values NaN) had an expected_strokes_start of NaN
+    in its summary; every scored shot gives the start's value, the first of them now, in
+    chunks as in one."""
+    text = (LIBRARY / "par3-over-water.toml").read_text()
+    text = text.replace('"holes/', f'"{LIBRARY}/holes/').replace(
+        'mean = "6231 rpm", sd = "440 rpm"', 'mean = "0 rpm", sd = "3000 rpm"')  # fmt: skip
+    (tmp_path / "wet.toml").write_text(text)
+    starts = []
+    for chunk in (20, 3):
+        run = local.run_scenario(tmp_path / "wet.toml", n=20, seed=7, chunk_size=chunk,
+                                 out_dir=tmp_path / f"run{chunk}", progress=False)  # fmt: skip
+        shots = run.shots()
+        assert shots["status_name"].iloc[0] == "invalid_input"  # (a backspin below 0)
+        each = (shots["strokes_gained"] + 1.0 + shots["expected_strokes_after"]).dropna()
+        assert each.max() - each.min() < 1e-12  # (one start)
+        starts.append(run.summary().loc[0, "expected_strokes_start"])
+        assert starts[-1] == each.iloc[0]
+    assert starts[0] == starts[1]
+
+
 def test_the_summary_streamed_in_chunks_is_the_summary_of_one(par3, tmp_path):
     """The same run cut into chunks of 700 shots: every count and share of the summary the same,
     the exact means the same to the bit, the standard errors within 1e-12."""

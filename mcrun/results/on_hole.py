@@ -201,7 +201,7 @@ class HoleTally:
     def __init__(self, putting=False):
         self.putting = bool(putting)
         self.n_shots = 0
-        self.start = math.nan  # the point's first shot's expected strokes from its start
+        self.start = math.nan  # the expected strokes from its start, by its first scored shot
         self.zones = {"landing": np.zeros(len(ZONE_NAMES), np.int64),
                       "finish": np.zeros(len(ZONE_NAMES), np.int64)}  # fmt: skip
         self.after = stats.RunningMoments()
@@ -217,13 +217,17 @@ class HoleTally:
         status codes (the kernel's)."""
         after = columns["expected_strokes_after"].to_numpy(zero_copy_only=False)
         gained = columns["strokes_gained"].to_numpy(zero_copy_only=False)
-        if self.n_shots == 0 and len(after):
-            self.start = float(gained[0] + 1.0 + after[0])
+        if math.isnan(self.start):  # (the first shot failed: its values NaN, and the start's)
+            scored = np.flatnonzero(np.isfinite(gained) & np.isfinite(after))
+            if scored.size:
+                k = scored[0]
+                self.start = float(gained[k] + 1.0 + after[k])
         self.n_shots += len(after)
         finish = None
         for which, tally in self.zones.items():
             zone = columns[f"{which}_zone"]
-            codes = zone.indices.to_numpy(zero_copy_only=False).astype(np.int64)
+            # (a null index was a NaN to numpy, cast with a RuntimeWarning: filled, masked)
+            codes = zone.indices.fill_null(0).to_numpy(zero_copy_only=False).astype(np.int64)
             valid = zone.is_valid().to_numpy(zero_copy_only=False)
             tally += np.bincount(codes[valid], minlength=len(ZONE_NAMES))
             if which == "finish":
@@ -256,7 +260,7 @@ class HoleTally:
 
     def merge(self, other):
         """Add the tally of the chunks that follow this one's."""
-        if self.n_shots == 0:
+        if math.isnan(self.start):
             self.start = other.start
         self.n_shots += other.n_shots
         for which in self.zones:
