@@ -378,6 +378,11 @@ def test_mcrun_play_prints_the_solution(symmetric, tmp_path, capsys):
     frame = pd.read_parquet(out)
     assert {"state", "club", "aim", "expected_strokes", "best"} <= set(frame.columns)
     assert frame.groupby("state")["best"].sum().max() == 1
+    from mcrun.results import output
+
+    meta = output.read_provenance(out)  # (what its rows depend on, to solve it again)
+    assert (meta["n"], meta["coarse_m"], meta["fine_m"], meta["plays"]) == (2, 10.0, 5.0, 100)
+    assert meta["versions"]["mcrun"]
 
 
 def test_the_picture_scores_against_par_or_counts_strokes_where_par_is_not_known(symmetric):

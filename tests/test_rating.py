@@ -209,6 +209,9 @@ def test_mcrun_rate_rates_for_the_women_s_model_players(tmp_path):
     assert list(frame["par"]) == [4, 4]
     meta = output.read_provenance(out)
     assert meta["women"] is True and meta["holes"] == 1
+    # What the file's rows depend on, to run it again: the solves' settings and the versions.
+    assert (meta["n"], meta["plays"], meta["holes_rated"]) == (6, 300, [1])
+    assert {"coarse_m", "fine_m"} <= set(meta) and meta["versions"]["mcrun"]
     assert meta["greens"] == {"read": "own", "n": 8, "seed": 0, "resolution_m": 2.0,
                               "drift_mm_per_m": 4.9}  # fmt: skip
     assert meta["day_form"] == {p: DAY_FORM[p] for p in ("scratch-woman", "bogey-woman")}

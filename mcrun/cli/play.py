@@ -208,7 +208,11 @@ def _cmd_play(args):
 
         picture = (args.plot, lambda: play_plot.play_figure(result), play_plot.DPI)
     write_all_or_nothing(
-        None if args.output is None else lambda: write_play(result, destination, args.force),
+        None
+        if args.output is None
+        else lambda: write_play(
+            result, destination, args.force, {"coarse_m": coarse, "fine_m": fine, "plays": plays}
+        ),
         picture,
         args.force,
     )
@@ -218,8 +222,9 @@ def _cmd_play(args):
     return 0
 
 
-def write_play(result, path, force=False):
-    """Every state and action of ``result`` to Parquet, with its provenance."""
+def write_play(result, path, force=False, settings=None):
+    """Every state and action of ``result`` to Parquet, with its provenance (``settings``: the
+    solve's lattice and plays, ``coarse_m``, ``fine_m`` and ``plays``, which it was run with)."""
     from mcrun.results import output
 
     frame = result.actions_frame()
@@ -234,6 +239,7 @@ def write_play(result, path, force=False):
         "sweeps": result.solution.sweeps, "tee_expected_strokes": result.tee_value,
         "tee_expected_strokes_se": result.tee_se, "seconds": round(result.seconds, 3),
         "attribution": result.hole.attribution or "", "file": "play",
+        **(settings or {}), "versions": output.versions(),
     }  # fmt: skip
     with output.AtomicFile(path, force=force) as target:
         output.write_table(target.tmp, frame, output.encode_provenance(provenance))

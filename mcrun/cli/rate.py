@@ -366,9 +366,9 @@ def _cmd_rate(args):
     for reading in (EXPECTED, BETTER_HALF):
         cr, br = (rating.rating(p, reading) for p in players)
         slope = f", Slope Rating {rating.slope(reading)}" if full else ""
-        plays = ", ".join(f"{p} {rating.plays_as_yd(p, reading):,.0f}" for p in players)
-        plays = f"; plays as (yd): {plays}" if rated else ""
-        print(f"{reading}: Course Rating {cr:.1f}, Bogey Rating {br:.1f}{slope}{plays}")
+        plays_as = ", ".join(f"{p} {rating.plays_as_yd(p, reading):,.0f}" for p in players)
+        plays_as = f"; plays as (yd): {plays_as}" if rated else ""
+        print(f"{reading}: Course Rating {cr:.1f}, Bogey Rating {br:.1f}{slope}{plays_as}")
     if rated:
         rule = ", ".join(f"{p} {length_rating(p, length_yd, len(holes)):.1f}" for p in players)
         rule = f"the system's length rating: {rule}"
@@ -384,8 +384,12 @@ def _cmd_rate(args):
 
         title = f"{Path(args.course).name}: {len(holes)} holes, {length_yd:,.0f} yd"
         picture = (args.plot, lambda: rating_plot.rating_figure(rating, title), rating_plot.DPI)
+    settings = {"n": n, "plays": plays, "coarse_m": coarse, "fine_m": fine,
+                "holes_rated": list(numbers)}  # fmt: skip
     write_all_or_nothing(
-        None if args.output is None else lambda: write_rating(rating, frame, destination, args, n),
+        None
+        if args.output is None
+        else lambda: write_rating(rating, frame, destination, args, settings),
         picture,
         args.force,
     )
@@ -395,8 +399,9 @@ def _cmd_rate(args):
     return 0
 
 
-def write_rating(rating, frame, path, args, n):
-    """A row per hole and player to Parquet, with the ratings and the provenance."""
+def write_rating(rating, frame, path, args, settings):
+    """A row per hole and player to Parquet, with the ratings and the provenance (``settings``:
+    the solves' n, plays and lattice, and the numbers of the holes rated)."""
     from mcrun.play.rating import BETTER_HALF, EXPECTED
     from mcrun.results import output
 
@@ -404,7 +409,8 @@ def write_rating(rating, frame, path, args, n):
                   "scorecard": None if args.scorecard is None else str(args.scorecard),
                   "tees": str(tee_set(args.tees) or "back"),
                   "elevation": None if args.elevation is None else str(args.elevation),
-                  "players": list(rating.players), "seed": rating.seed, "n": n,
+                  "players": list(rating.players), "seed": rating.seed, **settings,
+                  "versions": output.versions(),
                   # the better half's rounds: each player's day form (``rating.DAY_FORM``)
                   "day_form": dict(rating.day_form),
                   "length_yd": rating.length_yd,
