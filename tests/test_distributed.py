@@ -310,9 +310,12 @@ def test_chunks_that_keep_failing_are_reported_and_nothing_is_left(client, tmp_p
     assert not out.exists()
 
 
-def test_an_fsspec_url_is_written_in_place_with_a_success_marker(small, client, tmp_path):
+def test_an_fsspec_url_is_written_in_place_with_a_success_marker(small, client, tmp_path,
+                                                                  monkeypatch):  # fmt: skip
     """-o file:///...: through fsspec (as s3:// would be), the same shots and summary, the
-    _SUCCESS marker written; an existing run is refused without force, replaced with it."""
+    _SUCCESS marker written; an existing run is refused without force, replaced with it, and
+    kept where the run to replace it cannot start (it was deleted before the cluster was
+    reached)."""
     url = f"file://{tmp_path}/run"
     kwargs = {"n": 6000, "chunk_size": 1500, "client": client, "progress": False}
     result = distributed.run_scenario(DRIVER, out_dir=url, **kwargs)
@@ -322,6 +325,12 @@ def test_an_fsspec_url_is_written_in_place_with_a_success_marker(small, client, 
     assert (tmp_path / "run" / distributed.SUCCESS_FILE).is_file()
     with pytest.raises(output.OutputError, match="already holds a run"):
         distributed.run_scenario(DRIVER, out_dir=url, **kwargs)
+    monkeypatch.setattr(distributed, "CONNECT_TIMEOUT_S", 1)
+    unreachable = {**kwargs, "client": None, "scheduler": "tcp://127.0.0.1:9"}
+    with pytest.raises(InputError, match="cannot reach the Dask scheduler"):
+        distributed.run_scenario(DRIVER, out_dir=url, force=True, **unreachable)
+    assert (tmp_path / "run" / distributed.SUCCESS_FILE).is_file()
+    pd.testing.assert_frame_equal(small[0], result.shots(), check_exact=True)
     again = distributed.run_scenario(DRIVER, out_dir=url, force=True, seed=5, **kwargs)
     assert again.shots()["ball_speed_mps"].iloc[0] != small[0]["ball_speed_mps"].iloc[0]
 

@@ -184,6 +184,9 @@ class _FolderDestination:
         self.root = str(self._folder.tmp)
         return self
 
+    def begin(self):
+        """Nothing to do: the folder is written under a temporary name."""
+
     def commit(self):
         self._folder.commit()
 
@@ -192,7 +195,9 @@ class _FolderDestination:
 
 
 class _UrlDestination:
-    """An fsspec URL: written in place, the summary and ``_SUCCESS`` last; removed on failure."""
+    """An fsspec URL: written in place, the summary and ``_SUCCESS`` last; removed on failure.
+    Checked on entering, replaced (``--force``) only by ``begin``, once the cluster is reached:
+    a run that could not start (its scheduler unreachable) deleted the run it was to replace."""
 
     def __init__(self, url, force):
         self.url = url.rstrip("/")
@@ -203,6 +208,7 @@ class _UrlDestination:
         except (ImportError, ValueError) as err:
             raise output.OutputError(f"cannot use the output {url}: {err}") from None
         self._committed = False
+        self._began = False
 
     def __enter__(self):
         info = self.fs.get_file_info(self.root)
@@ -219,9 +225,16 @@ class _UrlDestination:
                         f"the output folder {self.url} already holds a run: use --force to "
                         "replace it, or choose another with -o"
                     )
-                self.fs.delete_dir_contents(self.root)
-        self.fs.create_dir(self.root)
+        self._began = False
         return self
+
+    def begin(self):
+        """Replace what the output held (checked on entering) and make the folder."""
+        info = self.fs.get_file_info(self.root)
+        if info.type == pafs.FileType.Directory:
+            self.fs.delete_dir_contents(self.root)
+        self._began = True
+        self.fs.create_dir(self.root)
 
     def _plots(self):
         """The names in the folder's plots/."""
@@ -236,7 +249,7 @@ class _UrlDestination:
         self._committed = True
 
     def __exit__(self, *exc):
-        if not self._committed:
+        if self._began and not self._committed:
             with contextlib.suppress(OSError):
                 self.fs.delete_dir(self.root)
         return False
@@ -682,6 +695,7 @@ def run_scenario(
                 warmup.compile_announced(ground, kernels, _say)
             warm_workers(dask_client, ground, kernels, _say)
         prepared = time.perf_counter()
+        destination.begin()  # (the cluster reached and ready: the output replaced now)
         if announce is not None:
             announce(the_plan.line())
         # The run's time starts once the cluster is up (a local cluster takes seconds to
