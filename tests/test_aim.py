@@ -315,6 +315,27 @@ def test_a_best_aim_with_shots_off_the_map_is_warned(tmp_path, capsys):
     assert code == 0 and "warning" not in capsys.readouterr().err
 
 
+def test_a_best_aim_at_the_edge_of_the_aims_flown_is_searched_past_it(capsys):
+    """par3-over-water from --centre 30 m (aims 10-50 m): its best was +2.0 m, the region's
+    edge refined towards the pin until the step met the resolution, its expected strokes still
+    falling there (1.897, where +0.0 m leaves 1.864). The search goes on past an edge at its
+    step, and says where it stopped at one."""
+    par3 = sc.load(sc.library_folder() / "par3-over-water.toml")
+    club = aim.search(par3, n=500, centre_m=30.0).clubs[0]
+    order = np.argsort(club.offsets_m)
+    k = int(np.flatnonzero(order == club.best)[0])
+    expected = np.asarray(club.expected)[order]
+    assert 0 < k < len(order) - 1 and not club.at_edge  # (flown on both sides of it)
+    assert expected[k - 1] > expected[k] < expected[k + 1]
+    assert abs(club.offsets_m[club.best]) <= 1.0
+    # A region too narrow and far for WALK_ROUNDS to reach the best: said.
+    argv = ["aim", "par3-over-water", "-n", "300", "--centre", "35", "--half-width", "3",
+            "--step", "1", "--resolution", "1"]  # fmt: skip
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    assert "mcrun: warning: shot: its best aim, +20.0 m, is the last flown on its side" in err
+
+
 # --- pictures and tables, all or nothing ----------------------------------------------------------
 
 

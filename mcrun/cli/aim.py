@@ -94,7 +94,8 @@ def _cmd_aim(args):
 
 def _off_map_warnings(result):
     """A warning line for each club whose best aim sent shots off the hole's map (scored as out
-    of bounds: stroke and distance), where the ground, and so the best aim, is not known."""
+    of bounds: stroke and distance), where the ground, and so the best aim, is not known; and
+    for each whose best aim is the last flown on its side (``ClubAims.at_edge``)."""
     lines = []
     for club in result.clubs:
         k = club.best
@@ -105,6 +106,12 @@ def _off_map_warnings(result):
                 f"{100.0 * share:.1f} % of its shots left the hole's map, where the ground is "
                 "not known (scored as out of bounds); a larger map (margin_m) or aims nearer "
                 "the pin tell more"
+            )
+        if club.at_edge:
+            lines.append(
+                f"mcrun: warning: {club.club}: its best aim, {club.offsets_m[k]:+.1f} m, is the "
+                "last flown on its side, where the search stopped: an aim beyond it may be "
+                "better; a wider --half-width or another --centre tells more"
             )
     return lines
 

@@ -64,6 +64,9 @@ MAX_AIMS = 801
 MAX_REFINEMENT = 1e6
 # The refinement after the coarse aims: rounds of at most this many new aims each.
 NEW_AIMS_PER_ROUND = 6
+# The rounds a search may go on past the edge of the aims flown where its best aim is there,
+# at the step it had (each at most NEW_AIMS_PER_ROUND new aims).
+WALK_ROUNDS = 4
 # What a search holds per shot besides its inputs and outcomes: the azimuths, and the columns of
 # the scoring of one aim (``strokes.score_shots``), 8 bytes each.
 SCORING_COLUMNS = 24
@@ -95,6 +98,7 @@ class ClubAims:
     scores: dict = field(default_factory=dict)  # offset -> per-shot expected strokes after
     reference_m: float = 0.0  # the aim the differences are to (the pin, or the scenario's)
     off_map: dict = field(default_factory=dict)  # offset -> shots that left the hole's map
+    at_edge: bool = False  # its best aim the first or last flown, where the search stopped
 
     @property
     def best(self):
@@ -204,11 +208,12 @@ def _finite(value, name, positive=False):
 
 def aims_per_club(half_width_m, coarse_m, resolution_m, offsets_m=None):
     """The aims a club will fly at most: ``offsets_m``, or the coarse aims of the region and
-    the refinement's rounds (each a third of the step before, down to the resolution)."""
+    the refinement's rounds (each a third of the step before, down to the resolution, and up
+    to ``WALK_ROUNDS`` past an edge)."""
     if offsets_m is not None:
         return len(offsets_m) + 1  # and the reference
     coarse = math.floor(2.0 * half_width_m / coarse_m + 1e-9) + 1
-    rounds = max(0, math.ceil(math.log(coarse_m / resolution_m, 3.0) - 1e-9))
+    rounds = max(0, math.ceil(math.log(coarse_m / resolution_m, 3.0) - 1e-9)) + WALK_ROUNDS
     return coarse + 1 + NEW_AIMS_PER_ROUND * rounds
 
 
@@ -457,16 +462,31 @@ def search(
             todo = list(centre_m + np.arange(-half_width_m, half_width_m + 1e-9, coarse_m))
         fly([centre_m, *todo])
         reference = aims.scores[round(centre_m, 9)]
-        step = coarse_m
+        step, walked = coarse_m, 0
         while True:
             fly(todo)
             if progress is not None:
                 progress(f"{aims.club}: {len(aims.scores)} aims flown, {step:g} m apart")
-            if offsets_m is not None or step <= resolution_m + 1e-9:
+            if offsets_m is not None:
                 break
             best = min(aims.scores, key=lambda o: np.nanmean(aims.scores[o]))
-            step = max(step / 3.0, resolution_m)
+            # The best at an edge of the aims flown: the search goes on that way at this step
+            # (refined there, it stopped at the edge of the region, still falling: a "best"
+            # worse than an aim it had not flown).
+            edge = not (min(aims.scores) < best < max(aims.scores))
+            if not edge:
+                if step <= resolution_m + 1e-9:
+                    break
+                step = max(step / 3.0, resolution_m)
+            elif walked == WALK_ROUNDS:
+                aims.at_edge = True  # (said, where the search ends: a wider region tells more)
+                break
+            else:
+                walked += 1
             todo = [best + k * step for k in range(-3, 4)]
+            if all(round(o, 9) in aims.scores for o in todo):
+                aims.at_edge = edge
+                break  # (nothing left to fly there)
         for offset in sorted(aims.scores):
             mean, se, diff, diff_se = _summary(aims.scores[offset], reference)
             aims.offsets_m.append(offset)
