@@ -196,6 +196,8 @@ def test_bad_aim_commands_give_one_line(capsys, argv, message):
         (["-n", "1e12"], "-n 1,000,000,000,000: an aim search keeps every aim's score"),
         # 4 x 10^8 aims, which hung building them
         (["--half-width", "1e9"], "--half-width 1e+09 with --step 5: 400,000,001 aims per club"),
+        # (said "801 aims per club; at most 801": counted unrounded, printed rounded)
+        (["--half-width", "2001"], "--half-width 2001 with --step 5: 803 aims per club; at most"),
         (["--resolution", "1e-9"], "--resolution 1e-09: the finest spacing must be"),
         (["--resolution", "10"], "--resolution 10: the finest spacing must be at most"),
         # the NaN was dropped silently
@@ -334,6 +336,51 @@ def test_a_best_aim_at_the_edge_of_the_aims_flown_is_searched_past_it(capsys):
     assert main(argv) == 0
     err = capsys.readouterr().err
     assert "mcrun: warning: shot: its best aim, +20.0 m, is the last flown on its side" in err
+
+
+def test_the_coarse_aims_are_centred_and_counted_as_flown():
+    """From the region's left edge, a half width that is no whole number of steps left its
+    right unflown (7 m at 5 m steps: -7, -2, 3)."""
+    assert aim.coarse_offsets(7.0, 5.0) == [-7.0, -5.0, 0.0, 5.0, 7.0]
+    assert aim.coarse_offsets(20.0, 5.0) == [-20.0, -15.0, -10.0, -5.0, 0.0, 5.0, 10.0, 15.0, 20.0]
+    assert aim.coarse_count(7.0, 5.0) == 5 and aim.coarse_count(2000.0, 5.0) == aim.MAX_AIMS
+
+
+def test_each_club_is_searched_about_its_own_aim_and_from_its_start(tmp_path, capsys):
+    """A second group aimed 40 m left was searched about the first's aim, and compared with
+    it; aims on the map about the line from a start off the tee were refused as off it (their
+    offsets read about the tee's line); a --centre was called "the scenario's aim"."""
+    library = sc.library_folder()
+    launch = textwrap.dedent("""
+        [launch]
+        ball_speed = { dist = "normal", mean = "127 mph", sd = "1.1 mph" }
+        launch_angle = { dist = "normal", mean = "14.1 deg", sd = "1.2 deg" }
+        spin = { dist = "normal", mean = "6231 rpm", sd = "440 rpm" }
+        azimuth = { dist = "normal", mean = "0 deg", sd = "1.2 deg" }
+    """)  # fmt: skip
+    (tmp_path / "two.toml").write_text(
+        f'[scenario]\nseed = 1\n[hole]\nfile = "{library}/holes/riverside-2.toml"\n{launch}'
+        '[[group]]\nname = "pin"\n[[group]]\nname = "left"\nhole.aim = [168.0, -40.0]\n'
+    )  # fmt: skip
+    result = aim.search(sc.load(tmp_path / "two.toml"), n=50)
+    left = result.clubs[1]
+    assert left.reference_m == pytest.approx(-40.0, abs=0.5)  # (168.4 m away: its own aim)
+    assert min(left.offsets_m) < -55.0 and result.clubs[0].reference_m == 0.0
+    assert main(["aim", str(tmp_path / "two.toml"), "-n", "50"]) == 0
+    assert "differences are to each club's own aim (the scenario's)" in capsys.readouterr().out
+    assert main(["aim", "par3-over-water", "-n", "50", "--offsets", "0,5", "--centre", "3"]) == 0
+    assert "differences are to --centre (+3.0 m)" in capsys.readouterr().out
+    wedge = launch.replace("127 mph", "60 mph").replace("14.1 deg", "30 deg")
+    (tmp_path / "start.toml").write_text(
+        f'[scenario]\nseed = 1\n[hole]\nfile = "{library}/holes/riverside-9.toml"\n'
+        f"start = [350.0, 40.0]\n{wedge.replace('6231 rpm', '7000 rpm')}"
+    )  # fmt: skip
+    start = sc.load(tmp_path / "start.toml")
+    flown = aim.search(start, n=20, offsets_m=[-95.0, 70.0]).clubs[0]
+    assert flown.off_map[-95.0] < 20 and flown.off_map[70.0] < 20  # (on the map, both)
+    with pytest.raises(aim.AimError, match="every aim is off the hole's map, about the line "
+                       "from the start to the pin"):  # fmt: skip
+        aim.search(start, n=20, offsets_m=[-400.0, 400.0])
 
 
 # --- pictures and tables, all or nothing ----------------------------------------------------------

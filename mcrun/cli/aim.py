@@ -73,7 +73,7 @@ def _cmd_aim(args):
         )  # fmt: skip
     except KeyboardInterrupt:
         raise Interrupted("nothing was written") from None
-    print(_report(result))
+    print(_report(result, args.centre is not None))
     for line in _off_map_warnings(result):
         print(line, file=sys.stderr)
     if destination is None and args.plot is None:
@@ -120,10 +120,21 @@ def _xy(xy):
     return f"({xy[0]:.1f}, {xy[1]:+.1f}) m"
 
 
-def _report(result):
+def _reference(result, centre_given):
+    """(what the differences are to, as the header says it, and as the best's line does)."""
+    ref = result.clubs[0].reference_m
+    if centre_given:
+        return f"--centre ({ref:+.1f} m)", "--centre"
+    if len({round(c.reference_m, 9) for c in result.clubs}) > 1:
+        return "each club's own aim (the scenario's)", "its aim"
+    if abs(ref) < 1e-9:
+        return "the pin (+0.0 m)", "the pin"
+    return f"the scenario's aim ({ref:+.1f} m)", "the scenario's aim"
+
+
+def _report(result, centre_given=False):
     hole = result.scenario.hole
-    at_pin = abs(result.clubs[0].reference_m) < 1e-9
-    reference = "the pin" if at_pin else "the scenario's aim"
+    said, reference = _reference(result, centre_given)
     aims = sum(len(c.offsets_m) for c in result.clubs)
     lines = [
         f"aim search on {hole.name or hole.source}: {len(result.clubs)} club(s), {aims} aims x "
@@ -132,8 +143,7 @@ def _report(result):
         f"{'tee' if result.from_tee else 'start ' + _xy(result.start_xy_m)} "
         f"{result.expected_start:.3f}",
         f"aims are metres right (+) of the line to the pin at its distance, "
-        f"{result.pin_distance_m:.1f} m; differences are to {reference} "
-        f"({result.clubs[0].reference_m:+.1f} m), paired shot by shot",
+        f"{result.pin_distance_m:.1f} m; differences are to {said}, paired shot by shot",
     ]
     header = ["club", "aims", "best aim", "E after", "+/-", "gained", "vs ref", "+/-"]
     rows = []

@@ -206,13 +206,31 @@ def _finite(value, name, positive=False):
     return number
 
 
+def coarse_count(half_width_m, coarse_m):
+    """How many coarse aims ``coarse_offsets`` gives, counted as it counts them (a huge region
+    is refused before they are made)."""
+    k = math.floor(half_width_m / coarse_m + 1e-9)
+    return 2 * k + 1 + 2 * (half_width_m - k * coarse_m > 1e-9)
+
+
+def coarse_offsets(half_width_m, coarse_m):
+    """The coarse aims about the centre: the centre, ``coarse_m`` apart to either side, and
+    the region's two edges (from its left edge alone, a half width that is no whole number of
+    steps left the right of the region unflown: 7 m at 5 m steps flew -7, -2, 3)."""
+    k = math.floor(half_width_m / coarse_m + 1e-9)
+    inner = list(coarse_m * np.arange(-k, k + 1))
+    if half_width_m - k * coarse_m > 1e-9:
+        return [-half_width_m, *inner, half_width_m]
+    return inner
+
+
 def aims_per_club(half_width_m, coarse_m, resolution_m, offsets_m=None):
     """The aims a club will fly at most: ``offsets_m``, or the coarse aims of the region and
     the refinement's rounds (each a third of the step before, down to the resolution, and up
     to ``WALK_ROUNDS`` past an edge)."""
     if offsets_m is not None:
         return len(offsets_m) + 1  # and the reference
-    coarse = math.floor(2.0 * half_width_m / coarse_m + 1e-9) + 1
+    coarse = coarse_count(half_width_m, coarse_m)
     rounds = max(0, math.ceil(math.log(coarse_m / resolution_m, 3.0) - 1e-9)) + WALK_ROUNDS
     return coarse + 1 + NEW_AIMS_PER_ROUND * rounds
 
@@ -331,21 +349,26 @@ def check(
             f"{MAX_REFINEMENT:,.0f}th of it"
         )
     else:
-        coarse = 2.0 * half_width_m / coarse_m + 1.0
+        coarse = coarse_count(half_width_m, coarse_m)
         if coarse > MAX_AIMS:
             raise AimError(
                 f"{names['half_width_m']} {half_width_m:g} with {names['coarse_m']} "
-                f"{coarse_m:g}: {coarse:,.0f} aims per club; at most {MAX_AIMS:,} (2 x half "
-                "width / step + 1): narrow the region or widen the step"
+                f"{coarse_m:g}: {coarse:,} aims per club; at most {MAX_AIMS:,} (the centre, a "
+                "step apart to either side, and the region's edges): narrow the region or widen "
+                "the step"
             )
     given = offsets_m if offsets_m is not None else [] if centre_m is None else [centre_m]
-    y_lo, y_hi = scenario.hole.extent_m[2:]
-    if given and all(not y_lo <= o <= y_hi for o in given):
+    x_lo, x_hi, y_lo, y_hi = scenario.hole.extent_m
+    start = scenario.points[0].play.start_m
+    points = [_aim_point(scenario.hole, start, o) for o in given]
+    if given and all(not (x_lo <= x <= x_hi and y_lo <= y <= y_hi) for x, y in points):
         what = names["offsets_m"] if offsets_m is not None else names["centre_m"]
+        where = (f"which spans {y_lo:+.0f} to {y_hi:+.0f} m right of the line from the tee to "
+                 "the pin" if start == (0.0, 0.0) else
+                 "about the line from the start to the pin")  # fmt: skip
         raise AimError(
-            f"{what} {','.join(f'{o:g}' for o in given)}: every aim is off the hole's map, which "
-            f"spans {y_lo:+.0f} to {y_hi:+.0f} m right of the line from the tee to the pin: aim "
-            "where the map is"
+            f"{what} {','.join(f'{o:g}' for o in given)}: every aim is off the hole's map, "
+            f"{where}: aim where the map is"
         )
     clubs = len(scenario.points)
     aims = aims_per_club(half_width_m, coarse_m, resolution_m, offsets_m)
@@ -370,6 +393,14 @@ def _line_rad(hole, start_xy_m):
         return 0.0
     px, py = hole.pin_xy
     return math.atan2(py - start_xy_m[1], px - start_xy_m[0])
+
+
+def _aim_point(hole, start_xy_m, offset_m):
+    """The aim point (x, y) m of the hole's frame ``offset_m`` right of the line from
+    ``start_xy_m`` to the pin, at the pin's distance (where ``_bearing`` aims)."""
+    line = _line_rad(hole, start_xy_m)
+    px, py = hole.pin_xy
+    return px - offset_m * math.sin(line), py + offset_m * math.cos(line)
 
 
 def _bearing(offset_m, distance_m):
@@ -435,8 +466,7 @@ def search(
     pin_x, pin_y = hole.pin_xy
     distance = math.hypot(pin_x - start[0], pin_y - start[1])
     line = _line_rad(hole, start)
-    if centre_m is None:
-        centre_m = distance * math.tan(scenario.points[0].play.aim_rad - line)
+    given_centre = centre_m
     strokes = {"baseline": baseline or tour_baseline(), "lie_of_zone": lie_of_zone,
                "putting": map_of_hole(hole)}  # fmt: skip
     executor = Executor()
@@ -444,6 +474,9 @@ def search(
     flown = 0
     for point in scenario.points:
         inputs, _ = sampling.sample(scenario, point, 0, n)
+        # Each club about its own aim (a club aimed 40 m left was searched about the first's).
+        centre_m = (distance * math.tan(point.play.aim_rad - line) if given_centre is None
+                    else given_centre)  # fmt: skip
         aims = ClubAims(point.label or point.group or "shot", reference_m=centre_m)
 
         def fly(offsets, aims=aims, inputs=inputs, play=point.play):
@@ -459,7 +492,7 @@ def search(
         if offsets_m is not None:
             todo = [float(o) for o in offsets_m]
         else:
-            todo = list(centre_m + np.arange(-half_width_m, half_width_m + 1e-9, coarse_m))
+            todo = [centre_m + o for o in coarse_offsets(half_width_m, coarse_m)]
         fly([centre_m, *todo])
         reference = aims.scores[round(centre_m, 9)]
         step, walked = coarse_m, 0
@@ -500,10 +533,12 @@ def search(
     if all(c.off_map[o] == n for c in clubs for o in c.scores):
         t = terrain
         reach = (t.y0_m, t.y0_m + (t.height_m.shape[0] - 1) * t.cell_m)
+        where = (f"which spans {reach[0]:+.0f} to {reach[1]:+.0f} m right of the line from the "
+                 "tee to the pin" if start == (0.0, 0.0)
+                 else "about the line from the start to the pin")  # fmt: skip
         raise AimError(
             f"every shot of every aim ({min(aimed):+.1f} to {max(aimed):+.1f} m right of the pin) "
-            f"left the hole's map, which spans {reach[0]:+.0f} to {reach[1]:+.0f} m right of "
-            "the line from the tee to the pin: aim where the map is"
+            f"left the hole's map, {where}: aim where the map is"
         )
     for c in clubs:
         if not np.isfinite(c.expected).any():
