@@ -122,6 +122,13 @@ def test_an_interrupted_hole_plot_leaves_no_picture(capsys, tmp_path, monkeypatc
     assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(target)]) == 0
     assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     capsys.readouterr()
+    # A picture there is replaced only with --force (a user's file was written over).
+    target.write_bytes(b"mine")
+    assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(target)]) == 2
+    assert "already exists: use --force to replace it" in capsys.readouterr().err
+    assert target.read_bytes() == b"mine"
+    assert main(["hole", str(HOLES / "riverside-2.toml"), "--plot", str(target), "--force"]) == 0
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_a_plot_of_an_unknown_picture_format_is_one_line(capsys, tmp_path):

@@ -121,7 +121,7 @@ def _cmd_hole(args):
     if args.plot:  # a folder there, a file for a folder, a name too long: said before, too
         from mcrun.run.aim import check_output
 
-        check_output(args.plot, True, "--plot", PICTURE_SUFFIXES, "picture")
+        check_output(args.plot, args.force, "--plot", PICTURE_SUFFIXES, "picture")
     if path.suffix.lower() in GEOJSON_SUFFIXES:
         if args.hole is None:
             if args.plot:
@@ -137,7 +137,7 @@ def _cmd_hole(args):
         from mcrun.report.hole_map import write_hole_map
 
         try:
-            write_hole_map(hole, args.plot)
+            write_hole_map(hole, args.plot, force=args.force)
         except OSError as err:
             raise CommandError(f"cannot write {args.plot}: {err.strerror or err}") from None
         print(f"wrote {args.plot}")
@@ -170,4 +170,5 @@ def register(subparsers):
         help="the hole: its ref, or its 1-based position in the map ('#N': the position N)",
     )
     p.add_argument("--plot", metavar="PNG", help="draw the hole's map into this file")
+    p.add_argument("--force", action="store_true", help="replace the --plot file if it exists")
     p.set_defaults(func=_cmd_hole)

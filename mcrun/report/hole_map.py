@@ -111,12 +111,13 @@ def _contour_step_m(span_m):
     return 20.0
 
 
-def write_hole_map(hole_map, path, dpi=150):
+def write_hole_map(hole_map, path, dpi=150, force=True):
     """Draw ``hole_map`` and write the figure to ``path`` (PNG, or what its suffix names), as a
     run's files are written: under a temporary name, renamed into place with interrupts
-    deferred, so that an interrupted command leaves no picture under its final name."""
+    deferred, so that an interrupted command leaves no picture under its final name.
+    ``force``: replace a file there (else OutputError)."""
     ax = draw_hole(hole_map)
-    with output.AtomicFile(path, force=True) as target:
+    with output.AtomicFile(path, force=force) as target:
         ax.figure.savefig(target.tmp, dpi=dpi, format=Path(path).suffix[1:] or "png")
         with exits.interrupts_deferred():
             target.commit()
