@@ -405,8 +405,8 @@ def default_of(path, chosen=None):
 
 def finite_number(name, value):
     """``value`` as a float, or raise InputError naming ``name`` unless it is a finite number
-    (a bool is not: ``float(True)`` is 1; nor is text: ``float("70")`` is 70 where "70 m/s"
-    is refused, and a number in a name's unit is a number)."""
+    (a bool is not: ``float(True)`` is 1; nor is text: ``float("70")`` reads 70 where "70
+    m/s" is refused; a value in the unit its name carries is passed as a number)."""
     if isinstance(value, bool | np.bool_ | str | bytes | np.str_):
         raise InputError(f"{name} must be a number, got {shown(value)}")
     try:

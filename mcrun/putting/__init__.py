@@ -110,7 +110,7 @@ def check_stimp(stimp_m, what=None):
         raise InputError(f"{what or 'stimp_m'} {shown(stimp_m)}: allowed: a number (m)")
     if not lo <= finite(stimp_m) <= hi:
         raise InputError(
-            f"{what or f'Stimp {stimp_m / FOOT_M:g} ft'}: allowed: "
+            f"{what or f'Stimp {finite(stimp_m) / FOOT_M:g} ft'}: allowed: "
             f"{STIMP_RANGE_FT[0]:g} ft to {STIMP_RANGE_FT[1]:g} ft (a green's Stimpmeter "
             "reading; real greens run at about 5 to 16 ft)"
         )
