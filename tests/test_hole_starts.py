@@ -132,6 +132,9 @@ def _water_point():
          "group[0].hole.start: [900.0, 0.0] is off the hole's map"),
         (FAIRWAY + WEDGE + '[[group]]\nname = "a"\nhole.start = [100.0, 0.0]\n'
          "hole.aim = [50.0, 0.0]\n", "group[0].hole.aim: must be [x_m, y_m] ahead of the start"),
+        # (at the pin, its default aim: the message named hole.aim, which was not given)
+        (FAIRWAY + WEDGE + '[[group]]\nname = "a"\nhole.start = [300.0, 0.0]\n',
+         "group[0].hole.start: [300.0, 0.0] is not short of the pin [300.0, 0.0]"),
         (FAIRWAY + WEDGE + '[[group]]\nname = "a"\nhole.start = "tee"\n',
          "group[0].hole.start: must be [x_m, y_m]"),
         (FAIRWAY + WEDGE + '[[group]]\nname = "a"\nhole.tee = [1.0, 2.0]\n',

@@ -104,6 +104,12 @@ def read_play(ctx, where, given, hole, default):
     if "aim" in given:
         aim = _pair(ctx, f"{where}.aim", given["aim"], "a point ahead of the start (x > start)")
     if not aim[0] > start[0]:
+        if "aim" not in given:  # (the pin, its default: the start is at it or beyond it)
+            raise ctx.error(
+                f"{where}.start",
+                f"{list(start)} is not short of the pin {list(aim)}: a shot starts short of the "
+                "pin it is aimed at",
+            )
         ahead = "the tee (x > 0)" if start == (0.0, 0.0) else f"the start (x > {start[0]:g})"
         raise ctx.error(f"{where}.aim", f"must be [x_m, y_m] ahead of {ahead}, got {list(aim)!r}")
     return Play(start, aim)
