@@ -444,3 +444,12 @@ def test_a_hole_line_drawn_backwards_is_refused(folder):
     table = {"map": "reversed.geojson", "hole": 2, "tee": list(before.tee_lonlat),
              "pin": list(before.pin_lonlat)}  # fmt: skip
     assert hole_from_table(table, folder, "h.toml").length_m == pytest.approx(before.length_m)
+
+
+def test_a_hole_file_s_name_is_text(folder):
+    """name = 5 was named "5"; name = "" fell back to the file's name."""
+    for name in (5, "", "  "):
+        message = _error({"map": MAP, "hole": 2, "name": name}, folder)
+        assert f"'name' = {name!r}: allowed: a name (text), or no 'name' for the map's" in message
+    named = hole_from_table({"map": MAP, "hole": 2, "name": "Two"}, folder, "h.toml")
+    assert named.name == "Two"

@@ -766,6 +766,10 @@ def hole_from_table(table, folder, source):
             )
         raise HoleError(f"{where}: 'par' = {par!r} must be a whole number 2-7")
     par = None if par is None else int(par)  # (a TOML 3.0 was printed "par: 3.0")
+    if "name" in table and not (isinstance(table["name"], str) and table["name"].strip()):
+        # (5 was named "5"; "" fell back to the file's name)
+        raise HoleError(f"{where}: 'name' = {table['name']!r}: allowed: a name (text), or no "
+                        "'name' for the map's")  # fmt: skip
     name = tag_text(table.get("name", parts.get("name")))
     colour = table.get("penalty_areas")
     if colour is not None:
