@@ -418,10 +418,15 @@ def simulate(*, trajectory=False, **shot):
 
 def bounce_once(speed_mps, angle_deg, backspin_radps, turf="green", **turf_overrides):
     """One impact on level turf in the paper's terms (angles from the vertical, backspin
-    positive): theta_c_deg, e, mu_c, mode, rebound speed, angle and spin, hop height."""
+    positive): theta_c_deg, e, mu_c, mode, rebound speed, angle and spin, hop height. The
+    turf's fields but its rolling resistance (``rho_g``, ``stimp_m``) may be overridden."""
     speed = check_range("ball_speed_mps", speed_mps)
     angle = check_range("impact_angle_deg", angle_deg) * DEG
     backspin = check_range("backspin_radps", backspin_radps)
+    rolling = [k for k in ("rho_g", "stimp_m") if turf_overrides.get(k) is not None]
+    if rolling:  # (taken, and without effect)
+        raise InputError(f"{rolling[0]}: the roll's resistance, which one impact does not use "
+                         "(simulate() rolls the ball)")  # fmt: skip
     turf = resolve_turf(turf, **turf_overrides)
     result = bounce_in_plane(speed, angle, backspin, turf)
     result["critical_backspin_radps"] = critical_backspin_radps(speed, angle, turf)

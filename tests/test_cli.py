@@ -393,6 +393,10 @@ def test_bounce_input_ranges_are_those_of_the_api(capsys):
     api.bounce_once(26.8, api.RANGES["impact_angle_deg"][1], api.RANGES["backspin_radps"][0])
     _, _, err = run(capsys, "bounce", "--speed", "26.8", "--angle", "95", "--spin", "224")
     assert "impact_angle_deg" in err and "[0, 89.9]" in err
+    # A roll's resistance was taken and did nothing to the impact.
+    for field in ("rho_g", "stimp_m"):
+        with pytest.raises(api.InputError, match=rf"^{field}: the roll's resistance, which one"):
+            api.bounce_once(26.8, 68.0, 224.0, **{field: 3.0})
 
 
 def test_the_api_names_an_unknown_argument_and_a_turf_that_is_none():
