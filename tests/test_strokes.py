@@ -571,3 +571,22 @@ def test_a_penalty_area_ball_is_scored_by_the_kind_it_finished_in():
     # Without a hole: yellow has only stroke and distance, red its drop in the rough.
     assert got["expected_strokes_after"].iloc[0] == pytest.approx(1 + e("tee", 180 * YD))
     assert got["expected_strokes_after"].iloc[1] == pytest.approx(1 + e("rough", 50.0))
+
+
+def test_the_tour_baseline_cannot_be_changed_by_a_caller():
+    """tour_baseline() is one object for the process: a caller's change to its rows changed
+    every later score (fairway 100 m: 2.823, then 3.823), without a word."""
+    import pickle
+
+    from mcrun.strokes import tour_baseline
+
+    before = float(tour_baseline().expected("fairway", 100.0))
+    rows = tour_baseline().strokes
+    with pytest.raises(ValueError, match="read-only"):
+        rows["fairway"][:] += 1.0
+    with pytest.raises(TypeError, match="a Baseline's rows cannot be changed"):
+        rows["rough"] = rows["rough"] + 5.0
+    assert float(tour_baseline().expected("fairway", 100.0)) == before
+    sent = pickle.loads(pickle.dumps(tour_baseline()))  # (as a Dask worker gets it)
+    assert not sent.strokes["rough"].flags.writeable
+    assert float(sent.expected("fairway", 100.0)) == before

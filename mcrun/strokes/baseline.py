@@ -63,13 +63,42 @@ class BaselineError(InputError):
     """A baseline table cannot be used; the message is one line meant for the user."""
 
 
+class _ReadOnlyRows(dict):
+    """A lie's rows that cannot be changed: the Tour's baseline is one object for the whole
+    process (``tour_baseline``), and a change to its rows changed every later score. Pickles
+    (a Dask worker is sent one) as the dict it is."""
+
+    def _refuse(self, *args, **kwargs):
+        raise TypeError("a Baseline's rows cannot be changed: make another Baseline")
+
+    __setitem__ = __delitem__ = update = pop = popitem = clear = setdefault = _refuse
+
+    def __reduce__(self):
+        return (_read_only, (dict(self),))
+
+
+def _read_only(rows):
+    """``rows`` (lie -> values) as read-only arrays of floats in a ``_ReadOnlyRows``."""
+    frozen = {}
+    for lie, values in rows.items():
+        array = np.array(values, dtype=float)  # (a copy: the caller's stays theirs)
+        array.setflags(write=False)
+        frozen[lie] = array
+    return _ReadOnlyRows(frozen)
+
+
 @dataclass(frozen=True)
 class Baseline:
-    """Expected strokes to hole out: per lie, the rows' distances (m, increasing) and values."""
+    """Expected strokes to hole out: per lie, the rows' distances (m, increasing) and values,
+    read-only."""
 
     source: str
     distance_m: dict  # lie -> np.ndarray of the rows' distances (m)
     strokes: dict  # lie -> np.ndarray of the rows' expected strokes
+
+    def __post_init__(self):
+        object.__setattr__(self, "distance_m", _read_only(self.distance_m))
+        object.__setattr__(self, "strokes", _read_only(self.strokes))
 
     def expected(self, lie, distance_m):
         """Expected strokes to hole out from ``distance_m`` (m, to the hole) in ``lie`` (one of
