@@ -484,3 +484,27 @@ def test_a_map_of_two_courses_or_a_hole_drawn_twice_is_not_one_course(tmp_path):
     with pytest.raises(InputError, match=r"twice.geojson: holes 1 and 3 are one golf=hole line "
                        r"drawn twice \(the same points\)"):  # fmt: skip
         course_holes(tmp_path / "twice.geojson")
+
+
+def test_plan_rating_names_holes_numbers_and_players_it_cannot_rate():
+    """A hole number given twice was solved once, the other dropped (a rating of two holes
+    with one's scores); a player given twice, once; n = 0 and a spacing of 0 ran at the
+    defaults; a Hole alone or no holes were a TypeError or an IndexError."""
+    from mcrun.hole.hole import load_hole
+    from mcrun.play import PlayerError
+    from mcrun.play.rating import plan_rating
+    from mcrun.run import scenario as sc
+
+    hole = load_hole(sc.library_folder() / "holes" / "riverside-2.toml")
+    for given, says in (
+        ({"holes": [hole, hole], "numbers": [1, 1]}, r"^numbers \[1, 1\]: allowed: one whole"),
+        ({"holes": [hole], "numbers": ["7"]}, r"^numbers \['7'\]: allowed: one whole number"),
+        ({"holes": [hole], "players": ["scratch", "scratch"]}, r"^players \['scratch', 'scr"),
+        ({"holes": [hole], "players": []}, r"^players \[\]: allowed: one or more players"),
+        ({"holes": hole}, r"^holes Hole\(.*: allowed: a list of the course's holes$"),
+        ({"holes": []}, r"^holes \[\]: allowed: a list"),
+        ({"holes": [hole], "n": 0}, r"^n 0: allowed: a whole number of at least 2$"),
+        ({"holes": [hole], "fine_m": 0}, r"^fine_m 0: allowed: a number of metres, at least 1"),
+    ):  # fmt: skip
+        with pytest.raises(PlayerError, match=says):
+            plan_rating(plays=100, **given)

@@ -51,6 +51,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mcrun.strokes.baseline import YARD_M
+from mcrun.units import shown
 
 __all__ = [
     "BETTER_HALF",
@@ -300,14 +301,28 @@ def plan_rating(holes, players=MODEL_PLAYERS["men"], n=100, seed=None, coarse_m=
             f"{label} {plays!r}: allowed: a whole number of at least {MIN_PLAYS} for a rating "
             "(its better half is dealt from each hole's plays)"
         )
+    if not isinstance(holes, list | tuple) or not holes:  # (a Hole alone, or none: TypeError)
+        raise PlayerError(f"holes {shown(holes, 60)}: allowed: a list of the course's holes")
     loaded = [load_player(p) if isinstance(p, str) else p for p in players]
-    numbers = list(numbers or range(1, len(holes) + 1))
+    numbers = list(range(1, len(holes) + 1) if numbers is None else numbers)
+    # Keyed by player and number: one given twice was solved once, the other dropped.
+    if not (len(numbers) == len(holes) and len(set(numbers)) == len(numbers)
+            and all(isinstance(k, int | np.integer) and not isinstance(k, bool)
+                    for k in numbers)):  # fmt: skip
+        raise PlayerError(f"numbers {shown(numbers, 60)}: allowed: one whole number a hole "
+                          f"({len(holes)}), each once")  # fmt: skip
+    names_of = [p.name for p in loaded]
+    if not names_of or len(set(names_of)) != len(names_of):
+        raise PlayerError(f"players {shown(names_of, 60)}: allowed: one or more players, each "
+                          "once")  # fmt: skip
     memory = available_memory()
     if workers and memory is not None:
         memory /= int(workers)
-    settings = dict(n=n or DEFAULT_N, seed=seed, coarse_m=coarse_m or DEFAULT_COARSE_M,
-                    fine_m=fine_m or DEFAULT_FINE_M, plays=plays, memory=memory,
-                    names=names)  # fmt: skip
+    # (None: the default; 0 was read as the default too, where plan_play refuses it)
+    settings = dict(n=DEFAULT_N if n is None else n, seed=seed,
+                    coarse_m=DEFAULT_COARSE_M if coarse_m is None else coarse_m,
+                    fine_m=DEFAULT_FINE_M if fine_m is None else fine_m, plays=plays,
+                    memory=memory, names=names)  # fmt: skip
     return {(player.name, number): [plan_play(player, h, **settings)
                                     for h in ((hole, without_obstacles(hole)) if obstacles
                                               else (hole,))]
