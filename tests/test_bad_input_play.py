@@ -506,6 +506,15 @@ def test_a_solve_s_seed_and_lattice_are_checked(tmp_path, capsys):
                        (2**70, "seed must be an integer up to 2**63 - 1")):  # fmt: skip
         with pytest.raises(InputError, match=re.escape(says)):
             plan_play(player, hole, n=4, seed=seed, plays=10, coarse_m=40.0, fine_m=20.0)
+    # A spacing as text was read ("20" as 20 m), a memory of True as 1 byte, straight="no" true.
+    for given, says in (
+        ({"coarse_m": "20"}, "coarse_m '20': allowed: a number of metres"),
+        ({"memory": True}, "memory True: allowed: the bytes available"),
+    ):
+        with pytest.raises(InputError, match=re.escape(says)):
+            plan_play(player, hole, n=4, plays=10, **{"coarse_m": 40.0, "fine_m": 20.0, **given})
+    with pytest.raises(InputError, match=re.escape("straight 'no': allowed: True or False")):
+        load_player("tour", straight="no")
     (tmp_path / "a").mkdir()
     (tmp_path / "b").mkdir()
     err = refused(["play", "tour", str(PAR3), "--coarse", "8m", "--fine", "40m"],

@@ -3,6 +3,7 @@ those of a scenario group struck from there; the batch's shots are its starts' o
 start-major order; starts that are not in play are refused in one line. (The same on Dask, bit
 for bit: ``tests/test_distributed.py``.)"""
 
+import re
 import textwrap
 
 import numpy as np
@@ -95,9 +96,35 @@ def test_a_grid_of_starts_is_in_play_and_within_reach():
         ([[0.0, 0.0], [900.0, 0.0]], "starts_xy_m[1]: [900.0, 0.0] is off the hole's map"),
         ([[0.0, np.nan]], "starts_xy_m[0]: [0.0, nan] is not a finite point"),
         ([1.0, 2.0], "starts_xy_m: must be (m, 2) points"),
+        # (played from (1, 0), and text read as numbers)
+        ([[True, False]], "starts_xy_m: cannot read [[True, False]] as points"),
+        ([["30", "-5"]], "starts_xy_m: cannot read [['30', '-5']] as points"),
     ],
 )
 def test_bad_starts_are_refused_in_one_line(fairway, points, message):
     with pytest.raises(InputError) as err:
         starts.play_from(fairway, points, n=N)
     assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_play_from_and_starts_grid_read_their_arguments_as_given(fairway):
+    """Text taken apart letter by letter: aim_xy_m="12" aimed at (1, 2) and within_m="05"
+    kept places within 5 m; keep_shots="no" kept them; a library name, progress="yes" or
+    baseline="tour" were an AttributeError or a TypeError (after the first chunk)."""
+    hole = fairway.hole
+    for call, says in (
+        (lambda: starts.play_from(fairway, [[50.0, 0.0]], n=N, aim_xy_m="12"), "aim_xy_m '12'"),
+        (lambda: starts.starts_grid(hole, 10.0, within_m="05"), "within_m '05'"),
+        (lambda: starts.starts_grid(hole, "10"), "spacing_m '10'"),
+        (lambda: starts.starts_grid(hole, 10.0, within_m=(np.False_, np.True_)), "within_m"),
+        (lambda: starts.play_from(fairway, [[50.0, 0.0]], n=N, keep_shots="no"),
+         "keep_shots 'no': allowed: True or False"),
+        (lambda: starts.play_from("pga-driver", [[50.0, 0.0]], n=N),
+         "scenario 'pga-driver': allowed: a Scenario"),
+        (lambda: starts.play_from(fairway, [[50.0, 0.0]], n=N, progress="yes"),
+         "progress 'yes': allowed: a function"),
+        (lambda: starts.play_from(fairway, [[50.0, 0.0]], n=N, baseline="tour"),
+         "baseline 'tour': allowed: a Baseline"),
+    ):  # fmt: skip
+        with pytest.raises(InputError, match=re.escape(says)):
+            call()

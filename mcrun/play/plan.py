@@ -42,6 +42,7 @@ from mcrun.putting.on_hole import check_putting
 from mcrun.run import plan as run_plan
 from mcrun.run.distributed import WORKER_BYTES
 from mcrun.strokes.baseline import tour_baseline
+from mcrun.units import is_number, shown
 
 __all__ = [
     "ARGUMENT_NAMES",
@@ -166,11 +167,11 @@ def _names(names):
 def _spacing(value, name):
     """A spacing of the lattice: a finite number of metres, at least 1 m (``mcrun play``'s
     range: finer would hold millions of states)."""
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
+    try:  # (text is not a number: "20" was read as 20 m)
+        number = math.nan if isinstance(value, str | bytes) else float(value)
+    except (TypeError, ValueError, OverflowError):
         number = math.nan
-    if isinstance(value, bool) or not (math.isfinite(number) and number >= 1.0):
+    if isinstance(value, bool | np.bool_) or not (math.isfinite(number) and number >= 1.0):
         raise PlayerError(f"{name} {value!r}: allowed: a number of metres, at least 1")
     return number
 
@@ -302,6 +303,8 @@ def plan_play(player, hole, n=100, seed=None, coarse_m=DEFAULT_COARSE_M, fine_m=
         seed = run_plan.positive_int(seed, names["seed"], minimum=0)
     check_pin(hole)
     check_putting(hole, green=True, putter=player.putter)  # its green, where a map values it
+    if memory is not None and not (is_number(memory) and memory > 0):  # (True was 1 byte)
+        raise PlayerError(f"memory {shown(memory)}: allowed: the bytes available, > 0")
     memory = available_memory() if memory is None else memory
     base = tour_baseline()
     lat = lattice(hole, base, coarse_m, fine_m, fine_within_m)

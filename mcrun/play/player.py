@@ -271,6 +271,8 @@ def load_player(spec, putter=None, spread=None, straight=False):
         return Player(name, player.scenario, player.clubs, player.spread, putter,
                       player.source, (speed,) * len(player.clubs), player.rough,
                       player.ground)  # fmt: skip
+    if not isinstance(straight, bool | np.bool_):  # ("no" was true)
+        raise PlayerError(f"straight {shown(straight)}: allowed: True or False")
     putter = "tour" if putter is None else putter
     if not isinstance(putter, str) or putter not in PUTTERS:  # (a list: a TypeError)
         raise PlayerError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")

@@ -45,7 +45,9 @@ from mcrun.putting.on_hole import map_of_hole
 from mcrun.quantities import InputError
 from mcrun.results import on_hole
 from mcrun.run import plan, sampling
+from mcrun.run.scenario import Scenario
 from mcrun.strokes import start_of, tour_baseline
+from mcrun.strokes.baseline import Baseline
 from mcrun.strokes.expected import FAILED
 from mcrun.units import shown
 
@@ -98,7 +100,10 @@ def check_starts(hole, starts_xy_m, where="starts_xy_m"):
     """``starts_xy_m`` as an (m, 2) float array of places in play on ``hole``; InputError (one
     line: the first bad start, its index and why) otherwise."""
     try:
-        starts = np.asarray(starts_xy_m, dtype=float)
+        given = np.asarray(starts_xy_m)
+        if given.dtype.kind not in "iuf":  # (bools were the point (1, 0), text read as numbers)
+            raise TypeError
+        starts = given.astype(float)
     except (TypeError, ValueError):
         raise InputError(
             f"{where}: cannot read {shown(starts_xy_m)} as points: allowed is an (m, 2) array "
@@ -123,11 +128,15 @@ def check_starts(hole, starts_xy_m, where="starts_xy_m"):
 def _metres(value, name, positive=False):
     """``value`` as a finite number of metres (> 0 where ``positive``); InputError naming
     ``name`` otherwise."""
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
+    try:  # (text is not a number: "12" was an aim at (1, 2), its characters)
+        number = math.nan if isinstance(value, str | bytes) else float(value)
+    except (TypeError, ValueError, OverflowError):
         number = math.nan
-    if isinstance(value, bool) or not math.isfinite(number) or (positive and number <= 0.0):
+    if (
+        isinstance(value, bool | np.bool_)
+        or not math.isfinite(number)
+        or (positive and number <= 0.0)
+    ):
         allowed = "a positive number of metres" if positive else "a finite number of metres"
         raise InputError(f"{name} {shown(value)}: allowed: {allowed}")
     return number
@@ -137,6 +146,8 @@ def _pair(value, name, allowed="a point (x_m, y_m) in the hole's frame"):
     """``value`` as two finite numbers of metres; InputError naming ``name`` and what is
     ``allowed`` otherwise."""
     try:
+        if isinstance(value, str | bytes):
+            raise TypeError  # (its characters were taken as the two numbers)
         a, b = value
         return _metres(a, name), _metres(b, name)
     except (TypeError, ValueError):  # (InputError is a ValueError)
@@ -233,6 +244,16 @@ def play_from(
     ``strokes.score_shots``. ``client``: a ``dask.distributed.Client`` to run the chunks of
     ``chunk_starts`` starts on (bit for bit the local result). ``progress(done, total)``:
     called after each chunk, in starts."""
+    if not isinstance(scenario, Scenario):  # (a library name or a path: an AttributeError)
+        raise InputError(f"scenario {shown(scenario)}: allowed: a Scenario "
+                         "(mcrun.run.scenario.load(name or path))")  # fmt: skip
+    if not isinstance(keep_shots, bool | np.bool_):  # ("no" kept them)
+        raise InputError(f"keep_shots {shown(keep_shots)}: allowed: True or False")
+    if progress is not None and not callable(progress):  # (a TypeError after the first chunk)
+        raise InputError(f"progress {shown(progress)}: allowed: a function (done, total)")
+    if baseline is not None and not isinstance(baseline, Baseline):
+        raise InputError(f"baseline {shown(baseline)}: allowed: a Baseline "
+                         "(mcrun.strokes.load_baseline(path))")  # fmt: skip
     hole = scenario.hole
     if hole is None:
         raise InputError(f"{scenario.path}: shots from start points need a hole ([hole])")
