@@ -65,8 +65,8 @@ class BaselineError(InputError):
 
 class _ReadOnlyRows(dict):
     """A lie's rows that cannot be changed: the Tour's baseline is one object for the whole
-    process (``tour_baseline``), and a change to its rows changed every later score. Pickles
-    (a Dask worker is sent one) as the dict it is."""
+    process (``tour_baseline``), and a change to its rows changed every later score. Pickled
+    (a Dask worker is sent one), it is made read-only again (``_read_only``)."""
 
     def _refuse(self, *args, **kwargs):
         raise TypeError("a Baseline's rows cannot be changed: make another Baseline")
