@@ -363,9 +363,7 @@ def check(
     points = [_aim_point(scenario.hole, start, o) for o in given]
     if given and all(not (x_lo <= x <= x_hi and y_lo <= y <= y_hi) for x, y in points):
         what = names["offsets_m"] if offsets_m is not None else names["centre_m"]
-        where = (f"which spans {y_lo:+.0f} to {y_hi:+.0f} m right of the line from the tee to "
-                 "the pin" if start == (0.0, 0.0) else
-                 "about the line from the start to the pin")  # fmt: skip
+        where = _map_span(y_lo, y_hi, start)
         raise AimError(
             f"{what} {','.join(f'{o:g}' for o in given)}: every aim is off the hole's map, "
             f"{where}: aim where the map is"
@@ -393,6 +391,14 @@ def _line_rad(hole, start_xy_m):
         return 0.0
     px, py = hole.pin_xy
     return math.atan2(py - start_xy_m[1], px - start_xy_m[0])
+
+
+def _map_span(y_lo, y_hi, start_xy_m):
+    """Where the hole's map lies, for a message about aims off it: its span across the line
+    from the tee (the frame's y), or, from a start off the tee, about that start's line."""
+    if start_xy_m == (0.0, 0.0):
+        return f"which spans {y_lo:+.0f} to {y_hi:+.0f} m right of the line from the tee to the pin"
+    return "about the line from the start to the pin"
 
 
 def _aim_point(hole, start_xy_m, offset_m):
@@ -533,9 +539,7 @@ def search(
     if all(c.off_map[o] == n for c in clubs for o in c.scores):
         t = terrain
         reach = (t.y0_m, t.y0_m + (t.height_m.shape[0] - 1) * t.cell_m)
-        where = (f"which spans {reach[0]:+.0f} to {reach[1]:+.0f} m right of the line from the "
-                 "tee to the pin" if start == (0.0, 0.0)
-                 else "about the line from the start to the pin")  # fmt: skip
+        where = _map_span(*reach, start)
         raise AimError(
             f"every shot of every aim ({min(aimed):+.1f} to {max(aimed):+.1f} m right of the pin) "
             f"left the hole's map, {where}: aim where the map is"

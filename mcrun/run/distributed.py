@@ -225,7 +225,6 @@ class _UrlDestination:
                         f"the output folder {self.url} already holds a run: use --force to "
                         "replace it, or choose another with -o"
                     )
-        self._began = False
         return self
 
     def begin(self):
