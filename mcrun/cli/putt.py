@@ -24,9 +24,14 @@ from mcrun.units import parse_quantity
 DEFAULT_STIMP = "11ft"
 
 
-# The options of the fields ``check_putt`` names (a distance_m, direction_deg, slope_tan, ...).
-PUTT_OPTIONS = {"distance": "--distance", "slope": "--slope", "slope_tan": "--slope",
-                "direction": "--direction", "drift": "--drift", "n": "-n"}  # fmt: skip
+# The option that gives each field ``check_putt`` names, and the argument that holds its text.
+PUTT_OPTIONS = {
+    "distance_m": ("--distance", "distance"),
+    "slope_tan": ("--slope", "slope"),
+    "direction_deg": ("--direction", "direction"),
+    "drift_mm_per_m": ("--drift", "drift"),
+    "n": ("-n", "n"),
+}
 
 
 def _slope_tan(text):
@@ -83,6 +88,7 @@ def _cmd_putt(args):
     args.putter = "tour" if args.putter is None else args.putter
     args.seed = "0" if args.seed is None else args.seed
     args.stimp = DEFAULT_STIMP if args.stimp is None else args.stimp
+    args.n = "2000" if args.n is None else args.n
     drift = DRIFT_MM_PER_M_BENTGRASS if args.drift is None else _drift(args.drift)
     given = dict(
         distance_m=with_unit(args.distance, "length", "--distance", "10ft"),
@@ -90,19 +96,14 @@ def _cmd_putt(args):
         slope_tan=_slope_tan(args.slope),
         direction_deg=parse_quantity(args.direction, "angle", "--direction") * 180.0 / math.pi,
         putter=args.putter,
-        n=whole("2000" if args.n is None else args.n, "-n", *PUTTING_N_RANGE),
+        n=whole(args.n, "-n", *PUTTING_N_RANGE),
         seed=whole(args.seed, "--seed", 0),
         drift_mm_per_m=drift,
     )
-    try:
-        check_putt(**{k: v for k, v in given.items() if k != "seed"})
-    except InputError as err:  # (it names the API's field, a value converted: the option typed)
-        field, _, rest = str(err).partition(" ")
-        option = PUTT_OPTIONS.get(field.removesuffix("_m").removesuffix("_deg"))
-        if option is None:
-            raise
-        typed = args.n if option == "-n" else getattr(args, option.removeprefix("--"))
-        raise InputError(f"{option} {typed}: {rest.partition(': ')[2]}") from None
+    said = {
+        field: f"{option} {getattr(args, arg)}" for field, (option, arg) in PUTT_OPTIONS.items()
+    }
+    check_putt(**{k: v for k, v in given.items() if k != "seed"}, said=said)
     compile_if_needed("green", ("putt",))
     result = exits.interruptible(putt, **given)
     r = result.read

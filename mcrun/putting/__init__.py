@@ -118,45 +118,53 @@ def check_stimp(stimp_m, what=None):
 
 
 def check_putt(distance_m, stimp_m, slope_tan, direction_deg, putter="tour", n=2000,
-               drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS):  # fmt: skip
+               drift_mm_per_m=DRIFT_MM_PER_M_BENTGRASS, said=None):  # fmt: skip
     """Check the inputs of ``putt`` (the seed apart, which it checks as it draws the errors):
-    InputError (one line) for one out of range. Returns the ``Putter``."""
+    InputError (one line) for one out of range. Returns the ``Putter``.
+
+    ``said``: what a message calls a field, where the user gave it otherwise than by its name and
+    value (a command's option and the text typed, ``{"slope_tan": "--slope 2"}``); by default
+    the field's name and its value."""
+    said = said or {}
+
+    def refuse(name, value, why):
+        raise InputError(f"{said.get(name, value)}: {why}")
+
     given = {"distance_m": distance_m, "stimp_m": stimp_m, "slope_tan": slope_tan,
              "direction_deg": direction_deg, "n": n, "drift_mm_per_m": drift_mm_per_m}  # fmt: skip
     for name, value in given.items():  # (a string or None was a TypeError of a comparison)
         if not is_number(value):
-            raise InputError(f"{name} {value!r}: allowed: a number")
+            refuse(name, f"{name} {value!r}", "allowed: a number")
         if not math.isfinite(finite(value)) and name != "n":  # (n's range says it)
-            raise InputError(f"{name} {shown(value, 40)}: allowed: a finite number")
+            refuse(name, f"{name} {shown(value, 40)}", "allowed: a finite number")
     if isinstance(putter, str):
         if putter not in PUTTERS:
-            raise InputError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")
+            refuse("putter", f"putter {putter!r}", f"allowed: {', '.join(PUTTERS)}")
         putter = PUTTERS[putter]
     elif not isinstance(putter, Putter):
-        raise InputError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)} or a Putter")
+        refuse("putter", f"putter {putter!r}", f"allowed: {', '.join(PUTTERS)} or a Putter")
     if not HOLE_RADIUS_M < distance_m <= MAX_DISTANCE_M:
-        raise InputError(
-            f"distance {distance_m:g} m: allowed: beyond the hole's radius "
-            f"({HOLE_RADIUS_M * 1000:.0f} mm) up to {MAX_DISTANCE_M:g} m"
-        )
-    check_stimp(stimp_m)
+        refuse("distance_m", f"distance {distance_m:g} m", "allowed: beyond the hole's radius "
+               f"({HOLE_RADIUS_M * 1000:.0f} mm) up to {MAX_DISTANCE_M:g} m")  # fmt: skip
+    check_stimp(stimp_m, said.get("stimp_m"))
     if not 0.0 <= slope_tan <= MAX_SLOPE_TAN:
-        raise InputError(f"slope {100 * slope_tan:g} %: allowed: 0 to {100 * MAX_SLOPE_TAN:g} %")
+        refuse("slope_tan", f"slope {100 * slope_tan:g} %",
+               f"allowed: 0 to {100 * MAX_SLOPE_TAN:g} %")  # fmt: skip
     rest = stopping_slope(stimp_m)
     if slope_tan > rest:
-        raise InputError(
-            f"slope {100 * slope_tan:g} %: steeper than the stopping slope of a Stimp "
-            f"{stimp_m / 0.3048:g} ft green ({100 * rest:.1f} %): a ball cannot rest there"
-        )
+        refuse("slope_tan", f"slope {100 * slope_tan:g} %",
+               f"steeper than the stopping slope of a Stimp {stimp_m / FOOT_M:g} ft green "
+               f"({100 * rest:.1f} %): a ball cannot rest there")  # fmt: skip
     if not abs(direction_deg) <= 360.0:  # (NaN and inf fail too)
-        raise InputError(f"direction {direction_deg:g} deg: allowed: -360 to 360 deg")
+        refuse("direction_deg", f"direction {direction_deg:g} deg", "allowed: -360 to 360 deg")
     lo, hi = DRIFT_RANGE_MM_PER_M
     if not lo <= drift_mm_per_m <= hi:
-        raise InputError(f"drift {drift_mm_per_m:g} mm/m: allowed: {lo:g} to {hi:g} mm/m "
-                         f"({DRIFT_MM_PER_M_BENTGRASS:g}: pure bentgrass)")  # fmt: skip
+        bentgrass = f"{DRIFT_MM_PER_M_BENTGRASS:g}: pure bentgrass"
+        refuse("drift_mm_per_m", f"drift {drift_mm_per_m:g} mm/m",
+               f"allowed: {lo:g} to {hi:g} mm/m ({bentgrass})")  # fmt: skip
     lo, hi = PUTTING_N_RANGE
     if not lo <= n <= hi or int(n) != n:  # (the range first: NaN and inf are out of it)
-        raise InputError(f"n {shown(n, 40)}: allowed: a whole number from {lo} to {hi}")
+        refuse("n", f"n {shown(n, 40)}", f"allowed: a whole number from {lo} to {hi}")
     return putter
 
 
