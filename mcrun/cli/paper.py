@@ -1,12 +1,12 @@
 """``mcrun paper -o DIR``: Penner (2002) Figs. 3-8 redrawn from our model, and targets.md
 beside the paper (``mcrun.paper``)."""
 
-import tempfile
 from pathlib import Path
 
 from mcrun import paper
 from mcrun.cli import CommandError
 from mcrun.cli.options import DPI_RANGE, dpi_value
+from mcrun.results import output
 
 
 def _cmd_paper(args):
@@ -28,13 +28,7 @@ def _cmd_paper(args):
     if there and not args.force:
         raise CommandError(f"--out {out_dir}: {there[0].name} already exists: use --force to "
                            "replace the figures and targets.md")  # fmt: skip
-    try:
-        out_dir.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryFile(dir=out_dir):  # (a name of its own: none of the user's)
-            pass
-    except OSError as err:
-        reason = err.strerror or str(err)
-        raise CommandError(f"--out: cannot write to {out_dir}: {reason}") from None
+    output.writable_folder(out_dir, "--out")
     for path in paper.write_paper(out_dir, args.dpi):
         print(f"wrote {path}")
     return 0

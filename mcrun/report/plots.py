@@ -39,7 +39,6 @@ objects and the Agg canvas (no pyplot, no display, no global state).
 """
 
 import sys
-import tempfile
 from pathlib import Path
 
 from tqdm import tqdm
@@ -63,7 +62,7 @@ from mcrun.report.run_view import (
 )
 from mcrun.report.style import Pictures, require_matplotlib
 from mcrun.results import reader
-from mcrun.results.output import PLOTS_FOLDER
+from mcrun.results.output import PLOTS_FOLDER, writable_folder
 
 DEFAULT_PLOT_DPI = 150
 
@@ -130,19 +129,6 @@ def figures(
                     "first in trajectories.parquet).",
                     trajectories_figure(run, row, paths),
                 )
-
-
-def writable_folder(out_dir):
-    out_dir = Path(out_dir)
-    try:
-        out_dir.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryFile(dir=out_dir):  # (a name of its own: none of the user's)
-            pass
-    except OSError as err:
-        if exits.is_name_too_long(err):
-            raise  # the command line's one line for every path too long
-        raise PlotError(f"-o: cannot write to {out_dir}: {reader.reason_of(err)}") from None
-    return out_dir
 
 
 def write_plots(

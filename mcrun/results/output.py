@@ -43,6 +43,7 @@ import socket
 import stat
 import struct
 import sys
+import tempfile
 import time
 import tomllib
 from pathlib import Path
@@ -119,6 +120,24 @@ _PHASE_DICTIONARY = pa.array(list(PHASE_NAMES))
 
 class OutputError(InputError):
     """An output the user asked for cannot be written; the message is one line."""
+
+
+def writable_folder(out_dir, option="-o"):
+    """``out_dir`` (a Path), made if missing, where a file can be written: a temporary file of
+    a name of its own is made there and removed (none of the user's is touched); OutputError
+    (one line, naming ``option``) otherwise. A name too long is raised as it is, for the command
+    line's one line for every path too long."""
+    out_dir = Path(out_dir)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=out_dir):
+            pass
+    except OSError as err:
+        if err.errno == errno.ENAMETOOLONG:
+            raise
+        reason = err.strerror or str(err)
+        raise OutputError(f"{option}: cannot write to {out_dir}: {reason}") from None
+    return out_dir
 
 
 def part_name(chunk):
