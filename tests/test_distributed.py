@@ -375,6 +375,19 @@ def test_cli_ctrl_c_leaves_nothing(client, tmp_path, capsys, monkeypatch):
     assert list(tmp_path.iterdir()) == []
 
 
+def _sigint_blocked():
+    return signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, [])
+
+
+def test_a_local_cluster_s_workers_leave_ctrl_c_to_the_run(client):
+    """Ctrl-C reaches every process of the terminal's group: a worker still importing printed
+    its traceback. The workers of ``local_cluster`` start with SIGINT blocked (this process
+    stops them), and this process's own Ctrl-C is held only while they start."""
+    blocked = client.run(_sigint_blocked)
+    assert len(blocked) == 2 and all(blocked.values())
+    assert not _sigint_blocked()
+
+
 def test_a_local_cluster_says_nothing_when_another_holds_the_dashboard_port(tmp_path, capfd):
     """--dask local while another cluster (here a bare socket) holds the scheduler's default
     HTTP port, 8787: the run's output is its own, with no warning of the port on stderr, as

@@ -236,11 +236,14 @@ def main(argv=None):
     problem = exits.threads_setting_problem()  # (before a command's module imports Numba)
     if problem:
         return _error(problem)
-    parser = build_parser(argv[0] if argv else None)
-    try:
+    try:  # (a command's modules take seconds to import: Ctrl-C then was a traceback)
+        parser = build_parser(argv[0] if argv else None)
         args = parser.parse_args(_attach_negative_values(argv))
     except SystemExit as exit_:  # --help, or a usage error argparse has already reported
         return exit_.code if isinstance(exit_.code, int) else int(exit_.code is not None)
+    except KeyboardInterrupt:
+        print("mcrun: interrupted", file=sys.stderr)
+        return exits.EXIT_INTERRUPTED
     blank = _blank_argument(parser, args)
     if blank is not None:
         return _error(f"{blank}: empty: give a value (see 'mcrun {args.command} --help')")

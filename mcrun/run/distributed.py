@@ -101,10 +101,12 @@ import logging
 import math
 import os
 import secrets
+import signal
 import sys
 import time
 import urllib.parse
 from dataclasses import dataclass
+from multiprocessing import resource_tracker
 from pathlib import Path
 from typing import NamedTuple
 
@@ -445,7 +447,26 @@ def local_cluster(workers=None, **kwargs):
     # process's environment, where Numba, which rereads it at every compilation, would then
     # refuse to compile once its own threads have started.
     env = {"NUMBA_NUM_THREADS": str(NUMBA_THREADS_PER_TASK)}
-    return distributed.LocalCluster(**{**options, "env": env, **kwargs})
+    options = {**options, "env": env, **kwargs}
+    if not hasattr(signal, "pthread_sigmask"):  # (Windows: no signal masks)
+        return distributed.LocalCluster(**options)
+    # Ctrl-C reaches the whole process group: a worker process that was still importing printed
+    # its traceback. The workers are started with SIGINT blocked (a process inherits the mask of
+    # the thread that starts it), and so is Ctrl-C here until the cluster is up; then it comes,
+    # and this process stops the cluster and its workers.
+    resource_tracker.ensure_running()  # (its first start unblocks SIGINT in the thread)
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        cluster = distributed.LocalCluster(**options)
+    except BaseException:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
+        raise
+    try:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)  # (a Ctrl-C held meanwhile comes here)
+    except KeyboardInterrupt:
+        cluster.close()
+        raise
+    return cluster
 
 
 def check_port(address):
