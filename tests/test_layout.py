@@ -94,3 +94,19 @@ def test_no_import_circles():
     for name in graph:
         if name not in state:
             visit(name, [name])
+
+
+def test_the_layout_page_names_every_module():
+    """docs/code-layout.md's table names every module of the package (and of the benchmark
+    suite's figures), so that a newcomer finds each in it: ``name`` or ``name.py`` in its
+    layer's row, ``dir/`` for a package."""
+    page = (PACKAGE.parent / "docs" / "code-layout.md").read_text(encoding="utf-8")
+    named = {word.removesuffix(".py").rstrip("/") for word in page.split("`")[1::2]}
+    figures = PACKAGE.parent / "benchmarks" / "figures"
+    paths = [*PACKAGE.rglob("*.py"), *figures.glob("*.py")]
+    missing = sorted(
+        str(path.relative_to(PACKAGE.parent))
+        for path in paths
+        if path.stem != "__init__" and path.stem not in named
+    )
+    assert missing == []

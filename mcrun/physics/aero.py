@@ -98,10 +98,11 @@ QUADRATIC_COEFFICIENTS = np.array(
         # smits_smith1994 and lyu2018 have their own forms: rows unused.
         _NO_ROW,
         _NO_ROW,
-        # penner2002: smooth quadratics through Bearman and Harvey's summary points (C_D 0.276
-        # at S 0.05 rising to 0.29 at S 0.15 and 0.35 at 0.3; C_L 0.13 at S 0.05, 0.22 at 0.15,
-        # 0.31 at 0.3), least-squares tuned to the four landings Penner (2002) section 3
-        # quotes. The lift had to rise about 25 % above the summary points' C_L to get them.
+        # penner2002: smooth quadratics near Bearman and Harvey's summary points (C_D about
+        # 0.28 at S 0.15, 0.27-0.32 once S > 0.1; C_L about 0.18 at S 0.15, 0.08-0.25 over S
+        # 0.02-0.3), least-squares tuned to the four landings Penner (2002) section 3 quotes:
+        # C_D 0.276 at S 0.05, 0.29 at 0.15, 0.35 at 0.3; C_L 0.13, 0.22 and 0.31 there. The
+        # lift had to rise about 25 % above the summary points' C_L to get the landings.
         [0.2803, -0.1389, 1.2498, 0.0765, 1.1877, -1.3468, 0.40, *_SMITS_DECAY],
         # trackman2019: `mcrun calibrate --fit` (from ferguson2022, s_max fitted) on the TrackMan
         # 2019 PGA and LPGA averages; carry/apex/land-angle RMSE 3.29 m / 2.22 m / 3.24 deg

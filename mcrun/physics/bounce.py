@@ -176,7 +176,7 @@ TOO_MANY = 2
 def impact(vx, vy, vz, wx, wy, wz, nx, ny, nz, turf, bounces, previous_height):
     """One impact (``bounce``) and what follows it: the velocity and spin after it, the height
     and duration of the hop it starts, and whether the ball HOPS, ROLLS (the hop would be lower
-    than the critical height, Penner 2002, or no lower than HOP_DECAY_LIMIT times the one
+    than the critical height, Penner 2002, or higher than HOP_DECAY_LIMIT times the one
     before) or has bounced TOO_MANY times. Branch-free, for loops over many shots."""
     ex, ey, ez, vne, _ = incidence(vx, vy, vz, nx, ny, nz, turf)
     return impact_rebound(
