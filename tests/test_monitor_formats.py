@@ -562,3 +562,30 @@ def test_mcrun_s_own_columns_read_quoted_thousands_and_refuse_infinite_results(t
     assert math.isnan(carry[0]) and carry[1] == pytest.approx(248.1 * 0.9144)
     assert np.isnan(total).all()
     assert any("2 value(s) of total_yd no shot can have" in note for note in session.notes)
+
+
+@pytest.mark.parametrize(
+    ("encoding", "sep_line"),
+    [
+        ("utf-16", False),
+        ("utf-16-le", False),
+        ("utf-16-be", False),
+        ("utf-8", True),
+        ("utf-16", True),
+    ],
+)
+def test_mcrun_s_own_columns_read_in_utf_16_and_after_a_sep_line(tmp_path, encoding, sep_line):
+    """mcrun's own columns, comma-separated, as UTF-16 with its byte-order mark (a UTF-8 error
+    before, though an export in UTF-16 was read) and after a spreadsheet's ``sep=,`` line
+    ("row 1 has 3 fields, the header has 2"): the same launches as the file in UTF-8."""
+    text = "ball_speed_mph,launch_deg,spin_rpm\n151,13.4,2855\n150.5,12.9,2884\n"
+    plain = tmp_path / "plain.csv"
+    plain.write_text(text, encoding="utf-8")
+    path = tmp_path / "saved.csv"
+    body = ("sep=,\n" if sep_line else "") + text
+    mark = "\ufeff" if encoding in ("utf-16-le", "utf-16-be") else ""  # ("utf-16" writes it)
+    path.write_bytes((mark + body).encode(encoding))
+    want, got = read_session(plain).launch, read_session(path).launch
+    assert want.keys() == got.keys()
+    for quantity in want:
+        np.testing.assert_array_equal(got[quantity], want[quantity], err_msg=quantity)

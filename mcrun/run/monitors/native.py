@@ -122,10 +122,17 @@ def check_file(path):
         raise InputError(f"{path}: {what}")
 
 
-def _data_lines(path):
+def text_encoding(path):
+    """How a CSV's text is encoded: "utf-16" where it begins with a UTF-16 byte-order mark (a
+    spreadsheet's "Unicode Text"), else "utf-8"."""
+    with open(path, "rb") as file:
+        return "utf-16" if file.read(2) in (b"\xff\xfe", b"\xfe\xff") else "utf-8"
+
+
+def _data_lines(path, encoding="utf-8"):
     """The lines of a CSV as pandas reads them with ``comment="#"``: the text after a ``#``
     outside quotes dropped, blank lines skipped."""
-    with open(path, encoding="utf-8", errors="replace", newline="") as file:
+    with open(path, encoding=encoding, errors="replace", newline="") as file:
         for line in file:
             quoted = False
             for k, char in enumerate(line):
@@ -143,7 +150,7 @@ def check_field_counts(path, lines=None, sep=","):
     first columns as the index (or drop the extra fields), shifting every value silently. A
     short row reads as missing values. ``lines``: the lines to check (default: the file's,
     comments dropped); the header first; ``sep``: their separator."""
-    lines = _data_lines(path) if lines is None else lines
+    lines = _data_lines(path, text_encoding(path)) if lines is None else lines
     rows = csv.reader(lines, delimiter=sep, skipinitialspace=True)
     try:
         header = next(rows, None)
@@ -178,7 +185,8 @@ def read_launch_table(path):
             frame = pd.read_parquet(path)
         else:
             check_field_counts(path)
-            frame = pd.read_csv(path, comment="#", skipinitialspace=True, index_col=False)
+            frame = pd.read_csv(path, comment="#", skipinitialspace=True, index_col=False,
+                                encoding=text_encoding(path))  # fmt: skip
     except InputError:
         raise
     except pd.errors.EmptyDataError:
