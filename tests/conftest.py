@@ -31,7 +31,20 @@ def pytest_configure(config):
     if workers and not hasattr(config, "workerinput"):  # the main process of a parallel run
         from mcrun.engine.warmup import warm_up_all
 
-        warm_up_all()
+        # (Said as it starts: from a fresh clone this takes minutes, and pytest -q prints
+        # nothing meanwhile.)
+        say("compiling the engine's kernels for the tests, or loading them from Numba's cache")
+        report = warm_up_all()
+        compiled = sum(1 for kernel in report.kernels if kernel.was_cached is False)
+        loaded = len(report.kernels) - compiled
+        say(f"kernels ready in {report.wall_s:.0f} s ({compiled} compiled, {loaded} loaded)")
+
+
+def say(line):
+    """``line`` on the terminal at once, through pytest's capture."""
+    import sys
+
+    print(f"mcrun tests: {line}", file=sys.__stderr__, flush=True)
 
 
 def pytest_unconfigure(config):

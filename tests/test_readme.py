@@ -93,6 +93,7 @@ def run_commands(steps, folder, capsys):
 def test_the_readme_and_the_docs_have_examples():
     assert len(blocks(README)) >= 5
     assert sum(len(blocks(page)) for page in PAGES[1:]) >= 10
+    assert len(scenario_blocks()) >= 1
 
 
 def test_a_block_fenced_as_text_is_not_run(tmp_path):
@@ -114,3 +115,24 @@ def test_an_example_prints_what_it_shows(steps, request, tmp_path, monkeypatch, 
         assert code == 0, f"{where}: {command} exited {code}"
         assert pattern(expected).fullmatch(out), f"{where}: {command} printed:\n{out}"
     assert len(PRINTED[key]) == len(steps)
+
+
+def scenario_blocks():
+    """(page:line, text) of every ```toml block of the pages that is a whole scenario (it has a
+    ``[scenario]`` table; the others are parts of one)."""
+    found = []
+    for page in PAGES:
+        text = page.read_text(encoding="utf-8")
+        for match in re.finditer(r"^```toml\n(.*?)^```", text, re.S | re.M):
+            if re.search(r"^\[scenario\]", match[1], re.M):
+                line = text.count("\n", 0, match.start()) + 1
+                found.append(pytest.param(match[1], id=f"{page.relative_to(ROOT)}:{line}"))
+    return found
+
+
+@pytest.mark.parametrize("text", scenario_blocks())
+def test_a_scenario_the_docs_show_validates(text, tmp_path, capsys):
+    """A scenario written out in the documentation loads as it is (``mcrun validate``)."""
+    path = tmp_path / "shown.toml"
+    path.write_text(text, encoding="utf-8")
+    assert main(["validate", str(path)]) == 0, capsys.readouterr().err
