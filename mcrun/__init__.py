@@ -2,7 +2,7 @@
 
 The one-shot API (``simulate``, ``bounce_once``, ``ShotResult``) is imported on first use, so
 that importing the package starts no Numba: the command line checks its environment first
-(``mcrun.exits.threads_setting_problem``)."""
+(``mcrun.exits.environment_problem``)."""
 
 from mcrun.errors import InputError
 
@@ -13,9 +13,9 @@ _API = ("ShotResult", "bounce_once", "simulate")
 
 def __getattr__(name):
     if name in _API:
-        from mcrun.exits import threads_setting_problem
+        from mcrun.exits import environment_problem
 
-        problem = threads_setting_problem()  # (Numba's ValueError at its import otherwise)
+        problem = environment_problem()  # (Numba's ValueError at its import, or its silence)
         if problem:
             raise InputError(problem)
         from mcrun import api

@@ -9,7 +9,9 @@
 - A path with a name longer than the filesystem allows (ENAMETOOLONG, 255 bytes on most) is
   one line naming the path, shortened when it is long itself: ``name_too_long``.
 - ``NUMBA_NUM_THREADS`` that Numba cannot start with (0 raised a ValueError at its import) is
-  one line too, said before anything imports Numba: ``threads_setting_problem``.
+  one line too, said before anything imports Numba: ``threads_setting_problem``; so is a
+  ``NUMBA_CACHE_DIR`` this process cannot write (``cache_dir_problem``), and a cache that can
+  be written nowhere (``is_cache_unwritable``, a RuntimeError at the first compile).
 
 Light on purpose: ``mcrun.cli`` imports it before any command module.
 """
@@ -19,6 +21,7 @@ import errno
 import os
 import signal
 import sys
+import tempfile
 import threading
 
 EXIT_INTERRUPTED = 130
@@ -153,6 +156,46 @@ def name_too_long(err):
     else:
         reason = f"the path is too long ({len(os.fsencode(path))} bytes)"
     return f"{shorten(path)}: {reason}"
+
+
+def environment_problem(environ=None):
+    """What is wrong with the environment's settings of Numba, one line (``NUMBA_NUM_THREADS``,
+    then ``NUMBA_CACHE_DIR``); None where nothing is."""
+    return threads_setting_problem(environ) or cache_dir_problem(environ)
+
+
+def cache_dir_problem(environ=None):
+    """What is wrong with the environment's ``NUMBA_CACHE_DIR`` (where Numba caches the compiled
+    kernels), one line; None where it is unset (or empty, which Numba reads as unset) or a
+    folder this process can write, made if missing as Numba makes it. Numba passes over a
+    folder it cannot write without a word, and caches beside the sources, or nowhere (a
+    read-only cache of compiled kernels is not read either)."""
+    text = (os.environ if environ is None else environ).get("NUMBA_CACHE_DIR")
+    if not text:
+        return None
+    try:
+        os.makedirs(text, exist_ok=True)
+        with tempfile.TemporaryFile(dir=text):
+            pass
+    except OSError as err:
+        return (
+            f"NUMBA_CACHE_DIR={text!r}: cannot write there ({err.strerror or err}): allowed: a "
+            "folder this user can write (Numba passes over one it cannot), or unset"
+        )
+    return None
+
+
+def is_cache_unwritable(err):
+    """Whether an exception is Numba's refusal to compile a cached function where it can write
+    a cache nowhere (mcrun's sources, the user's cache folder and ``NUMBA_CACHE_DIR`` all
+    read-only)."""
+    return isinstance(err, RuntimeError) and "no locator available" in str(err)
+
+
+CACHE_UNWRITABLE = (
+    "Numba can write its cache of the compiled kernels nowhere (not beside mcrun's sources, "
+    "not in the user's cache folder): set NUMBA_CACHE_DIR to a folder this user can write"
+)
 
 
 def threads_setting_problem(environ=None):

@@ -299,6 +299,35 @@ def test_a_thread_count_numba_cannot_start_with_is_one_line():
     )
 
 
+def test_a_cache_folder_numba_cannot_write_is_one_line(tmp_path, monkeypatch, capsys):
+    """Numba passes over a NUMBA_CACHE_DIR it cannot write without a word (a read-only cache
+    of compiled kernels was said to be loaded, and the kernels were the ones beside the
+    sources), and where it can write a cache nowhere its first compile was a RuntimeError, a
+    traceback: each is one line, exit code 2."""
+    blocker = tmp_path / "a-file"
+    blocker.write_text("")
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(blocker / "cache"))
+    assert cli.main(["turfs"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err == (
+        f"mcrun: error: NUMBA_CACHE_DIR='{blocker / 'cache'}': cannot write there (Not a "
+        "directory): allowed: a folder this user can write (Numba passes over one it cannot), "
+        "or unset\n"
+    )
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "made" / "cache"))  # (made, as Numba)
+    assert cli.main(["turfs"]) == 0 and (tmp_path / "made" / "cache").is_dir()
+    capsys.readouterr()
+
+    def compiled_without_a_cache(args):  # Numba's words, at a kernel's first compile
+        raise RuntimeError("cannot cache function 'f': no locator available for file 'f.py'")
+
+    from mcrun.cli import shot
+
+    monkeypatch.setattr(shot, "_cmd_turfs", compiled_without_a_cache)
+    assert cli.main(["turfs"]) == 2
+    assert capsys.readouterr().err.startswith("mcrun: error: Numba can write its cache of")
+
+
 @pytest.mark.parametrize(
     "command, argv, says",
     [

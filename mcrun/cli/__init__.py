@@ -233,7 +233,7 @@ def compile_if_needed(ground, kernels=("batch",)):
 def main(argv=None):
     """Run ``mcrun`` with ``argv`` (default: the process's arguments); return the exit code."""
     argv = sys.argv[1:] if argv is None else list(argv)
-    problem = exits.threads_setting_problem()  # (before a command's module imports Numba)
+    problem = exits.environment_problem()  # (before a command's module imports Numba)
     if problem:
         return _error(problem)
     try:  # (a command's modules take seconds to import: Ctrl-C then was a traceback)
@@ -284,6 +284,10 @@ def _run_command(args):
         if not exits.is_name_too_long(err):
             raise
         return _error(exits.name_too_long(err))
+    except RuntimeError as err:
+        if not exits.is_cache_unwritable(err):
+            raise
+        return _error(exits.CACHE_UNWRITABLE)
     except Interrupted as err:
         print(f"mcrun: interrupted: {err}", file=sys.stderr)
         return exits.EXIT_INTERRUPTED
