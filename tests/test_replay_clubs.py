@@ -150,6 +150,29 @@ def test_plot_of_a_session_without_device_or_clubs(tmp_path):
     png_size(written[0])
 
 
+def test_a_club_named_outside_the_font_and_shots_that_all_fail_are_one_warning(tmp_path, capsys):
+    """Clubs named in Japanese or with an emoji: matplotlib warned once a character, each with
+    its source line, and an empty legend where no shot ended ok; now one line says which
+    characters are drawn as boxes, and the panel says no shot ended ok."""
+    pytest.importorskip("matplotlib")
+    source = tmp_path / "session.csv"
+    source.write_text(
+        "club,ball_speed_mph,launch_deg,spin_rpm,carry_yd\n"
+        "7番アイアン,120,16,7000,160\n\N{GOLFER}Driver,150,12,2800,240\n",
+        encoding="utf-8",
+    )
+    out = tmp_path / "r.parquet"
+    argv = ["replay", str(source), "-o", str(out), "--plot", "--quiet", "--dpi", "40"]
+    assert main([*argv, "--turf", "green", "--slope", "30"]) == 0
+    lines = capsys.readouterr().err.splitlines()
+    said = [line for line in lines if "not in the font" in line]
+    assert len(said) == 1 and said[0].startswith("mcrun: warning: 5 character(s) not in the font")
+    assert said[0].endswith("drawn as boxes: 番 ア イ ン \N{GOLFER}")
+    assert all(line.startswith("mcrun: warning: ") for line in lines), lines
+    assert not any("legend" in line for line in lines)
+    png_size(tmp_path / "r-clubs.png")
+
+
 def test_replay_plot_without_matplotlib_is_one_line_and_writes_nothing(
     tmp_path, monkeypatch, capsys
 ):

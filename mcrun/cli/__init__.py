@@ -27,6 +27,7 @@ import importlib
 import os
 import re
 import sys
+import warnings
 
 from mcrun import exits
 from mcrun.errors import InputError
@@ -248,11 +249,31 @@ def main(argv=None):
     if blank is not None:
         return _error(f"{blank}: empty: give a value (see 'mcrun {args.command} --help')")
     # SIGTERM stops a command as Ctrl-C does (the commands clean up on KeyboardInterrupt).
-    with exits.sigterm_interrupts() as terminated:
+    with exits.sigterm_interrupts() as terminated, _warnings_as_lines():
         code = _run_command(args)
     if terminated and code == exits.EXIT_INTERRUPTED:
         return exits.EXIT_TERMINATED
     return code
+
+
+@contextlib.contextmanager
+def _warnings_as_lines():
+    """Python's warnings while a command runs (a library's: matplotlib's, Dask's) each as one
+    line, ``mcrun: warning: <message>``, without the file, line and source Python shows; the
+    same message once."""
+    shown, said = warnings.showwarning, set()
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        text = " ".join(str(message).split())
+        if text not in said:
+            said.add(text)
+            print(f"mcrun: warning: {text}", file=file or sys.stderr)
+
+    warnings.showwarning = show
+    try:
+        yield
+    finally:
+        warnings.showwarning = shown
 
 
 def _blank_argument(parser, args):

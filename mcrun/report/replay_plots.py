@@ -120,7 +120,10 @@ def clubs_figure(frame, name):
     spread.set_ylabel("distance (m)")
     spread.set_title("(a) carry and total of every shot: box of the quartiles, a dot per shot")
     spread.grid(axis="y", alpha=0.25)
-    spread.legend(fontsize=8, loc="upper right", framealpha=0.85)
+    if spread.get_legend_handles_labels()[0]:
+        spread.legend(fontsize=8, loc="upper right", framealpha=0.85)
+    else:  # (every shot failed: matplotlib's warning of an empty legend, on stderr)
+        spread.text(0.5, 0.5, "no shot ended ok", transform=spread.transAxes, ha="center")
     _yards_axis(spread)
 
     mean = summary["carry_m_mean"].to_numpy(dtype=float)

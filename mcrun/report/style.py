@@ -11,7 +11,9 @@ objects and the Agg canvas (no pyplot, no display, no global state).
 import contextlib
 import io
 import math
+import re
 import textwrap
+import warnings
 
 from mcrun import exits
 from mcrun.report.run_view import PlotError
@@ -165,10 +167,33 @@ def legend_line(**kwargs):
     return Line2D([], [], **kwargs)
 
 
+# matplotlib's warning for each character its font lacks (a club named in Japanese, an emoji).
+_MISSING_GLYPH = re.compile(r"Glyph (\d+) .*missing from font\(s\) (.+?)\.?$")
+
+
 def png_bytes(fig, dpi):
-    """The PNG of a Figure at ``dpi``: its size in inches times the dpi, in pixels."""
+    """The PNG of a Figure at ``dpi``: its size in inches times the dpi, in pixels. Characters
+    the font lacks are drawn as boxes, said in one warning (matplotlib's were one a character,
+    each with its source line)."""
     buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=dpi)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        fig.savefig(buffer, format="png", dpi=dpi)
+    missing, fonts = {}, set()
+    for warning in caught:
+        match = _MISSING_GLYPH.match(str(warning.message))
+        if match:
+            missing[chr(int(match[1]))] = None
+            fonts.add(match[2])
+        else:
+            warnings.warn_explicit(warning.message, warning.category, warning.filename,
+                                   warning.lineno)  # fmt: skip
+    if missing:
+        warnings.warn(
+            f"{len(missing)} character(s) not in the font ({', '.join(sorted(fonts))}), drawn "
+            f"as boxes: {' '.join(missing)}",
+            stacklevel=2,
+        )
     return buffer.getvalue()
 
 
