@@ -167,7 +167,7 @@ def _cmd_play(args):
         try:
             for planned in plans:
                 bar = tqdm(total=len(planned.actions), unit="action", file=sys.stderr,
-                           leave=False, dynamic_ncols=True)  # fmt: skip
+                           leave=False, dynamic_ncols=True, disable=None)  # fmt: skip
                 try:
                     results.append(
                         solve_planned(

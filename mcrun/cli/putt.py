@@ -238,7 +238,8 @@ def _cmd_green(args):
 def _bar():
     from tqdm import tqdm
 
-    bar = tqdm(total=1, unit="point", file=sys.stderr, leave=False, dynamic_ncols=True)
+    bar = tqdm(total=1, unit="point", file=sys.stderr, leave=False, dynamic_ncols=True,
+               disable=None)  # fmt: skip
 
     class Bar:
         def __call__(self, done, total):

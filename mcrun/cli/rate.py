@@ -341,7 +341,7 @@ def _cmd_rate(args):
     with contextlib.ExitStack() as stack:
         client = dask_client(stack, args, workers)
         bar = tqdm(total=len(plans), unit="hole", file=sys.stderr,
-                   leave=False, dynamic_ncols=True)  # fmt: skip
+                   leave=False, dynamic_ncols=True, disable=None)  # fmt: skip
         stack.callback(bar.close)
         try:
             rating = rate_planned(holes, plans, args.women, client=client,

@@ -52,7 +52,8 @@ def _cmd_replay(args):
         print(f"mcrun: note: {note}", file=sys.stderr)
     how = "detected" if frame.attrs["format_detected"] else "as asked"
     print(f"read {args.shots}: {frame.attrs['format_title']} ({how})")
-    print(f"replayed {len(frame)} shots from {args.shots}; wrote {args.output}")
+    shots = "shot" if len(frame) == 1 else "shots"
+    print(f"replayed {len(frame)} {shots} from {args.shots}; wrote {args.output}")
     for path in written:
         print(f"wrote {path}")
     if not args.quiet:
