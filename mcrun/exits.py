@@ -11,7 +11,8 @@
 - ``NUMBA_NUM_THREADS`` that Numba cannot start with (0 raised a ValueError at its import) is
   one line too, said before anything imports Numba: ``threads_setting_problem``; so is a
   ``NUMBA_CACHE_DIR`` this process cannot write (``cache_dir_problem``), and a cache that can
-  be written nowhere (``is_cache_unwritable``, a RuntimeError at the first compile).
+  be written nowhere (``is_cache_unwritable``, Numba's RuntimeError as a module of kernels
+  imports).
 
 Light on purpose: ``mcrun.cli`` imports it before any command module.
 """
@@ -173,6 +174,9 @@ def cache_dir_problem(environ=None):
     text = (os.environ if environ is None else environ).get("NUMBA_CACHE_DIR")
     if not text:
         return None
+    if text.startswith("~"):  # (quoted in a shell, or set by a program: a folder named "~")
+        return (f"NUMBA_CACHE_DIR={text!r}: ~ is not expanded (Numba would make a folder named "
+                "~): allowed: the folder's full path, or unset")  # fmt: skip
     try:
         os.makedirs(text, exist_ok=True)
         with tempfile.TemporaryFile(dir=text):
@@ -186,9 +190,9 @@ def cache_dir_problem(environ=None):
 
 
 def is_cache_unwritable(err):
-    """Whether an exception is Numba's refusal to compile a cached function where it can write
-    a cache nowhere (mcrun's sources, the user's cache folder and ``NUMBA_CACHE_DIR`` all
-    read-only)."""
+    """Whether an exception is Numba's refusal of a cached function (as its module imports)
+    where it can write a cache nowhere (mcrun's sources, the user's cache folder and
+    ``NUMBA_CACHE_DIR`` all read-only)."""
     return isinstance(err, RuntimeError) and "no locator available" in str(err)
 
 

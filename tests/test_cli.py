@@ -309,23 +309,34 @@ def test_a_cache_folder_numba_cannot_write_is_one_line(tmp_path, monkeypatch, ca
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(blocker / "cache"))
     assert cli.main(["turfs"]) == 2
     out, err = capsys.readouterr()
-    assert out == "" and err == (
-        f"mcrun: error: NUMBA_CACHE_DIR='{blocker / 'cache'}': cannot write there (Not a "
-        "directory): allowed: a folder this user can write (Numba passes over one it cannot), "
-        "or unset\n"
-    )
+    assert out == "" and err.count("\n") == 1
+    assert err.startswith(f"mcrun: error: NUMBA_CACHE_DIR='{blocker / 'cache'}': cannot write ")
+    assert err.endswith("allowed: a folder this user can write (Numba passes over one it "
+                        "cannot), or unset\n")  # fmt: skip
+    monkeypatch.setenv("NUMBA_CACHE_DIR", "~/numba-cache")  # (Numba made a folder named ~)
+    assert cli.main(["turfs"]) == 2 and "~ is not expanded" in capsys.readouterr().err
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "made" / "cache"))  # (made, as Numba)
     assert cli.main(["turfs"]) == 0 and (tmp_path / "made" / "cache").is_dir()
     capsys.readouterr()
 
-    def compiled_without_a_cache(args):  # Numba's words, at a kernel's first compile
-        raise RuntimeError("cannot cache function 'f': no locator available for file 'f.py'")
-
-    from mcrun.cli import shot
-
-    monkeypatch.setattr(shot, "_cmd_turfs", compiled_without_a_cache)
-    assert cli.main(["turfs"]) == 2
-    assert capsys.readouterr().err.startswith("mcrun: error: Numba can write its cache of")
+    # Numba finding no folder to cache in (its own locators replaced by one that finds none):
+    # its RuntimeError as the kernels' modules import, a traceback before.
+    (tmp_path / "nowhere.py").write_text(
+        "class NoLocator:\n"
+        "    @classmethod\n"
+        "    def from_function(cls, py_func, py_file):\n"
+        "        return None\n"
+    )
+    env = {**os.environ, "NUMBA_CACHE_LOCATOR_CLASSES": "nowhere.NoLocator"}
+    env["PYTHONPATH"] = os.pathsep.join([str(tmp_path), env.get("PYTHONPATH", "")])
+    env.pop("NUMBA_CACHE_DIR", None)
+    done = subprocess.run(
+        [sys.executable, "-c", "from mcrun.cli import main; raise SystemExit(main())", "turfs"],
+        env=env, capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.startswith("mcrun: error: Numba can write its cache of the compiled")
+    assert done.stderr.count("\n") == 1
 
 
 @pytest.mark.parametrize(

@@ -405,13 +405,12 @@ def test_a_local_cluster_says_nothing_when_another_holds_the_dashboard_port(tmp_
     try:
         out = tmp_path / "run"
         argv = ["run", DRIVER, "-n", "500", "-o", str(out), "--quiet"]
-        with warnings.catch_warnings(record=True) as caught:
+        with warnings.catch_warnings():  # (the command shows each warning on stderr, one line)
             warnings.simplefilter("always")
             assert main([*argv, "--dask", "local", "--workers", "1"]) == 0
     finally:
         holder.close()
     assert "8787" not in capfd.readouterr().err
-    assert [str(w.message) for w in caught if "8787" in str(w.message)] == []
 
 
 def test_without_dask_the_backend_says_how_to_install_it(tmp_path, capsys, monkeypatch):

@@ -289,7 +289,6 @@ time.sleep(1)  # every thread has started by now: the interpreter would wait for
 """
 
 
-@pytest.mark.skipif(sys.platform == "win32", reason="no SIGTERM handler on Windows")
 def test_ctrl_c_while_a_command_s_modules_import_is_one_line(monkeypatch, capsys):
     """A command's modules take seconds to import (NumPy, Numba, pandas): Ctrl-C then was a
     traceback through the imports; now ``mcrun: interrupted`` and exit code 130."""
@@ -302,6 +301,7 @@ def test_ctrl_c_while_a_command_s_modules_import_is_one_line(monkeypatch, capsys
     assert capsys.readouterr().err == "mcrun: interrupted\n"
 
 
+@pytest.mark.skipif(sys.platform == "win32", reason="no SIGTERM handler on Windows")
 def test_sigterm_while_a_kernel_thread_starts_leaves_no_thread_behind():
     """A signal that lands while the kernels' pool starts a thread: the command stops, and the
     process exits (a thread left out of the pool's list would make the interpreter wait for it

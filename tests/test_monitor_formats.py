@@ -585,7 +585,8 @@ def test_mcrun_s_own_columns_read_in_utf_16_and_after_a_sep_line(tmp_path, encod
     body = ("sep=,\n" if sep_line else "") + text
     mark = "\ufeff" if encoding in ("utf-16-le", "utf-16-be") else ""  # ("utf-16" writes it)
     path.write_bytes((mark + body).encode(encoding))
-    want, got = read_session(plain).launch, read_session(path).launch
-    assert want.keys() == got.keys()
-    for quantity in want:
-        np.testing.assert_array_equal(got[quantity], want[quantity], err_msg=quantity)
+    want = read_session(plain).launch
+    for got in (read_session(path).launch, read_session(path, format="mcrun").launch):
+        assert want.keys() == got.keys()
+        for quantity in want:
+            np.testing.assert_array_equal(got[quantity], want[quantity], err_msg=quantity)

@@ -109,14 +109,14 @@ def test_club_summary_and_device_comparison_by_hand():
 
 def test_a_club_without_a_compared_shot_prints_dashes(tmp_path, capsys):
     """A text line under an export's rows (a footer such as "Exported by ...") is a shot
-    without a launch, of no club: its rows of the model-minus-device table have no shots,
-    printed as '-' ('+nan' before)."""
+    without a launch, of no club ("(no club)"): its rows of the model-minus-device table have
+    no shots, printed as '-' ('+nan' before)."""
     path = tmp_path / "footer.csv"
     path.write_bytes((DATA / "garmin-r10-metric.csv").read_bytes() + b"Exported by the app\n")
     assert main(["replay", str(path), "-o", str(tmp_path / "f.parquet")]) == 0
     out = capsys.readouterr().out
     assert "nan" not in out
-    assert "             carry_m      0      -     -" in out
+    assert "(no club)       carry_m      0      -     -" in out
 
 
 def test_cli_says_the_format_prints_the_clubs_and_keeps_the_device(tmp_path, capsys):

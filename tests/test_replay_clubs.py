@@ -75,6 +75,19 @@ def test_the_tables_beside_the_output_are_clubs_tables(tmp_path, capsys):
     assert carry["rmse"] == pytest.approx(np.sqrt((diff**2).mean()), rel=1e-15)
 
 
+def test_shots_without_a_club_are_one_group_named_so(tmp_path):
+    """A blank or missing club cell in a file that names clubs: one group, "(no club)" (a row
+    of no name in the tables before), its shots the blank and the missing ones."""
+    source = tmp_path / "session.csv"
+    source.write_text(
+        "club,ball_speed_mph,launch_deg,spin_rpm\nDriver,150,12,2800\n ,120,16,7000\n,121,16,7000\n"
+    )
+    frame = replay.replay(source)
+    table = clubs.club_summary(frame)
+    assert list(table["club"]) == ["Driver", clubs.NO_CLUB]
+    assert list(table["shots"]) == [1, 2]
+
+
 def test_a_file_without_the_devices_results_has_no_device_table(tmp_path):
     source = session(tmp_path / "session.csv")
     frame = replay.replay_file(source, tmp_path / "r.parquet")

@@ -245,6 +245,10 @@ def main(argv=None):
     except KeyboardInterrupt:
         print("mcrun: interrupted", file=sys.stderr)
         return exits.EXIT_INTERRUPTED
+    except RuntimeError as err:  # (Numba looks for its cache as a module of kernels imports)
+        if not exits.is_cache_unwritable(err):
+            raise
+        return _error(exits.CACHE_UNWRITABLE)
     blank = _blank_argument(parser, args)
     if blank is not None:
         return _error(f"{blank}: empty: give a value (see 'mcrun {args.command} --help')")

@@ -19,6 +19,7 @@ from mcrun.quantities import InputError
 from mcrun.results import stats
 from mcrun.run import local, plan, sampling
 from mcrun.run import scenario as scenario_module
+from mcrun.units import control_free
 
 # --- printing ----------------------------------------------------------------------------------
 
@@ -322,8 +323,8 @@ def _cmd_scenarios(args):
         print(f"no scenarios in {folder}")
         return 0
     width = max(len(name) for name, _, _, _ in entries)
-    for name, _, question, error in entries:
-        print(f"{name:<{width}}  {question}".rstrip())
+    for name, _, question, error in entries:  # (a question's line breaks, as the JSON's \n)
+        print(f"{name:<{width}}  {control_free(' '.join(question.split()))}".rstrip())
         if error is not None:
             print(f"{'':<{width}}  does not load: {error}")
     return 0

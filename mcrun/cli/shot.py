@@ -67,9 +67,10 @@ def _print_table(rows):
 
 
 def _json_value(value):
-    """JSON has no NaN: a field the shot did not reach is null."""
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
+    """JSON has no NaN: a field the shot did not reach is null; -0.0 (a straight shot's side)
+    is 0.0, as the table prints it."""
+    if isinstance(value, float):
+        return value + 0.0 if math.isfinite(value) else None
     return value
 
 

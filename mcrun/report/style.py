@@ -168,7 +168,9 @@ def legend_line(**kwargs):
 
 
 # matplotlib's warning for each character its font lacks (a club named in Japanese, an emoji).
-_MISSING_GLYPH = re.compile(r"Glyph (\d+) .*missing from font\(s\) (.+?)\.?$")
+# ("... missing from font(s) DejaVu Sans." in recent matplotlib, "... from current font." in
+# older ones.)
+_MISSING_GLYPH = re.compile(r"Glyph (\d+) .*missing from (?:current font|font\(s\) (.+?))\.?$")
 
 
 def png_bytes(fig, dpi):
@@ -176,21 +178,21 @@ def png_bytes(fig, dpi):
     the font lacks are drawn as boxes, said in one warning (matplotlib's were one a character,
     each with its source line)."""
     buffer = io.BytesIO()
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+    with warnings.catch_warnings(record=True) as caught:  # (the others as the filters say)
+        warnings.filterwarnings("always", message=r"Glyph \d+")
         fig.savefig(buffer, format="png", dpi=dpi)
-    missing, fonts = {}, set()
+    missing, fonts = {}, {}
     for warning in caught:
         match = _MISSING_GLYPH.match(str(warning.message))
         if match:
             missing[chr(int(match[1]))] = None
-            fonts.add(match[2])
+            fonts[match[2] or "the current font"] = None
         else:
             warnings.warn_explicit(warning.message, warning.category, warning.filename,
                                    warning.lineno)  # fmt: skip
     if missing:
         warnings.warn(
-            f"{len(missing)} character(s) not in the font ({', '.join(sorted(fonts))}), drawn "
+            f"{len(missing)} character(s) not in the font ({', '.join(fonts)}), drawn "
             f"as boxes: {' '.join(missing)}",
             stacklevel=2,
         )

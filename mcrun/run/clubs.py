@@ -31,11 +31,18 @@ def _check(frame, columns=("status",)):
         raise InputError(f"frame: no column {missing[0]!r}: {allowed}")
 
 
+NO_CLUB = "(no club)"
+"""The group of the shots whose club is missing or blank in a file that names clubs."""
+
+
 def club_labels(frame):
-    """The club of each row of a replay frame, as text ("" where missing; ALL without clubs)."""
+    """The club of each row of a replay frame, as text (NO_CLUB where missing or blank: a row
+    of no name in the tables before; ALL without clubs)."""
     _check(frame)
     if "club" in frame:
-        return frame["club"].astype("string").fillna("").to_numpy(dtype=object)
+        names = frame["club"].astype("string")
+        blank = (names.isna() | (names.str.strip() == "")).to_numpy(dtype=bool)
+        return np.where(blank, NO_CLUB, names.fillna("").to_numpy(dtype=object))
     return np.full(len(frame), ALL, dtype=object)
 
 

@@ -452,11 +452,12 @@ def local_cluster(workers=None, **kwargs):
         return distributed.LocalCluster(**options)
     # Ctrl-C reaches the whole process group: a worker process that was still importing printed
     # its traceback. The workers are started with SIGINT blocked (a process inherits the mask of
-    # the thread that starts it), and so is Ctrl-C here until the cluster is up; then it comes,
-    # and this process stops the cluster and its workers.
-    resource_tracker.ensure_running()  # (its first start unblocks SIGINT in the thread)
-    held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    # the thread that starts it), and so is Ctrl-C here until the cluster is up (or Dask gives
+    # up starting it); then it comes, and this process stops the cluster and its workers.
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, [])  # (the mask as it is, to restore)
     try:
+        resource_tracker.ensure_running()  # (its first start unblocks SIGINT in the thread)
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
         cluster = distributed.LocalCluster(**options)
     except BaseException:
         signal.pthread_sigmask(signal.SIG_SETMASK, held)

@@ -4,6 +4,7 @@ read as pandas reads a plain table. The exports of the devices are in ``formats`
 """
 
 import csv
+import itertools
 from pathlib import Path
 
 import pandas as pd
@@ -129,6 +130,13 @@ def text_encoding(path):
         return "utf-16" if file.read(2) in (b"\xff\xfe", b"\xfe\xff") else "utf-8"
 
 
+def sep_line(path, encoding="utf-8"):
+    """The separator a spreadsheet's first line names (``sep=,``, Excel's hint), or None."""
+    with open(path, encoding=encoding, errors="replace", newline="") as file:
+        first = file.readline().lstrip("\ufeff").rstrip("\r\n")
+    return first[4] if first.lower().startswith("sep=") and len(first) == 5 else None
+
+
 def _data_lines(path, encoding="utf-8"):
     """The lines of a CSV as pandas reads them with ``comment="#"``: the text after a ``#``
     outside quotes dropped, blank lines skipped."""
@@ -184,9 +192,13 @@ def read_launch_table(path):
         if parquet:
             frame = pd.read_parquet(path)
         else:
-            check_field_counts(path)
+            encoding = text_encoding(path)
+            sep = sep_line(path, encoding)  # (its line skipped, the separator it names used)
+            lines = itertools.islice(_data_lines(path, encoding), 1 if sep else 0, None)
+            check_field_counts(path, lines, sep or ",")
             frame = pd.read_csv(path, comment="#", skipinitialspace=True, index_col=False,
-                                encoding=text_encoding(path))  # fmt: skip
+                                encoding=encoding, sep=sep or ",",
+                                skiprows=1 if sep else None)  # fmt: skip
     except InputError:
         raise
     except pd.errors.EmptyDataError:

@@ -127,10 +127,7 @@ def read_session(path, format=None):
         launch_columns(pd.DataFrame(columns=[c.strip() for c in header]), source, _KNOWN)
         # mcrun's own columns, as a spreadsheet saves them too (semicolons or tabs, "7,097").
         comma = _decimal_comma(head[offset:], sep)
-        hinted = any(
-            drop_marks(line).lower().startswith("sep=") for line in head[:offset].split("\n")
-        )
-        if sep == "," and not comma and not hinted:  # (a spreadsheet's sep= line: read as text)
+        if sep == "," and not comma:
             frame = read_launch_table(path)
         else:
             frame = _tidy(
