@@ -75,6 +75,7 @@ def test_shot_json_equals_api(capsys):
     assert got["launch_speed_mps"] == pytest.approx(74.65568, rel=1e-12)
     assert got["launch_spin_radps"] == pytest.approx(281.2773, rel=1e-6)
     assert got["status_name"] == "ok" and got["status"] == status.OK
+    assert math.copysign(1.0, got["carry_lateral_m"]) == 1.0  # (-0.0 before: the table's 0.0)
 
 
 def test_shot_table_equals_api(capsys):

@@ -555,6 +555,12 @@ def test_scenarios_marks_a_file_that_does_not_load(tmp_path, capsys):
     assert listed["scenario"] is None and listed["bad"] == lines[1].split(": ", 1)[1]
     code, out, err = cli(capsys, "validate", str(tmp_path / "bad.toml"))
     assert code == 2 and err == f"mcrun: error: {listed['bad']}\n"
+    # A question over two lines (refused) is listed on one: its line break printed raw before.
+    (tmp_path / "bad.toml").unlink()
+    two = DRIVE.replace("[scenario]\n", '[scenario]\nquestion = """two\nlines"""\n', 1)
+    write(tmp_path, two.replace("# Question:", "# About:"), "two.toml")
+    code, out, err = cli(capsys, "scenarios", "--dir", str(tmp_path))
+    assert out.splitlines()[1] == "two       two lines"
 
 
 def bad_cases(tmp_path):
