@@ -76,3 +76,26 @@ def test_spin_decay_of_each_model():
         rate = aero.spin_decay_rate(model, speed, table)
         expected = 0.04 if name.endswith("_exp") else smits
         assert rate == pytest.approx(expected, rel=1e-12), name
+
+
+# The PGA Tour 5-iron of TrackMan's 2019 averages (data/trackman_tour_averages_2019.csv).
+FIVE_IRON = {"ball_speed_mps": 132 * 0.44704, "launch_angle_deg": 12.1,
+             "spin_radps": 5361 * math.pi / 30}  # fmt: skip
+CHAPULTEPEC_M = 7600 * 0.3048  # Club de Golf Chapultepec, Mexico City: 7,603-7,835 ft
+
+
+def test_thin_air_carries_the_tour_5_iron_as_trackman_measured():
+    """At Club de Golf Chapultepec (7,600 ft) TrackMan expected 13-15 % more carry than at sea
+    level (Golfweek, 2 March 2017, quoting TrackMan; its 5-iron: 195 to 223 yd, +14.4 %).
+    ``trackman2019`` gives the Tour 5-iron +13.3 %. The default, ``trackman2019_lyu``, misses
+    it (+5.0 %; its wedge carries 2.2 % less): its low-Reynolds drag rise, fitted at sea level,
+    rises as the thin air lowers the Reynolds number (docs/limits.md), and is not asserted
+    here."""
+    from mcrun import simulate
+
+    def carry(altitude_m):
+        shot = simulate(aero_model="trackman2019", altitude_m=altitude_m, **FIVE_IRON)
+        return shot.outcome["carry_m"]
+
+    gain = carry(CHAPULTEPEC_M) / carry(0.0) - 1.0
+    assert 0.13 <= gain <= 0.15, gain
