@@ -111,6 +111,36 @@ def test_a_point_is_read_from_its_own_row_groups_or_parts_in_order(runs, kind):
             assert len(got[0]["shot"]) == N
 
 
+@pytest.mark.parametrize("kind", ["shot", "trajectory"])
+def test_a_point_s_batches_take_the_columns_asked_and_refuse_the_rest(runs, kind):
+    """Without ``point`` among the columns (a KeyError before), each batch holds the columns
+    asked for and the point's rows only; a column the run does not hold (the trajectories
+    dropped it without a word), one named twice, and a point that is not one of the run's
+    (True read as point 1, 99 as none, 0.0 a KeyError) are refused in one line."""
+    column = "carry_m" if kind == "shot" else "x_m"
+    for folder in runs:
+        run = reader.open_run(folder)
+        read = getattr(run, f"{kind}_batches")
+        batches = list(read(1, ["shot", column], 128))
+        assert batches and all(list(b) == ["shot", column] for b in batches)
+        whole = reader.read_shots(runs[0]) if kind == "shot" else reader.read_trajectories(runs[0])
+        np.testing.assert_array_equal(
+            np.concatenate([b[column] for b in batches]), whole[whole["point"] == 1][column]
+        )
+        every = list(read(0, None, 10**6))  # (the Dask run's group from its folders' names)
+        assert every[0].keys() >= {"point", "shot", column}
+        if kind == "shot":
+            assert set(np.concatenate([b["group"] for b in every])) == {"7 iron"}
+        for columns, says in ((["nope", "point"], "no column nope in the"),
+                              (["shot", "shot"], "columns: shot given twice")):  # fmt: skip
+            with pytest.raises(reader.RunFolderError, match=says):
+                list(read(0, columns, 10))
+        for point, says in ((True, "point True: allowed"), (0.0, "point 0.0: allowed"),
+                            ("0", "point '0': allowed"), (2, "no point 2: it has 2")):  # fmt: skip
+            with pytest.raises(reader.RunFolderError, match=says):
+                list(read(point, ["shot"], 10))
+
+
 def test_plot_and_report_read_a_dask_run(runs, tmp_path, capsys):
     """``mcrun plot`` and ``mcrun report`` on a Dask run folder: the plots of the same local
     run, byte for byte (the same shots drawn the same way), and the report."""

@@ -22,6 +22,7 @@ written before runs recorded it. A folder is a path or an fsspec URL (``location
 """
 
 import os
+import urllib.parse
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -118,18 +119,33 @@ class RunFolder:
             frame["group"] = pd.Categorical(frame["group"].astype(str), categories=categories)
         return frame[wanted]
 
-    def _columns(self, columns):
-        """``columns`` (None: all of the shots') as a list, each one of the shots'."""
+    def _columns(self, columns, known=None, what="shots"):
+        """``columns`` (None: all of ``known``, default the shots') as a list, each one of
+        ``known``, none twice."""
+        known = list(self.shot_columns if known is None else known)
         if columns is None:
-            return list(self.shot_columns)
+            return known
         if isinstance(columns, str) or not isinstance(columns, list | tuple):
-            raise RunFolderError(f"columns {shown(columns)}: allowed: a list of the shots' "
+            raise RunFolderError(f"columns {shown(columns)}: allowed: a list of the {what}' "
                                  "column names")  # fmt: skip
-        unknown = [c for c in columns if c not in self.shot_columns]
+        unknown = [c for c in columns if c not in known]
         if unknown:
             raise RunFolderError(f"{self.path}: no column {', '.join(map(str, unknown))} in the "
-                                 "shots")  # fmt: skip
+                                 f"{what}")  # fmt: skip
+        twice = [c for c in dict.fromkeys(columns) if list(columns).count(c) > 1]
+        if twice:  # (two columns of one name in the frame read)
+            raise RunFolderError(f"columns: {', '.join(map(str, twice))} given twice")
         return list(columns)
+
+    def _point(self, point):
+        """``point``, one of the run's points (an int from 0); RunFolderError otherwise (a
+        point beyond them read as none, True as point 1, 0.0 as a KeyError)."""
+        count = len(self.summary)
+        if isinstance(point, bool) or not isinstance(point, int | np.integer):
+            raise RunFolderError(f"point {shown(point)}: allowed: a whole number, 0 to {count - 1}")
+        if not 0 <= point < count:
+            raise RunFolderError(f"{self.path}: no point {point}: it has {count}, 0 to {count - 1}")
+        return int(point)
 
     def trajectories(self):
         """The trajectories as one DataFrame, rows by point, shot and time (None when the run
@@ -153,16 +169,17 @@ class RunFolder:
         return frame.sort_values(["point", "shot"], kind="stable").reset_index(drop=True)
 
     def shot_batches(self, point, columns, batch_rows):
-        """Batches (dict column -> numpy array) of the shots of ``point``, ``batch_rows`` at
-        most, in shot order; text columns as object arrays. One row group at a time."""
-        return self._batches(output.SHOTS_FILE, output.SHOTS_DIR, point, self._columns(columns),
-                             batch_rows)  # fmt: skip
+        """Batches (dict column -> numpy array) of ``columns`` (None: all) of the shots of
+        ``point``, ``batch_rows`` at most, in shot order; text columns as object arrays. One
+        row group at a time."""
+        return self._batches(output.SHOTS_FILE, output.SHOTS_DIR, self._point(point),
+                             self._columns(columns), batch_rows)  # fmt: skip
 
     def trajectory_batches(self, point, columns, batch_rows):
         """``shot_batches`` of the trajectories: rows of ``point`` by shot and time."""
-        return self._batches(
-            output.TRAJECTORIES_FILE, output.TRAJECTORIES_DIR, point, columns, batch_rows
-        )
+        columns = self._columns(columns, output.TRAJECTORY_SCHEMA.names, "trajectories")
+        return self._batches(output.TRAJECTORIES_FILE, output.TRAJECTORIES_DIR,
+                             self._point(point), columns, batch_rows)  # fmt: skip
 
     def _parts(self, folder):
         """{point: [paths of its parts, in chunk order]} of a dataset folder."""
@@ -190,7 +207,10 @@ class RunFolder:
         for path in self._files(file, folder, point):
             try:
                 with self.fs.open_input_file(path) as source, pq.ParquetFile(source) as f:
-                    yield from _point_batches(f, point, columns, batch_rows)
+                    # A dataset's group is in its folders' names (group=NAME), not its files.
+                    hive = "group" in columns and "group" not in f.schema_arrow.names
+                    constants = {"group": _hive_group(path)} if hive else {}
+                    yield from _point_batches(f, point, columns, batch_rows, constants)
             except (OSError, pa.ArrowException) as err:
                 raise RunFolderError(f"cannot read {path}: {reason_of(err)}") from None
 
@@ -230,13 +250,24 @@ def _point_row_groups(parquet_file, point):
     return groups
 
 
-def _point_batches(parquet_file, point, columns, batch_rows):
-    # One row group at a time: given several, iter_batches buffers them all.
+def _hive_group(path):
+    """The group of a dataset's part from its folder's name, ``group=NAME`` (percent-encoded)."""
+    folder = path.rsplit("/", 2)[-2]
+    return (
+        urllib.parse.unquote(folder.removeprefix("group=")) if folder.startswith("group=") else ""
+    )
+
+
+def _point_batches(parquet_file, point, columns, batch_rows, constants=None):
+    # One row group at a time: given several, iter_batches buffers them all. The point is read
+    # to choose the rows, asked for or not; ``constants``: columns of one value, not in the file.
+    constants = constants or {}
+    read = list(dict.fromkeys([*(c for c in columns if c not in constants), "point"]))
     batches = (
         batch
         for group in _point_row_groups(parquet_file, point)
         for batch in parquet_file.iter_batches(
-            batch_size=batch_rows, row_groups=[group], columns=list(columns)
+            batch_size=batch_rows, row_groups=[group], columns=read
         )
     )
     for batch in batches:
@@ -244,7 +275,11 @@ def _point_batches(parquet_file, point, columns, batch_rows):
         if not mine.any():
             continue
         out = {}
-        for name, column in zip(batch.schema.names, batch.columns, strict=True):
+        for name in columns:
+            if name in constants:
+                out[name] = np.full(int(mine.sum()), constants[name], dtype=object)
+                continue
+            column = batch.column(name)
             if pa.types.is_dictionary(column.type):
                 words = np.array(column.dictionary.to_pylist(), dtype=object)
                 out[name] = words[column.indices.to_numpy()][mine]
