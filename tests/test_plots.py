@@ -469,20 +469,25 @@ def test_missing_matplotlib_is_one_line(runs, tmp_path, monkeypatch, capsys, com
 
 
 def test_the_report_reads_the_question_as_the_scenario_does(tmp_path):
-    """A ``# Question:`` line comes before ``[scenario] question``, in the library's list, the
-    loaded scenario and the report's title alike."""
-    text = '# Question: from the comment?\n[scenario]\nquestion = "from the table?"\n'
-    text += "[launch]\nball_speed = 70\nlaunch_angle = 12\nspin = 300\n"
-    path = tmp_path / "q.toml"
-    path.write_text(text, encoding="utf-8")
-    assert sc.list_library(tmp_path)[0][2] == "from the comment?"
-    assert sc.load(path).question == "from the comment?"
-    folder = reader.RunFolder(
-        tmp_path, None, None, str(tmp_path), "file", pd.DataFrame(), {"scenario_text": text},
-        [], False,
-    )  # fmt: skip
-    run = run_view.Run(folder, pd.DataFrame(), [])
-    assert run.question == "from the comment?"
+    """``[scenario] question`` comes before a ``# Question:`` line (a comment copied from
+    another scenario above an edited key was the question everywhere), and the comment where
+    there is no key, in the library's list, the loaded scenario and the report's title alike."""
+    launch = "[launch]\nball_speed = 70\nlaunch_angle = 12\nspin = 300\n"
+    for text, question in (
+        ('# Question: from the comment?\n[scenario]\nquestion = "from the table?"\n' + launch,
+         "from the table?"),
+        ("# Question: from the comment?\n[scenario]\n" + launch, "from the comment?"),
+    ):  # fmt: skip
+        path = tmp_path / "q.toml"
+        path.write_text(text, encoding="utf-8")
+        assert sc.list_library(tmp_path)[0][2] == question
+        assert sc.load(path).question == question
+        folder = reader.RunFolder(
+            tmp_path, None, None, str(tmp_path), "file", pd.DataFrame(), {"scenario_text": text},
+            [], False,
+        )  # fmt: skip
+        run = run_view.Run(folder, pd.DataFrame(), [])
+        assert run.question == question
 
 
 # --- written as a run is: all or nothing ----------------------------------------------------------

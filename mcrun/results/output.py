@@ -204,18 +204,21 @@ def question_of(provenance):
 
 
 def question_in(text):
-    """The question the scenario ``text`` answers: its first ``# Question:`` comment line,
-    else ``[scenario] question``, else "" (the library's list, a scenario's ``load`` and the
-    report's title all read it here)."""
+    """The question the scenario ``text`` answers: its ``[scenario] question``, else its first
+    ``# Question:`` comment line, else "" (the library's list, a scenario's ``load`` and the
+    report's title all read it here). The key wins: a comment copied from another scenario
+    above an edited key was the question everywhere."""
+    try:
+        question = tomllib.loads(text).get("scenario", {}).get("question")
+    except (tomllib.TOMLDecodeError, AttributeError):
+        question = None
+    if isinstance(question, str):
+        return question
     for line in text.splitlines():
         match = _QUESTION.match(line.strip())
         if match:
             return match[1]
-    try:
-        question = tomllib.loads(text).get("scenario", {}).get("question", "")
-    except (tomllib.TOMLDecodeError, AttributeError):
-        return ""
-    return question if isinstance(question, str) else ""
+    return ""
 
 
 # --- shots -------------------------------------------------------------------------------------
