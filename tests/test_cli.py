@@ -390,6 +390,22 @@ def test_a_value_out_of_range_names_its_option(capsys, command, argv, says):
     assert (code, out, err) == (2, "", f"mcrun: error: {says}\n")
 
 
+def test_a_trajectory_is_parquet_by_its_name_and_other_names_are_refused(capsys, tmp_path):
+    """``--trajectory t.parquet`` writes Parquet, the CSV's values to the last bit (it wrote a
+    CSV under that name); a name of another suffix is refused before the shot is flown."""
+    csv_path, parquet_path = tmp_path / "t.csv", tmp_path / "t.parquet"
+    for path in (csv_path, parquet_path):
+        assert run(capsys, "shot", *DRIVE_ARGS, "--trajectory", str(path))[0] == 0
+    written, read = pd.read_parquet(parquet_path), pd.read_csv(csv_path)
+    assert list(written.columns) == list(read.columns)
+    for column in ("t_s", "x_m", "y_m", "z_m"):
+        np.testing.assert_array_equal(written[column].to_numpy(), read[column].to_numpy())
+    assert list(written["phase"].astype(str)) == list(read["phase"])
+    code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--trajectory", str(tmp_path / "t.txt"))
+    assert (code, out) == (2, "") and err.endswith("allowed: a file named .csv or .parquet\n")
+    assert not (tmp_path / "t.txt").exists()
+
+
 def test_a_trajectory_s_missing_folder_is_made(capsys, tmp_path):
     """As every command's output: a folder that is missing is made (it was refused)."""
     path = tmp_path / "paths" / "drive.csv"

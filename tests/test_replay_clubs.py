@@ -88,6 +88,16 @@ def test_shots_without_a_club_are_one_group_named_so(tmp_path):
     assert list(table["shots"]) == [1, 2]
 
 
+def test_report_of_a_replayed_file_points_to_plot(tmp_path, capsys):
+    """``mcrun report`` of a file of ``mcrun replay`` said "is not a folder: give the folder
+    that 'mcrun run' wrote"; it says to draw it with ``mcrun plot``, which takes it."""
+    out = tmp_path / "r.parquet"
+    assert main(["replay", str(session(tmp_path / "s.csv")), "-o", str(out), "--quiet"]) == 0
+    capsys.readouterr()
+    code = main(["report", str(out)])
+    one_line_error(capsys, code, "a file of 'mcrun replay'", f"'mcrun plot {out}'")
+
+
 def test_a_file_without_the_devices_results_has_no_device_table(tmp_path):
     source = session(tmp_path / "session.csv")
     frame = replay.replay_file(source, tmp_path / "r.parquet")

@@ -82,6 +82,9 @@ def _say_if_unknown(run_dir):
 
 
 def _cmd_report(args):
+    if replay_plots.is_replay(args.run_dir):  # ("not a folder: give the folder ...")
+        raise PlotError(f"{args.run_dir}: a file of 'mcrun replay', which has no report: draw "
+                        f"its clubs with 'mcrun plot {args.run_dir}'")  # fmt: skip
     path = html.write_report(args.run_dir, args.out, args.dpi)
     _say_if_unknown(args.run_dir)
     print(f"wrote {path}")

@@ -159,6 +159,9 @@ def _shot_kwargs(args):
     ) | conditions_kwargs(args)
 
 
+TRAJECTORY_SUFFIXES = (".csv", ".parquet")
+
+
 def _check_trajectory_path(text):
     """CommandError, before the shot is flown, where ``--trajectory`` cannot be written (a
     folder that is missing is made, as every command's output makes it)."""
@@ -171,6 +174,8 @@ def _check_trajectory_path(text):
         reason = "a file's path (the shot's table goes to stdout)"
     elif path.is_dir():
         reason = "is a folder; give a file name"
+    elif path.suffix.lower() not in TRAJECTORY_SUFFIXES:  # (t.parquet was written as CSV)
+        reason = "allowed: a file named .csv or .parquet"
     elif not where.is_dir():
         reason = f"{where} is not a folder"
     elif not os.access(where, os.W_OK | os.X_OK):
@@ -201,8 +206,15 @@ def _cmd_shot(args):
     )
     if args.trajectory is not None:
         try:
-            Path(args.trajectory).parent.mkdir(parents=True, exist_ok=True)
-            result.trajectory.to_csv(args.trajectory, index=False)
+            path = Path(args.trajectory)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path_m = result.trajectory.copy()
+            floats = path_m.select_dtypes("float").columns
+            path_m[floats] += 0.0  # (-0.0, a straight shot's side, as 0.0)
+            if path.suffix.lower() == ".parquet":
+                path_m.to_parquet(path, index=False)
+            else:
+                path_m.to_csv(path, index=False)
         except OSError as err:
             reason = err.strerror or str(err)
             raise CommandError(f"--trajectory: cannot write {args.trajectory}: {reason}") from None
@@ -343,8 +355,8 @@ def _add_shot(subparsers):
     out.add_argument(
         "--trajectory",
         metavar="FILE.csv",
-        help="write the path to a CSV (replaced if it exists; its folder made if missing): "
-        "t_s, x_m, y_m (positive right), z_m, phase",
+        help="write the path to a CSV, or Parquet for a .parquet name (replaced if it exists; "
+        "its folder made if missing): t_s, x_m, y_m (positive right), z_m, phase",
     )
     out.add_argument("--json", action="store_true", help="print one JSON object instead")
     p.set_defaults(func=_cmd_shot)
