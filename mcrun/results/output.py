@@ -803,8 +803,8 @@ class AtomicFolder:
                     raise OutputError(problem)
                 if not self.force:
                     raise OutputError(
-                        f"the output folder {path} already holds a run: use --force to "
-                        "replace it, or choose another with -o"
+                        f"the output folder {path} already holds a run: use --force "
+                        "(force=True) to replace it, or choose another with -o (out_dir)"
                     )
             _check_replaceable(path)
         self._created = _make_parents(path)

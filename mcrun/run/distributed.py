@@ -224,8 +224,8 @@ class _UrlDestination:
                     raise output.OutputError(problem)
                 if not self.force:
                     raise output.OutputError(
-                        f"the output folder {self.url} already holds a run: use --force to "
-                        "replace it, or choose another with -o"
+                        f"the output folder {self.url} already holds a run: use --force "
+                        "(force=True) to replace it, or choose another with -o (out_dir)"
                     )
         return self
 
