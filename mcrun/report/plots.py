@@ -125,8 +125,9 @@ def figures(
             if paths:
                 yield (
                     f"{stem}-trajectories",
-                    f"{label}side and top views of {len(paths)} sampled trajectories (the "
-                    "first in trajectories.parquet).",
+                    f"{label}side and top views of {len(paths)} sampled "
+                    f"{'trajectory' if len(paths) == 1 else 'trajectories'} (the first in "
+                    "trajectories.parquet).",
                     trajectories_figure(run, row, paths),
                 )
 
