@@ -9,6 +9,7 @@ import re
 
 import numpy as np
 
+from mcrun.errors import InputError
 from mcrun.report.run_view import DISTANCES, ellipse_extent, span
 from mcrun.report.style import (
     FLIGHT_COLOUR,
@@ -25,6 +26,7 @@ from mcrun.report.style import (
     short_label,
 )
 from mcrun.results import stats
+from mcrun.units import KINDS, parse_quantity, to_unit
 
 # --- one point ---------------------------------------------------------------------------------
 
@@ -262,9 +264,19 @@ def _numeric(values):
             return None
         numbers.append(float(match[1]))
         units.add((match[2] or "").strip())
-    if len(units) != 1:
+    if len(units) == 1:
+        return np.array(numbers), units.pop()
+    if "" in units:  # (a bare number beside numbers with units: its unit unknown)
         return None
-    return np.array(numbers), units.pop()
+    # Units of one kind (["0 mph", "10 mph", "5 m/s"]): each in the kind's own unit, in order
+    # (drawn as categories in the order given, 5 m/s was drawn after 10 mph).
+    for kind, (bare, _) in KINDS.items():
+        try:
+            si = [parse_quantity(str(v), kind) for v in values]
+        except InputError:
+            continue
+        return np.array([to_unit(x, kind, bare) for x in si]), bare
+    return None
 
 
 def sweep_layout(run):
