@@ -78,7 +78,8 @@ def new_figure(kind, run, what, row=None):
     fig = figure_class(figsize=(width, height), layout="constrained")
     canvas_class(fig)
     chars = int(width * 72.0 / (10.0 * 0.55))
-    lines = [f"{run.name}: {what}"]
+    lines = textwrap.wrap(f"{run.name}: {what}", chars, max_lines=QUESTION_LINES,
+                          placeholder=" ...")  # fmt: skip
     if run.question:  # (at most QUESTION_LINES: a question of 300 kB took minutes to draw)
         lines += textwrap.wrap(run.question, chars, max_lines=QUESTION_LINES, placeholder=" ...")
     facts = []
@@ -88,7 +89,7 @@ def new_figure(kind, run, what, row=None):
         facts.append(f"seed {run.seed}")
     if row is not None and run.points > 1:
         facts.append(f"point {int(row['point'])}: {row['label']}")
-    lines.append(", ".join(facts))
+    lines += textwrap.wrap(", ".join(facts), chars)
     fig.suptitle("\n".join(lines), fontsize=10.5)
     return fig
 
