@@ -402,8 +402,10 @@ def test_a_trajectory_is_parquet_by_its_name_and_other_names_are_refused(capsys,
         np.testing.assert_array_equal(written[column].to_numpy(), read[column].to_numpy())
     assert list(written["phase"].astype(str)) == list(read["phase"])
     code, out, err = run(capsys, "shot", *DRIVE_ARGS, "--trajectory", str(tmp_path / "t.txt"))
-    assert (code, out) == (2, "") and err.endswith("allowed: a file named .csv or .parquet\n")
+    assert (code, out) == (2, "") and err.endswith("(or .csv.gz, .csv.bz2...) or .parquet\n")
     assert not (tmp_path / "t.txt").exists()
+    assert run(capsys, "shot", *DRIVE_ARGS, "--trajectory", str(tmp_path / "t.csv.gz"))[0] == 0
+    pd.testing.assert_frame_equal(pd.read_csv(tmp_path / "t.csv.gz"), read)
 
 
 def test_a_trajectory_s_missing_folder_is_made(capsys, tmp_path):

@@ -270,7 +270,7 @@ def test_shots_are_read_a_row_group_and_the_drawn_columns_at_a_time(runs, monkey
 
 def test_the_sweep_is_laid_out_against_its_parameter():
     """A numeric sweep with a unit is an x axis with that unit; units of one kind are put in
-    the kind's own unit (5 m/s was drawn after 10 mph, as categories in the order given); a
+    the first value's unit (5 m/s was drawn after 10 mph, as categories in the order given); a
     bare number beside numbers with units, and text values, are categories."""
     assert figures._numeric(["909.8 rad/s", "1124.6 rad/s"])[1] == "rad/s"
     np.testing.assert_array_equal(figures._numeric(["5 m/s", "10 m/s"])[0], [5.0, 10.0])
@@ -278,6 +278,8 @@ def test_the_sweep_is_laid_out_against_its_parameter():
     values, unit = figures._numeric(["5 m/s", "10 mph"])
     assert unit == "m/s" and values[0] == 5.0 and values[1] == pytest.approx(4.4704, rel=1e-15)
     assert figures._numeric(["5", "10 mph"]) is None
+    np.testing.assert_allclose(figures._numeric(["10 mph", "12 MPH"])[0], [10.0, 12.0], rtol=1e-15)
+    assert figures._numeric(["10 mph", "12 MPH"])[1] == "mph"  # (the first value's unit)
     assert figures._numeric(["green", "firm_green"]) is None
 
 
@@ -481,6 +483,8 @@ def test_the_report_reads_the_question_as_the_scenario_does(tmp_path):
         ('# Question: from the comment?\n[scenario]\nquestion = "from the table?"\n' + launch,
          "from the table?"),
         ("# Question: from the comment?\n[scenario]\n" + launch, "from the comment?"),
+        ('# Question: from the comment?\n[scenario]\nquestion = " "\n' + launch,
+         "from the comment?"),
     ):  # fmt: skip
         path = tmp_path / "q.toml"
         path.write_text(text, encoding="utf-8")

@@ -11,6 +11,7 @@ import argparse
 import json
 import math
 import os
+import re
 import sys
 import textwrap
 from pathlib import Path
@@ -159,7 +160,8 @@ def _shot_kwargs(args):
     ) | conditions_kwargs(args)
 
 
-TRAJECTORY_SUFFIXES = (".csv", ".parquet")
+# A trajectory's file: a CSV (compressed as its name says, by pandas) or Parquet.
+TRAJECTORY_NAME = re.compile(r"\.(csv(\.(gz|bz2|xz|zst|zip))?|parquet)$", re.IGNORECASE)
 
 
 def _check_trajectory_path(text):
@@ -174,8 +176,8 @@ def _check_trajectory_path(text):
         reason = "a file's path (the shot's table goes to stdout)"
     elif path.is_dir():
         reason = "is a folder; give a file name"
-    elif path.suffix.lower() not in TRAJECTORY_SUFFIXES:  # (t.parquet was written as CSV)
-        reason = "allowed: a file named .csv or .parquet"
+    elif not TRAJECTORY_NAME.search(path.name):  # (t.parquet was written as CSV)
+        reason = "allowed: a file named .csv (or .csv.gz, .csv.bz2...) or .parquet"
     elif not where.is_dir():
         reason = f"{where} is not a folder"
     elif not os.access(where, os.W_OK | os.X_OK):

@@ -268,14 +268,15 @@ def _numeric(values):
         return np.array(numbers), units.pop()
     if "" in units:  # (a bare number beside numbers with units: its unit unknown)
         return None
-    # Units of one kind (["0 mph", "10 mph", "5 m/s"]): each in the kind's own unit, in order
-    # (drawn as categories in the order given, 5 m/s was drawn after 10 mph).
-    for kind, (bare, _) in KINDS.items():
+    # Units of one kind (["0 mph", "10 mph", "5 m/s"]): each in the first value's unit, in
+    # order (drawn as categories in the order given, 5 m/s was drawn after 10 mph).
+    first = (_QUANTITY.match(str(values[0]))[2] or "").strip()
+    for kind in KINDS:
         try:
             si = [parse_quantity(str(v), kind) for v in values]
+            return np.array([to_unit(x, kind, first) for x in si]), first
         except InputError:
             continue
-        return np.array([to_unit(x, kind, bare) for x in si]), bare
     return None
 
 

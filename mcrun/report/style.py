@@ -78,10 +78,11 @@ def new_figure(kind, run, what, row=None):
     fig = figure_class(figsize=(width, height), layout="constrained")
     canvas_class(fig)
     chars = int(width * 72.0 / (10.0 * 0.55))
-    lines = textwrap.wrap(f"{run.name}: {what}", chars, max_lines=QUESTION_LINES,
-                          placeholder=" ...")  # fmt: skip
+    wrap = {"width": chars, "max_lines": QUESTION_LINES, "placeholder": " ...",
+            "break_on_hyphens": False}  # fmt: skip
+    lines = textwrap.wrap(f"{run.name}: {what}", **wrap)
     if run.question:  # (at most QUESTION_LINES: a question of 300 kB took minutes to draw)
-        lines += textwrap.wrap(run.question, chars, max_lines=QUESTION_LINES, placeholder=" ...")
+        lines += textwrap.wrap(run.question, **wrap)
     facts = []
     if run.n is not None:
         facts.append(f"N = {int(run.n):,} shots per point")
@@ -89,7 +90,7 @@ def new_figure(kind, run, what, row=None):
         facts.append(f"seed {run.seed}")
     if row is not None and run.points > 1:
         facts.append(f"point {int(row['point'])}: {row['label']}")
-    lines += textwrap.wrap(", ".join(facts), chars)
+    lines += textwrap.wrap(", ".join(facts), **wrap)
     fig.suptitle("\n".join(lines), fontsize=10.5)
     return fig
 

@@ -212,7 +212,7 @@ def question_in(text):
         question = tomllib.loads(text).get("scenario", {}).get("question")
     except (tomllib.TOMLDecodeError, AttributeError):
         question = None
-    if isinstance(question, str):
+    if isinstance(question, str) and question.strip():  # (an empty key: the comment's)
         return question
     for line in text.splitlines():
         match = _QUESTION.match(line.strip())

@@ -37,7 +37,8 @@ question_of = output.question_in
 
 def list_library(folder=None):
     """[(name, path, question)] of the ``*.toml`` files of ``folder`` (default: the library),
-    sorted by name. The name is the file's stem; the question its ``# Question:`` line."""
+    sorted by name. The name is the file's stem; the question its ``[scenario] question``, else
+    its ``# Question:`` line (``output.question_in``)."""
     folder = library_folder() if folder is None else Path(folder)
     entries = []
     for path in sorted(folder.glob("*.toml")):
