@@ -7,7 +7,9 @@
   (128 + 2, Ctrl-C). SIGKILL cannot be caught: what it leaves, a later run removes
   (``mcrun.results.output.remove_stale``).
 - A path with a name longer than the filesystem allows (ENAMETOOLONG, 255 bytes on most) is
-  one line naming the path, shortened when it is long itself: ``name_too_long``.
+  one line naming the path, shortened when it is long itself: ``name_too_long``; a full disk,
+  a file-size limit, a folder removed under a run (``SYSTEM_REFUSALS``) one line too:
+  ``system_refusal``.
 - ``NUMBA_NUM_THREADS`` that Numba cannot start with (0 raised a ValueError at its import) is
   one line too, said before anything imports Numba: ``threads_setting_problem``; so is a
   ``NUMBA_CACHE_DIR`` this process cannot write (``cache_dir_problem``), and a cache that can
@@ -157,6 +159,37 @@ def name_too_long(err):
     else:
         reason = f"the path is too long ({len(os.fsencode(path))} bytes)"
     return f"{shorten(path)}: {reason}"
+
+
+# What the system refuses a command for where the machine, not mcrun, is at fault: a full disk
+# or quota, a file-size limit, a read-only or failing disk, a folder removed or a permission
+# taken away while the command ran.
+SYSTEM_REFUSALS = frozenset(
+    getattr(errno, name)
+    for name in (
+        "ENOSPC",
+        "EFBIG",
+        "EDQUOT",
+        "EROFS",
+        "EIO",
+        "ENOENT",
+        "EACCES",
+        "EPERM",
+        "ENOTDIR",
+    )  # fmt: skip
+    if hasattr(errno, name)
+)
+
+
+def system_refusal(err):
+    """The one line of an OSError in ``SYSTEM_REFUSALS`` (pyarrow's say no file: its message
+    then), or None for another exception."""
+    if not isinstance(err, OSError) or err.errno not in SYSTEM_REFUSALS:
+        return None
+    reason = " ".join(str(err.strerror or err).split())
+    if err.filename is not None:
+        return f"{err.filename}: {reason}"
+    return f"a file could not be written or read: {reason}"
 
 
 def environment_problem(environ=None):

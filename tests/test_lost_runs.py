@@ -188,6 +188,56 @@ def test_a_finished_run_that_cannot_be_moved_is_kept_beside_it(tmp_path, capsys,
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
 
 
+def test_a_run_that_another_finished_beside_is_kept_without_force(tmp_path, capsys, monkeypatch):
+    """Two runs to one new folder at once, neither with --force: the second to finish replaced
+    the first's run (both said they wrote it). Now the destination is checked again as the
+    run is moved into place: the other run stays, this one is kept beside it, one line, 2."""
+    scenario = write_scenario(tmp_path)
+    target = tmp_path / "target"
+    assert mcrun(capsys, "run", scenario, "-o", tmp_path / "other", "-n", "100", "--quiet")[0] == 0
+    commit = output.AtomicFolder.commit
+
+    def another_run_first(self):  # the other process's run, moved into place meanwhile
+        shutil.copytree(tmp_path / "other", self.path)
+        return commit(self)
+
+    monkeypatch.setattr(output.AtomicFolder, "commit", another_run_first)
+    code, out, err = mcrun(capsys, "run", scenario, "-o", target, "--quiet")
+    assert (code, out) == (2, "") and one_line(err)
+    assert "another run was written there meanwhile" in err
+    assert output.read_provenance(target / "summary.parquet")["n"] == 100  # the other's
+    kept = [p for p in tmp_path.iterdir() if p.name.startswith("target.complete-")]
+    assert len(kept) == 1 and str(kept[0]) in err
+    assert output.read_provenance(kept[0] / "summary.parquet")["n"] == 200
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="no file-size limit on Windows")
+def test_a_file_size_limit_reached_mid_run_is_one_line_and_leaves_nothing(tmp_path):
+    """A file-size limit (``ulimit -f``; a full disk or quota ends the same way) reached as
+    the shots are written: a traceback and exit 1 before; one line, exit 2, and nothing left,
+    an earlier run kept."""
+    import resource
+
+    out = tmp_path / "run"
+    command = [sys.executable, "-c", "from mcrun.cli import main; raise SystemExit(main())",
+               "run", "pga-driver", "-o", str(out), "--quiet"]  # fmt: skip
+    env = {**os.environ, "NUMBA_NUM_THREADS": "1"}
+    earlier = subprocess.run([*command, "-n", "100"], env=env, capture_output=True, timeout=300)
+    assert earlier.returncode == 0, earlier.stderr
+    argv = [*command, "-n", "50000"]
+    limit = 1 << 20  # 1 MiB: 50,000 shots write some 9 MB
+
+    def limited():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    done = subprocess.run([*argv, "--force"], env=env, capture_output=True, text=True,
+                          timeout=300, preexec_fn=limited)  # fmt: skip
+    assert done.returncode == 2 and done.stderr.count("\n") == 1, done.stderr
+    assert done.stderr.startswith("mcrun: error: ") and "File too large" in done.stderr
+    assert output.read_provenance(out / "summary.parquet")["n"] == 100  # the earlier run
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
 def test_a_replayed_file_that_cannot_be_moved_is_kept_beside_it(tmp_path, capsys, monkeypatch):
     session = Path(__file__).parent / "data" / "launch_monitor_session.csv"
     target = tmp_path / "replayed.parquet"

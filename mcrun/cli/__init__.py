@@ -306,9 +306,12 @@ def _run_command(args):
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
         return 1
     except OSError as err:
-        if not exits.is_name_too_long(err):
+        if exits.is_name_too_long(err):
+            return _error(exits.name_too_long(err))
+        refused = exits.system_refusal(err)  # (a full disk was a traceback; the run cleaned up)
+        if refused is None:
             raise
-        return _error(exits.name_too_long(err))
+        return _error(refused)
     except RuntimeError as err:
         if not exits.is_cache_unwritable(err):
             raise

@@ -844,6 +844,9 @@ class AtomicFolder:
         path = self.path
         old = None
         if path.exists() and not (path.is_dir() and not any(path.iterdir())):
+            if not self.force:  # (checked before the run; another finished there meanwhile)
+                why = "another run was written there meanwhile (without --force it stays)"
+                raise FileExistsError(errno.EEXIST, why, str(path))
             old = _temporary(path, "old")  # an empty folder the rename replaces by itself
             os.rename(path, old)
         try:
@@ -897,6 +900,9 @@ class AtomicFile:
         """Rename the finished file into place; should that fail, it is kept beside the
         destination as ``STEM.complete-<time>.SUFFIX`` and ``OutputKept`` says where."""
         try:
+            if not self.force and os.path.lexists(self.path):  # (another wrote it meanwhile)
+                why = "another process wrote it meanwhile (without --force it stays)"
+                raise FileExistsError(errno.EEXIST, why, str(self.path))
             os.replace(self.tmp, self.path)
         except OSError as err:
             self._committed = True
