@@ -418,6 +418,30 @@ def test_a_changed_putter_of_the_same_name_builds_a_new_map(tmp_path, monkeypatc
     np.testing.assert_array_equal(twin.expected_putts, first.expected_putts)
 
 
+def test_a_map_that_cannot_be_cached_leaves_no_part_and_says_so(tmp_path, monkeypatch, capsys):
+    """A full cache disk as the map is saved: the part written stayed (one a process, each run
+    building the map again without a word); now it is removed and one line says why."""
+    import errno
+
+    from mcrun.putting import on_hole
+
+    monkeypatch.setenv("MCRUN_CACHE_DIR", str(tmp_path / "cache"))
+    on_hole._MEMORY.clear()
+    saved = np.savez
+
+    def full_disk(file, **arrays):
+        saved(file, **arrays)  # (the part written, then the disk full)
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(on_hole.np, "savez", full_disk)
+    built = map_of_hole(_hole(tmp_path, '{ model = "physics", resolution_m = 2.0, n = 40 }'))
+    assert built.expected_putts.size and not list((tmp_path / "cache" / "greens").iterdir())
+    said = [line for line in capsys.readouterr().err.splitlines() if "cannot be cached" in line]
+    assert said == [f"mcrun: warning: the expected-putts map cannot be cached in "
+                    f"{tmp_path / 'cache' / 'greens'} (No space left on device): it is built "
+                    "again by each run"]  # fmt: skip
+
+
 def test_the_map_s_read_is_the_hole_s_and_keys_its_cache(tmp_path, monkeypatch):
     """``[hole.putting] read``: the putter's own read by default, the best of the search's
     reads with "best", each a map of its own in the cache; the best read's expected putts are

@@ -13,6 +13,7 @@ the map is then built in each process. A file there that cannot be read as a map
 emptied, damaged) is built again and replaced, with a warning on stderr.
 """
 
+import contextlib
 import dataclasses
 import hashlib
 import os
@@ -115,15 +116,21 @@ def map_of_hole(hole, progress=None, putter=None):
         found = expected_putts_map(green, spec["putter"], spec["n"], spec["seed"],
                                    spec["resolution_m"], progress=progress,
                                    read=spec["read"])  # fmt: skip
+        tmp = path.with_suffix(f".{os.getpid()}.tmp.npz")
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
-            tmp = path.with_suffix(f".{os.getpid()}.tmp.npz")
             np.savez(tmp, x0_m=found.x0_m, y0_m=found.y0_m, sweep_change=found.sweep_change,
                      elapsed_s=found.elapsed_s, sweeps=found.sweeps,
                      **{name: getattr(found, name) for name in _ARRAYS})  # fmt: skip
             os.replace(tmp, path)
-        except OSError:
-            pass
+        except OSError as err:  # (a full disk left the part written, and every run built it)
+            with contextlib.suppress(OSError):
+                tmp.unlink()
+            if not isinstance(err, PermissionError | NotADirectoryError | FileNotFoundError):
+                why = " ".join(str(err.strerror or err).split())
+                print(f"mcrun: warning: the expected-putts map cannot be cached in "
+                      f"{path.parent} ({why}): it is built again by each run",
+                      file=sys.stderr, flush=True)  # fmt: skip
     _MEMORY[key] = found
     return found
 
