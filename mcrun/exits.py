@@ -166,17 +166,7 @@ def name_too_long(err):
 # taken away while the command ran.
 SYSTEM_REFUSALS = frozenset(
     getattr(errno, name)
-    for name in (
-        "ENOSPC",
-        "EFBIG",
-        "EDQUOT",
-        "EROFS",
-        "EIO",
-        "ENOENT",
-        "EACCES",
-        "EPERM",
-        "ENOTDIR",
-    )  # fmt: skip
+    for name in "ENOSPC EFBIG EDQUOT EROFS EIO ENOENT EACCES EPERM ENOTDIR".split()
     if hasattr(errno, name)
 )
 

@@ -210,3 +210,20 @@ def test_small_points_share_row_groups_and_nothing_else_changes(tmp_path, monkey
     assert pq.ParquetFile(apart.shots_path).num_row_groups == 16 * 3
     pd.testing.assert_frame_equal(shared.shots(), apart.shots(), check_exact=True)
     pd.testing.assert_frame_equal(shared.summary(), apart.summary(), check_exact=True)
+
+
+def test_dense_trajectories_take_smaller_chunks_unless_a_size_is_chosen():
+    """A chunk's paths are held until written (``--trajectories 1`` of 20,000 shots, one chunk,
+    held 3.6 GB): where the chunk size is the default, a chunk traces at most
+    ``MAX_PATHS_PER_CHUNK`` paths; a size the user chose is kept. (The shots do not depend on
+    it: tests/test_engine.py.)"""
+    most = run_plan.MAX_PATHS_PER_CHUNK
+    assert run_plan.plan("pga-driver", n=1000, trajectories_every=1).chunk_size == most
+    assert run_plan.plan("pga-driver", n=1000, trajectories_every=3).chunk_size == 3 * most
+    assert run_plan.plan("pga-driver", n=1000, trajectories_every=1000).chunk_size == (
+        run_plan.DEFAULT_CHUNK_SIZE
+    )
+    assert run_plan.plan("pga-driver", n=1000).chunk_size == run_plan.DEFAULT_CHUNK_SIZE
+    assert (
+        run_plan.plan("pga-driver", n=1000, chunk_size=700, trajectories_every=1).chunk_size == 700
+    )

@@ -47,6 +47,10 @@ from mcrun.run.scenario.specs import DEFAULT_BLOCK_SIZE
 from mcrun.units import INEXACT, shown, whole_number
 
 DEFAULT_CHUNK_SIZE = 65536
+# The paths a chunk traces at most where the chunk size is left at its default: a path takes
+# some 180 kB in memory until it is written (``--trajectories 1`` held 3.6 GB for 20,000
+# shots, all in one chunk). The shots do not depend on the chunk size.
+MAX_PATHS_PER_CHUNK = 512
 RUNS_FOLDER = Path("runs")
 
 # A resampled launch-monitor file varies the launch quantities it holds or jitters.
@@ -347,6 +351,8 @@ def plan(
     chunk_size = positive_int(chunk_size, "chunk_size")
     if trajectories_every is not None:
         trajectories_every = positive_int(trajectories_every, "trajectories_every")
+        if chunk_size == DEFAULT_CHUNK_SIZE:  # (a size the user chose is kept)
+            chunk_size = min(chunk_size, MAX_PATHS_PER_CHUNK * trajectories_every)
     scenario = with_seed(scenario, seed)
     points = len(scenario.points)
     shots = points * n
