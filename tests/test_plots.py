@@ -341,6 +341,29 @@ def test_report_holds_the_scenario_the_summary_and_the_provenance(page, runs):
     assert f"seed {run.seed}" in page and f"{SWEEP_N:,} shots per point" in page
 
 
+def test_a_report_whose_run_was_replaced_while_drawn_writes_nothing(runs, tmp_path, capsys,
+                                                                    monkeypatch):  # fmt: skip
+    """``mcrun report R`` while ``mcrun run ... -o R --force`` replaced the run: the old run's
+    page was written into the new run's folder, without a word. Now the run is read again
+    before the page is written: one line, exit 2, no page."""
+    folder = tmp_path / "run"
+    shutil.copytree(runs["groups"], folder)
+    drawn = report.report_html
+
+    def replaced_meanwhile(run, *args):
+        page = drawn(run, *args)
+        shutil.rmtree(folder)
+        shutil.copytree(runs["single"], folder)  # another run, moved into place
+        return page
+
+    monkeypatch.setattr(report, "report_html", replaced_meanwhile)
+    code = main(["report", str(folder), "--dpi", "30"])
+    out, err = capsys.readouterr()
+    assert (code, out) == (2, "") and err.count("\n") == 1
+    assert "another run replaced the one the report was drawn from" in err
+    assert not (folder / output.REPORT_FILE).exists()
+
+
 def test_report_defaults_to_the_run_folder(runs, tmp_path, capsys):
     run_dir = tmp_path / "copy"
     run_dir.mkdir()
