@@ -23,6 +23,8 @@ import re
 import unicodedata
 from pathlib import Path
 
+import numpy as np
+
 from mcrun.errors import InputError
 
 __all__ = [
@@ -284,6 +286,17 @@ def path_of(value: object, what: str, allowed: str, error: type = InputError) ->
     if not isinstance(value, str | os.PathLike) or (isinstance(value, str) and not value.strip()):
         raise error(f"{what} {shown(value)}: allowed: {allowed}")  # ("" was the current folder)
     return Path(value)
+
+
+def float_or_nan(value: object) -> float:
+    """``value`` as a float where it is a number; NaN for text (``float("20")`` reads 20), a
+    bool (``float(True)`` is 1), bytes, or what ``float`` refuses or overflows on."""
+    if isinstance(value, str | bytes | bool | np.bool_):
+        return math.nan
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        return math.nan
 
 
 def is_number(value: object) -> bool:

@@ -42,7 +42,7 @@ from mcrun.putting.on_hole import check_putting
 from mcrun.run import plan as run_plan
 from mcrun.run.distributed import WORKER_BYTES
 from mcrun.strokes.baseline import tour_baseline
-from mcrun.units import is_number, shown
+from mcrun.units import float_or_nan, is_number, shown
 
 __all__ = [
     "ARGUMENT_NAMES",
@@ -167,11 +167,8 @@ def _names(names):
 def _spacing(value, name):
     """A spacing of the lattice: a finite number of metres, at least 1 m (``mcrun play``'s
     range: finer would hold millions of states)."""
-    try:  # (text is not a number: "20" was read as 20 m)
-        number = math.nan if isinstance(value, str | bytes) else float(value)
-    except (TypeError, ValueError, OverflowError):
-        number = math.nan
-    if isinstance(value, bool | np.bool_) or not (math.isfinite(number) and number >= 1.0):
+    number = float_or_nan(value)  # (text is not a number: "20" was read as 20 m)
+    if not (math.isfinite(number) and number >= 1.0):
         raise PlayerError(f"{name} {value!r}: allowed: a number of metres, at least 1")
     return number
 

@@ -49,7 +49,7 @@ from mcrun.run.scenario import Scenario
 from mcrun.strokes import start_of, tour_baseline
 from mcrun.strokes.baseline import Baseline
 from mcrun.strokes.expected import FAILED
-from mcrun.units import shown
+from mcrun.units import float_or_nan, shown
 
 AZIMUTH = COLUMN["azimuth_rad"]
 START_X = COLUMN["start_x_m"]
@@ -128,15 +128,8 @@ def check_starts(hole, starts_xy_m, where="starts_xy_m"):
 def _metres(value, name, positive=False):
     """``value`` as a finite number of metres (> 0 where ``positive``); InputError naming
     ``name`` otherwise."""
-    try:  # (text is not a number: "12" was an aim at (1, 2), its characters)
-        number = math.nan if isinstance(value, str | bytes) else float(value)
-    except (TypeError, ValueError, OverflowError):
-        number = math.nan
-    if (
-        isinstance(value, bool | np.bool_)
-        or not math.isfinite(number)
-        or (positive and number <= 0.0)
-    ):
+    number = float_or_nan(value)  # (text is not a number: "12" was an aim at (1, 2))
+    if not math.isfinite(number) or (positive and number <= 0.0):
         allowed = "a positive number of metres" if positive else "a finite number of metres"
         raise InputError(f"{name} {shown(value)}: allowed: {allowed}")
     return number
