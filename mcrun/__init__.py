@@ -20,6 +20,8 @@ def __getattr__(name):
             raise InputError(problem)
         from mcrun import api
 
+        # Checked once: later uses find them here (the check probes NUMBA_CACHE_DIR's folder).
+        globals().update({api_name: getattr(api, api_name) for api_name in _API})
         return getattr(api, name)
     raise AttributeError(f"module 'mcrun' has no attribute {name!r}")
 
