@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 import pyarrow.parquet as pq
 import pytest
 
@@ -208,7 +209,8 @@ def _local_order(frame, columns):
 def test_dataset_reads_back_in_pandas_polars_and_duckdb(bag):
     """pd.read_parquet(folder), pl.scan_parquet(folder/**/*.parquet, hive_partitioning=True)
     and DuckDB's read_parquet(..., hive_partitioning = true) read the hive-partitioned dataset
-    with the local shots.parquet's rows and values (group back from the folder names)."""
+    with the local shots.parquet's rows and values (group back from the folder names); each
+    summary's point is of its shots' type."""
     pl = pytest.importorskip("polars")
     duckdb = pytest.importorskip("duckdb")
     local, dask = bag
@@ -235,6 +237,11 @@ def test_dataset_reads_back_in_pandas_polars_and_duckdb(bag):
                 np.testing.assert_array_equal(a.to_numpy(), b.to_numpy(float), err_msg=name)
             else:
                 assert a.astype(str).tolist() == b.astype(str).tolist(), (name, column)
+    # the summary's point is of the shots' type: a join on it needs no cast (polars before 2
+    # refused to join int64 with int32)
+    for result in (local, dask):
+        shots = pq.ParquetDataset(result.shots_path).schema.field("point").type
+        assert pq.read_schema(result.summary_path).field("point").type == shots == pa.int32()
 
 
 # --- failures ----------------------------------------------------------------------------------

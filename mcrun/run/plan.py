@@ -537,7 +537,11 @@ def summary_rows(points, point_stats, shots_of, budget_bytes, on_hole=False):
         if on_hole:
             row.update(one.on_hole.row())
         rows.append(row)
-    return pd.DataFrame(rows)
+    frame = pd.DataFrame(rows)
+    # the shots' type (int32), so that a join on it needs no cast (polars refuses one of
+    # int64 with int32)
+    frame["point"] = frame["point"].astype(np.int32)
+    return frame
 
 
 def summary_metadata(run_provenance, started):
