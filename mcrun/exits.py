@@ -1,11 +1,12 @@
 """How a command ends when the process is stopped or the system refuses a path.
 
-- SIGTERM (``kill``, ``docker stop``, Slurm at the end of a job's time) is turned into
-  ``Terminated``, a ``KeyboardInterrupt``, raised in the main thread where Ctrl-C's would be:
-  a run stops the same way, removes its temporary files and exits with ``EXIT_TERMINATED``
-  (128 + 15, the shell's code for a process ended by SIGTERM) instead of ``EXIT_INTERRUPTED``
-  (128 + 2, Ctrl-C). SIGKILL cannot be caught: what it leaves, a later run removes
-  (``mcrun.results.output.remove_stale``).
+- SIGTERM (``kill``, ``docker stop``, Slurm at the end of a job's time) and SIGHUP (the
+  terminal closed, an ssh connection lost) are turned into ``Terminated``, a
+  ``KeyboardInterrupt``, raised in the main thread where Ctrl-C's would be: a run stops the
+  same way, removes its temporary files and exits with ``exit_code(signum)``, the shell's code
+  for a process ended by that signal (``EXIT_TERMINATED``, 128 + 15, for SIGTERM; 129 for
+  SIGHUP) instead of ``EXIT_INTERRUPTED`` (128 + 2, Ctrl-C). SIGKILL cannot be caught: what it
+  leaves, a later run removes (``mcrun.results.output.remove_stale``).
 - A path with a name longer than the filesystem allows (ENAMETOOLONG, 255 bytes on most) is
   one line naming the path, shortened when it is long itself: ``name_too_long``; a full disk,
   a file-size limit, a folder removed under a run (``SYSTEM_REFUSALS``) one line too:
@@ -33,8 +34,24 @@ NAME_MAX_BYTES = 255  # most filesystems (ext4, XFS, btrfs, APFS, NTFS in UTF-16
 _SHOWN = 100  # characters of a long path shown in a message: the start and the end
 
 
+# The signals that stop a command as Ctrl-C does (SIGHUP is not on Windows).
+STOP_SIGNALS = tuple(
+    getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
+
+
 class Terminated(KeyboardInterrupt):
-    """The process received SIGTERM; handled wherever Ctrl-C's KeyboardInterrupt is."""
+    """The process received SIGTERM or SIGHUP (``signum``, SIGTERM if not given); handled
+    wherever Ctrl-C's KeyboardInterrupt is."""
+
+    def __init__(self, signum=signal.SIGTERM):
+        super().__init__(signum)
+        self.signum = signal.Signals(signum)
+
+
+def exit_code(signum):
+    """The shell's exit code for a process ended by ``signum``: 128 + its number."""
+    return 128 + int(signum)
 
 
 # How long after Python drops an interrupt's exception (``sigterm_interrupts``) it comes again.
@@ -43,8 +60,10 @@ REDELIVER_S = 0.02
 
 @contextlib.contextmanager
 def sigterm_interrupts():
-    """Within the block, SIGTERM raises ``Terminated`` in the main thread; yields a list that
-    holds the signal once received. Outside the main thread SIGTERM is left as it is.
+    """Within the block, SIGTERM and SIGHUP (``STOP_SIGNALS``) raise ``Terminated`` in the
+    main thread; yields a list that holds each such signal received. Outside the main thread
+    they are left as they are, and so is a signal the process was started to ignore (``nohup``
+    ignores SIGHUP: the run goes on when the terminal closes).
 
     Python runs a signal's handler between two bytecodes of the main thread, whatever it is
     running: within a garbage collector's callback (Dask's client registers one) or a
@@ -56,10 +75,14 @@ def sigterm_interrupts():
 
     def handler(signum, frame):
         received.append(signum)
-        raise Terminated
+        raise Terminated(signum)
 
     try:
-        previous = signal.signal(signal.SIGTERM, handler)
+        previous = {
+            s: signal.signal(s, handler)
+            for s in STOP_SIGNALS
+            if signal.getsignal(s) is not signal.SIG_IGN
+        }
     except ValueError:  # not the main thread of the main interpreter
         yield received
         return
@@ -70,7 +93,7 @@ def sigterm_interrupts():
         if isinstance(dropped, KeyboardInterrupt) and threading.current_thread() is (
             threading.main_thread()
         ):
-            signum = signal.SIGTERM if isinstance(dropped, Terminated) else signal.SIGINT
+            signum = dropped.signum if isinstance(dropped, Terminated) else signal.SIGINT
             again = threading.Timer(REDELIVER_S, signal.pthread_kill,
                                     (threading.main_thread().ident, signum))  # fmt: skip
             again.daemon = True
@@ -83,16 +106,17 @@ def sigterm_interrupts():
         yield received
     finally:
         sys.unraisablehook = previous_hook
-        signal.signal(signal.SIGTERM, previous)
+        for signum, was in previous.items():
+            signal.signal(signum, was)
 
 
 @contextlib.contextmanager
 def interrupts_deferred():
-    """Within the block, Ctrl-C and SIGTERM wait: they take effect as the block ends (for a step
-    that cannot be undone once interrupted, as a Dask cluster half started). Outside the main
-    thread nothing is deferred."""
+    """Within the block, Ctrl-C, SIGTERM and SIGHUP wait: they take effect as the block ends
+    (for a step that cannot be undone once interrupted, as a Dask cluster half started).
+    Outside the main thread nothing is deferred."""
     received = []
-    signums = (signal.SIGINT, signal.SIGTERM)
+    signums = (signal.SIGINT, *STOP_SIGNALS)
     try:
         previous = {
             s: signal.signal(s, lambda signum, frame: received.append(signum)) for s in signums

@@ -314,6 +314,43 @@ def test_sigterm_stops_a_run_as_ctrl_c_does(tmp_path):
     assert listing(tmp_path) == ["scenario.toml"]
 
 
+@pytest.mark.skipif(not hasattr(signal, "SIGHUP"), reason="no SIGHUP on Windows")
+def test_sighup_stops_a_run_as_sigterm_does(tmp_path, capsys):
+    """SIGHUP (the terminal closed, an ssh connection lost) in the middle of a run: exit 129,
+    one line on stderr, no folder and no temporary folder left (it ended the run with no word,
+    its temporary folder left for a later run to remove)."""
+    scenario = write_scenario(tmp_path)
+
+    def hang_up():
+        deadline = time.monotonic() + 120
+        while not list(tmp_path.glob(".run.partial-*/shots.parquet")):
+            if time.monotonic() > deadline:
+                return
+            time.sleep(0.05)
+        os.kill(os.getpid(), signal.SIGHUP)
+
+    threading.Thread(target=hang_up, daemon=True).start()
+    code, out, err = mcrun(capsys, "run", scenario, "-n", "1e8", "-o", tmp_path / "run",
+                           "--quiet")  # fmt: skip
+    assert code == exits.exit_code(signal.SIGHUP) == 129, err
+    assert out == "" and one_line(err) and "interrupted" in err, err
+    assert listing(tmp_path) == ["scenario.toml"]
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGHUP"), reason="no SIGHUP on Windows")
+def test_a_run_started_with_nohup_goes_on_when_the_terminal_closes():
+    """A process started to ignore SIGHUP (``nohup mcrun run ...``) still ignores it."""
+    previous = signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    try:
+        with exits.sigterm_interrupts() as received:
+            os.kill(os.getpid(), signal.SIGHUP)
+            time.sleep(0.05)  # (a signal is handled between two bytecodes: there were many)
+        assert received == []
+        assert signal.getsignal(signal.SIGHUP) is signal.SIG_IGN
+    finally:
+        signal.signal(signal.SIGHUP, previous)
+
+
 # SIGTERM arrives while the main thread waits in ``Thread.start`` for a kernel thread of the
 # pool: the new thread sends it before it starts, and starts 0.5 s later.
 STARTING_THREAD_SIGTERM = """\

@@ -17,8 +17,9 @@ Each family of commands lives in its own module, which adds its subcommands to t
 A mistake the user can make (``InputError`` and its kinds: ``OutputError``, ``UnitError``,
 ``hole.errors.HoleError`` among them; ``CommandError``) ends with one line,
 ``mcrun: error: <message>``, on stderr and exit code 2; Ctrl-C with ``mcrun: interrupted`` and
-exit code 130, SIGTERM with 143 (``mcrun.exits``); anything else is a bug and raises. A command
-function returns its exit code and raises these; it prints no error itself.
+exit code 130, SIGTERM with 143 and SIGHUP with 129 (``mcrun.exits``); anything else is a bug
+and raises. A command function returns its exit code and raises these; it prints no error
+itself.
 """
 
 import argparse
@@ -252,11 +253,12 @@ def main(argv=None):
     blank = _blank_argument(parser, args)
     if blank is not None:
         return _error(f"{blank}: empty: give a value (see 'mcrun {args.command} --help')")
-    # SIGTERM stops a command as Ctrl-C does (the commands clean up on KeyboardInterrupt).
+    # SIGTERM and SIGHUP stop a command as Ctrl-C does (the commands clean up on
+    # KeyboardInterrupt).
     with exits.sigterm_interrupts() as terminated, _warnings_as_lines():
         code = _run_command(args)
     if terminated and code == exits.EXIT_INTERRUPTED:
-        return exits.EXIT_TERMINATED
+        return exits.exit_code(terminated[0])
     return code
 
 
@@ -317,14 +319,20 @@ def _run_command(args):
             raise
         return _error(exits.CACHE_UNWRITABLE)
     except Interrupted as err:
-        print(f"mcrun: interrupted: {err}", file=sys.stderr)
+        _say(f"mcrun: interrupted: {err}")
         return exits.EXIT_INTERRUPTED
-    except exits.Terminated:
-        print("mcrun: terminated (SIGTERM)", file=sys.stderr)
-        return exits.EXIT_TERMINATED
+    except exits.Terminated as err:
+        _say(f"mcrun: terminated ({err.signum.name})")
+        return exits.exit_code(err.signum)
     except KeyboardInterrupt:
-        print("mcrun: interrupted", file=sys.stderr)
+        _say("mcrun: interrupted")
         return exits.EXIT_INTERRUPTED
+
+
+def _say(line):
+    """``line`` on stderr, if it can still be written (after SIGHUP the terminal is gone)."""
+    with contextlib.suppress(OSError):
+        print(line, file=sys.stderr)
 
 
 def _error(line):
