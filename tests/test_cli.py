@@ -817,7 +817,8 @@ def test_a_whole_number_in_digits_is_read_exactly():
     assert positive_int("9007199254740993", "seed", 0) == 2**53 + 1
     assert whole("9007199254740993", "--seed", 0) == 2**53 + 1
     assert positive_int("1e6", "n") == whole("1e6", "-n", 1) == 1_000_000
-    with pytest.raises(api.InputError, match=r"^seed '1e30': allowed: a number beyond 2\*\*53"):
+    with pytest.raises(api.InputError, match=r"^seed '1e30': allowed: a whole number from 0 "
+                       r"to 2\*\*63 - 1 \(beyond 2\*\*53, in digits"):  # fmt: skip
         positive_int("1e30", "seed", 0)
     with pytest.raises(api.InputError, match=r"^--seed '1e30': .* \(beyond 2\*\*53, in digits"):
         whole("1e30", "--seed", 0)

@@ -84,10 +84,10 @@ def positive_int(value, name, minimum=1):
     read exactly, or a number such as "1e6" (``units.whole_number``)."""
     wrong = InputError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
     number, why = whole_number(value.strip() if isinstance(value, str) else value)
-    if why == INEXACT:
+    if why == INEXACT:  # (as ``cli.options.whole`` says it)
         raise InputError(
-            f"{name} {shown(value)}: allowed: a number beyond 2**53 written in digits (as a "
-            "float it is not one integer)"
+            f"{name} {shown(value)}: allowed: a whole number from {minimum} to 2**63 - 1 "
+            "(beyond 2**53, in digits: a float is not one integer there)"
         )
     if why:
         raise InputError(f"{name} {shown(value)}: {why}")
