@@ -24,6 +24,7 @@ from mcrun.physics import aero
 from mcrun.physics.flight import WIND_PROFILES, FlightParams, QuadraticContext
 from mcrun.physics.roll import roll_out_short
 from mcrun.physics.turf import PRESETS
+from mcrun.status import MAX_ROLL_DISTANCE_M, MAX_ROLL_TIME_S, NOT_STOPPED
 
 N = 400
 
@@ -165,6 +166,28 @@ def test_short_roll_is_roll_out_on_level_ground():
         slope = np.radians(4.0)
         n = (np.sin(slope), 0.0, np.cos(slope))
         assert not roll_out_short(1.0, 2.0, 0.0, *v, *w, *n, turf.mu, turf.rho_g, 3.0)[3]
+
+
+def test_a_short_roll_past_the_roll_s_bounds_is_handed_back():
+    """A roll that one step of each phase ends, but past MAX_ROLL_TIME_S or MAX_ROLL_DISTANCE_M
+    (a slide on ice), is not short: ``roll_out`` ends it at the bound, NOT_STOPPED (the lanes
+    kept the rest 152 s or 1,170 m away, ``ok``)."""
+    no_trajectory = np.empty((0, 5))
+    for mu, rho_g, speed, spin, bound in [
+        (0.0065, 0.0005, 2.0, -300.0, "time"),  # rests after 152 s
+        (0.0065, 0.05, 16.0, 0.0, "distance"),  # rests 1,170 m away after 104 s
+    ]:
+        turf = PRESETS["green"]._replace(mu=mu, rho_g=rho_g)
+        v, w = (speed, 0.0, 0.0), (0.0, spin, 0.0)
+        assert not roll_out_short(0.0, 0.0, 0.0, *v, *w, 0.0, 0.0, 1.0, mu, rho_g, 0.0)[3]
+        level = ground.Plane(0.0, 0.0, 1.0, turf)
+        x, _, _, t, status, *_ = roll_out(0.0, 0.0, 0.0, *v, *w, None, level, 0.0,
+                                          no_trajectory, 0, 0.0, 0.01)  # fmt: skip
+        assert status == NOT_STOPPED
+        if bound == "time":
+            assert t == MAX_ROLL_TIME_S
+        else:
+            assert x == pytest.approx(MAX_ROLL_DISTANCE_M, abs=1e-9)
 
 
 def test_one_compiled_layout_for_any_number_of_rows(inputs, alone):

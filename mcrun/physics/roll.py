@@ -350,12 +350,16 @@ def roll_out_short(x, y, z, vx, vy, vz, wx, wy, wz, nx, ny, nz, mu, rho_g, t):
     vz = vz1 if slides else vz
     t1 = t + h if slides else t
     k_roll = rho_g * g_n
-    far = (t1 - t > MAX_ROLL_TIME_S) | rolled_too_far(px, py, x, y)
     v = math.sqrt(vx * vx + vy * vy + vz * vz)
     moving = v > 1e-12
     _, h, stopped, x2, y2, _, _, _, _ = roll_step(
         px, py, pz, vx, vy, vz, vx * (1.0 / v), vy * (1.0 / v), vz * (1.0 / v), gx, gy, gz,
         k_roll, h_max, (5.0 / 7.0) * snap,
     )  # fmt: skip
+    x_end = x2 if moving else px
+    y_end = y2 if moving else py
+    t_end = t1 + h if moving else t1
+    # past the roll's bounds (a slide on ice): ``roll_out`` ends it there, NOT_STOPPED
+    far = (t_end - t > MAX_ROLL_TIME_S) | rolled_too_far(x_end, y_end, x, y)
     short = (slid | ~slides) & ~far & (g_t <= k_roll) & (stopped | ~moving)
-    return (x2 if moving else px), (y2 if moving else py), (t1 + h if moving else t1), short
+    return x_end, y_end, t_end, short
