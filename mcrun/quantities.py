@@ -167,6 +167,9 @@ class Quantity:
     # An alternative (the club delivery, the altitude, the Stimp reading): its column is in a
     # run's table only when a point gives it.
     optional: bool = False
+    # Why a bare number is refused, where it would be read in SI and mean something else to a
+    # user ("" where a bare number is read in the kind's bare unit).
+    bare_refused: str = ""
 
     @property
     def limits(self):
@@ -222,7 +225,15 @@ QUANTITIES = (
     # Scales e0, e1, e2 and e_high; above 1.9 the paper's e0 = 0.510 would exceed 0.97.
     Quantity("restitution", "number", (0.0, 1.9), ("turf.restitution",), 1.0),
     Quantity("rho_g", "number", TURF_LIMITS["rho_g"], ("turf.rho_g",), _preset("rho_g")),
-    Quantity("stimp_m", "length", (0.1, 6.0), ("turf.stimp",), optional=True),  # or rho_g
+    Quantity(  # or rho_g
+        "stimp_m",
+        "length",
+        (0.1, 6.0),
+        ("turf.stimp",),
+        optional=True,
+        bare_refused='give its unit, e.g. "10 ft" (a Stimp reading is quoted in feet; a bare '
+        "number would be read in metres)",
+    ),
     Quantity(
         "critical_height_m",
         "length",

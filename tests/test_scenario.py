@@ -402,6 +402,18 @@ ERRORS = [
         "give turf.rho_g or turf.stimp, not both",
     ),
     (
+        "a bare Stimp reading (6, meant in feet, was 6 m: 19.7 ft)",
+        BALL + "[turf]\nstimp = 6\n",
+        "turf.stimp",
+        'give its unit, e.g. "10 ft" (a Stimp reading is quoted in feet',
+    ),
+    (
+        "a bare Stimp spread",
+        BALL + '[turf]\nstimp = { dist = "normal", mean = "10 ft", sd = 0.5 }\n',
+        "turf.stimp.sd",
+        "0.5: give its unit",
+    ),
+    (
         "altitude and pressure",
         BALL + '[weather]\naltitude = "1609 m"\npressure = "1013 hPa"\n',
         "weather.pressure",

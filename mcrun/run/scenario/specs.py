@@ -25,17 +25,19 @@ MAX_BLOCK_SIZE = 1 << 20
 @dataclass(frozen=True)
 class Param:
     """One parameter of a section: its kind (a ``mcrun.units`` kind, "number" for a
-    dimensionless value, "choice" for a name), SI limits, and whether it may be sampled."""
+    dimensionless value, "choice" for a name), SI limits, whether it may be sampled, and why a
+    bare number is refused ("" where it is read in the kind's bare unit)."""
 
     kind: str
     limits: tuple[float, float] | None = None
     choices: tuple[str, ...] = ()
     constant_only: bool = False
+    bare_refused: str = ""
 
 
 PARAMETERS: dict[str, dict[str, Param]] = {
     section: {
-        path.partition(".")[2]: Param(q.kind, q.limits, q.choices, q.constant_only)
+        path.partition(".")[2]: Param(q.kind, q.limits, q.choices, q.constant_only, q.bare_refused)
         for q in QUANTITIES
         for path in q.paths
         if path.partition(".")[0] == section

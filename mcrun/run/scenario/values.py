@@ -141,6 +141,18 @@ def _check_in(ctx, where, value_si, param, what="must be", shown=None):
         )
 
 
+def _refuse_bare(ctx, where, value, leaf, param):
+    """ScenarioError where ``param`` wants its unit given (``Quantity.bare_refused``) and
+    ``value`` is a bare number under a key that names no unit (``stimp = 6``, meant in feet as
+    Stimp readings are quoted, was 6 m: 19.7 ft)."""
+    if not param.bare_refused or leaf.key_unit is not None:
+        return
+    if is_number(value) or (
+        isinstance(value, str) and not _LEADING_NUMBER.sub("", value, count=1).strip()
+    ):
+        raise ctx.error(where, f"{short(value)}: {param.bare_refused}")
+
+
 def read_dist(ctx, leaf, param):
     """A Dist from a raw value (constant or distribution table), validated against param."""
     value, where = leaf.value, leaf.where
@@ -152,6 +164,7 @@ def read_dist(ctx, leaf, param):
                 "must be a value or a distribution table {dist = ...}, got a list "
                 "(sweep a parameter in [sweep])",
             )
+        _refuse_bare(ctx, where, value, leaf, param)
         si = read_value(ctx, where, value, kind, leaf.key_unit)
         _check_in(ctx, where, si, param, shown=as_given(value, leaf.key_unit, si, kind))
         return Dist(kind, "constant", (si,))
@@ -179,6 +192,7 @@ def read_dist(ctx, leaf, param):
         if key in DIMENSIONLESS:
             args.append(read_value(ctx, f"{where}.{key}", value[key], "number", None))
         else:
+            _refuse_bare(ctx, f"{where}.{key}", value[key], leaf, param)
             args.append(
                 read_value(ctx, f"{where}.{key}", value[key], kind, leaf.key_unit, key in SPREADS)
             )
