@@ -382,7 +382,9 @@ class PointStats:
 def _order_statistics_positions(n, quantiles):
     """numpy's "linear" method: virtual index, the ranks below and above it, and the weight."""
     q = np.asarray(quantiles, dtype=float)
-    virtual = n * q + (1.0 + q * (1.0 - 1.0 - 1.0)) - 1.0  # numpy _compute_virtual_index
+    # numpy's own for "linear", (n - 1) q: its general form, n q + (1 - q) - 1 (alpha = beta =
+    # 1), is the same number but rounded otherwise, a few ulps off pandas' quantile
+    virtual = (n - 1) * q
     below = np.floor(virtual)
     gamma = virtual - below
     lo = np.clip(below, 0, n - 1).astype(np.int64)
