@@ -400,8 +400,9 @@ def register(subparsers):
         "--chunk-size",
         metavar="C",
         default=plan.DEFAULT_CHUNK_SIZE,
-        help=f"shots per chunk and row group (default {plan.DEFAULT_CHUNK_SIZE}); results "
-        "do not depend on it",
+        help=f"shots per chunk and row group (default {plan.DEFAULT_CHUNK_SIZE}); the shots "
+        "do not depend on it (the summary's means and covariances, merged chunk by chunk, in "
+        "their last bits only)",
     )
     p.add_argument(
         "--ignore-disk-space",

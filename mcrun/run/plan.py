@@ -69,7 +69,7 @@ SUMMARY_CONVENTIONS = {
     "percentile_method": "linear interpolation between order statistics (pandas' default)",
     "ellipse": "semi-axes sqrt(eigenvalue * -2 ln(1 - p)) of the final position's covariance; "
     "angle of the major axis from the target line towards the right, in [0, 180) deg",
-    "target": "the scenario's target, else the point's mean final position",
+    "target": "the scenario's target, else on a hole its pin, else the point's mean final position",
     "drivers": "standardised regression coefficients (src) on the sampled inputs that vary, "
     "share = src^2; run_m: correlation with each landing quantity, share = corr^2",
 }
