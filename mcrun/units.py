@@ -200,15 +200,23 @@ _NUMBER = re.compile(
 )
 
 
+# Dashes that look like a minus sign and are not ASCII's '-': the minus sign, hyphens, dashes,
+# the small and the full-width hyphen-minus.
+MINUS_LIKE = "\u2212\u2010\u2011\u2012\u2013\u2014\u2015\ufe63\uff0d"
+
+
 def foreign_digits(text: str) -> str | None:
     """Why ``text`` cannot be read when it holds a decimal digit other than 0-9 (``１６７``, full
     width), else None. Python's ``float`` reads any Unicode decimal digit, but a value that
     looks like a number and is not the one typed is refused: only ASCII digits are accepted.
     So is a digit separator: Python's ``int`` and ``float`` read "1_000" as 1000 (and "3_80" as
-    380), which ``parse_quantity`` refuses."""
+    380), which ``parse_quantity`` refuses, and a dash that looks like a minus (``MINUS_LIKE``)."""
     digit = next((c for c in text if c.isdecimal() and not c.isascii()), None)
     if digit is not None:
         return f"only ASCII digits (0-9) are accepted, not {digit!r}"
+    dash = next((c for c in text if c in MINUS_LIKE), None)
+    if dash is not None:  # (a word processor's or a spreadsheet's minus: "−3" was "not a unit")
+        return f"{dash!r} (U+{ord(dash):04X}) is not read as a minus sign: type '-'"
     if "_" in text:
         return "'_' is not read in a number (write 1000, or 1e3)"
     return None

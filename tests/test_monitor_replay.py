@@ -259,6 +259,21 @@ def test_gspro_fields_of_several_types_mark_their_shots_and_write(tmp_path, caps
     assert frame["carry_m"].iloc[1] == pytest.approx(want.outcome["carry_m"], rel=1e-12)
 
 
+def test_a_cell_with_a_minus_that_is_not_ascii_s_says_so(tmp_path, capsys):
+    """A spreadsheet's minus sign (U+2212) in a cell: the shot is invalid_input and its reason
+    names the sign (it said only "'\u2212167' not read")."""
+    table = tmp_path / "m.csv"
+    table.write_text("ball_speed_mph,launch_deg,spin_rpm,azimuth_deg\n"
+                     "167,10.9,2686,1\n167,10.9,2686,\u22121\n", encoding="utf-8")  # fmt: skip
+    out = tmp_path / "m.parquet"
+    assert main(["replay", str(table), "-o", str(out), "--quiet"]) == 0, capsys.readouterr().err
+    frame = pd.read_parquet(out)
+    assert list(frame["status"]) == [OK, INVALID_INPUT]
+    assert frame["invalid_reason"].iloc[1] == (
+        "azimuth_deg: '\u22121' not read: '\u2212' (U+2212) is not read as a minus sign: type '-'"
+    )
+
+
 def test_files_without_a_valid_shot_are_refused_one_line_nothing_written(tmp_path, capsys):
     """An export whose 20 rows are all blank; one whose every row is a footer; binary bytes;
     a 20,000-column header: one line naming the file, exit 2, nothing written, no traceback,

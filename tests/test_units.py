@@ -481,6 +481,27 @@ def test_only_ascii_digits(value, kind, digit):
         parse_vector(f"{value},0", kind)
 
 
+@pytest.mark.parametrize(
+    ("value", "kind", "dash"),
+    [
+        ("\u22123", "temperature", "\u2212"),  # the minus sign a word processor writes
+        ("\u22123 \u00b0C", "temperature", "\u2212"),
+        ("\u201390", "angle", "\u2013"),  # an en dash
+        ("\uff0d5 mph", "speed", "\uff0d"),  # full width
+    ],
+)
+def test_a_dash_that_looks_like_a_minus_is_named(value, kind, dash):
+    """A minus sign that is not ASCII's '-' is refused naming it (it was "expected a number with
+    an optional unit", as if the unit were wrong); the replay's reason for a cell says so too."""
+    with pytest.raises(UnitError) as exc_info:
+        parse_quantity(value, kind, name="--x")
+    assert _one_line(exc_info).endswith(
+        f"{dash!r} (U+{ord(dash):04X}) is not read as a minus sign: type '-'"
+    )
+    with pytest.raises(UnitError, match="is not read as a minus sign"):
+        parse_vector(f"1,{value}", kind)
+
+
 def test_values_in_messages_are_plain_numbers():
     """numpy 2's reprs (np.float64(nan)) do not reach a message: numbers read as typed."""
     np = pytest.importorskip("numpy")

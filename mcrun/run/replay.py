@@ -42,7 +42,7 @@ from mcrun.results import output
 from mcrun.run import clubs
 from mcrun.run.monitors import Session, read_session, session_of_frame
 from mcrun.run.monitors.native import KIND
-from mcrun.units import UnitError, shown, to_unit
+from mcrun.units import UnitError, foreign_digits, shown, to_unit
 
 # The launch columns of the output, by quantity (scenario.FILE_COLUMNS): (name, SI -> factor).
 LAUNCH_COLUMNS = {
@@ -106,8 +106,9 @@ def invalid_reasons(session, values, valid, most=None):
                 why = "empty"
             elif isinstance(cell, float | np.floating):  # read as a number: inf ("1e999")
                 why = f"{cell} is not a finite number"
-            else:
-                why = f"{shown(str(cell), 30)} not read"
+            else:  # (with why, where it looks like a number and is not one: "−167")
+                foreign = foreign_digits(str(cell))
+                why = f"{shown(str(cell), 30)} not read" + (f": {foreign}" if foreign else "")
             reasons[row] = f"{column}: {why}"
         for row, value in zip(rows[outside], si[outside], strict=True):
             reasons[row] = f"{column}: {_in_unit(value, kind, unit)} is outside " + (
