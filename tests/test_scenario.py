@@ -469,6 +469,19 @@ ERRORS = [
     ),
     ("sweep empty", BALL + '[sweep]\n"turf.mu" = []\n', 'sweep."turf.mu"', "non-empty list"),
     (
+        "a value a sweep takes the place of, out of range (it was never read)",
+        BALL + '[weather]\ntemperature = "500 K"\n[sweep]\n"weather.temperature" = ["10 C"]\n',
+        "weather.temperature",
+        "must be within [-40 C, 55 C], got 500 K (226.85 C)",
+    ),
+    (
+        "a group's value a sweep takes the place of, unreadable",
+        BALL + '[[group]]\nname = "a"\nweather.wind_speed = "10 mphh"\n'
+        '[sweep]\n"weather.wind_speed" = ["1 m/s"]\n',
+        "group[0].weather.wind_speed",
+        "mphh",
+    ),
+    (
         "sweep bad key",
         BALL + '[sweep]\n"mu" = [0.4]\n',
         'sweep."mu"',

@@ -337,6 +337,7 @@ def loads(text, path):
         raise ctx.error("sweep" if sweep else "group", f"{len(group_list) * combinations:,} "
                         f"points{each}: allowed are at most {MAX_POINTS:,}")  # fmt: skip
     combos = list(itertools.product(*(leaves for _, _, _, leaves in sweep))) if sweep else [()]
+    _check_swept_over(ctx, sweep, [base, *(overrides for _, overrides, _, _ in group_list)])
 
     points = []
     single = len(group_list) * len(combos) == 1
@@ -356,6 +357,22 @@ def loads(text, path):
             params = _resolve(ctx, sections, path.parent, context)
             points.append(Point(len(points), label, gname, values, params, gtarget, gplay))
     return Scenario(path, text, name, question, shots, seed, block_size, points, hole, play)
+
+
+def _check_swept_over(ctx, sweep, tables):
+    """Each value that a swept value takes the place of, in the base or a group (``tables``:
+    their {section: {name: Leaf}}), read and checked as if it were used: ``temperature = "500
+    K"`` under a sweep of the temperature validated."""
+    for section, name, _, _ in sweep:
+        param = PARAMETERS.get(section, {}).get(name)
+        for table in tables:
+            leaf = table.get(section, {}).get(name)
+            if param is None or leaf is None:
+                continue
+            if param.kind == "choice":
+                read_choice(ctx, leaf, param)
+            else:
+                read_dist(ctx, leaf, param)
 
 
 def _group_play(ctx, where, given, hole, play):
