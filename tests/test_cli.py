@@ -360,7 +360,8 @@ def test_a_cache_folder_numba_cannot_write_is_one_line(tmp_path, monkeypatch, ca
         ("shot", [*DRIVE_ARGS, "--slope", "89"],
          "--slope (slope_deg) = 89 is outside the allowed range [0, 45]"),
         ("shot", [*DRIVE_ARGS, "--humidity", "50"],
-         "--humidity (relative_humidity) = 50 is outside the allowed range [0, 1]"),
+         "--humidity (relative_humidity) = 50 is outside the allowed range [0, 1] (a share: "
+         "for 50 %, give 0.5 or 50%)"),
         ("shot", ["--ball-speed", "60"],
          "a ball launch needs --launch, --spin (or a club delivery: --club-speed and --loft)"),
         # Ignored before: the same numbers with or without them.

@@ -432,6 +432,18 @@ ERRORS = [
         "spin takes units of a spin: rad/s, rpm, rps",
     ),
     (
+        "unit in the key of the wrong kind, before a vowel",
+        BALL.replace('launch_angle = "10.9 deg"', "launch_angle_mph = 5"),
+        "launch.launch_angle_mph",
+        "launch_angle takes units of an angle: deg, rad",
+    ),
+    (
+        "a humidity of 50 (meant as 50 %)",
+        BALL + "[weather]\nhumidity = 50\n",
+        "weather.humidity",
+        'must be within [0, 1], got 50 (a share: for 50 %, write "50 %")',
+    ),
+    (
         "a unit in the value and in the key",
         BALL.replace('spin = "2686 rpm"', 'spin_rpm = "2686 rpm"'),
         "launch.spin_rpm",

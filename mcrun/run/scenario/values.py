@@ -134,10 +134,13 @@ def _check_in(ctx, where, value_si, param, what="must be", shown=None):
     ``shown`` (default: in the bare unit)."""
     lo, hi = param.limits
     if not lo <= value_si <= hi:
+        hint = f' (a share: for {value_si:g} %, write "{value_si:g} %")' * (
+            param.kind == "fraction" and hi == 1.0 and 1.0 < value_si <= 100.0
+        )  # (humidity = 50)
         raise ctx.error(
             where,
             f"{what} within [{fmt(lo, param.kind)}, {fmt(hi, param.kind)}], "
-            f"got {shown or fmt(value_si, param.kind)}",
+            f"got {shown or fmt(value_si, param.kind)}{hint}",
         )
 
 
@@ -287,7 +290,8 @@ def key_name(ctx, section, key, where, only=None):
         if names[base].kind != kind:
             expected = names[base].kind
             allowed = (
-                f"units of a {expected}: {', '.join(KINDS[expected][1])}"
+                f"units of {'an' if expected[0] in 'aeiou' else 'a'} {expected}: "
+                f"{', '.join(KINDS[expected][1])}"
                 if expected in KINDS
                 else "no unit (dimensionless)"
                 if expected == "number"
