@@ -369,7 +369,12 @@ def test_each_club_is_searched_about_its_own_aim_and_from_its_start(tmp_path, ca
     assert main(["aim", str(tmp_path / "two.toml"), "-n", "50"]) == 0
     assert "differences are to each club's own aim (the scenario's)" in capsys.readouterr().out
     assert main(["aim", "par3-over-water", "-n", "50", "--offsets", "0,5", "--centre", "3"]) == 0
-    assert "differences are to --centre (+3.0 m)" in capsys.readouterr().out
+    in_metres = capsys.readouterr().out
+    assert "differences are to --centre (+3.0 m)" in in_metres
+    # the same lengths with their units (refused: "must be a finite number of metres")
+    assert main(["aim", "par3-over-water", "-n", "50", "--offsets", "0 yd, 500cm", "--centre",
+                 "300 cm"]) == 0  # fmt: skip
+    assert capsys.readouterr().out == in_metres
     wedge = launch.replace("127 mph", "60 mph").replace("14.1 deg", "30 deg")
     (tmp_path / "start.toml").write_text(
         f'[scenario]\nseed = 1\n[hole]\nfile = "{library}/holes/riverside-9.toml"\n'

@@ -11,6 +11,7 @@ from mcrun.cli.hole import say_skipped
 from mcrun.quantities import InputError
 from mcrun.run import aim
 from mcrun.strokes import BaselineError, load_baseline
+from mcrun.units import UnitError, parse_quantity
 
 # The command line's names of ``aim.search``'s arguments, for its one-line errors.
 OPTION_NAMES = {
@@ -23,9 +24,26 @@ OPTION_NAMES = {
 }
 
 
+def _metres(text):
+    """A length option's text with its unit (``5yd``, as ``play --coarse`` reads one) in m; as
+    typed otherwise (a bare number in m, or what cannot be read): ``aim.check`` reads and
+    checks it, naming it as typed. None where not given."""
+    if text is None:
+        return None
+    try:
+        float(text)
+        return text
+    except ValueError:
+        pass
+    try:
+        return parse_quantity(text, "length")
+    except UnitError:
+        return text
+
+
 def _offsets(text):
-    """The aims of ``--offsets``, as given (read and checked by ``aim.check``)."""
-    return None if text is None else [v.strip() for v in text.split(",")]
+    """The aims of ``--offsets``, each in m or with its unit (checked by ``aim.check``)."""
+    return None if text is None else [_metres(v.strip()) for v in text.split(",")]
 
 
 def _cmd_aim(args):
@@ -38,14 +56,14 @@ def _cmd_aim(args):
     scenario = aim.load_scenario(args.scenario, args.seed)
     say_skipped(scenario.hole)
     chosen = {  # (None: the default; beside --offsets, none is given)
-        "half_width_m": (args.half_width, aim.DEFAULT_HALF_WIDTH_M),
-        "coarse_m": (args.step, aim.DEFAULT_COARSE_M),
-        "resolution_m": (args.resolution, aim.DEFAULT_RESOLUTION_M),
+        "half_width_m": (_metres(args.half_width), aim.DEFAULT_HALF_WIDTH_M),
+        "coarse_m": (_metres(args.step), aim.DEFAULT_COARSE_M),
+        "resolution_m": (_metres(args.resolution), aim.DEFAULT_RESOLUTION_M),
     }
     search = {k: default if v is None else v for k, (v, default) in chosen.items()}
     checked = aim.check(
-        scenario, n=args.n, centre_m=args.centre, offsets_m=_offsets(args.offsets),
-        names=OPTION_NAMES, **search,
+        scenario, n=args.n, centre_m=_metres(args.centre),
+        offsets_m=_offsets(args.offsets), names=OPTION_NAMES, **search,
     )  # fmt: skip
     destination = None
     if args.output is not None:
@@ -191,7 +209,8 @@ def register(subparsers):
         "--centre",
         default=None,
         metavar="M",
-        help="centre of the region, m right of the pin (default the scenario's aim)",
+        help="centre of the region, right of the pin (m, or with a unit: 5yd; default the "
+        "scenario's aim)",
     )
     p.add_argument(
         "--half-width",
@@ -214,7 +233,7 @@ def register(subparsers):
     p.add_argument(
         "--offsets",
         metavar="M,M,...",
-        help="fly exactly these aims instead (m right of the pin), no refinement",
+        help="fly exactly these aims instead (right of the pin: m, or with units), no refinement",
     )
     p.add_argument("--baseline", metavar="CSV", help="your own expected-strokes table")
     p.add_argument("-o", "--output", metavar="PARQUET", help="write every aim flown here")
