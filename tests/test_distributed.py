@@ -210,7 +210,7 @@ def test_dataset_reads_back_in_pandas_polars_and_duckdb(bag):
     """pd.read_parquet(folder), pl.scan_parquet(folder/**/*.parquet, hive_partitioning=True)
     and DuckDB's read_parquet(..., hive_partitioning = true) read the hive-partitioned dataset
     with the local shots.parquet's rows and values (group back from the folder names); each
-    summary's point is of its shots' type."""
+    summary's point, group and label join its shots' with no cast."""
     pl = pytest.importorskip("polars")
     duckdb = pytest.importorskip("duckdb")
     local, dask = bag
@@ -218,6 +218,10 @@ def test_dataset_reads_back_in_pandas_polars_and_duckdb(bag):
     columns = list(expected.columns)
     expected = _local_order(expected, columns)
     folder = Path(dask.shots_path)
+    shots = {
+        "local": pl.scan_parquet(local.shots_path),
+        "dask": pl.scan_parquet(folder / "**" / "*.parquet", hive_partitioning=True),
+    }
     readers = {
         "pandas": pd.read_parquet(folder),
         "polars": pl.scan_parquet(folder / "**" / "*.parquet", hive_partitioning=True)
@@ -237,11 +241,17 @@ def test_dataset_reads_back_in_pandas_polars_and_duckdb(bag):
                 np.testing.assert_array_equal(a.to_numpy(), b.to_numpy(float), err_msg=name)
             else:
                 assert a.astype(str).tolist() == b.astype(str).tolist(), (name, column)
-    # the summary's point is of the shots' type: a join on it needs no cast (polars before 2
-    # refused to join int64 with int32)
-    for result in (local, dask):
-        shots = pq.ParquetDataset(result.shots_path).schema.field("point").type
-        assert pq.read_schema(result.summary_path).field("point").type == shots == pa.int32()
+    # the summary's point, group and label are of the shots' types: a join on them needs no
+    # cast (polars refused to join its categorical with text, and before 2 int64 with int32)
+    for name, result in (("local", local), ("dask", dask)):
+        summary = pq.read_schema(result.summary_path)
+        assert summary.field("point").type == pa.int32(), name
+        text = pa.dictionary(pa.int32(), pa.string())
+        assert summary.field("group").type == summary.field("label").type == text, name
+        # (a Dask dataset's group is read from its folders' names: text)
+        keys = ["point", "group", "label"] if name == "local" else ["point", "label"]
+        joined = shots[name].join(pl.read_parquet(result.summary_path).lazy(), on=keys)
+        assert len(joined.collect()) == 4 * BAG_N, name
 
 
 # --- failures ----------------------------------------------------------------------------------

@@ -143,7 +143,8 @@ def register(subparsers):
         "Connect messages or a log of them; detected from its header) or a CSV or Parquet with "
         "columns named with their "
         "unit (ball_speed_mph, launch_deg, spin_rpm, optional spin_axis_deg, azimuth_deg). "
-        "Values take units as in 'mcrun shot'. Beside OUT.parquet: OUT-clubs.csv (the "
+        "The options' values take units as in 'mcrun shot'; the file's cells are numbers in "
+        "their columns' units. Beside OUT.parquet: OUT-clubs.csv (the "
         "session per club) and, where the file has the device's results, OUT-device.csv (the "
         "model minus the device); with --plot, OUT-clubs.png and OUT-device.png.",
         allow_abbrev=False,

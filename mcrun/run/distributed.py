@@ -790,7 +790,9 @@ def run_scenario(
             on_hole=the_plan.scenario.hole,
         )
         with fs.open_output_stream(f"{root}/{output.SUMMARY_FILE}") as f:
-            output.write_table(f, rows, plan.summary_metadata(provenance, started))
+            output.write_table(
+                f, plan.summary_table(rows), plan.summary_metadata(provenance, started)
+            )
         elapsed = time.perf_counter() - started
         note = {
             "backend": "dask",

@@ -166,7 +166,7 @@ def run_scenario(
                 spill.close()
             output.write_table(
                 folder.file(output.SUMMARY_FILE),
-                rows,
+                plan.summary_table(rows),
                 plan.summary_metadata(provenance, started),
             )
             if traj_writer is not None:

@@ -32,6 +32,7 @@ from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 
 from mcrun.engine.backend import simulate_batch, simulate_traced
 from mcrun.engine.batch import general_flight as general_flight_of
@@ -542,6 +543,18 @@ def summary_rows(points, point_stats, shots_of, budget_bytes, on_hole=False):
     # int64 with int32)
     frame["point"] = frame["point"].astype(np.int32)
     return frame
+
+
+def summary_table(rows):
+    """summary.parquet's table of ``summary_rows``: its point, group and label of the shots'
+    types (int32, and text as a dictionary), so that a join of the two on them needs no cast
+    (polars refuses to join its categorical with text)."""
+    table = pa.Table.from_pandas(rows, preserve_index=False)
+    text = pa.dictionary(pa.int32(), pa.string())
+    for name in ("group", "label"):
+        i = table.schema.get_field_index(name)
+        table = table.set_column(i, name, table.column(name).cast(text))
+    return table
 
 
 def summary_metadata(run_provenance, started):
