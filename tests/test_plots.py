@@ -364,6 +364,30 @@ def test_a_report_whose_run_was_replaced_while_drawn_writes_nothing(runs, tmp_pa
     assert not (folder / output.REPORT_FILE).exists()
 
 
+def test_pictures_whose_run_was_replaced_while_drawn_say_so(runs, tmp_path, capsys,
+                                                             monkeypatch):  # fmt: skip
+    """``mcrun plot R`` while ``mcrun run ... -o R --force`` replaced the run: the pictures'
+    folder went with the old run ("cannot write R/plots/...: No such file"). Now it says that
+    another run replaced the one drawn: one line, exit 2, no picture."""
+    folder = tmp_path / "run"
+    shutil.copytree(runs["groups"], folder)
+    drawn = plots.figures
+
+    def replaced_meanwhile(*args, **kwargs):
+        for k, figure in enumerate(drawn(*args, **kwargs)):
+            if k == 1:
+                shutil.rmtree(folder)
+                shutil.copytree(runs["single"], folder)  # another run, moved into place
+            yield figure
+
+    monkeypatch.setattr(plots, "figures", replaced_meanwhile)
+    code = main(["plot", str(folder), "--dpi", "30"])
+    out, err = capsys.readouterr()
+    assert (code, out) == (2, "") and err.count("\n") == 1, err
+    assert "another run replaced the one the pictures were drawn from" in err
+    assert not (folder / output.PLOTS_FOLDER).exists()
+
+
 def test_report_defaults_to_the_run_folder(runs, tmp_path, capsys):
     run_dir = tmp_path / "copy"
     run_dir.mkdir()

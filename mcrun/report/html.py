@@ -20,9 +20,15 @@ import numpy as np
 
 from mcrun.report import hole_plots
 from mcrun.report.plots import figures
-from mcrun.report.run_view import SCATTER_MAX_SHOTS, TRAJECTORIES_PER_POINT, PlotError, open_run
+from mcrun.report.run_view import (
+    SCATTER_MAX_SHOTS,
+    TRAJECTORIES_PER_POINT,
+    PlotError,
+    check_unchanged,
+    open_run,
+)
 from mcrun.report.style import png_bytes, require_matplotlib
-from mcrun.results import geometry, output, reader, stats
+from mcrun.results import geometry, output, stats
 from mcrun.results.output import REPORT_FILE
 from mcrun.results.reader import reason_of
 
@@ -466,7 +472,7 @@ def write_report(run_dir, path=None, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER
         raise PlotError(f"-o: {err}") from None
     try:
         text = report_html(run, dpi, scatter_max)
-        _check_unchanged(run, run_dir)
+        check_unchanged(run, run_dir, "the report was")
         destination.tmp.write_text(text, encoding="utf-8")
         destination.commit()
     except OSError as err:
@@ -474,19 +480,6 @@ def write_report(run_dir, path=None, dpi=DEFAULT_REPORT_DPI, scatter_max=SCATTER
     finally:
         destination.__exit__(None, None, None)  # removes the temporary file unless committed
     return path
-
-
-def _check_unchanged(run, run_dir):
-    """PlotError where the run folder no longer holds the run the page was drawn from (a
-    ``run --force`` replaced it meanwhile: its report was the old run's, in the new run's
-    folder, without a word)."""
-    try:
-        now = reader.open_run(run_dir).provenance
-    except reader.RunFolderError:
-        now = {}
-    if any(now.get(key) != run.provenance.get(key) for key in reader.RUN_KEYS):
-        raise PlotError(f"{run_dir}: another run replaced the one the report was drawn from "
-                        "while it was drawn: nothing was written; draw it again")  # fmt: skip
 
 
 # --- command line ------------------------------------------------------------------------------

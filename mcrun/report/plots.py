@@ -56,6 +56,7 @@ from mcrun.report.run_view import (
     SCATTER_MAX_SHOTS,
     TRAJECTORIES_PER_POINT,
     PlotError,
+    check_unchanged,
     open_run,
     read_point_shots,
     sample_trajectories,
@@ -166,9 +167,11 @@ def write_plots(
                 except OSError as err:
                     if exits.is_name_too_long(err):
                         raise
+                    check_unchanged(run, run_dir, "the pictures were")  # (its folder gone)
                     raise PlotError(f"cannot write {path}: {reader.reason_of(err)}") from None
                 written.append((path, caption))
                 bar.update(1)
+            check_unchanged(run, run_dir, "the pictures were")
             pictures.commit()
     except BaseException:
         if made and out_dir.is_dir() and not any(out_dir.iterdir()):

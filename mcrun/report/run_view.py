@@ -127,6 +127,20 @@ class Run:
         return Path(self.path) / name
 
 
+def check_unchanged(run, run_dir, drawn):
+    """PlotError where the run folder no longer holds the run that ``drawn`` ("the report
+    was", "the pictures were") drawn from: a ``run --force`` replaced it meanwhile (the old
+    run's report was written into the new run's folder without a word; its pictures failed
+    with "No such file")."""
+    try:
+        now = reader.open_run(run_dir).provenance
+    except reader.RunFolderError:
+        now = {}
+    if any(now.get(key) != run.provenance.get(key) for key in reader.RUN_KEYS):
+        raise PlotError(f"{run_dir}: another run replaced the one {drawn} drawn from while "
+                        "it was drawn: nothing was written; draw it again")  # fmt: skip
+
+
 def open_run(run_dir):
     """Open a finished run folder of either layout (``reader.open_run``) and check that it
     holds what the plots draw."""
