@@ -632,6 +632,9 @@ def test_force_replaces_a_run_with_its_pictures_and_nothing_of_the_user_s(tmp_pa
     (out / output.PLOTS_FOLDER).mkdir()
     (out / output.PLOTS_FOLDER / "point00-positions.png").write_bytes(b"png")
     (out / output.REPORT_FILE).write_text("<html>")
+    # a report being written meanwhile (it was "holds '.report.html.partial-...', which no run
+    # writes"): the run's own, replaced with it
+    (out / ".report.html.partial-host-123-0123abcd").write_text("<ht")
     assert cli(capsys, "run", str(path), "-n", "30", "-o", str(out), "--force", "--quiet")[0] == 0
     assert sorted(p.name for p in out.iterdir()) == [output.SHOTS_FILE, output.SUMMARY_FILE]
     assert len(pd.read_parquet(out / output.SHOTS_FILE)) == 4 * 30

@@ -78,6 +78,8 @@ PLOT_NAME = re.compile(
     r"\.png(\.partial-.+)?"
 )
 REPORT_FILE = "report.html"
+# A report's temporary name while ``mcrun report`` writes it (``AtomicFile``): the run's too.
+REPORT_PARTIAL = re.compile(r"\.report\.html\.partial-.+")
 # Every name a run folder may hold: what --force replaces, and nothing else.
 RUN_FOLDER_NAMES = (*RUN_FILES, SHOTS_DIR, TRAJECTORIES_DIR, SUCCESS_FILE, PLOTS_FOLDER,
                     REPORT_FILE)  # fmt: skip
@@ -641,10 +643,13 @@ def not_a_run(shown, names, metadata_of, plots_of=None):
     """Why a folder ``shown`` that holds ``names`` (not empty) is not a run that a new run may
     replace, or None: it holds neither a summary.parquet nor a shots.parquet (or shots/) with
     mcrun's provenance (``metadata_of(name)``: a file's key-value metadata; OSError or an Arrow
-    error where it cannot be read), or it holds a name no run writes (RUN_FOLDER_NAMES), or its
+    error where it cannot be read), or it holds a name no run writes (RUN_FOLDER_NAMES, or a
+    report being written: REPORT_PARTIAL), or its
     plots/ (``plots_of()``: the names in it) one that ``mcrun plot`` does not (``PLOT_NAME``),
     which replacing the run would delete."""
-    foreign = sorted(set(names) - set(RUN_FOLDER_NAMES))
+    foreign = sorted(
+        n for n in set(names) - set(RUN_FOLDER_NAMES) if not REPORT_PARTIAL.fullmatch(n)
+    )
     if not foreign and PLOTS_FOLDER in names and plots_of is not None:
         foreign = sorted(f"{PLOTS_FOLDER}/{name}" for name in plots_of()
                          if not PLOT_NAME.fullmatch(name))  # fmt: skip
