@@ -63,7 +63,7 @@ def sigterm_interrupts():
     """Within the block, SIGTERM and SIGHUP (``STOP_SIGNALS``) raise ``Terminated`` in the
     main thread; yields a list that holds each such signal received. Outside the main thread
     they are left as they are, and so is a signal the process was started to ignore (``nohup``
-    ignores SIGHUP: the run goes on when the terminal closes).
+    ignores SIGHUP: the run goes on when the terminal closes; SIGTERM ignored stays so).
 
     Python runs a signal's handler between two bytecodes of the main thread, whatever it is
     running: within a garbage collector's callback (Dask's client registers one) or a
@@ -106,8 +106,8 @@ def sigterm_interrupts():
         yield received
     finally:
         sys.unraisablehook = previous_hook
-        for signum, was in previous.items():
-            signal.signal(signum, was)
+        for signum, was in previous.items():  # (None: a handler set outside Python)
+            signal.signal(signum, signal.SIG_DFL if was is None else was)
 
 
 @contextlib.contextmanager

@@ -436,11 +436,7 @@ def check_range(name, value):
     lo, hi = RANGES[name]
     value = finite_number(name, value)
     if not lo <= value <= hi:
-        # (a relative humidity of 50 is 50 %: 0.5)
-        hint = f" (a share: for {value:g} %, give {value / 100:g} or {value:g}%)" * (
-            name == "relative_humidity" and 1 < value <= 100
-        )
-        raise InputError(f"{name} = {value:g} is outside the allowed range [{lo:g}, {hi:g}]{hint}")
+        raise InputError(f"{name} = {value:g} is outside the allowed range [{lo:g}, {hi:g}]")
     return value
 
 

@@ -203,6 +203,9 @@ _NUMBER = re.compile(
 # Dashes that look like a minus sign and are not ASCII's '-': the minus sign, hyphens, dashes,
 # the small and the full-width hyphen-minus.
 MINUS_LIKE = "\u2212\u2010\u2011\u2012\u2013\u2014\u2015\ufe63\uff0d"
+# One where a number's sign goes: before a digit or a point, at the start, after a blank or an
+# exponent's e ("−3", "1e−3"; not a cell's "—" for no reading, nor "12–15").
+_MINUS_LIKE_SIGN = re.compile(rf"(?:^|(?<=[\s,;(\[eE]))([{MINUS_LIKE}])(?=[0-9.])")
 
 
 def foreign_digits(text: str) -> str | None:
@@ -210,12 +213,14 @@ def foreign_digits(text: str) -> str | None:
     width), else None. Python's ``float`` reads any Unicode decimal digit, but a value that
     looks like a number and is not the one typed is refused: only ASCII digits are accepted.
     So is a digit separator: Python's ``int`` and ``float`` read "1_000" as 1000 (and "3_80" as
-    380), which ``parse_quantity`` refuses, and a dash that looks like a minus (``MINUS_LIKE``)."""
+    380), which ``parse_quantity`` refuses, and a dash that looks like a minus where a sign
+    goes (``MINUS_LIKE``)."""
     digit = next((c for c in text if c.isdecimal() and not c.isascii()), None)
     if digit is not None:
         return f"only ASCII digits (0-9) are accepted, not {digit!r}"
-    dash = next((c for c in text if c in MINUS_LIKE), None)
-    if dash is not None:  # (a word processor's or a spreadsheet's minus: "−3" was "not a unit")
+    sign = _MINUS_LIKE_SIGN.search(text)
+    if sign is not None:  # (a word processor's or a spreadsheet's minus: "−3" was "not a unit")
+        dash = sign.group(1)
         return f"{dash!r} (U+{ord(dash):04X}) is not read as a minus sign: type '-'"
     if "_" in text:
         return "'_' is not read in a number (write 1000, or 1e3)"

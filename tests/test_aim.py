@@ -169,7 +169,7 @@ def test_the_command_line_writes_every_aim(tmp_path, capsys):
     "argv, message",
     [
         (["pga-driver"], "an aim search needs a hole"),
-        (["par3-over-water", "--offsets", "a,b"], "--offsets a,b"),
+        (["par3-over-water", "--offsets", "a,b"], "--offsets: cannot read 'a' as a length"),
         (["par3-over-water", "-n", "0"], "-n must be an integer >= 2"),
         (["par3-over-water", "-o", "x.csv"], "must be a .parquet file"),
     ],

@@ -360,8 +360,10 @@ def test_a_cache_folder_numba_cannot_write_is_one_line(tmp_path, monkeypatch, ca
         ("shot", [*DRIVE_ARGS, "--slope", "89"],
          "--slope (slope_deg) = 89 is outside the allowed range [0, 45]"),
         ("shot", [*DRIVE_ARGS, "--humidity", "50"],
-         "--humidity (relative_humidity) = 50 is outside the allowed range [0, 1] (a share: "
-         "for 50 %, give 0.5 or 50%)"),
+         "--humidity 50: allowed: a share from 0 to 1 (for 50 %, give 0.5 or 50%)"),
+        # (with its unit, no such advice: 150% is not 1.5 %)
+        ("shot", [*DRIVE_ARGS, "--humidity", "150%"],
+         "--humidity (relative_humidity) = 1.5 is outside the allowed range [0, 1]"),
         ("shot", ["--ball-speed", "60"],
          "a ball launch needs --launch, --spin (or a club delivery: --club-speed and --loft)"),
         # Ignored before: the same numbers with or without them.

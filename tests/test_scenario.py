@@ -741,6 +741,15 @@ def test_correlation_broken_by_a_group_names_the_point(tmp_path):
     )
 
 
+def test_a_humidity_with_its_unit_gets_no_advice_on_its_unit(tmp_path):
+    """``humidity = 50`` says to write "50 %"; ``"150 %"`` or ``humidity_pct = 150`` do not
+    (the advice, "for 1.5 %, write '1.5 %'", would set 1.5 %)."""
+    for text in ('humidity = "150 %"', "humidity_pct = 150"):
+        with pytest.raises(InputError) as info:
+            sc.load(write(tmp_path, BALL + f"[weather]\n{text}\n"))
+        assert str(info.value).endswith("must be within [0, 1], got 150 % (1.5)"), text
+
+
 # --- units in values and in key names ----------------------------------------------------------
 
 IN_VALUES = """

@@ -7,6 +7,7 @@ import pytest
 from mcrun.units import (
     KINDS,
     UnitError,
+    foreign_digits,
     from_column_name,
     parse_quantity,
     parse_vector,
@@ -500,6 +501,16 @@ def test_a_dash_that_looks_like_a_minus_is_named(value, kind, dash):
     )
     with pytest.raises(UnitError, match="is not read as a minus sign"):
         parse_vector(f"1,{value}", kind)
+
+
+@pytest.mark.parametrize("text", ["\u2014", "N\u2013A", "12\u201315"])
+def test_a_dash_that_is_not_a_sign_is_not_called_one(text):
+    """A dash a cell holds for no reading, or one between two numbers, is not a minus sign:
+    not told to be typed as '-'."""
+    assert foreign_digits(text) is None
+    with pytest.raises(UnitError) as exc_info:
+        parse_quantity(text, "speed", name="--x")
+    assert "minus sign" not in _one_line(exc_info)
 
 
 def test_values_in_messages_are_plain_numbers():

@@ -6,12 +6,12 @@ expected strokes (``mcrun.strokes``), with common random numbers; a table of eve
 import math
 import sys
 
+from mcrun import units
 from mcrun.cli import Interrupted, compile_if_needed, write_all_or_nothing
 from mcrun.cli.hole import say_skipped
 from mcrun.quantities import InputError
 from mcrun.run import aim
 from mcrun.strokes import BaselineError, load_baseline
-from mcrun.units import UnitError, parse_quantity
 
 # The command line's names of ``aim.search``'s arguments, for its one-line errors.
 OPTION_NAMES = {
@@ -24,26 +24,27 @@ OPTION_NAMES = {
 }
 
 
-def _metres(text):
-    """A length option's text with its unit (``5yd``, as ``play --coarse`` reads one) in m; as
-    typed otherwise (a bare number in m, or what cannot be read): ``aim.check`` reads and
-    checks it, naming it as typed. None where not given."""
+def _metres(text, option):
+    """A length option's text with its unit (``5yd``, read as ``play --coarse`` reads one) in
+    m; a bare number in ASCII digits as typed, for ``aim.check`` to read and check, naming it
+    as typed. None where not given; UnitError naming ``option`` for text that is neither."""
     if text is None:
         return None
-    try:
-        float(text)
-        return text
-    except ValueError:
-        pass
-    try:
-        return parse_quantity(text, "length")
-    except UnitError:
-        return text
+    if units.foreign_digits(text) is None:  # ("1_0" and "１０" go to parse_quantity's refusal)
+        try:
+            float(text)
+            return text
+        except ValueError:
+            pass
+    return units.parse_quantity(text, "length", option)
 
 
 def _offsets(text):
-    """The aims of ``--offsets``, each in m or with its unit (checked by ``aim.check``)."""
-    return None if text is None else [_metres(v.strip()) for v in text.split(",")]
+    """The aims of ``--offsets``, each in m or with its unit (checked by ``aim.check``; an
+    empty one as typed, which it refuses naming the option's text)."""
+    if text is None:
+        return None
+    return [_metres(v.strip(), "--offsets") if v.strip() else v for v in text.split(",")]
 
 
 def _cmd_aim(args):
@@ -56,13 +57,13 @@ def _cmd_aim(args):
     scenario = aim.load_scenario(args.scenario, args.seed)
     say_skipped(scenario.hole)
     chosen = {  # (None: the default; beside --offsets, none is given)
-        "half_width_m": (_metres(args.half_width), aim.DEFAULT_HALF_WIDTH_M),
-        "coarse_m": (_metres(args.step), aim.DEFAULT_COARSE_M),
-        "resolution_m": (_metres(args.resolution), aim.DEFAULT_RESOLUTION_M),
+        "half_width_m": (_metres(args.half_width, "--half-width"), aim.DEFAULT_HALF_WIDTH_M),
+        "coarse_m": (_metres(args.step, "--step"), aim.DEFAULT_COARSE_M),
+        "resolution_m": (_metres(args.resolution, "--resolution"), aim.DEFAULT_RESOLUTION_M),
     }
     search = {k: default if v is None else v for k, (v, default) in chosen.items()}
     checked = aim.check(
-        scenario, n=args.n, centre_m=_metres(args.centre),
+        scenario, n=args.n, centre_m=_metres(args.centre, "--centre"),
         offsets_m=_offsets(args.offsets), names=OPTION_NAMES, **search,
     )  # fmt: skip
     destination = None

@@ -31,6 +31,20 @@ def quantity(text, kind, option):
     return None if text is None else units.parse_quantity(text, kind, option)
 
 
+def _humidity(text):
+    """--humidity as a share; a bare number over 1 that reads as a percentage (50) is refused
+    saying how to write it (the range error said only [0, 1])."""
+    value = quantity(text, "fraction", "--humidity")
+    try:
+        bare = text is not None and not units.foreign_digits(text) and float(text) == value
+    except ValueError:
+        bare = False
+    if bare and 1.0 < value <= 100.0:
+        raise InputError(f"--humidity {text}: allowed: a share from 0 to 1 (for {value:g} %, "
+                         f"give {value / 100:g} or {value:g}%)")  # fmt: skip
+    return value
+
+
 def with_unit(text, kind, option, example):
     """SI value of an option whose unit must be given, where a bare number would be read in a
     unit its users do not quote it in (a Stimp reading in metres, a drive in metres):
@@ -183,7 +197,7 @@ def conditions_kwargs(args):
         ),
         pressure_pa=quantity(args.pressure, "pressure", "--pressure"),
         altitude_m=quantity(args.altitude, "length", "--altitude"),
-        relative_humidity=quantity(args.humidity, "fraction", "--humidity"),
+        relative_humidity=_humidity(args.humidity),
         air_density_kgpm3=number(args.air_density, "--air-density"),
     )
 

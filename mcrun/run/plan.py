@@ -538,22 +538,18 @@ def summary_rows(points, point_stats, shots_of, budget_bytes, on_hole=False):
         if on_hole:
             row.update(one.on_hole.row())
         rows.append(row)
-    frame = pd.DataFrame(rows)
-    # the shots' type (int32), so that a join on it needs no cast (polars refuses one of
-    # int64 with int32)
-    frame["point"] = frame["point"].astype(np.int32)
-    return frame
+    return pd.DataFrame(rows)
 
 
 def summary_table(rows):
     """summary.parquet's table of ``summary_rows``: its point, group and label of the shots'
     types (int32, and text as a dictionary), so that a join of the two on them needs no cast
-    (polars refuses to join its categorical with text)."""
+    (polars refused to join its categorical with text, and before 2 int32 with int64)."""
     table = pa.Table.from_pandas(rows, preserve_index=False)
     text = pa.dictionary(pa.int32(), pa.string())
-    for name in ("group", "label"):
+    for name, kind in (("point", pa.int32()), ("group", text), ("label", text)):
         i = table.schema.get_field_index(name)
-        table = table.set_column(i, name, table.column(name).cast(text))
+        table = table.set_column(i, name, table.column(name).cast(kind))
     return table
 
 

@@ -129,19 +129,29 @@ def as_given(raw, key_unit, value_si, kind, spread=False):
     return bare if written == bare else f"{written} ({bare})"
 
 
-def _check_in(ctx, where, value_si, param, what="must be", shown=None):
+def _check_in(ctx, where, value_si, param, what="must be", shown=None, bare=False):
     """ScenarioError unless ``value_si`` is within ``param``'s limits; the message gives it as
-    ``shown`` (default: in the bare unit)."""
+    ``shown`` (default: in the bare unit). ``bare``: the value was a bare number (a humidity of
+    50 then says how to write 50 %)."""
     lo, hi = param.limits
     if not lo <= value_si <= hi:
         hint = f' (a share: for {value_si:g} %, write "{value_si:g} %")' * (
-            param.kind == "fraction" and hi == 1.0 and 1.0 < value_si <= 100.0
-        )  # (humidity = 50)
+            bare and param.kind == "fraction" and hi == 1.0 and 1.0 < value_si <= 100.0
+        )
         raise ctx.error(
             where,
             f"{what} within [{fmt(lo, param.kind)}, {fmt(hi, param.kind)}], "
             f"got {shown or fmt(value_si, param.kind)}{hint}",
         )
+
+
+def _is_bare(value, key_unit):
+    """Whether a value was written as a bare number, in no unit (none in its key either)."""
+    if key_unit is not None:
+        return False
+    return is_number(value) or (
+        isinstance(value, str) and not _LEADING_NUMBER.sub("", value, count=1).strip()
+    )
 
 
 def _refuse_bare(ctx, where, value, leaf, param):
@@ -150,9 +160,7 @@ def _refuse_bare(ctx, where, value, leaf, param):
     Stimp readings are quoted, was 6 m: 19.7 ft)."""
     if not param.bare_refused or leaf.key_unit is not None:
         return
-    if is_number(value) or (
-        isinstance(value, str) and not _LEADING_NUMBER.sub("", value, count=1).strip()
-    ):
+    if _is_bare(value, None):
         raise ctx.error(where, f"{short(value)}: {param.bare_refused}")
 
 
@@ -169,7 +177,8 @@ def read_dist(ctx, leaf, param):
             )
         _refuse_bare(ctx, where, value, leaf, param)
         si = read_value(ctx, where, value, kind, leaf.key_unit)
-        _check_in(ctx, where, si, param, shown=as_given(value, leaf.key_unit, si, kind))
+        _check_in(ctx, where, si, param, shown=as_given(value, leaf.key_unit, si, kind),
+                  bare=_is_bare(value, leaf.key_unit))  # fmt: skip
         return Dist(kind, "constant", (si,))
     if "dist" not in value:
         raise ctx.error(f"{where}.dist", f"missing; choose one of {', '.join(DISTRIBUTIONS)}")
@@ -206,7 +215,8 @@ def read_dist(ctx, leaf, param):
         return as_given(value[key], leaf.key_unit, args[keys.index(key)], kind, spread)
 
     def check_in(key):
-        _check_in(ctx, f"{where}.{key}", args[keys.index(key)], param, shown=given(key))
+        _check_in(ctx, f"{where}.{key}", args[keys.index(key)], param, shown=given(key),
+                  bare=_is_bare(value[key], leaf.key_unit))  # fmt: skip
 
     if name == "constant":
         check_in("value")
@@ -297,7 +307,8 @@ def key_name(ctx, section, key, where, only=None):
                 if expected == "number"
                 else "no unit"
             )
-            raise ctx.error(where, f"{unit} is a {kind} unit, but {base} takes {allowed}")
+            article = "an" if kind[0] in "aeiou" else "a"
+            raise ctx.error(where, f"{unit} is {article} {kind} unit, but {base} takes {allowed}")
         return base, unit
     allowed = ", ".join((*names, *special))
     raise ctx.error(
