@@ -287,6 +287,15 @@ def whole_number(value: object) -> tuple[int | None, str]:
     return int(number), ""
 
 
+def whole_numbers_allowed(least: int, most: int | None = None, inexact: bool = False) -> str:
+    """What a message says is allowed for a whole number from ``least`` to ``most`` (an
+    int64's largest where None); ``inexact``: it was given through a float beyond 2**53
+    (``whole_number``'s ``INEXACT``), which must be written in digits."""
+    top = "2**63 - 1" if most is None else most
+    beyond = " (beyond 2**53, in digits: a float is not one integer there)" * inexact
+    return f"a whole number from {least} to {top}{beyond}"
+
+
 def control_free(text: str) -> str:
     """``text`` without its control and format characters (an escape sequence, a
     right-to-left override, a line break): what it prints as."""

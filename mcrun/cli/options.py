@@ -112,9 +112,8 @@ def whole(text, option, least, most=None):
         raise InputError(f"{option} {text!r}: {why}")
     top = 2**63 - 1 if most is None else most  # (an int64: what the kernels take)
     if value is None or not least <= value <= top:
-        allowed = f"from {least} to {most}" if most is not None else f"from {least} to 2**63 - 1"
-        beyond = " (beyond 2**53, in digits: a float is not one integer there)" * (why != "")
-        raise InputError(f"{option} {text!r}: allowed: a whole number {allowed}{beyond}")
+        allowed = units.whole_numbers_allowed(least, most, inexact=why != "")
+        raise InputError(f"{option} {text!r}: allowed: {allowed}")
     return value
 
 

@@ -45,7 +45,7 @@ from mcrun.results import on_hole as on_hole_results
 from mcrun.run import sampling
 from mcrun.run import scenario as scenario_module
 from mcrun.run.scenario.specs import DEFAULT_BLOCK_SIZE
-from mcrun.units import INEXACT, shown, whole_number
+from mcrun.units import INEXACT, shown, whole_number, whole_numbers_allowed
 
 DEFAULT_CHUNK_SIZE = 65536
 # The paths a chunk traces at most where the chunk size is left at its default: a path takes
@@ -85,11 +85,9 @@ def positive_int(value, name, minimum=1):
     read exactly, or a number such as "1e6" (``units.whole_number``)."""
     wrong = InputError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
     number, why = whole_number(value.strip() if isinstance(value, str) else value)
-    if why == INEXACT:  # (as ``cli.options.whole`` says it)
-        raise InputError(
-            f"{name} {shown(value)}: allowed: a whole number from {minimum} to 2**63 - 1 "
-            "(beyond 2**53, in digits: a float is not one integer there)"
-        )
+    if why == INEXACT:
+        allowed = whole_numbers_allowed(minimum, inexact=True)
+        raise InputError(f"{name} {shown(value)}: allowed: {allowed}")
     if why:
         raise InputError(f"{name} {shown(value)}: {why}")
     if number is None or number < minimum:
