@@ -305,6 +305,19 @@ def test_putts_counted_at_the_cap_are_said(capsys):
     assert capsys.readouterr().err == ""
 
 
+def test_a_rate_of_0_or_100_percent_in_a_few_putts_is_said_to_say_little(capsys):
+    """``-n 2``: "100.0 % +- 0.0" and exit 0, as sure as a million putts; now a warning with the
+    exact one-sided 95 % bound, 1 - 0.05^(1/2) = 78 points (100 putts and more: none)."""
+    assert main(["putt", "--distance", "10ft", "-n", "2"]) == 0
+    captured = capsys.readouterr()
+    assert "make rate:       100.0 % +- 0.0" in captured.out
+    assert captured.err == (
+        "mcrun: warning: the make rate and the three-putt rate are 0 or 100 % in all 2 putts: a "
+        "standard error of 0 says nothing there; at 95 % the rate may be 78 points from it; more "
+        "putts (-n) tell more\n"
+    )
+
+
 @pytest.mark.parametrize(
     ("call", "says"),
     [

@@ -126,6 +126,7 @@ def _cmd_putt(args):
         f"+- {100 * result.three_putt_rate_se:.1f}"
     )
     print(f"average putts:   {result.average_putts:.3f} +- {result.average_putts_se:.3f}")
+    _say_if_too_few(result)
     if result.unfinished_share > 0.0:
         rest = stopping_slope(given["stimp_m"])
         print(f"mcrun: warning: {100 * result.unfinished_share:.1f} % of the holings-out were "
@@ -134,6 +135,25 @@ def _cmd_putt(args):
               f"for tens of metres) or not down after {MAX_PUTTS}; the rates and the average are "
               "not a green's", file=sys.stderr)  # fmt: skip
     return 0
+
+
+# Fewer putts than this, a rate of 0 or 100 % says with its standard error (0) more than it
+# knows: warned, with the exact one-sided 95 % bound, 1 - 0.05^(1/n) (about 3 / n).
+FEW_PUTTS = 100
+
+
+def _say_if_too_few(result):
+    """A warning where a rate is 0 or 100 % in fewer than FEW_PUTTS putts: its standard error,
+    0, says nothing (``-n 2``: "100.0 % +- 0.0"); the exact bound (Clopper-Pearson, one-sided
+    95 %) says how far the rate may be."""
+    rates = {"make rate": result.make_rate, "three-putt rate": result.three_putt_rate}
+    sure = [name for name, rate in rates.items() if rate in (0.0, 1.0)]
+    if result.n < FEW_PUTTS and sure:
+        bound = 100 * (1.0 - 0.05 ** (1.0 / result.n))
+        print(f"mcrun: warning: the {' and the '.join(sure)} {'is' if len(sure) == 1 else 'are'} "
+              f"0 or 100 % in all {result.n} putts: a standard error of 0 says nothing there; "
+              f"at 95 % the rate may be {bound:.0f} points from it; more putts (-n) tell "
+              "more", file=sys.stderr)  # fmt: skip
 
 
 def _cmd_green(args):
