@@ -115,6 +115,12 @@ def test_an_elevation_file_the_loader_refuses(folder, monkeypatch):
         ({"length_m": 9, "width_m": 9, "surface": "water"}, "'surface' = 'water': choose rough"),
         ({"map": MAP, "hole": 2, "turf": {"green": {"rho_g": 9}}}, "'turf.green': turf rho_g"),
         ({"map": MAP, "hole": 2, "turf": {"sand": {}}}, "'turf.sand': unknown zone kind"),
+        # (accepted, and never used: a ball ends where it touches a penalty area)
+        (
+            {"map": MAP, "hole": 2, "turf": {"water": {"mu": 0.3}}},
+            "'turf.water': a ball ends where it touches a penalty area",
+        ),
+        ({"map": MAP, "hole": 2, "turf": {"water_yellow": {}}}, "'turf.water_yellow': a ball"),
         ({"map": MAP, "hole": 2, "turf": {"green": {"spin": 1}}}, "'turf.green.spin': unknown"),
         ({"map": MAP, "hole": 2, "par": 9}, "'par' = 9 must be a whole number 2-7"),
         ({"map": "missing.geojson", "hole": 2}, "missing.geojson: cannot read the map"),

@@ -357,6 +357,11 @@ def _turfs(table, where):
             raise HoleError(f"{where}: '{key}': unknown zone kind; choose {', '.join(ZONE_KINDS)}")
         if not isinstance(values, dict):
             raise HoleError(f"{where}: '{key}' must be a table of turf values")
+        if ZONE_PENALTY[kind] == PENALTY_AREA:  # (its values were accepted and never used)
+            raise HoleError(
+                f"{where}: '{key}': a ball ends where it touches a penalty area, so no turf of "
+                "it is used: give the turf of another zone kind"
+            )
         turf = turfs[kind]
         if "preset" in values:
             if values["preset"] not in PRESETS:
