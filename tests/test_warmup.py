@@ -379,7 +379,7 @@ def test_a_putt_says_the_green_s_compile_apart(capsys, monkeypatch):
     monkeypatch.setattr(green, "warm_up", warm_up)
     assert main(["putt", "--distance", "1000ft"]) == 2
     assert compiled == [] and capsys.readouterr().err.startswith("mcrun: error: --distance ")
-    assert main(["putt", "--distance", "6ft", "-n", "10"]) == 0
+    assert main(["putt", "--distance", "6ft", "-n", "100"]) == 0
     assert compiled == [("putt",)]
     assert capsys.readouterr().err.splitlines() == [
         "mcrun: compiling the green's kernels (first putts after install; cached for the next "
