@@ -5,7 +5,8 @@ line options, scenario files, CSV columns) become SI floats, and where SI result
 
 A quantity is a number with an optional unit, e.g. ``"167mph"``, ``"167 mph"``, ``"74.3"``,
 ``"74.3 m/s"``. Unit names are case-insensitive and spaces inside them are ignored; ``°`` is
-degrees (``"10°"`` is ``"10deg"``, ``"20°C"`` is ``"20C"``). Digits are ASCII only (``"１６７"``
+degrees (``"10°"`` is ``"10deg"``, ``"20°C"`` is ``"20C"``), and so is ``º``, the ordinal sign
+that Spanish and Portuguese keyboards give for it. Digits are ASCII only (``"１６７"``
 in full-width digits is refused, though Python's ``float`` reads it). A bare number
 is taken in the kind's *bare unit*, which is SI except for two golf conventions:
 
@@ -109,7 +110,15 @@ _ALIASES: dict[str, dict[str, str]] = {
         "knot": "kn",
         "knots": "kn",
     },
-    "angle": {"degree": "deg", "degrees": "deg", "°": "deg", "radian": "rad", "radians": "rad"},
+    # (º, the ordinal sign, is the degree sign on Spanish and Portuguese keyboards)
+    "angle": {
+        "degree": "deg",
+        "degrees": "deg",
+        "°": "deg",
+        "º": "deg",
+        "radian": "rad",
+        "radians": "rad",
+    },
     "spin": {"radps": "rad/s", "rev/s": "rps"},
     "length": {
         "yard": "yd",
@@ -123,9 +132,11 @@ _ALIASES: dict[str, dict[str, str]] = {
     "temperature": {
         "degC": "C",
         "°C": "C",
+        "ºC": "C",
         "celsius": "C",
         "degF": "F",
         "°F": "F",
+        "ºF": "F",
         "fahrenheit": "F",
         "kelvin": "K",
     },

@@ -453,6 +453,9 @@ def test_bad_vector_size(size):
         ("10 °", "angle", "10 deg"),
         ("-2.5°", "angle", "-2.5deg"),
         ("20°C", "temperature", "20 C"),
+        ("10º", "angle", "10deg"),  # the ordinal sign, a degree sign on some keyboards
+        ("20 ºC", "temperature", "20 C"),
+        ("68ºF", "temperature", "68 F"),
     ],
 )
 def test_degree_sign_is_degrees(text, kind, same_as):
