@@ -256,7 +256,8 @@ def _expected(kind: str) -> str:
     return f"expected a number with an optional unit ({_unit_list(kind)}); a bare number is {bare}"
 
 
-def _article(word: str) -> str:
+def article(word: str) -> str:
+    """The indefinite article of ``word``: "an angle", "a speed"."""
     return "an" if word[0] in "aeiou" else "a"
 
 
@@ -399,6 +400,18 @@ def _read(value: object, kind: str) -> tuple[float, bool]:
     return si, bool(unit_text)
 
 
+def read_quantity(value: str | float, kind: str, name: str | None = None) -> tuple[float, bool]:
+    """``parse_quantity``'s SI value, and whether ``value`` gave its unit (False for a bare
+    number, read in the kind's bare unit); UnitError as ``parse_quantity``'s."""
+    _check_kind(kind)
+    try:
+        return _read(value, kind)
+    except _Unreadable as exc:
+        raise UnitError(
+            f"{_prefix(name)}cannot read {shown(value)} as {article(kind)} {kind}: {exc}"
+        ) from None
+
+
 def parse_quantity(value: str | float, kind: str, name: str | None = None) -> float:
     """Read a quantity with an optional unit into SI.
 
@@ -422,13 +435,7 @@ def parse_quantity(value: str | float, kind: str, name: str | None = None) -> fl
     UnitError
         If the value is malformed, has an unknown unit, or is not finite.
     """
-    _check_kind(kind)
-    try:
-        return _read(value, kind)[0]
-    except _Unreadable as exc:
-        raise UnitError(
-            f"{_prefix(name)}cannot read {shown(value)} as {_article(kind)} {kind}: {exc}"
-        ) from None
+    return read_quantity(value, kind, name)[0]
 
 
 def parse_vector(
@@ -463,7 +470,7 @@ def parse_vector(
     _check_kind(kind)
     if not isinstance(size, int) or size < 1:
         raise ValueError(f"size must be a positive integer, got {size!r}")
-    head = f"{_prefix(name)}cannot read {shown(value)} as {_article(kind)} {kind} vector"
+    head = f"{_prefix(name)}cannot read {shown(value)} as {article(kind)} {kind} vector"
     if isinstance(value, str):
         parts: list[object] = value.split(",")
     elif isinstance(value, (tuple, list)):

@@ -341,6 +341,12 @@ def test_report_holds_the_scenario_the_summary_and_the_provenance(page, runs):
     assert f"seed {run.seed}" in page and f"{SWEEP_N:,} shots per point" in page
 
 
+def _another_run_into(folder, runs):
+    """Replace the run in ``folder`` by another, as ``mcrun run ... -o folder --force`` does."""
+    shutil.rmtree(folder)
+    shutil.copytree(runs["single"], folder)
+
+
 def test_a_report_whose_run_was_replaced_while_drawn_writes_nothing(runs, tmp_path, capsys,
                                                                     monkeypatch):  # fmt: skip
     """``mcrun report R`` while ``mcrun run ... -o R --force`` replaced the run: the old run's
@@ -352,8 +358,7 @@ def test_a_report_whose_run_was_replaced_while_drawn_writes_nothing(runs, tmp_pa
 
     def replaced_meanwhile(run, *args):
         page = drawn(run, *args)
-        shutil.rmtree(folder)
-        shutil.copytree(runs["single"], folder)  # another run, moved into place
+        _another_run_into(folder, runs)
         return page
 
     monkeypatch.setattr(report, "report_html", replaced_meanwhile)
@@ -376,8 +381,7 @@ def test_pictures_whose_run_was_replaced_while_drawn_say_so(runs, tmp_path, caps
     def replaced_meanwhile(*args, **kwargs):
         for k, figure in enumerate(drawn(*args, **kwargs)):
             if k == 1:
-                shutil.rmtree(folder)
-                shutil.copytree(runs["single"], folder)  # another run, moved into place
+                _another_run_into(folder, runs)
             yield figure
 
     monkeypatch.setattr(plots, "figures", replaced_meanwhile)

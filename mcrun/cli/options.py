@@ -34,12 +34,10 @@ def quantity(text, kind, option):
 def _humidity(text):
     """--humidity as a share; a bare number over 1 that reads as a percentage (50) is refused
     saying how to write it (the range error said only [0, 1])."""
-    value = quantity(text, "fraction", "--humidity")
-    try:
-        bare = text is not None and not units.foreign_digits(text) and float(text) == value
-    except ValueError:
-        bare = False
-    if bare and 1.0 < value <= 100.0:
+    if text is None:
+        return None
+    value, unit_given = units.read_quantity(text, "fraction", "--humidity")
+    if not unit_given and 1.0 < value <= 100.0:
         raise InputError(f"--humidity {text}: allowed: a share from 0 to 1 (for {value:g} %, "
                          f"give {value / 100:g} or {value:g}%)")  # fmt: skip
     return value

@@ -21,6 +21,7 @@ from mcrun.units import (
     KINDS,
     UNIT_SUFFIXES,
     UnitError,
+    article,
     foreign_digits,
     from_column_name,
     is_number,
@@ -158,9 +159,7 @@ def _refuse_bare(ctx, where, value, leaf, param):
     """ScenarioError where ``param`` wants its unit given (``Quantity.bare_refused``) and
     ``value`` is a bare number under a key that names no unit (``stimp = 6``, meant in feet as
     Stimp readings are quoted, was 6 m: 19.7 ft)."""
-    if not param.bare_refused or leaf.key_unit is not None:
-        return
-    if _is_bare(value, None):
+    if param.bare_refused and _is_bare(value, leaf.key_unit):
         raise ctx.error(where, f"{short(value)}: {param.bare_refused}")
 
 
@@ -300,15 +299,15 @@ def key_name(ctx, section, key, where, only=None):
         if names[base].kind != kind:
             expected = names[base].kind
             allowed = (
-                f"units of {'an' if expected[0] in 'aeiou' else 'a'} {expected}: "
-                f"{', '.join(KINDS[expected][1])}"
+                f"units of {article(expected)} {expected}: {', '.join(KINDS[expected][1])}"
                 if expected in KINDS
                 else "no unit (dimensionless)"
                 if expected == "number"
                 else "no unit"
             )
-            article = "an" if kind[0] in "aeiou" else "a"
-            raise ctx.error(where, f"{unit} is {article} {kind} unit, but {base} takes {allowed}")
+            raise ctx.error(
+                where, f"{unit} is {article(kind)} {kind} unit, but {base} takes {allowed}"
+            )
         return base, unit
     allowed = ", ".join((*names, *special))
     raise ctx.error(
