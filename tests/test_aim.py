@@ -375,6 +375,15 @@ def test_each_club_is_searched_about_its_own_aim_and_from_its_start(tmp_path, ca
     assert main(["aim", "par3-over-water", "-n", "50", "--offsets", "0 yd, 500cm", "--centre",
                  "300 cm"]) == 0  # fmt: skip
     assert capsys.readouterr().out == in_metres
+    # a refusal, in metres, says what each length named was given as
+    assert main(["aim", "par3-over-water", "-n", "50", "--centre", "2000yd"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mcrun: error: --centre 1828.8: every aim is off the hole's map"), err
+    assert err.endswith("(--centre 2000yd is 1828.8 m)\n"), err
+    assert main(["aim", "par3-over-water", "--step", "2yd", "--resolution", "3yd"]) == 2
+    assert capsys.readouterr().err.endswith(
+        "(--step 2yd is 1.8288 m; --resolution 3yd is 2.7432 m)\n"
+    )
     wedge = launch.replace("127 mph", "60 mph").replace("14.1 deg", "30 deg")
     (tmp_path / "start.toml").write_text(
         f'[scenario]\nseed = 1\n[hole]\nfile = "{library}/holes/riverside-9.toml"\n'

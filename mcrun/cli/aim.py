@@ -24,10 +24,12 @@ OPTION_NAMES = {
 }
 
 
-def _metres(text, option):
+def _metres(text, option, converted=None):
     """A length option's text with its unit (``5yd``, read as ``play --coarse`` reads one) in
     m; a bare number in ASCII digits as typed, for ``aim.check`` to read and check, naming it
-    as typed. None where not given; UnitError naming ``option`` for text that is neither."""
+    as typed. None where not given; UnitError naming ``option`` for text that is neither.
+    A length given with its unit is added to ``converted`` ([(option, text, metres)]), which
+    ``aim.check``'s messages, in metres, are told with."""
     if text is None:
         return None
     if units.foreign_digits(text) is None:  # ("1_0" and "１０" go to parse_quantity's refusal)
@@ -36,15 +38,34 @@ def _metres(text, option):
             return text
         except ValueError:
             pass
-    return units.parse_quantity(text, "length", option)
+    metres = units.parse_quantity(text, "length", option)
+    if converted is not None:
+        converted.append((option, text, metres))
+    return metres
 
 
-def _offsets(text):
+def _offsets(text, converted=None):
     """The aims of ``--offsets``, each in m or with its unit (checked by ``aim.check``; an
     empty one as typed, which it refuses naming the option's text)."""
     if text is None:
         return None
-    return [_metres(v.strip(), "--offsets") if v.strip() else v for v in text.split(",")]
+    return [
+        _metres(v.strip(), "--offsets", converted) if v.strip() else v for v in text.split(",")
+    ]
+
+
+def _with_units_given(err, converted):
+    """``aim.check``'s message (values in m) with what each option it names was given as:
+    ``--centre 1828.8: ...`` typed as ``--centre 2000yd`` says so."""
+    message = str(err)
+    said = {}
+    for option, text, metres in converted:
+        if f"{option} " in message:
+            said.setdefault(option, []).append(f"{text} is {metres:g} m")
+    if not said:
+        return err
+    given = "; ".join(f"{option} {', '.join(each)}" for option, each in said.items())
+    return aim.AimError(f"{message} ({given})")
 
 
 def _cmd_aim(args):
@@ -56,16 +77,22 @@ def _cmd_aim(args):
                              "(give one or the other)")  # fmt: skip
     scenario = aim.load_scenario(args.scenario, args.seed)
     say_skipped(scenario.hole)
+    converted = []
     chosen = {  # (None: the default; beside --offsets, none is given)
-        "half_width_m": (_metres(args.half_width, "--half-width"), aim.DEFAULT_HALF_WIDTH_M),
-        "coarse_m": (_metres(args.step, "--step"), aim.DEFAULT_COARSE_M),
-        "resolution_m": (_metres(args.resolution, "--resolution"), aim.DEFAULT_RESOLUTION_M),
-    }
+        "half_width_m": (_metres(args.half_width, "--half-width", converted),
+                         aim.DEFAULT_HALF_WIDTH_M),
+        "coarse_m": (_metres(args.step, "--step", converted), aim.DEFAULT_COARSE_M),
+        "resolution_m": (_metres(args.resolution, "--resolution", converted),
+                         aim.DEFAULT_RESOLUTION_M),
+    }  # fmt: skip
     search = {k: default if v is None else v for k, (v, default) in chosen.items()}
-    checked = aim.check(
-        scenario, n=args.n, centre_m=_metres(args.centre, "--centre"),
-        offsets_m=_offsets(args.offsets), names=OPTION_NAMES, **search,
-    )  # fmt: skip
+    try:
+        checked = aim.check(
+            scenario, n=args.n, centre_m=_metres(args.centre, "--centre", converted),
+            offsets_m=_offsets(args.offsets, converted), names=OPTION_NAMES, **search,
+        )  # fmt: skip
+    except aim.AimError as err:
+        raise _with_units_given(err, converted) from None
     destination = None
     if args.output is not None:
         destination = aim.check_output(
