@@ -530,6 +530,22 @@ def to_unit(value_si: float, kind: str, unit: str) -> float:
     return (float(value_si) - offset) / factor
 
 
+# The unit a quantity is quoted in where its bare number is read in SI: a spin in rpm and a
+# speed in mph, as launch monitors give them.
+QUOTED_UNITS: dict[str, str] = {"spin": "rpm", "speed": "mph"}
+
+
+def meant_quoted(number: float, kind: str, low: float, high: float) -> str | None:
+    """The unit ``kind`` is quoted in (`QUOTED_UNITS`) where ``number``, a bare number read in
+    SI, is outside [``low``, ``high``] (SI) and within it in that unit (``spin = 2686``, read as
+    2686 rad/s and meant in rpm); else None."""
+    quoted = QUOTED_UNITS.get(kind)
+    if quoted is None or low <= number <= high:
+        return None
+    factor, offset = KINDS[kind][1][quoted]
+    return quoted if low <= number * factor + offset <= high else None
+
+
 def from_column_name(column_name: str) -> tuple[str, str, str] | None:
     """Recognise a unit suffix in a column name.
 

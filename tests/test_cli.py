@@ -359,6 +359,16 @@ def test_a_cache_folder_numba_cannot_write_is_one_line(tmp_path, monkeypatch, ca
         # The conditions' range errors named the API's field alone.
         ("shot", [*DRIVE_ARGS, "--slope", "89"],
          "--slope (slope_deg) = 89 is outside the allowed range [0, 45]"),
+        # A bare spin or speed is SI; one in range only in rpm or mph was meant in it.
+        ("shot", ["--ball-speed", "167", "--launch", "11", "--spin", "2686rpm"],
+         "--ball-speed (ball_speed_mps) = 167 is outside the allowed range [0.5, 120] (a bare "
+         "number is m/s: for 167 mph, give 167mph)"),
+        ("shot", ["--ball-speed", "60mph", "--launch", "30", "--spin", "8000"],
+         "--spin (spin_radps) = 8000 is outside the allowed range [0, 2000] (a bare number is "
+         "rad/s: for 8000 rpm, give 8000rpm)"),
+        ("bounce", ["--speed", "20", "--angle", "45", "--spin", "3000"],
+         "--spin (backspin_radps) = 3000 is outside the allowed range [-2000, 2000] (a bare "
+         "number is rad/s: for 3000 rpm, give 3000rpm)"),
         ("shot", [*DRIVE_ARGS, "--humidity", "50"],
          "--humidity 50: allowed: a share from 0 to 1 (for 50 %, give 0.5 or 50%)"),
         # (with its unit, no such advice: 150% is not 1.5 %)

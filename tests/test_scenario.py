@@ -444,6 +444,25 @@ ERRORS = [
         'must be within [0, 1], got 50 (a share: for 50 %, write "50 %")',
     ),
     (
+        "a spin of 2686 (meant in rpm, as launch monitors give it; read as rad/s)",
+        BALL.replace('spin = "2686 rpm"', "spin = { dist = 'normal', mean = 2686, sd = 27 }"),
+        "launch.spin.mean",
+        'must be within [0 rad/s, 2000 rad/s], got 2686 rad/s (a bare number is rad/s: for '
+        '2686 rpm, write "2686 rpm")',
+    ),
+    (
+        "a ball speed of 167 (meant in mph)",
+        BALL.replace('ball_speed = "167 mph"', "ball_speed = 167"),
+        "launch.ball_speed",
+        'got 167 m/s (a bare number is m/s: for 167 mph, write "167 mph")',
+    ),
+    (
+        "a spin of 26860 (out of range in rpm too: no advice)",
+        BALL.replace('spin = "2686 rpm"', "spin = 26860"),
+        "launch.spin",
+        "must be within [0 rad/s, 2000 rad/s], got 26860 rad/s",
+    ),
+    (
         "a unit in the value and in the key",
         BALL.replace('spin = "2686 rpm"', 'spin_rpm = "2686 rpm"'),
         "launch.spin_rpm",

@@ -49,9 +49,7 @@ def _offsets(text, converted=None):
     empty one as typed, which it refuses naming the option's text)."""
     if text is None:
         return None
-    return [
-        _metres(v.strip(), "--offsets", converted) if v.strip() else v for v in text.split(",")
-    ]
+    return [_metres(v.strip(), "--offsets", converted) if v.strip() else v for v in text.split(",")]
 
 
 def _with_units_given(err, converted):

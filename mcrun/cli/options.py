@@ -13,7 +13,7 @@ import math
 
 from mcrun import api, units
 from mcrun.physics import aero, atmosphere, turf
-from mcrun.quantities import InputError
+from mcrun.quantities import RANGES, InputError
 
 DPI_RANGE = (30, 600)
 
@@ -90,8 +90,11 @@ def number(text, option):
     return value
 
 
-def named(call, options):
-    """``call()``, an InputError that names an API value re-raised naming its option too."""
+def named(call, options, typed=None):
+    """``call()``, an InputError that names an API value re-raised naming its option too; where
+    ``typed`` ({API name: (text, kind)}) holds it as a bare number out of its range, and in the
+    unit users quote (``units.QUOTED_UNITS``) in range, saying how to give that unit (``--spin
+    8000`` is 8000 rad/s, and meant 8000 rpm)."""
     try:
         return call()
     except InputError as err:
@@ -99,7 +102,22 @@ def named(call, options):
         name = text.split(" ", 1)[0].removesuffix(":")
         if name not in options:
             raise
-        raise InputError(f"{options[name]} ({name}){text[len(name) :]}") from None
+        hint = _quoted_unit_hint(name, *(typed or {}).get(name, (None, None)))
+        raise InputError(f"{options[name]} ({name}){text[len(name) :]}{hint}") from None
+
+
+def _quoted_unit_hint(name, text, kind):
+    """`` (a bare number is rad/s: for 8000 rpm, give 8000rpm)`` where ``text``, a bare number
+    read in ``kind``'s SI unit, is out of ``name``'s range and in it in the unit users quote
+    (``units.meant_quoted``); else ""."""
+    if text is None or name not in RANGES:
+        return ""
+    value, unit_given = units.read_quantity(text, kind, name)
+    quoted = None if unit_given else units.meant_quoted(value, kind, *RANGES[name])
+    if quoted is None:
+        return ""
+    si = units.KINDS[kind][0]
+    return f" (a bare number is {si}: for {value:g} {quoted}, give {value:g}{quoted})"
 
 
 def whole(text, option, least, most=None):

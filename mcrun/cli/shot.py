@@ -204,8 +204,10 @@ def _cmd_shot(args):
     if args.trajectory is not None:
         _check_trajectory_path(args.trajectory)
     result = named(
-        lambda: api.simulate(trajectory=args.trajectory is not None, **kwargs), SHOT_OPTIONS
-    )
+        lambda: api.simulate(trajectory=args.trajectory is not None, **kwargs), SHOT_OPTIONS,
+        {"ball_speed_mps": (args.ball_speed, "speed"), "spin_radps": (args.spin, "spin"),
+         "club_speed_mps": (args.club_speed, "speed")},
+    )  # fmt: skip
     if args.trajectory is not None:
         try:
             path = Path(args.trajectory)
@@ -239,7 +241,9 @@ def _cmd_bounce(args):
     spin = quantity(args.spin, "spin", "--spin")
     overrides = given(mu=number(args.mu, "--mu"), softness=number(args.softness, "--softness"))
     result = named(
-        lambda: api.bounce_once(speed, angle, spin, turf=args.turf, **overrides), BOUNCE_OPTIONS
+        lambda: api.bounce_once(speed, angle, spin, turf=args.turf, **overrides),
+        BOUNCE_OPTIONS,
+        {"ball_speed_mps": (args.speed, "speed"), "backspin_radps": (args.spin, "spin")},
     )
     if args.json:
         _print_json(result)

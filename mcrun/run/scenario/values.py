@@ -25,6 +25,7 @@ from mcrun.units import (
     foreign_digits,
     from_column_name,
     is_number,
+    meant_quoted,
     parse_quantity,
     shown,
 )
@@ -133,12 +134,16 @@ def as_given(raw, key_unit, value_si, kind, spread=False):
 def _check_in(ctx, where, value_si, param, what="must be", shown=None, bare=False):
     """ScenarioError unless ``value_si`` is within ``param``'s limits; the message gives it as
     ``shown`` (default: in the bare unit). ``bare``: the value was a bare number (a humidity of
-    50 then says how to write 50 %)."""
+    50 then says how to write 50 %, a spin of 2686 how to write 2686 rpm)."""
     lo, hi = param.limits
     if not lo <= value_si <= hi:
         hint = f' (a share: for {value_si:g} %, write "{value_si:g} %")' * (
             bare and param.kind == "fraction" and hi == 1.0 and 1.0 < value_si <= 100.0
         )
+        quoted = meant_quoted(value_si, param.kind, lo, hi) if bare else None
+        if quoted is not None:
+            hint = (f" (a bare number is {KINDS[param.kind][0]}: for {value_si:g} {quoted}, "
+                    f'write "{value_si:g} {quoted}")')  # fmt: skip
         raise ctx.error(
             where,
             f"{what} within [{fmt(lo, param.kind)}, {fmt(hi, param.kind)}], "
