@@ -60,6 +60,23 @@ def test_an_export_replays_as_the_single_shot_api_flies_it():
         assert got["descent_angle_deg"] == 90.0 - want["landing_angle_deg"]
 
 
+def test_a_session_s_air_is_named_as_not_read():
+    """A Garmin R10 export records the air of every shot (Temperature, Air Pressure, Relative
+    Humidity, Air Density) and Awesome Golf its Altitude: kept as written and not read, which a
+    note says, with the density the shots are flown in."""
+    notes = replay.replay(DATA / "garmin-r10-metric.csv").attrs["notes"]
+    assert notes[-1] == (
+        f"{DATA / 'garmin-r10-metric.csv'}: its air (Air Density, Temperature, Air Pressure, "
+        "Relative Humidity) is kept as written, not read: every shot is flown in air of 1.199 "
+        "kg/m^3, the default (20 C, 101325 Pa, 50 %): give the session's temperature, pressure "
+        "or altitude, and humidity, or its air density, to fly it in its own"
+    )
+    given = replay.replay(DATA / "awesome-golf.csv", air_density_kgpm3=1.1).attrs["notes"]
+    assert given[-1].endswith(": its air (Altitude) is kept as written, not read: every shot is "
+                              "flown in air of 1.1 kg/m^3, given")  # fmt: skip
+    assert not any("air" in n for n in replay.replay(DATA / "trackman.csv").attrs["notes"])
+
+
 def test_a_shot_without_spin_is_invalid_and_the_others_fly():
     frame = replay.replay(DATA / "rapsodo-mlm2pro.csv")
     assert list(frame["status"]) == [OK, OK, INVALID_INPUT]

@@ -24,6 +24,7 @@ the horizontal, as devices give it), the model minus the device (``model_minus_d
 results, ``STEM-device.csv``, ``mcrun.run.clubs.device_comparison``.
 """
 
+import re
 import time
 from contextlib import ExitStack
 from datetime import UTC, datetime
@@ -33,7 +34,7 @@ import numpy as np
 import pandas as pd
 
 from mcrun import status
-from mcrun.api import conditions_inputs
+from mcrun.api import DEFAULTS, conditions_inputs
 from mcrun.engine.backend import simulate_batch
 from mcrun.engine.schema import OUTCOME_FIELDS, encode_outcomes, pack
 from mcrun.physics.constants import DEG
@@ -41,7 +42,8 @@ from mcrun.quantities import InputError, by_path, column_and_factor
 from mcrun.results import output
 from mcrun.run import clubs
 from mcrun.run.monitors import Session, read_session, session_of_frame
-from mcrun.run.monitors.native import KIND
+from mcrun.run.monitors.formats import split_name
+from mcrun.run.monitors.native import KIND, names_shown
 from mcrun.units import UnitError, foreign_digits, shown, to_unit
 
 # The launch columns of the output, by quantity (scenario.FILE_COLUMNS): (name, SI -> factor).
@@ -53,6 +55,44 @@ LAUNCH_COLUMNS = {
 
 CHUNK = 65536
 """Shots flown at a time by ``replay``."""
+
+# A column of the air a session was measured in (a Garmin R10's Temperature, Air Pressure,
+# Relative Humidity and Air Density, Awesome Golf's Altitude, mcrun's temperature_f...), by its
+# name with spaces for underscores: kept as written and not read (the shots are flown in the
+# conditions' air), which a note says.
+_AIR_COLUMN = re.compile(
+    r"^(air )?(temperature|temp|pressure|density|humidity)\b"
+    r"|^(relative humidity|barometric pressure|altitude|elevation)\b"
+)
+# The conditions that set the air (``api.conditions_inputs``' keywords).
+_AIR_CONDITIONS = {
+    "temperature_c", "pressure_pa", "altitude_m", "relative_humidity", "air_density_kgpm3"
+}  # fmt: skip
+
+
+def _air_note(session, air, conditions):
+    """A note naming the session's columns of the air, which are not read, and the air density
+    the shots are flown in instead (``air``: the kernel's conditions; ``conditions``: those
+    given); None where the session has none."""
+    names = [
+        str(c) for c in session.frame.columns
+        if _AIR_COLUMN.match(split_name(str(c).replace("_", " "))[0])
+    ]  # fmt: skip
+    if not names:
+        return None
+    given = _AIR_CONDITIONS & {k for k, v in conditions.items() if v is not None}
+    how = (
+        "given"
+        if given
+        else f"the default ({DEFAULTS['temperature_c']:g} C, {DEFAULTS['pressure_pa']:g} Pa, "
+        f"{100 * DEFAULTS['relative_humidity']:g} %): give the session's temperature, pressure "
+        "or altitude, and humidity, or its air density, to fly it in its own"
+    )
+    return (
+        f"{session.path}: its air ({names_shown(names)}) is kept as written, not read: every "
+        f"shot is flown in air of {air['air_density_kgpm3']:.4g} kg/m^3, {how}"
+    )
+
 
 # The device's results and the model's, by quantity: (device column, SI -> factor, model column).
 DEVICE_COLUMNS = {
@@ -167,7 +207,8 @@ def replay(shots, source=None, format=None, **conditions):
         "spin_axis_rad": values["spin_axis"],
         "azimuth_rad": values["azimuth"],
     }
-    encoded = _fly(conditions_inputs(**conditions), launch, valid)
+    air = conditions_inputs(**conditions)
+    encoded = _fly(air, launch, valid)
 
     frame = {"row": np.arange(n, dtype=np.int64)}
     launch_names = [name for name, _ in LAUNCH_COLUMNS.values()]
@@ -206,7 +247,9 @@ def replay(shots, source=None, format=None, **conditions):
     result.attrs["format"] = session.format
     result.attrs["format_title"] = session.title
     result.attrs["format_detected"] = session.detected
-    result.attrs["notes"] = list(session.notes)
+    result.attrs["notes"] = list(session.notes) + [
+        note for note in [_air_note(session, air, conditions)] if note is not None
+    ]
     return result
 
 
