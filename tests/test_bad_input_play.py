@@ -522,3 +522,11 @@ def test_a_solve_s_seed_and_lattice_are_checked(tmp_path, capsys):
     assert "--fine 40 m: allowed: at most --coarse (8 m)" in err
     err = refused(["play", "tour", str(PAR3), "--vs", "nobody"], tmp_path / "b", capsys)
     assert err.startswith("mcrun: error: --vs: nobody: no such file")
+    # a mistyped preset was told of files and scenarios alone
+    (tmp_path / "c").mkdir()
+    err = refused(["play", "bogy", str(PAR3)], tmp_path / "c", capsys)
+    assert err == (
+        "mcrun: error: bogy: no such file, nor a scenario of the library (mcrun "
+        "scenarios lists it); a player is a preset (tour, scratch, bogey, "
+        "scratch-woman, bogey-woman), a player file or a library scenario's name\n"
+    )

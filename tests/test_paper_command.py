@@ -220,7 +220,7 @@ def test_unwritable_output_is_one_line(tmp_path, capsys):
     blocker.write_text("")
     assert main(["paper", "-o", str(blocker / "figures")]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("mcrun: error: --out: cannot write to ") and err.count("\n") == 1
+    assert err.startswith("mcrun: error: -o: cannot write to ") and err.count("\n") == 1
 
 
 @pytest.mark.parametrize("dpi", ["0", "5000", "high"])
@@ -236,7 +236,7 @@ def test_existing_figures_are_replaced_only_with_force(out_dir, tmp_path, capsys
     before = (out_dir / "targets.md").read_bytes()
     assert main(["paper", "-o", str(out_dir), "--dpi", str(DPI)]) == 2
     err = capsys.readouterr().err
-    assert err == (f"mcrun: error: --out {out_dir}: fig3.png already exists: use --force to "
+    assert err == (f"mcrun: error: -o {out_dir}: fig3.png already exists: use --force to "
                    "replace the figures and targets.md\n")  # fmt: skip
     assert (out_dir / "targets.md").read_bytes() == before
     (tmp_path / "p" / "fig8.png").mkdir(parents=True)

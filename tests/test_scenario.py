@@ -447,7 +447,7 @@ ERRORS = [
         "a spin of 2686 (meant in rpm, as launch monitors give it; read as rad/s)",
         BALL.replace('spin = "2686 rpm"', "spin = { dist = 'normal', mean = 2686, sd = 27 }"),
         "launch.spin.mean",
-        'must be within [0 rad/s, 2000 rad/s], got 2686 rad/s (a bare number is rad/s: for '
+        "must be within [0 rad/s, 2000 rad/s], got 2686 rad/s (a bare number is rad/s: for "
         '2686 rpm, write "2686 rpm")',
     ),
     (

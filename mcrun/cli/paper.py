@@ -23,12 +23,12 @@ def _cmd_paper(args):
     there = [path for path in written if path.exists() or path.is_symlink()]
     folder = next((path for path in there if path.is_dir()), None)
     if folder is not None:
-        raise CommandError(f"--out {out_dir}: {folder.name} is a folder: allowed: a folder where "
+        raise CommandError(f"-o {out_dir}: {folder.name} is a folder: allowed: a folder where "
                            f"{folder.name} can be written")  # fmt: skip
     if there and not args.force:
-        raise CommandError(f"--out {out_dir}: {there[0].name} already exists: use --force to "
+        raise CommandError(f"-o {out_dir}: {there[0].name} already exists: use --force to "
                            "replace the figures and targets.md")  # fmt: skip
-    output.writable_folder(out_dir, "--out")
+    output.writable_folder(out_dir, "-o")
     for path in paper.write_paper(out_dir, args.dpi):
         print(f"wrote {path}")
     return 0

@@ -260,8 +260,13 @@ def register(subparsers):
         epilog="example: mcrun play pga-tour-bag scenarios/holes/riverside-9.toml",
         allow_abbrev=False,
     )
-    p.add_argument("player", metavar="PLAYER")
-    p.add_argument("hole", metavar="HOLE")
+    p.add_argument(
+        "player",
+        metavar="PLAYER",
+        help="a preset (tour, scratch, bogey, "
+        "scratch-woman, bogey-woman), a player file or a library scenario's name",
+    )
+    p.add_argument("hole", metavar="HOLE", help="a hole file, or a scenario with a [hole]")
     p.add_argument("-n", default="100", metavar="N", help="shots of each action (100)")
     p.add_argument("--seed", metavar="S", help="random seed (the player's)")
     p.add_argument("--coarse", default="8m", help="states' spacing (8m)")

@@ -357,7 +357,7 @@ def _add_shot(subparsers):
         "--loft", metavar="ANGLE", help="dynamic loft, face to the vertical (bare: deg)"
     )
     add_conditions_options(p)
-    out = p.add_argument_group("numerics and output")
+    out = p.add_argument_group("output")
     out.add_argument(
         "--trajectory",
         metavar="FILE.csv",

@@ -276,6 +276,11 @@ def load_player(spec, putter=None, spread=None, straight=False):
     putter = "tour" if putter is None else putter
     if not isinstance(putter, str) or putter not in PUTTERS:  # (a list: a TypeError)
         raise PlayerError(f"putter {putter!r}: allowed: {', '.join(PUTTERS)}")
+    try:
+        sc.find(spec)
+    except sc.ScenarioError as err:  # (a preset's name mistyped was told of scenarios alone)
+        raise PlayerError(f"{err}; a player is a preset ({', '.join(PLAYERS)}), a player file "
+                          "or a library scenario's name") from None  # fmt: skip
     scenario = sc.load(spec)
     if scenario.hole is not None:
         raise PlayerError(
