@@ -17,6 +17,7 @@ Kinds and their SI units: speed (m/s), angle (rad), spin (rad/s), length (m), ma
 temperature (K), pressure (Pa), fraction (dimensionless, 1 = 100 %), time (s).
 """
 
+import decimal
 import math
 import numbers
 import os
@@ -272,10 +273,12 @@ INEXACT = "inexact"  # ``whole_number``'s reason for a number beyond EXACT_FLOAT
 
 def whole_number(value: object) -> tuple[int | None, str]:
     """(``value`` as the int it writes, ""), or (None, why not): an int (not a bool), a float
-    of an integral value up to ``EXACT_FLOAT_MOST``, or a text: digits read exactly (through
-    a float, 2**53 + 1 was 2**53), else a number such as "1e6" up to ``EXACT_FLOAT_MOST``.
-    Why not: ``INEXACT`` for a larger number through a float, ``foreign_digits``' reason for a
-    text in other digits (float read "١٢" as 12), "" for anything else."""
+    of an integral value up to ``EXACT_FLOAT_MOST``, or a text read exactly, in digits or as a
+    number such as "1e6" or "7.0" (through a float, 2**53 + 1 was 2**53, and "2**53 + 1.0" or
+    "7.0000000000000001" were whole). Why not: ``INEXACT`` for a larger float,
+    ``foreign_digits``' reason for a text in other digits (float read "١٢" as 12), "" for
+    anything else (a text beyond 10**1000 among them: its int would be costly, and no count or
+    seed is that large)."""
     if isinstance(value, bool):
         return None, ""
     if isinstance(value, numbers.Integral):
@@ -288,6 +291,13 @@ def whole_number(value: object) -> tuple[int | None, str]:
             return int(value), ""
         except ValueError:
             pass
+        try:
+            exact = decimal.Decimal(value)  # (not a float: read exactly; "1e999999" is cheap)
+        except decimal.InvalidOperation:
+            return None, ""
+        if not exact.is_finite() or exact.adjusted() > 1000 or exact != exact.to_integral_value():
+            return None, ""
+        return int(exact), ""
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):

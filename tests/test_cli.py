@@ -821,20 +821,30 @@ def test_a_command_compiles_the_kernels_it_runs(argv, kernels, tmp_path, capsys,
 
 
 def test_a_whole_number_in_digits_is_read_exactly():
-    """A seed or a count written in digits is read as written: through a float, --seed
-    9007199254740993 (2**53 + 1) ran, and was recorded, as 9007199254740992. A number with an
-    exponent beyond 2**53 says which to write; beyond an int64, refused."""
+    """A seed or a count written as text is read as written: through a float, --seed
+    9007199254740993 (2**53 + 1) ran, and was recorded, as 9007199254740992. A float beyond
+    2**53 says to write it in digits; beyond an int64, refused."""
     from mcrun.cli.options import whole
     from mcrun.run.plan import positive_int
 
     assert positive_int("9007199254740993", "seed", 0) == 2**53 + 1
     assert whole("9007199254740993", "--seed", 0) == 2**53 + 1
     assert positive_int("1e6", "n") == whole("1e6", "-n", 1) == 1_000_000
-    with pytest.raises(api.InputError, match=r"^seed '1e30': allowed: a whole number from 0 "
-                       r"to 2\*\*63 - 1 \(beyond 2\*\*53, in digits"):  # fmt: skip
+    # A text is read exactly, with an exponent or a point too: through a float, "2**53 + 1.0"
+    # ran seed 2**53 and "7.0000000000000001" seed 7.
+    assert positive_int("9007199254740993.0", "seed", 0) == 2**53 + 1
+    assert whole("9.007199254740993e15", "--seed", 0) == 2**53 + 1
+    assert positive_int("1e17", "seed", 0) == whole("1e17", "--seed", 0) == 10**17
+    with pytest.raises(api.InputError, match=r"^seed must be an integer >= 0"):
+        positive_int("7.0000000000000001", "seed", 0)
+    with pytest.raises(api.InputError, match=r"^--seed '6.9999999999999999': allowed: a whole"):
+        whole("6.9999999999999999", "--seed", 0)
+    with pytest.raises(api.InputError, match=r"^seed must be an integer up to 2\*\*63 - 1"):
         positive_int("1e30", "seed", 0)
-    with pytest.raises(api.InputError, match=r"^--seed '1e30': .* \(beyond 2\*\*53, in digits"):
-        whole("1e30", "--seed", 0)
+    # A float beyond 2**53 is no one integer: it says to write it in digits.
+    with pytest.raises(api.InputError, match=r"^seed 1e\+30: allowed: a whole number from 0 "
+                       r"to 2\*\*63 - 1 \(beyond 2\*\*53, in digits"):  # fmt: skip
+        positive_int(1e30, "seed", 0)
     with pytest.raises(api.InputError, match=r"^n must be an integer up to 2\*\*63 - 1"):
         positive_int(str(2**63), "n")
     with pytest.raises(api.InputError, match=r"from 0 to 2\*\*63 - 1$"):

@@ -123,12 +123,12 @@ def _quoted_unit_hint(name, text, kind):
 def whole(text, option, least, most=None):
     """A whole number of at least ``least`` (and at most ``most``: ``2000``, ``1e4``);
     InputError naming the option."""
-    value, why = units.whole_number(str(text).strip())
-    if why and why != units.INEXACT:
+    value, why = units.whole_number(str(text).strip())  # (a text: read exactly)
+    if why:
         raise InputError(f"{option} {text!r}: {why}")
     top = 2**63 - 1 if most is None else most  # (an int64: what the kernels take)
     if value is None or not least <= value <= top:
-        allowed = units.whole_numbers_allowed(least, most, inexact=why != "")
+        allowed = units.whole_numbers_allowed(least, most)
         raise InputError(f"{option} {text!r}: allowed: {allowed}")
     return value
 

@@ -401,8 +401,8 @@ def register(subparsers):
         metavar="C",
         default=plan.DEFAULT_CHUNK_SIZE,
         help=f"shots per chunk and row group (default {plan.DEFAULT_CHUNK_SIZE}); the shots "
-        "do not depend on it (the summary's means and covariances, merged chunk by chunk, in "
-        "their last bits only)",
+        "do not depend on it (the summary's means and covariances, merged chunk by chunk, and "
+        "what is made of them, in their last bits only)",
     )
     p.add_argument(
         "--ignore-disk-space",
