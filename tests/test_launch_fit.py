@@ -3,6 +3,7 @@ the file's sample moments, its draws have them within statistical tolerances, th
 pure function of the scenario and the seed whatever the chunks; the fit is printed; and, with a
 club filter, a resampled shot's ``source_row`` is its row in the file."""
 
+import hashlib
 import json
 import math
 from pathlib import Path
@@ -14,6 +15,7 @@ import pytest
 from mcrun.cli import main
 from mcrun.cli.run import fit_lines
 from mcrun.physics.constants import DEG
+from mcrun.results.output import read_provenance
 from mcrun.run import sampling
 from mcrun.run import scenario as sc
 from mcrun.run.plan import with_seed
@@ -166,6 +168,12 @@ def test_the_fit_is_printed_by_validate_and_when_a_run_starts(tmp_path, capsys):
     assert "\n".join(lines) in err
     shots = pd.read_parquet(tmp_path / "run" / "shots.parquet")
     assert "source_row" not in shots and len(shots) == 50
+    # The run records the file's digest beside its scenario, which names the file alone.
+    digest = hashlib.sha256((tmp_path / "session.csv").read_bytes()).hexdigest()
+    for name in ("shots", "summary"):
+        recorded = read_provenance(tmp_path / "run" / f"{name}.parquet")["launch_files"]
+        assert recorded == [{"file": str(tmp_path / "session.csv"), "sha256": digest,
+                             "club": "7 iron", "points": [0]}]  # fmt: skip
 
 
 def test_a_club_filters_source_row_is_the_files_row(tmp_path):

@@ -443,7 +443,7 @@ def _model_names(points):
 
 def provenance(the_plan, backend, versions, threads, **facts):
     """The provenance every file of a run records: the scenario, its question, seed, size,
-    points and models, its geometry (``geometry.record``) and on a hole its map
+    points and models, its launch files (their digests) and fits, its geometry (``geometry.record``) and on a hole its map
     (``geometry.record_map``, which ``file_metadata`` keeps for summary.parquet), the software
     ``versions``, the ``backend`` that ran it on how many ``threads`` and that backend's own
     ``facts``, the chunk size and the start time."""
@@ -471,6 +471,7 @@ def provenance(the_plan, backend, versions, threads, **facts):
         "points": [p.label for p in points],
         "groups": [p.group for p in points],
         "models": _model_names(points),
+        "launch_files": scenario_module.launch_files(points),
         "launch_fits": scenario_module.launch_fits(points),
         **recorded,
         "versions": versions,

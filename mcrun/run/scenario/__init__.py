@@ -56,6 +56,7 @@ from mcrun.run.scenario.launch_file import (
     Resample,
     describe_fit,
     fit_normal,
+    launch_files,
     launch_fits,
 )
 from mcrun.run.scenario.library import ENV_LIBRARY, find, library_folder, list_library, question_of
@@ -95,6 +96,7 @@ __all__ = [
     "describe_fit",
     "find",
     "fit_normal",
+    "launch_files",
     "launch_fits",
     "library_folder",
     "list_library",

@@ -1,6 +1,7 @@
 """A launch monitor's file as a scenario's launches (``launch.file``): the shots resampled
 (with jitter), or the correlated normal fitted to them (``sample = "normal"``)."""
 
+import hashlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -116,7 +117,8 @@ class Resample:
     value per shot kept), ``rows`` (each shot's row in the file, 0-based, as ``mcrun replay``
     numbers them; with a club filter, only that club's) and either the normal jitter sd added
     per quantity to shots resampled with replacement, or ``fit``, the correlated normal fitted
-    to the shots and drawn from instead (``sample = "normal"``)."""
+    to the shots and drawn from instead (``sample = "normal"``); ``sha256``: the file's, as
+    read."""
 
     path: Path
     columns: dict
@@ -125,6 +127,7 @@ class Resample:
     rows: np.ndarray | None = None
     fit: NormalFit | None = None
     club: str | None = None
+    sha256: str = ""
 
     def __eq__(self, other):
         return (
@@ -133,7 +136,7 @@ class Resample:
             and self.columns.keys() == other.columns.keys()
             and all(np.array_equal(v, other.columns[k]) for k, v in self.columns.items())
             and np.array_equal(self.source_rows, other.source_rows)
-            and (self.fit, self.club) == (other.fit, other.club)
+            and (self.fit, self.club, self.sha256) == (other.fit, other.club, other.sha256)
         )
 
     __hash__ = None
@@ -153,14 +156,15 @@ _FILE_CACHE: dict = {}
 
 
 def _read_shots(ctx, where, path, club=None, format=None):
-    """({quantity: SI array}, rows) of the launches of a launch-monitor file (mcrun's columns or
-    a device's export, ``mcrun.run.monitors``) and their rows in the file (0-based); only the
-    shots of ``club`` when given."""
+    """({quantity: SI array}, rows, sha256) of the launches of a launch-monitor file (mcrun's
+    columns or a device's export, ``mcrun.run.monitors``), their rows in the file (0-based) and
+    the file's SHA-256 (hex), which a run records; only the shots of ``club`` when given."""
     key = (str(path.resolve()), path.stat().st_mtime_ns, club, format)
     if key in _FILE_CACHE:
         return _FILE_CACHE[key]
     try:
         session = read_session(path, format)
+        digest = _sha256(path)
     except InputError as err:
         raise ctx.error(where, str(err)) from None
     rows = np.arange(len(session.frame))
@@ -205,8 +209,21 @@ def _read_shots(ctx, where, path, club=None, format=None):
         columns[quantity] = si
     rows = rows.astype(np.int64)
     rows.setflags(write=False)
-    _FILE_CACHE[key] = columns, rows
-    return columns, rows
+    _FILE_CACHE[key] = columns, rows, digest
+    return columns, rows, digest
+
+
+def _sha256(path):
+    """The SHA-256 (hex) of the file at ``path``, read in blocks; InputError where it cannot be
+    read."""
+    h = hashlib.sha256()
+    try:
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                h.update(block)
+    except OSError as err:
+        raise InputError(f"{path}: cannot read: {err.strerror or err}") from None
+    return h.hexdigest()
 
 
 def read_launch_file(
@@ -240,7 +257,9 @@ def read_launch_file(
         check_file(path)  # before _read_shots looks at its time stamp
     except InputError as err:
         raise ctx.error(where, str(err)) from None
-    columns, rows = _read_shots(ctx, where, path, choices.get("club"), choices.get("format"))
+    columns, rows, digest = _read_shots(
+        ctx, where, path, choices.get("club"), choices.get("format")
+    )
     jitter = {}
     if jitter_leaf is not None:
         table = as_table(ctx, jitter_leaf.where, jitter_leaf.value)
@@ -264,7 +283,26 @@ def read_launch_file(
                 f"a normal fit needs at least 2 shots; {path} has {n_rows}{which}",
             )
         fit = fit_normal(columns)
-    return Resample(path, dict(columns), n_rows, jitter, rows, fit, choices.get("club"))
+    return Resample(path, dict(columns), n_rows, jitter, rows, fit, choices.get("club"), digest)
+
+
+def launch_files(points):
+    """The launch files the points draw from, each once, JSON-able: the ``file``, its
+    ``sha256`` (as read), its ``club`` (or None) and the ``points`` (their indices) that draw
+    from it; what a run records beside its scenario, which names the file alone (another file
+    under its name would draw other shots)."""
+    files = []
+    for point in points:
+        spec = point.params.get("launch.file")
+        if spec is None:
+            continue
+        entry = {"file": str(spec.path), "sha256": spec.sha256, "club": spec.club}
+        same = next((f for f in files if {**f, "points": None} == {**entry, "points": None}), None)
+        if same is None:
+            files.append({**entry, "points": [point.index]})
+        else:
+            same["points"].append(point.index)
+    return files
 
 
 def launch_fits(points):
