@@ -540,20 +540,45 @@ def to_unit(value_si: float, kind: str, unit: str) -> float:
     return (float(value_si) - offset) / factor
 
 
-# The unit a quantity is quoted in where its bare number is read in SI: a spin in rpm and a
-# speed in mph, as launch monitors give them.
-QUOTED_UNITS: dict[str, str] = {"spin": "rpm", "speed": "mph"}
+def canonical_unit(kind: str, unit: str) -> str | None:
+    """``unit`` of ``kind`` as `KINDS` names it (from any spelling: ``"MPH"``, ``"kph"``), or
+    None where it is none of its units."""
+    return _LOOKUP[kind].get(_key(unit)) if kind in _LOOKUP else None
 
 
-def meant_quoted(number: float, kind: str, low: float, high: float) -> str | None:
-    """The unit ``kind`` is quoted in (`QUOTED_UNITS`) where ``number``, a bare number read in
-    SI, is outside [``low``, ``high``] (SI) and within it in that unit (``spin = 2686``, read as
-    2686 rad/s and meant in rpm); else None."""
-    quoted = QUOTED_UNITS.get(kind)
-    if quoted is None or low <= number <= high:
-        return None
-    factor, offset = KINDS[kind][1][quoted]
-    return quoted if low <= number * factor + offset <= high else None
+def column_suffix(kind: str, unit: str) -> str | None:
+    """The suffix of a key or column name (`UNIT_SUFFIXES`) that gives ``unit`` of ``kind`` (any
+    spelling of it), or None (``spin``, ``"rps"``)."""
+    canonical = canonical_unit(kind, unit)
+    return next((k for k, v in _COLUMN_SUFFIXES.items() if v == (kind, canonical)), None)
+
+
+# The units a quantity is quoted in where its bare number is read in SI: a spin in rpm and a
+# speed in mph or km/h, as launch monitors give them.
+QUOTED_UNITS: dict[str, tuple[str, ...]] = {"spin": ("rpm",), "speed": ("mph", "km/h")}
+
+
+def meant_quoted(number: float, kind: str, low: float, high: float) -> tuple[str, ...]:
+    """The units ``kind`` is quoted in (`QUOTED_UNITS`) in which ``number``, a bare number read
+    in SI outside [``low``, ``high``] (SI), is within it (``spin = 2686``, read as 2686 rad/s
+    and meant in rpm); () where it is within it, or in none of them."""
+    if low <= number <= high:
+        return ()
+    return tuple(
+        unit
+        for unit in QUOTED_UNITS.get(kind, ())
+        if low <= number * KINDS[kind][1][unit][0] + KINDS[kind][1][unit][1] <= high
+    )
+
+
+def quoted_hint(typed: str, kind: str, quoted: tuple[str, ...], write) -> str:
+    """The advice, for a message, to a bare number ``typed`` that ``meant_quoted`` says was
+    meant in one of ``quoted``: `` (a bare number is rad/s: for 8000 rpm, give 8000rpm)``, each
+    unit's value written by ``write(typed, unit)`` as the input takes it; "" for none."""
+    if not quoted:
+        return ""
+    ways = "; ".join(f"for {typed} {unit}, give {write(typed, unit)}" for unit in quoted)
+    return f" (a bare number is {KINDS[kind][0]}: {ways})"
 
 
 def from_column_name(column_name: str) -> tuple[str, str, str] | None:

@@ -530,3 +530,14 @@ def test_a_solve_s_seed_and_lattice_are_checked(tmp_path, capsys):
         "scenarios lists it); a player is a preset (tour, scratch, bogey, "
         "scratch-woman, bogey-woman), a player file or a library scenario's name\n"
     )
+
+
+def test_play_s_help_names_every_preset(capsys):
+    """The presets are named in ``play --help`` (written out there: the CLI does not import the
+    players' module to build its parser) and in a mistyped player's message: all of them."""
+    from mcrun.play.player import PLAYERS
+
+    assert main(["play", "--help"]) == 0
+    said = " ".join(capsys.readouterr().out.split()).replace("- ", "-")  # (argparse wraps at -)
+    assert said.count(f"({', '.join(PLAYERS)})") == 1  # PLAYER's help
+    assert f"a preset: {', '.join(PLAYERS)};" in said  # the description

@@ -362,7 +362,15 @@ def test_a_cache_folder_numba_cannot_write_is_one_line(tmp_path, monkeypatch, ca
         # A bare spin or speed is SI; one in range only in rpm or mph was meant in it.
         ("shot", ["--ball-speed", "167", "--launch", "11", "--spin", "2686rpm"],
          "--ball-speed (ball_speed_mps) = 167 is outside the allowed range [0.5, 120] (a bare "
-         "number is m/s: for 167 mph, give 167mph)"),
+         "number is m/s: for 167 mph, give 167mph; for 167 km/h, give 167km/h)"),
+        # (as typed, not rounded; with its unit, or out of range in rpm too, no advice)
+        ("shot", ["--ball-speed", "60mph", "--launch", "30", "--spin", "12345.67"],
+         "--spin (spin_radps) = 12345.7 is outside the allowed range [0, 2000] (a bare number "
+         "is rad/s: for 12345.67 rpm, give 12345.67rpm)"),
+        ("shot", ["--ball-speed", "60mph", "--launch", "30", "--spin", "8000rad/s"],
+         "--spin (spin_radps) = 8000 is outside the allowed range [0, 2000]"),
+        ("shot", ["--ball-speed", "60mph", "--launch", "30", "--spin", "80000"],
+         "--spin (spin_radps) = 80000 is outside the allowed range [0, 2000]"),
         ("shot", ["--ball-speed", "60mph", "--launch", "30", "--spin", "8000"],
          "--spin (spin_radps) = 8000 is outside the allowed range [0, 2000] (a bare number is "
          "rad/s: for 8000 rpm, give 8000rpm)"),

@@ -73,8 +73,17 @@ def test_a_session_s_air_is_named_as_not_read():
     )
     given = replay.replay(DATA / "awesome-golf.csv", air_density_kgpm3=1.1).attrs["notes"]
     assert given[-1].endswith(": its air (Altitude) is kept as written, not read: every shot is "
-                              "flown in air of 1.1 kg/m^3, given")  # fmt: skip
+                              "flown in air of 1.1 kg/m^3, as given")  # fmt: skip
     assert not any("air" in n for n in replay.replay(DATA / "trackman.csv").attrs["notes"])
+    # Part of the air given: the note says which, and the rest's defaults (it said "given").
+    part = replay.replay(DATA / "garmin-r10-metric.csv", relative_humidity=0.8).attrs["notes"]
+    assert "air of 1.196 kg/m^3, humidity given, 20 C, 101325 Pa by default: give" in part[-1]
+    # A column of a result named after the air is none ("Temperature Adjusted Carry").
+    frame = pd.DataFrame({
+        "ball_speed_mph": [150.0], "launch_deg": [12.0], "spin_rpm": [2500.0],
+        "Temperature Adjusted Carry": [250.0], "Elevation Change": [3.0],
+    })  # fmt: skip
+    assert not replay.replay(frame).attrs["notes"]
 
 
 def test_a_shot_without_spin_is_invalid_and_the_others_fly():

@@ -202,9 +202,9 @@ ERRORS = [
     ),
     (
         "negative sd",
-        BALL.replace('"2686 rpm"', '{ dist = "normal", mean = "2686 rpm", sd = -5 }'),
+        BALL.replace('"2686 rpm"', '{ dist = "normal", mean = "2686 rpm", sd = "-5 rpm" }'),
         "launch.spin.sd",
-        "must be >= 0, got -5 rad/s",
+        "must be >= 0, got -5 rpm (-0.523599 rad/s)",
     ),
     (
         "negative sigma",
@@ -258,7 +258,7 @@ ERRORS = [
     ),
     (
         "correlation unknown name",
-        BALL.replace('"167 mph"', '{ dist = "normal", mean = "167 mph", sd = 1 }')
+        BALL.replace('"167 mph"', '{ dist = "normal", mean = "167 mph", sd = "1 mph" }')
         + 'correlation = { names = ["ball_speed", "smash"], matrix = [[1, 0.5], [0.5, 1]] }\n',
         "launch.correlation.names",
         "allowed: ball_speed, launch_angle, spin, azimuth, spin_axis",
@@ -266,9 +266,9 @@ ERRORS = [
     (
         "correlation not symmetric",
         "[launch]\n"
-        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = "1 mph" }\n'
         'launch_angle = "10.9 deg"\n'
-        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = "20 rpm" }\n'
         'correlation = { names = ["ball_speed", "spin"], matrix = [[1, 0.5], [0.4, 1]] }\n',
         "launch.correlation.matrix",
         "must be symmetric",
@@ -276,9 +276,9 @@ ERRORS = [
     (
         "correlation diagonal",
         "[launch]\n"
-        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = "1 mph" }\n'
         'launch_angle = "10.9 deg"\n'
-        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = "20 rpm" }\n'
         'correlation = { names = ["ball_speed", "spin"], matrix = [[2, 0.5], [0.5, 1]] }\n',
         "launch.correlation.matrix",
         "must have 1 on the diagonal",
@@ -286,9 +286,9 @@ ERRORS = [
     (
         "correlation not positive semi-definite",
         "[launch]\n"
-        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = "1 mph" }\n'
         'launch_angle = { dist = "normal", mean = "10.9 deg", sd = 1 }\n'
-        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = "20 rpm" }\n'
         'correlation = { names = ["ball_speed", "launch_angle", "spin"], matrix = '
         "[[1, 0.9, -0.9], [0.9, 1, 0.9], [-0.9, 0.9, 1]] }\n",
         "launch.correlation.matrix",
@@ -297,9 +297,9 @@ ERRORS = [
     (
         "correlation shape",
         "[launch]\n"
-        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = "1 mph" }\n'
         'launch_angle = "10.9 deg"\n'
-        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = "20 rpm" }\n'
         'correlation = { names = ["ball_speed", "spin"], matrix = [[1, 0.5]] }\n',
         "launch.correlation.matrix",
         "must be a 2 x 2 list of lists of numbers",
@@ -448,19 +448,21 @@ ERRORS = [
         BALL.replace('spin = "2686 rpm"', "spin = { dist = 'normal', mean = 2686, sd = 27 }"),
         "launch.spin.mean",
         "must be within [0 rad/s, 2000 rad/s], got 2686 rad/s (a bare number is rad/s: for "
-        '2686 rpm, write "2686 rpm")',
+        '2686 rpm, give "2686 rpm")',
     ),
     (
         "a ball speed of 167 (meant in mph)",
         BALL.replace('ball_speed = "167 mph"', "ball_speed = 167"),
         "launch.ball_speed",
-        'got 167 m/s (a bare number is m/s: for 167 mph, write "167 mph")',
+        'got 167 m/s (a bare number is m/s: for 167 mph, give "167 mph"; for 167 km/h, give '
+        '"167 km/h")',
     ),
     (
-        "a spin of 26860 (out of range in rpm too: no advice)",
-        BALL.replace('spin = "2686 rpm"', "spin = 26860"),
-        "launch.spin",
-        "must be within [0 rad/s, 2000 rad/s], got 26860 rad/s",
+        "a table of values with and without a unit (the sd was 1 m/s, 2.2 mph)",
+        BALL.replace('"167 mph"', '{ dist = "normal", mean = "167 mph", sd = 1 }'),
+        "launch.ball_speed",
+        "sd without a unit beside mean with one ('mph'): give every value its unit or the key "
+        "one for all (ball_speed_mph = {...}); a bare number here is m/s",
     ),
     (
         "a unit in the value and in the key",
@@ -745,9 +747,9 @@ def test_degree_sign_in_a_scenario(tmp_path):
 def test_correlation_broken_by_a_group_names_the_point(tmp_path):
     text = (
         "[launch]\n"
-        'ball_speed = { dist = "normal", mean = "167 mph", sd = 1 }\n'
+        'ball_speed = { dist = "normal", mean = "167 mph", sd = "1 mph" }\n'
         'launch_angle = "10.9 deg"\n'
-        'spin = { dist = "normal", mean = "2686 rpm", sd = 20 }\n'
+        'spin = { dist = "normal", mean = "2686 rpm", sd = "20 rpm" }\n'
         'correlation = { names = ["ball_speed", "spin"], matrix = [[1, -0.3], [-0.3, 1]] }\n'
         '[[group]]\nname = "a"\n[[group]]\nname = "b"\nlaunch.spin = "3000 rpm"\n'
     )
@@ -1018,3 +1020,20 @@ def test_a_sweep_of_too_many_points_is_refused_before_one_is_built(tmp_path):
         "s.toml: sweep: 120,000 points (2 groups x 60,000 of the sweep): allowed are at most "
         "100,000"
     )
+
+
+def test_a_bare_value_out_of_range_in_the_quoted_units_too_gets_no_advice(tmp_path):
+    """A spin of 26860 is out of range in rad/s and in rpm: the message ends with the value."""
+    path = write(tmp_path, BALL.replace('spin = "2686 rpm"', "spin = 26860"))
+    with pytest.raises(sc.ScenarioError) as info:
+        sc.load(path)
+    assert str(info.value) == (
+        f"{path}: launch.spin: must be within [0 rad/s, 2000 rad/s], got 26860 rad/s"
+    )
+
+
+def test_a_table_of_values_in_the_bare_unit_and_without_one_is_read(tmp_path):
+    """``mean = "10.9 deg", sd = 1``: both in degrees, the bare unit; read as before."""
+    text = BALL.replace('"10.9 deg"', '{ dist = "normal", mean = "10.9 deg", sd = 1 }')
+    angle = sc.load(write(tmp_path, text)).points[0].params["launch.launch_angle"]
+    assert angle.args == pytest.approx((10.9 * DEG, DEG), rel=1e-15)

@@ -9,6 +9,7 @@ from mcrun.units import (
     UnitError,
     foreign_digits,
     from_column_name,
+    meant_quoted,
     parse_quantity,
     parse_vector,
     shown,
@@ -529,3 +530,14 @@ def test_values_in_messages_are_plain_numbers():
     with pytest.raises(UnitError) as exc_info:
         parse_quantity(np.float64("nan"), "speed", name="--ball-speed")
     assert str(exc_info.value) == "--ball-speed: cannot read nan as a speed: not a finite number"
+
+
+def test_a_bare_number_out_of_range_is_told_the_units_that_bring_it_in():
+    """``meant_quoted``: the quoted units (rpm; mph, km/h) in which a bare SI number out of its
+    range is within it; none for a number within it, or within it in no such unit."""
+    assert meant_quoted(2686.0, "spin", 0.0, 2000.0) == ("rpm",)  # 281.3 rad/s
+    assert meant_quoted(26860.0, "spin", 0.0, 2000.0) == ()  # 2812.8 rad/s
+    assert meant_quoted(281.0, "spin", 0.0, 2000.0) == ()  # within its range
+    assert meant_quoted(250.0, "speed", 0.5, 120.0) == ("mph", "km/h")  # 111.8, 69.4
+    assert meant_quoted(300.0, "speed", 0.5, 120.0) == ("km/h",)  # 134.1 m/s in mph
+    assert meant_quoted(500.0, "length", 0.0, 400.0) == ()  # no quoted unit

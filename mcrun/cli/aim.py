@@ -58,8 +58,9 @@ def _with_units_given(err, converted):
     message = str(err)
     said = {}
     for option, text, metres in converted:
-        if f"{option} " in message:
-            said.setdefault(option, []).append(f"{text} is {metres:g} m")
+        each = said.setdefault(option, []) if f"{option} " in message else None
+        if each is not None and f"{text} is {metres:g} m" not in each:
+            each.append(f"{text} is {metres:g} m")
     if not said:
         return err
     given = "; ".join(f"{option} {', '.join(each)}" for option, each in said.items())

@@ -108,16 +108,13 @@ def named(call, options, typed=None):
 
 def _quoted_unit_hint(name, text, kind):
     """`` (a bare number is rad/s: for 8000 rpm, give 8000rpm)`` where ``text``, a bare number
-    read in ``kind``'s SI unit, is out of ``name``'s range and in it in the unit users quote
+    read in ``kind``'s SI unit, is out of ``name``'s range and in it in a unit users quote
     (``units.meant_quoted``); else ""."""
     if text is None or name not in RANGES:
         return ""
     value, unit_given = units.read_quantity(text, kind, name)
-    quoted = None if unit_given else units.meant_quoted(value, kind, *RANGES[name])
-    if quoted is None:
-        return ""
-    si = units.KINDS[kind][0]
-    return f" (a bare number is {si}: for {value:g} {quoted}, give {value:g}{quoted})"
+    quoted = () if unit_given else units.meant_quoted(value, kind, *RANGES[name])
+    return units.quoted_hint(text.strip(), kind, quoted, lambda typed, unit: f"{typed}{unit}")
 
 
 def whole(text, option, least, most=None):

@@ -261,8 +261,8 @@ def load_player(spec, putter=None, spread=None, straight=False):
     A club whose every shot is the same (no dispersion: ``check_dispersion``) is refused
     (PlayerError), unless ``straight`` (a bag of straight shots, for tests from first
     principles: a model player has a dispersion)."""
-    path_of(spec, "player", f"a preset ({', '.join(PLAYERS)}), a player file or a library "
-            "scenario's name", PlayerError)  # fmt: skip
+    what = f"a preset ({', '.join(PLAYERS)}), a player file or a library scenario's name"
+    path_of(spec, "player", what, PlayerError)
     if str(spec) in PLAYERS:
         name = str(spec)
         bag, speed, preset, own_putter = PLAYERS[name]
@@ -279,8 +279,7 @@ def load_player(spec, putter=None, spread=None, straight=False):
     try:
         sc.find(spec)
     except sc.ScenarioError as err:  # (a preset's name mistyped was told of scenarios alone)
-        raise PlayerError(f"{err}; a player is a preset ({', '.join(PLAYERS)}), a player file "
-                          "or a library scenario's name") from None  # fmt: skip
+        raise PlayerError(f"{err}; a player is {what}") from None
     scenario = sc.load(spec)
     if scenario.hole is not None:
         raise PlayerError(

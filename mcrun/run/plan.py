@@ -443,8 +443,9 @@ def _model_names(points):
 
 def provenance(the_plan, backend, versions, threads, **facts):
     """The provenance every file of a run records: the scenario, its question, seed, size,
-    points and models, its launch files (their digests) and fits, its geometry (``geometry.record``) and on a hole its map
-    (``geometry.record_map``, which ``file_metadata`` keeps for summary.parquet), the software
+    points and models, its launch files (their digests) and fits, its geometry
+    (``geometry.record``) and on a hole its map (``geometry.record_map``, which
+    ``file_metadata`` keeps for summary.parquet), the software
     ``versions``, the ``backend`` that ran it on how many ``threads`` and that backend's own
     ``facts``, the chunk size and the start time."""
     scenario, points = the_plan.scenario, the_plan.points

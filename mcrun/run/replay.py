@@ -56,38 +56,59 @@ LAUNCH_COLUMNS = {
 CHUNK = 65536
 """Shots flown at a time by ``replay``."""
 
-# A column of the air a session was measured in (a Garmin R10's Temperature, Air Pressure,
-# Relative Humidity and Air Density, Awesome Golf's Altitude, mcrun's temperature_f...), by its
-# name with spaces for underscores: kept as written and not read (the shots are flown in the
-# conditions' air), which a note says.
+# A column of the air a session was measured in, by its name (the unit taken off, spaces for
+# underscores): a Garmin R10's Temperature, Air Pressure, Relative Humidity and Air Density,
+# Awesome Golf's Altitude, temperature_f in a file of mcrun's columns. Kept as written and not
+# read (the shots are flown in the conditions' air), which a note says. The whole name must be
+# one: "Temperature Adjusted Carry" or "Elevation Change" is none.
 _AIR_COLUMN = re.compile(
-    r"^(air )?(temperature|temp|pressure|density|humidity)\b"
-    r"|^(relative humidity|barometric pressure|altitude|elevation)\b"
+    r"^(?:(?:air|ambient|outside|atmospheric|station|barometric|relative) )?"
+    r"(?:temperature|temp|pressure|density|humidity|rh|altitude|elevation)"
+    r"(?: (?:c|f|k|pa|hpa|kpa|mbar|inhg|pct|percent|kgpm3|m|ft))?$"
 )
-# The conditions that set the air (``api.conditions_inputs``' keywords).
-_AIR_CONDITIONS = {
-    "temperature_c", "pressure_pa", "altitude_m", "relative_humidity", "air_density_kgpm3"
-}  # fmt: skip
+# The conditions that set the air (``api.conditions_inputs``' keywords), as a note names them.
+_AIR_GIVEN = {
+    "temperature_c": "temperature",
+    "pressure_pa": "pressure",
+    "altitude_m": "altitude",
+    "relative_humidity": "humidity",
+    "air_density_kgpm3": "air density",
+}
 
 
 def _air_note(session, air, conditions):
-    """A note naming the session's columns of the air, which are not read, and the air density
-    the shots are flown in instead (``air``: the kernel's conditions; ``conditions``: those
-    given); None where the session has none."""
+    """A note naming the session's columns of the air, which are not read, and the air the
+    shots are flown in instead (``air``: the kernel's conditions; ``conditions``: those given,
+    each named, and the defaults of the others); None where the session has none."""
     names = [
         str(c) for c in session.frame.columns
         if _AIR_COLUMN.match(split_name(str(c).replace("_", " "))[0])
     ]  # fmt: skip
     if not names:
         return None
-    given = _AIR_CONDITIONS & {k for k, v in conditions.items() if v is not None}
-    how = (
-        "given"
-        if given
-        else f"the default ({DEFAULTS['temperature_c']:g} C, {DEFAULTS['pressure_pa']:g} Pa, "
-        f"{100 * DEFAULTS['relative_humidity']:g} %): give the session's temperature, pressure "
-        "or altitude, and humidity, or its air density, to fly it in its own"
-    )
+    given = [k for k in _AIR_GIVEN if conditions.get(k) is not None]
+    defaults = {
+        "temperature_c": f"{DEFAULTS['temperature_c']:g} C",
+        "pressure_pa": f"{DEFAULTS['pressure_pa']:g} Pa",
+        "relative_humidity": f"{100 * DEFAULTS['relative_humidity']:g} %",
+    }
+    if "altitude_m" in given:
+        given_or_set = {*given, "pressure_pa"}
+    else:
+        given_or_set = set(given)
+    left = [v for k, v in defaults.items() if k not in given_or_set]
+    if "air_density_kgpm3" in given or not left:
+        how = "as given"
+    else:
+        named = " and ".join(_AIR_GIVEN[k] for k in given)
+        how = (
+            f"{named} given, {', '.join(left)} by default" if named else
+            f"the default ({', '.join(left)})"
+        )  # fmt: skip
+        how += (
+            ": give the session's temperature, pressure or altitude, and humidity, or its air "
+            "density, to fly it in its own"
+        )
     return (
         f"{session.path}: its air ({names_shown(names)}) is kept as written, not read: every "
         f"shot is flown in air of {air['air_density_kgpm3']:.4g} kg/m^3, {how}"

@@ -22,11 +22,14 @@ from mcrun.units import (
     UNIT_SUFFIXES,
     UnitError,
     article,
+    canonical_unit,
+    column_suffix,
     foreign_digits,
     from_column_name,
     is_number,
     meant_quoted,
     parse_quantity,
+    quoted_hint,
     shown,
 )
 
@@ -140,10 +143,10 @@ def _check_in(ctx, where, value_si, param, what="must be", shown=None, bare=Fals
         hint = f' (a share: for {value_si:g} %, write "{value_si:g} %")' * (
             bare and param.kind == "fraction" and hi == 1.0 and 1.0 < value_si <= 100.0
         )
-        quoted = meant_quoted(value_si, param.kind, lo, hi) if bare else None
-        if quoted is not None:
-            hint = (f" (a bare number is {KINDS[param.kind][0]}: for {value_si:g} {quoted}, "
-                    f'write "{value_si:g} {quoted}")')  # fmt: skip
+        if bare:
+            quoted = meant_quoted(value_si, param.kind, lo, hi)
+            hint = hint or quoted_hint(f"{value_si:.15g}", param.kind, quoted,
+                                       lambda typed, unit: f'"{typed} {unit}"')  # fmt: skip
         raise ctx.error(
             where,
             f"{what} within [{fmt(lo, param.kind)}, {fmt(hi, param.kind)}], "
@@ -166,6 +169,37 @@ def _refuse_bare(ctx, where, value, leaf, param):
     Stimp readings are quoted, was 6 m: 19.7 ft)."""
     if param.bare_refused and _is_bare(value, leaf.key_unit):
         raise ctx.error(where, f"{short(value)}: {param.bare_refused}")
+
+
+def _refuse_mixed_units(ctx, where, table, keys, leaf, param):
+    """ScenarioError where some values of a distribution's table carry a unit other than the
+    bare one and some carry none (``mean = "167 mph", sd = 1``: the sd was 1 m/s, 2.2 mph); a
+    dimensionless key (``sigma``) aside, and ``mean = "10.9 deg", sd = 1`` (both degrees)."""
+    if param.kind in ("number", "choice") or leaf.key_unit is not None:
+        return
+
+    def unit_of(key):
+        return _LEADING_NUMBER.sub("", str(table[key]), count=1).strip()
+
+    bare_name = KINDS[param.kind][0]
+    bare = [k for k in keys if k not in DIMENSIONLESS and _is_bare(table[k], None)]
+    given = [
+        k for k in keys
+        if k not in DIMENSIONLESS and k not in bare
+        and canonical_unit(param.kind, unit_of(k)) != bare_name
+    ]  # fmt: skip
+    if bare and given:
+        unit = unit_of(given[0])
+        suffix = column_suffix(param.kind, unit)
+        key = f" or the key one for all ({where.rsplit('.', 1)[-1]}_{suffix} = {{...}})" * bool(
+            suffix
+        )
+        raise ctx.error(
+            where,
+            f"{', '.join(bare)} without a unit beside {given[0]} with one ({short(unit)}): give "
+            f"every value its unit{key}; a bare number here is "
+            f"{bare_unit(param.kind).strip() or 'a share'}",
+        )
 
 
 def read_dist(ctx, leaf, param):
@@ -212,6 +246,7 @@ def read_dist(ctx, leaf, param):
             args.append(
                 read_value(ctx, f"{where}.{key}", value[key], kind, leaf.key_unit, key in SPREADS)
             )
+    _refuse_mixed_units(ctx, where, value, keys, leaf, param)
     if param.constant_only and name != "constant":
         raise ctx.error(where, f"must be a constant, not a {name} distribution")
 
