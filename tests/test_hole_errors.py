@@ -122,6 +122,11 @@ def test_an_elevation_file_the_loader_refuses(folder, monkeypatch):
         ),
         ({"map": MAP, "hole": 2, "turf": {"water_yellow": {}}}, "'turf.water_yellow': a ball"),
         ({"map": MAP, "hole": 2, "turf": {"green": {"spin": 1}}}, "'turf.green.spin': unknown"),
+        # (a list: a TypeError, unhashable)
+        (
+            {"map": MAP, "hole": 2, "turf": {"green": {"preset": ["green"]}}},
+            "'turf.green.preset' = ['green']: choose green, ",
+        ),  # fmt: skip
         ({"map": MAP, "hole": 2, "par": 9}, "'par' = 9 must be a whole number 2-7"),
         ({"map": "missing.geojson", "hole": 2}, "missing.geojson: cannot read the map"),
         ({"length_m": 9, "width_m": 9, "elevation": "d.tif"}, "an 'elevation' needs the hole"),

@@ -447,8 +447,9 @@ ERRORS = [
         "a spin of 2686 (meant in rpm, as launch monitors give it; read as rad/s)",
         BALL.replace('spin = "2686 rpm"', "spin = { dist = 'normal', mean = 2686, sd = 27 }"),
         "launch.spin.mean",
-        "must be within [0 rad/s, 2000 rad/s], got 2686 rad/s (a bare number is rad/s: for "
-        '2686 rpm, give "2686 rpm")',
+        "must be within [0 rad/s, 2000 rad/s], got 2686 rad/s (a bare number is rad/s: in rpm, "
+        'give every value of the table its unit ("2686 rpm"), or the key one: launch.spin_rpm '
+        "= {...})",
     ),
     (
         "a ball speed of 167 (meant in mph)",
@@ -461,8 +462,39 @@ ERRORS = [
         "a table of values with and without a unit (the sd was 1 m/s, 2.2 mph)",
         BALL.replace('"167 mph"', '{ dist = "normal", mean = "167 mph", sd = 1 }'),
         "launch.ball_speed",
-        "sd without a unit beside mean with one ('mph'): give every value its unit or the key "
-        "one for all (ball_speed_mph = {...}); a bare number here is m/s",
+        "sd without a unit beside mean with one ('mph'): give every value its unit, or the key "
+        "one: launch.ball_speed_mph = {...}; a bare number here is m/s",
+    ),
+    (
+        "a table's values with and without a unit, in a sweep",
+        BALL + '[sweep.launch]\nspin = [{ dist = "normal", mean = "2500 rpm", sd = 200 }]\n',
+        'sweep."launch.spin"[0]',
+        "sd without a unit beside mean with one ('rpm'): give every value its unit, or the key "
+        "one: launch.spin_rpm = {...}; a bare number here is rad/s",
+    ),
+    (
+        "a sweep of values with and without a unit (20 was 20 m/s)",
+        BALL + '[sweep]\n"weather.wind_speed" = ["10 mph", 20]\n',
+        'sweep."weather.wind_speed"[1]',
+        "20 without a unit beside '10 mph': give every value its unit; a bare number here is m/s",
+    ),
+    (
+        "a target with and without a unit (10 was 10 m)",
+        '[scenario]\ntarget = ["250 yd", 10]\n' + BALL,
+        "scenario.target[1]",
+        "10 without a unit beside '250 yd': give both their unit, or neither (m)",
+    ),
+    (
+        "a distribution's name that is a list (a TypeError)",
+        BALL.replace('"2686 rpm"', '{ dist = ["normal"], mean = "1 rpm", sd = "1 rpm" }'),
+        "launch.spin.dist",
+        "unknown distribution ['normal']; choose one of constant, normal",
+    ),
+    (
+        "a value at its limit in the bare unit's rounding (said 'got 120 m/s')",
+        BALL.replace('ball_speed = "167 mph"', "ball_speed = 120.0000001"),
+        "launch.ball_speed",
+        "must be within [0.5 m/s, 120 m/s], got 120.0000001 m/s",
     ),
     (
         "a unit in the value and in the key",
@@ -1037,3 +1069,18 @@ def test_a_table_of_values_in_the_bare_unit_and_without_one_is_read(tmp_path):
     text = BALL.replace('"10.9 deg"', '{ dist = "normal", mean = "10.9 deg", sd = 1 }')
     angle = sc.load(write(tmp_path, text)).points[0].params["launch.launch_angle"]
     assert angle.args == pytest.approx((10.9 * DEG, DEG), rel=1e-15)
+
+
+def test_a_bare_zero_beside_a_unit_is_zero_in_any(tmp_path):
+    """A bare 0 beside a unit is read (0 rpm is 0 rad/s; a spread of 0 is 0 in any unit), but
+    not a temperature's mean (0 C is no 0 F)."""
+    for text in (
+        BALL.replace('"2686 rpm"', '{ dist = "normal", mean = "2686 rpm", sd = 0 }'),
+        BALL + '[weather]\nwind_speed = { dist = "uniform", low = 0, high = "10 mph" }\n',
+        BALL + '[weather]\ntemperature = { dist = "normal", mean = "50 F", sd = 0 }\n',
+        BALL + '[sweep]\n"weather.wind_speed" = ["10 mph", 0]\n',
+    ):
+        sc.load(write(tmp_path, text))
+    text = BALL + '[weather]\ntemperature = { dist = "uniform", low = 0, high = "50 F" }\n'
+    with pytest.raises(sc.ScenarioError, match=r"low without a unit beside high with one"):
+        sc.load(write(tmp_path, text))

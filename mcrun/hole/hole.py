@@ -364,7 +364,7 @@ def _turfs(table, where):
             )
         turf = turfs[kind]
         if "preset" in values:
-            if values["preset"] not in PRESETS:
+            if not isinstance(values["preset"], str) or values["preset"] not in PRESETS:
                 raise HoleError(
                     f"{where}: '{key}.preset' = {values['preset']!r}: choose {', '.join(PRESETS)}"
                 )

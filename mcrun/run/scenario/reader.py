@@ -64,7 +64,7 @@ def _resolve(ctx, sections, scenario_dir, context):
         elif param.kind == "choice":
             return read_choice(ctx, leaf, param)
         else:
-            dist = read_dist(ctx, leaf, param)
+            dist = read_dist(ctx, leaf, param, f"{section}.{name}")
         params[f"{section}.{name}"] = dist
         return dist
 
@@ -372,7 +372,7 @@ def _check_swept_over(ctx, sweep, tables):
             if param.kind == "choice":
                 read_choice(ctx, leaf, param)
             else:
-                read_dist(ctx, leaf, param)
+                read_dist(ctx, leaf, param, f"{section}.{name}")
 
 
 def _group_play(ctx, where, given, hole, play):

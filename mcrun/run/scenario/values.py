@@ -134,24 +134,63 @@ def as_given(raw, key_unit, value_si, kind, spread=False):
     return bare if written == bare else f"{written} ({bare})"
 
 
-def _check_in(ctx, where, value_si, param, what="must be", shown=None, bare=False):
+def _check_in(ctx, where, value_si, param, what="must be", shown=None, bare=False, table=""):
     """ScenarioError unless ``value_si`` is within ``param``'s limits; the message gives it as
     ``shown`` (default: in the bare unit). ``bare``: the value was a bare number (a humidity of
-    50 then says how to write 50 %, a spin of 2686 how to write 2686 rpm)."""
+    50 then says how to write 50 %, a spin of 2686 how to write 2686 rpm); ``table``: the
+    parameter's path where the value is one of a distribution's table (the advice is then for
+    every value of it: a unit on each, or in the key)."""
     lo, hi = param.limits
     if not lo <= value_si <= hi:
-        hint = f' (a share: for {value_si:g} %, write "{value_si:g} %")' * (
-            bare and param.kind == "fraction" and hi == 1.0 and 1.0 < value_si <= 100.0
-        )
-        if bare:
-            quoted = meant_quoted(value_si, param.kind, lo, hi)
-            hint = hint or quoted_hint(f"{value_si:.15g}", param.kind, quoted,
-                                       lambda typed, unit: f'"{typed} {unit}"')  # fmt: skip
+        typed = f"{value_si:.15g}"
+        if bare and param.kind == "fraction" and hi == 1.0 and 1.0 < value_si <= 100.0:
+            quoted = ("%",)
+            hint = f' (a share: for {typed} %, write "{typed} %")'
+        else:
+            quoted = meant_quoted(value_si, param.kind, lo, hi) if bare else ()
+            hint = quoted_hint(typed, param.kind, quoted, lambda t, unit: f'"{t} {unit}"')
+        if table and quoted:
+            suffix = column_suffix(param.kind, quoted[0])
+            key = f", or the key one: {table}_{suffix} = {{...}}" * bool(suffix)
+            hint = (f" (a bare number is {_bare_word(param.kind)}: in {quoted[0]}, give every "
+                    f'value of the table its unit ("{typed} {quoted[0]}"){key})')  # fmt: skip
+        rounded = fmt(value_si, param.kind)
+        got = shown or rounded
+        if rounded in (fmt(lo, param.kind), fmt(hi, param.kind)):  # ("got 120 m/s", of 120.0000001)
+            precise = f"{in_bare_unit(value_si, param.kind):.15g}{bare_unit(param.kind)}"
+            got = got.replace(rounded, precise)
         raise ctx.error(
-            where,
-            f"{what} within [{fmt(lo, param.kind)}, {fmt(hi, param.kind)}], "
-            f"got {shown or fmt(value_si, param.kind)}{hint}",
+            where, f"{what} within [{fmt(lo, param.kind)}, {fmt(hi, param.kind)}], got {got}{hint}"
         )
+
+
+def _bare_word(kind):
+    """What a bare number of ``kind`` is read as, for advice: "rad/s", "a share"."""
+    return "a share" if kind == "fraction" else KINDS[kind][0]
+
+
+def _mixed_units(ctx, where, values, kind, keys=None):
+    """The first of ``values`` (each a raw value, or a ``keys`` entry's) written without a unit
+    beside one written in a unit other than ``kind``'s bare one, and that one: (index, index),
+    or None. A bare 0 is 0 in any unit of a kind without an offset (not a temperature), and
+    a spread's (``keys`` in ``SPREADS``) in any."""
+    keys = list(range(len(values))) if keys is None else keys
+    offset = any(o for _, o in KINDS[kind][1].values())  # (0 C is no 0 F)
+
+    def unit_of(value):
+        return _LEADING_NUMBER.sub("", str(value), count=1).strip()
+
+    bare, given = [], []
+    for k, value in zip(keys, values, strict=True):
+        if k in DIMENSIONLESS or isinstance(value, dict | list):
+            continue
+        if _is_bare(value, None):
+            zero = read_value(ctx, f"{where}", value, "number", None) == 0.0
+            if not zero or (offset and k not in SPREADS):
+                bare.append(k)
+        elif canonical_unit(kind, unit_of(value)) != KINDS[kind][0]:
+            given.append(k)
+    return (bare[0], given[0]) if bare and given else None
 
 
 def _is_bare(value, key_unit):
@@ -171,39 +210,28 @@ def _refuse_bare(ctx, where, value, leaf, param):
         raise ctx.error(where, f"{short(value)}: {param.bare_refused}")
 
 
-def _refuse_mixed_units(ctx, where, table, keys, leaf, param):
+def _refuse_mixed_units(ctx, where, table, keys, leaf, param, path=None):
     """ScenarioError where some values of a distribution's table carry a unit other than the
     bare one and some carry none (``mean = "167 mph", sd = 1``: the sd was 1 m/s, 2.2 mph); a
     dimensionless key (``sigma``) aside, and ``mean = "10.9 deg", sd = 1`` (both degrees)."""
     if param.kind in ("number", "choice") or leaf.key_unit is not None:
         return
-
-    def unit_of(key):
-        return _LEADING_NUMBER.sub("", str(table[key]), count=1).strip()
-
-    bare_name = KINDS[param.kind][0]
-    bare = [k for k in keys if k not in DIMENSIONLESS and _is_bare(table[k], None)]
-    given = [
-        k for k in keys
-        if k not in DIMENSIONLESS and k not in bare
-        and canonical_unit(param.kind, unit_of(k)) != bare_name
-    ]  # fmt: skip
-    if bare and given:
-        unit = unit_of(given[0])
+    mixed = _mixed_units(ctx, where, [table[k] for k in keys], param.kind, keys)
+    if mixed is not None:
+        bare, given = mixed
+        unit = _LEADING_NUMBER.sub("", str(table[given]), count=1).strip()
         suffix = column_suffix(param.kind, unit)
-        key = f" or the key one for all ({where.rsplit('.', 1)[-1]}_{suffix} = {{...}})" * bool(
-            suffix
-        )
+        key = f", or the key one: {path}_{suffix} = {{...}}" * bool(suffix and path)
         raise ctx.error(
             where,
-            f"{', '.join(bare)} without a unit beside {given[0]} with one ({short(unit)}): give "
-            f"every value its unit{key}; a bare number here is "
-            f"{bare_unit(param.kind).strip() or 'a share'}",
+            f"{bare} without a unit beside {given} with one ({short(unit)}): give every value "
+            f"its unit{key}; a bare number here is {_bare_word(param.kind)}",
         )
 
 
-def read_dist(ctx, leaf, param):
-    """A Dist from a raw value (constant or distribution table), validated against param."""
+def read_dist(ctx, leaf, param, path=None):
+    """A Dist from a raw value (constant or distribution table), validated against param;
+    ``path`` (``"launch.spin"``) names the parameter in advice on a key's unit."""
     value, where = leaf.value, leaf.where
     kind = param.kind
     if not isinstance(value, dict):
@@ -221,7 +249,7 @@ def read_dist(ctx, leaf, param):
     if "dist" not in value:
         raise ctx.error(f"{where}.dist", f"missing; choose one of {', '.join(DISTRIBUTIONS)}")
     name = value["dist"]
-    if name not in DISTRIBUTIONS:
+    if not isinstance(name, str) or name not in DISTRIBUTIONS:  # (a list: unhashable)
         raise ctx.error(
             f"{where}.dist",
             f"unknown distribution {short(name)}; choose one of {', '.join(DISTRIBUTIONS)}",
@@ -246,7 +274,7 @@ def read_dist(ctx, leaf, param):
             args.append(
                 read_value(ctx, f"{where}.{key}", value[key], kind, leaf.key_unit, key in SPREADS)
             )
-    _refuse_mixed_units(ctx, where, value, keys, leaf, param)
+    _refuse_mixed_units(ctx, where, value, keys, leaf, param, path)
     if param.constant_only and name != "constant":
         raise ctx.error(where, f"must be a constant, not a {name} distribution")
 
@@ -255,7 +283,7 @@ def read_dist(ctx, leaf, param):
 
     def check_in(key):
         _check_in(ctx, f"{where}.{key}", args[keys.index(key)], param, shown=given(key),
-                  bare=_is_bare(value[key], leaf.key_unit))  # fmt: skip
+                  bare=_is_bare(value[key], leaf.key_unit), table=path or "")  # fmt: skip
 
     if name == "constant":
         check_in("value")
@@ -381,6 +409,13 @@ def read_target(ctx, where, value):
         raise ctx.error(
             where, f'must be a pair [x, y] of lengths, e.g. ["251 m", "0 m"], got {short(value)}'
         )
+    mixed = _mixed_units(ctx, where, value, "length")
+    if mixed is not None:  # (as a vector's components: parse_vector)
+        raise ctx.error(
+            f"{where}[{mixed[0]}]",
+            f"{short(value[mixed[0]])} without a unit beside {short(value[mixed[1]])}: give both "
+            "their unit, or neither (m)",
+        )
     target = tuple(read_value(ctx, f"{where}[{k}]", v, "length", None) for k, v in enumerate(value))
     for k, v in enumerate(target):
         if abs(v) > TARGET_LIMIT_M:
@@ -428,6 +463,16 @@ def sweep_leaves(ctx, table):
         if twice is not None:
             raise ctx.error(f"{where}[{twice}]", f"{short(values[twice])} is swept twice: "
                             "give each value once")  # fmt: skip
+        kind = PARAMETERS[section][name].kind
+        mixed = (
+            None if unit or kind in ("number", "choice") else _mixed_units(ctx, where, values, kind)
+        )
+        if mixed is not None:
+            raise ctx.error(
+                f"{where}[{mixed[0]}]",
+                f"{short(values[mixed[0]])} without a unit beside {short(values[mixed[1]])}: give "
+                f"every value its unit; a bare number here is {_bare_word(kind)}",
+            )
         leaves = [Leaf(v, f"{where}[{k}]", unit) for k, v in enumerate(values)]
         entries.append((section, name, path, leaves))
     return entries
