@@ -269,6 +269,8 @@ def _prefix(name: str | None) -> str:
 # The largest whole number a float holds exactly: "1e17" cannot say which integer it means.
 EXACT_FLOAT_MOST = 2**53
 INEXACT = "inexact"  # ``whole_number``'s reason for a number beyond EXACT_FLOAT_MOST via a float
+# ``whole_number``'s reason for a number of over 1,000 digits (its int would be costly to make)
+TOO_LARGE = "allowed: a whole number of at most 19 digits (this one has over 1,000)"
 
 
 def whole_number(value: object) -> tuple[int | None, str]:
@@ -276,13 +278,16 @@ def whole_number(value: object) -> tuple[int | None, str]:
     of an integral value up to ``EXACT_FLOAT_MOST``, or a text read exactly, in digits or as a
     number such as "1e6" or "7.0" (through a float, 2**53 + 1 was 2**53, and "2**53 + 1.0" or
     "7.0000000000000001" were whole). Why not: ``INEXACT`` for a larger float,
-    ``foreign_digits``' reason for a text in other digits (float read "١٢" as 12), "" for
-    anything else (a text beyond 10**1000 among them: its int would be costly, and no count or
-    seed is that large)."""
-    if isinstance(value, bool):
-        return None, ""
+    ``foreign_digits``' reason for a text in other digits (float read "١٢" as 12),
+    ``TOO_LARGE`` for a text beyond 10**1000 (its int would be costly to make), "" for anything
+    else. A Decimal or a Fraction is read exactly too, and a long double as far as it holds."""
+    if isinstance(value, bool | np.bool_ | bytes | bytearray | complex | np.complexfloating):
+        return None, ""  # (not a number of one: float() read b"1_000", np.True_ as 1)
     if isinstance(value, numbers.Integral):
-        return int(value), ""
+        try:
+            return int(value), ""
+        except TypeError:  # (a NumPy timedelta64 is Integral, and int() refuses it)
+            return None, ""
     if isinstance(value, str):
         foreign = foreign_digits(value)
         if foreign:
@@ -292,15 +297,24 @@ def whole_number(value: object) -> tuple[int | None, str]:
         except ValueError:
             pass
         try:
-            exact = decimal.Decimal(value)  # (not a float: read exactly; "1e999999" is cheap)
+            value = decimal.Decimal(value)  # (not a float: read exactly; "1e999999" is cheap)
         except decimal.InvalidOperation:
             return None, ""
-        if not exact.is_finite() or exact.adjusted() > 1000 or exact != exact.to_integral_value():
+    if isinstance(value, decimal.Decimal | numbers.Rational):  # (a Fraction, read exactly)
+        exact = value if isinstance(value, decimal.Decimal) else None
+        if exact is None:
+            return (int(value), "") if value.denominator == 1 else (None, "")
+        if not exact.is_finite() or exact != exact.to_integral_value():
             return None, ""
+        if not exact.is_zero() and exact.adjusted() > 1000:
+            return None, TOO_LARGE
         return int(exact), ""
+    if isinstance(value, np.floating) and np.finfo(value.dtype).nmant > 52:  # (a long double)
+        exact_enough = bool(np.isfinite(value)) and value == np.floor(value)
+        return (int(value), "") if exact_enough else (None, "")
     try:
         number = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         return None, ""
     if not (math.isfinite(number) and number.is_integer()):
         return None, ""

@@ -828,6 +828,14 @@ def test_a_command_compiles_the_kernels_it_runs(argv, kernels, tmp_path, capsys,
     assert asked[0] == ("plane", kernels)
 
 
+def test_a_seed_is_named_as_typed_and_said_as_the_integer_read(capsys):
+    """``aim --seed`` named its API's "seed"; ``putt`` printed the seed as typed ("1.5e3")."""
+    code, _, err = run(capsys, "aim", "par3-over-water", "-n", "10", "--seed", "0x10")
+    assert (code, err) == (2, "mcrun: error: --seed must be an integer >= 0, got '0x10'\n")
+    code, out, _ = run(capsys, "putt", "--distance", "10ft", "-n", "100", "--seed", "1.5e3")
+    assert code == 0 and out.splitlines()[0].endswith("n 100, seed 1500")
+
+
 def test_a_whole_number_in_digits_is_read_exactly():
     """A seed or a count written as text is read as written: through a float, --seed
     9007199254740993 (2**53 + 1) ran, and was recorded, as 9007199254740992. A float beyond

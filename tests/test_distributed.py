@@ -443,6 +443,9 @@ def test_without_dask_the_backend_says_how_to_install_it(tmp_path, capsys, monke
     [
         (["--dask", "local", "--threads", "2"], "--threads is for the local engine"),
         (["--workers", "2"], "--workers is for --dask local"),
+        # (read as every whole number is: float() read "١" as 1 and "0_1" as 1)
+        (["--dask", "local", "--workers", "١"], "--workers '١': only ASCII digits (0-9) are"),
+        (["--dask", "local", "--workers", "0_1"], "--workers '0_1': '_' is not read in a number"),
         (["--scheduler-file", "missing.json"], "--scheduler-file missing.json: no such file"),
         (["--scheduler", "tcp://127.0.0.1:9"], "cannot reach the Dask scheduler tcp://"),
         # (it started a local cluster, and --workers was refused as for an existing one)

@@ -134,7 +134,8 @@ def test_the_day_s_form_spreads_the_rounds_as_a_gaussian_copula_does():
 def test_holes_are_chosen_as_written():
     assert holes_wanted(None, 3) == [1, 2, 3]
     assert holes_wanted("1-3, 7,9-10", 18) == [1, 2, 3, 7, 9, 10]
-    for bad in ("0-3", "5-2", "19", "a", "1-", "-3", "1-2-3"):
+    # (int() read "١٢" as 12 and "1_2" as 12: ASCII digits only, as every whole number)
+    for bad in ("0-3", "5-2", "19", "a", "1-", "-3", "1-2-3", "١٢", "1_2", "1-1_8"):
         with pytest.raises(InputError, match="--holes"):
             holes_wanted(bad, 18)
 

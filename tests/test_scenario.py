@@ -180,7 +180,19 @@ ERRORS = [
         "wrong type shots",
         '[scenario]\nshots = "many"\n' + BALL,
         "scenario.shots",
-        "must be an integer >= 1",
+        "must be an integer within [1, 2**63 - 1], got 'many'",
+    ),
+    (
+        "a seed beyond an int64 (validated; a run blamed --seed, which no one typed)",
+        "[scenario]\nseed = 9223372036854775808\n" + BALL,
+        "scenario.seed",
+        "must be an integer within [0, 2**63 - 1], got 9223372036854775808",
+    ),
+    (
+        "an integer of 4,301 digits (a traceback of tomllib's)",
+        "[scenario]\nseed = " + "9" * 4301 + "\n" + BALL,
+        "not valid TOML",
+        "Exceeds the limit (4300 digits)",
     ),
     (
         "wrong type bool",

@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 from mcrun.units import (
@@ -541,3 +542,24 @@ def test_a_bare_number_out_of_range_is_told_the_units_that_bring_it_in():
     assert meant_quoted(250.0, "speed", 0.5, 120.0) == ("mph", "km/h")  # 111.8, 69.4
     assert meant_quoted(300.0, "speed", 0.5, 120.0) == ("km/h",)  # 134.1 m/s in mph
     assert meant_quoted(500.0, "length", 0.0, 400.0) == ()  # no quoted unit
+
+
+def test_a_whole_number_of_every_exact_type_is_read_exactly():
+    """A Decimal, a Fraction or a long double of 2**53 + 1 went through a float to 2**53; bytes
+    and NumPy's True were read as numbers, and a timedelta64 raised a TypeError."""
+    import decimal
+    import fractions
+
+    from mcrun.units import TOO_LARGE, whole_number
+
+    big = 2**53 + 1
+    assert whole_number(decimal.Decimal(big)) == (big, "")
+    assert whole_number(fractions.Fraction(big)) == (big, "")
+    if np.finfo(np.longdouble).nmant > 52:  # (where a long double holds 2**53 + 1: x86)
+        assert whole_number(np.longdouble(2**53) + 1) == (big, "")
+    for refused in (b"12", bytearray(b"12"), np.True_, np.complex128(10), np.timedelta64(7, "s"),
+                    fractions.Fraction(3, 2), decimal.Decimal("NaN")):  # fmt: skip
+        assert whole_number(refused) == (None, ""), refused
+    assert whole_number("0e2000") == (0, "")  # (0 however large its exponent)
+    assert whole_number("1e999999999") == (None, TOO_LARGE)  # (refused at once)
+    assert whole_number("9" * 5000) == (None, TOO_LARGE)

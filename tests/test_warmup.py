@@ -185,8 +185,10 @@ def test_cli_warm_up_says_what_it_found_cached(warmed, capsys):
             "'map': choose one of batch, traced, landed, batch_general, traced_general",
         ),
         (["--kernel", "fast"], "argument --kernel: invalid choice: 'fast'"),
-        (["--processes", "two"], "argument --processes: invalid int value: 'two'"),
-        (["--processes", "0"], "--processes 0: give a whole number >= 1"),
+        (["--processes", "two"], "--processes 'two': allowed: a whole number from 1 to 2**63 - 1"),
+        (["--processes", "0"], "--processes '0': allowed: a whole number from 1 to 2**63 - 1"),
+        # (as every whole number: argparse's int() read "١٢" as 12 and refused "1e0")
+        (["--processes", "١٢"], "--processes '١٢': only ASCII digits (0-9) are accepted"),
     ],
 )
 def test_cli_warm_up_refuses_a_bad_option_in_one_line(argv, message, capsys):

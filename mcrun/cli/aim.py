@@ -74,7 +74,7 @@ def _cmd_aim(args):
         if given:
             raise InputError(f"{given[0]}: is for the search; --offsets gives the aims to fly "
                              "(give one or the other)")  # fmt: skip
-    scenario = aim.load_scenario(args.scenario, args.seed)
+    scenario = aim.load_scenario(args.scenario, args.seed, "--seed")
     say_skipped(scenario.hole)
     converted = []
     chosen = {  # (None: the default; beside --offsets, none is given)

@@ -121,12 +121,13 @@ def whole(text, option, least, most=None):
     """A whole number of at least ``least`` (and at most ``most``: ``2000``, ``1e4``);
     InputError naming the option."""
     value, why = units.whole_number(str(text).strip())  # (a text: read exactly)
+    said = units.shown(str(text))  # (quoted, cut: 5,000 digits were said whole)
     if why:
-        raise InputError(f"{option} {text!r}: {why}")
+        raise InputError(f"{option} {said}: {why}")
     top = 2**63 - 1 if most is None else most  # (an int64: what the kernels take)
     if value is None or not least <= value <= top:
         allowed = units.whole_numbers_allowed(least, most)
-        raise InputError(f"{option} {text!r}: allowed: {allowed}")
+        raise InputError(f"{option} {said}: allowed: {allowed}")
     return value
 
 
@@ -138,11 +139,11 @@ def local_workers(text, option="--workers"):
         return None
     from mcrun.run.distributed import check_local_workers
 
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    return check_local_workers(value, f"{option} {text!r}")
+    value, why = units.whole_number(str(text).strip())  # (read as every whole number is)
+    if why:
+        raise InputError(f"{option} {units.shown(str(text))}: {why}")
+    return check_local_workers(math.nan if value is None else value,
+                               f"{option} {units.shown(str(text))}")  # fmt: skip
 
 
 def given(**kwargs):
@@ -334,11 +335,13 @@ def add_conditions_options(p):
 def dpi_value(text):
     """argparse type of --dpi: a whole number within DPI_RANGE."""
     value, why = units.whole_number(text.strip())  # (int() read ٧٢ as 72)
+    said = units.shown(text)  # (quoted, cut)
     if why:
-        raise argparse.ArgumentTypeError(f"{text!r}: {why}")
+        raise argparse.ArgumentTypeError(f"{said}: {why}")
     if value is None:
-        raise argparse.ArgumentTypeError(f"cannot read {text!r} as a whole number")
+        raise argparse.ArgumentTypeError(f"cannot read {said} as a whole number")
     lo, hi = DPI_RANGE
     if not lo <= value <= hi:
-        raise argparse.ArgumentTypeError(f"{value} is outside [{lo}, {hi}]")
+        shown_value = value if abs(value) < 10**20 else said  # (1e400: its 401 digits)
+        raise argparse.ArgumentTypeError(f"{shown_value} is outside [{lo}, {hi}]")
     return value

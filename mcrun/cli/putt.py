@@ -111,13 +111,11 @@ def _cmd_putt(args):
         line = "at the hole"
     else:
         line = f"{abs(r.aim_deg):.2f} deg {'left' if r.aim_deg > 0 else 'right'} of the hole"
-    typed = {
-        k: units.control_free(getattr(args, k)) for k in ("distance", "stimp", "slope", "seed")
-    }
+    typed = {k: units.control_free(getattr(args, k)) for k in ("distance", "stimp", "slope")}
     print(
         f"putt: {typed['distance']} on a plane green, Stimp {typed['stimp']}, slope "
         f"{typed['slope']} falling at {given['direction_deg']:g} deg, drift {drift + 0.0:g} mm/m; "
-        f"putter {args.putter}; n {result.n}, seed {typed['seed']}"
+        f"putter {args.putter}; n {result.n}, seed {given['seed']}"  # (the integer: 1.5e3 is 1500)
     )
     print(f"read: start line {line}, pace {r.pace_m:.2f} m past")
     print(f"make rate:       {100 * result.make_rate:5.1f} % +- {100 * result.make_rate_se:.1f}")

@@ -17,7 +17,7 @@ from mcrun.cli.options import whole
 from mcrun.cli.play import OPTION_NAMES, checked_outputs, dask_client, solve_settings
 from mcrun.hole.hole import PUTTING_N_RANGE
 from mcrun.quantities import InputError
-from mcrun.units import parse_quantity
+from mcrun.units import parse_quantity, shown
 
 FULL_COURSE = 18  # holes: what a Slope Rating is of
 FAR_WALK_M = 300.0  # a green this far from the next hole's tee: the map's order is doubted
@@ -36,14 +36,16 @@ def holes_wanted(spec, count, where="--holes"):
     numbers = []
     for part in str(spec).split(","):
         lo, dash, hi = part.strip().partition("-")
-        try:
-            first, last = int(lo), int(hi if dash else lo)  # ("1-" is no range: refused)
-        except ValueError:
-            raise InputError(f"{where} {spec!r}: allowed: hole numbers 1-{count} as 1-9 or "
-                             "1,3,10-12") from None  # fmt: skip
+        # (in ASCII digits, as every whole number: int() read "١٢" as 12 and "1_2" as 12)
+        first, last = (lo, hi if dash else lo)  # ("1-" is no range: refused)
+        if not (first.strip().isascii() and first.strip().isdigit() and last.strip().isascii()
+                and last.strip().isdigit()):  # fmt: skip
+            raise InputError(f"{where} {shown(str(spec))}: allowed: hole numbers 1-{count} as "
+                             "1-9 or 1,3,10-12")  # fmt: skip
+        first, last = int(first), int(last)
         if not 1 <= first <= last <= count:
-            raise InputError(f"{where} {spec!r}: allowed: hole numbers 1-{count} as 1-9 or "
-                             f"1,3,10-12 (the map has {count} holes)")  # fmt: skip
+            raise InputError(f"{where} {shown(str(spec))}: allowed: hole numbers 1-{count} as "
+                             f"1-9 or 1,3,10-12 (the map has {count} holes)")  # fmt: skip
         numbers.extend(range(first, last + 1))
     return sorted(set(numbers))
 

@@ -3,6 +3,7 @@ an install, an upgrade, or on a new machine), in parallel processes where there 
 say what was compiled or found cached and how long each took."""
 
 from mcrun.cli import CommandError
+from mcrun.cli.options import whole
 from mcrun.engine import warmup
 from mcrun.putting import warmup as green
 
@@ -14,8 +15,8 @@ def _which(value, allowed):
 
 
 def _cmd_warm_up(args):
-    if args.processes is not None and args.processes < 1:
-        raise CommandError(f"--processes {args.processes}: give a whole number >= 1")
+    if args.processes is not None:
+        args.processes = whole(args.processes, "--processes", 1)
     grounds = _which(args.ground, green.GROUNDS)
     kernels = None if args.kernel == ALL else (args.kernel,)
     try:
@@ -73,7 +74,6 @@ def register(subparsers):
     p.add_argument(
         "--processes",
         metavar="N",
-        type=int,
         help="processes at once (default: one per kind of ground, at most the cores; 1: one "
         "after the other in this process)",
     )

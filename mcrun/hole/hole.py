@@ -305,7 +305,7 @@ def read_hole_file(path):
             data = tomllib.load(f)
     except OSError as err:
         raise HoleError(f"{path}: cannot read the hole file: {err.strerror or err}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
+    except ValueError as err:  # (TOMLDecodeError, UnicodeDecodeError, 4,301 digits)
         with path.open("rb") as f:
             json_like = f.read(64).lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"{")
         if json_like:

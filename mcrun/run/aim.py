@@ -159,12 +159,14 @@ class AimSearch:
         return self.clubs[k], self.clubs[k].best
 
 
-def load_scenario(scenario, seed=None):
+def load_scenario(scenario, seed=None, seed_name="seed"):
     """The scenario of an aim search: a file or a library name (``scenario.find``), with
-    ``seed`` (default its own); AimError when it has no hole."""
+    ``seed`` (default its own; checked first, named ``seed_name``); AimError when it has no
+    hole."""
+    seed = None if seed is None else plan.positive_int(seed, seed_name, minimum=0)
     loaded = scenario_module.load(scenario_module.find(scenario))
     if seed is not None:
-        loaded = plan.with_seed(loaded, plan.positive_int(seed, "seed", minimum=0))
+        loaded = plan.with_seed(loaded, seed)
     if loaded.hole is None:
         raise AimError(f"{loaded.path}: an aim search needs a hole ([hole] in the scenario)")
     return loaded

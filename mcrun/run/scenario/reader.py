@@ -217,7 +217,8 @@ def _integer(ctx, where, value, low, high=None):
         or value < low
         or (high is not None and value > high)
     ):
-        bound = f">= {low}" if high is None else f"within [{low}, {high}]"
+        top = "2**63 - 1" if high == 2**63 - 1 else high
+        bound = f">= {low}" if high is None else f"within [{low}, {top}]"
         raise ctx.error(where, f"must be an integer {bound}, got {short(value)}")
     return value
 
@@ -246,7 +247,7 @@ def loads(text, path):
     ctx = Context(str(path))
     try:
         data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
+    except ValueError as err:  # (TOMLDecodeError, or an integer of over 4,300 digits)
         raise ScenarioError(f"{path}: not valid TOML: {err}") from None
     for key in data:
         if key not in _TOP_KEYS:
@@ -276,8 +277,9 @@ def loads(text, path):
             f"not blank, no / or \\, not starting with '.', at most {MAX_NAME_BYTES} bytes",
         )
     question = question_of(text)
-    shots = _integer(ctx, "scenario.shots", head.get("shots", 100_000), 1)
-    seed = _integer(ctx, "scenario.seed", head.get("seed", 0), 0)
+    # (an int64, as the options: beyond it a run said "--seed (seed) must be...", untyped)
+    shots = _integer(ctx, "scenario.shots", head.get("shots", 100_000), 1, 2**63 - 1)
+    seed = _integer(ctx, "scenario.seed", head.get("seed", 0), 0, 2**63 - 1)
     block_size = _integer(
         ctx, "scenario.block_size", head.get("block_size", DEFAULT_BLOCK_SIZE), 1, MAX_BLOCK_SIZE
     )
