@@ -1096,3 +1096,11 @@ def test_a_bare_zero_beside_a_unit_is_zero_in_any(tmp_path):
     text = BALL + '[weather]\ntemperature = { dist = "uniform", low = 0, high = "50 F" }\n'
     with pytest.raises(sc.ScenarioError, match=r"low without a unit beside high with one"):
         sc.load(write(tmp_path, text))
+
+
+def test_a_sweep_value_s_line_break_is_no_line_break_of_its_label(tmp_path):
+    """``"2686\\rrpm"`` is read as "2686 rpm"; its label carried the carriage return into the
+    output (validate's lines, the summary's label)."""
+    text = BALL + '[sweep]\n"launch.spin" = ["2686\\rrpm", "3000\\n\\trpm"]\n'
+    points = sc.load(write(tmp_path, text)).points
+    assert [p.label for p in points] == ["launch.spin=2686 rpm", "launch.spin=3000 rpm"]

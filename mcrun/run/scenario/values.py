@@ -479,9 +479,10 @@ def sweep_leaves(ctx, table):
 
 
 def as_written(value):
-    """A sweep value as written, for labels."""
+    """A sweep value as written, for labels (its spaces one each: a line break or a tab in
+    "2686\rrpm", read as a space, was carried into the point's label and its output)."""
     if isinstance(value, str):
-        return value
+        return " ".join(value.split())
     if isinstance(value, dict):
         inner = ", ".join(f"{k}={as_written(v)}" for k, v in value.items() if k != "dist")
         return f"{value.get('dist', '')}({inner})"
