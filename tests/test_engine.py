@@ -591,6 +591,8 @@ def bad_cases(tmp_path):
         (["run", str(good), "--seed", "-1"], "seed"),
         (["run", str(good), "--threads", "0"], "threads"),
         (["run", str(good), "--threads", "100000"], "threads"),
+        # (said "up to 2**63 - 1", where this machine has a few)
+        (["run", str(good), "--threads", "1e400"], "--threads (threads) must be within [1, "),
         (["run", str(good), "--chunk-size", "0"], "--chunk-size (chunk_size) must be"),
         (["run", str(good), "--trajectories", "0"], "--trajectories (trajectories_every) must"),
         (["run", str(good), "-o", str(existing)], "--force"),

@@ -34,7 +34,7 @@ from mcrun.quantities import InputError
 from mcrun.results import location, output, stats
 from mcrun.results.output import OutputError
 from mcrun.run import plan
-from mcrun.units import path_of
+from mcrun.units import path_of, shown, whole_number
 
 # The chunks a thread's tasks may run ahead of the writer (each holds its table until written).
 AHEAD_PER_THREAD = 2
@@ -44,10 +44,12 @@ def _check_threads(threads):
     if threads is None:
         return None
     most = numba.config.NUMBA_NUM_THREADS
-    threads = plan.positive_int(threads, "threads")
-    if threads > most:
-        raise InputError(f"threads must be within [1, {most}] on this machine, got {threads}")
-    return threads
+    number, why = whole_number(threads.strip() if isinstance(threads, str) else threads)
+    if not why and number is not None and number > most:  # (1e400 was "up to 2**63 - 1")
+        raise InputError(
+            f"threads must be within [1, {most}] on this machine, got {shown(threads)}"
+        )
+    return plan.positive_int(threads, "threads")
 
 
 def run_scenario(
