@@ -239,11 +239,12 @@ def test_a_player_s_club_names_print_as_themselves(tmp_path, names, says):
 
 
 def test_a_player_whose_club_cannot_fly_its_shots_is_refused(tmp_path):
-    """A club whose spread is far too wide for its mean (spin sd 100,000 rpm: half its backspins
-    below 0) left most shots unflown, and ``mcrun play`` printed its value as inf, exit 0: the
-    player is refused, naming the club and how many of its first shots cannot be flown."""
+    """A club whose spread is far too wide for its mean (spin sd 19,000 rpm: nearly half its
+    backspins below 0) left most shots unflown, and ``mcrun play`` printed its value as inf,
+    exit 0: the player is refused, naming the club and how many of its first shots cannot be
+    flown."""
     bag = (Path(__file__).parents[1] / "scenarios" / "pga-tour-bag.toml").read_text()
-    wide = bag.replace('mean = "2686 rpm", sd = "270 rpm"', 'mean = "2686 rpm", sd = "100000 rpm"')
+    wide = bag.replace('mean = "2686 rpm", sd = "270 rpm"', 'mean = "2686 rpm", sd = "19000 rpm"')
     assert wide != bag
     path = write(tmp_path / "wide.toml", wide)
     says = (

@@ -484,7 +484,7 @@ def test_out_of_range_draws_become_invalid_kernel_inputs(tmp_path, turf):
 
 
 def test_draws_out_of_range_convert_without_a_warning(tmp_path):
-    """A temperature of 20 +- 100 C draws values whose air overflows (exp of a huge number):
+    """A temperature of 20 +- 94 C draws values whose air overflows (exp of a huge number):
     their shots are refused as invalid_input, silently, not with NumPy's warnings on stderr."""
     text = """
     [launch]
@@ -492,7 +492,7 @@ def test_draws_out_of_range_convert_without_a_warning(tmp_path):
     launch_angle = 11
     spin = 280
     [weather]
-    temperature = { dist = "normal", mean = "20 C", sd = "100 C" }
+    temperature = { dist = "normal", mean = "20 C", sd = "94 C" }
     """
     s = load(tmp_path, text)
     with warnings.catch_warnings():

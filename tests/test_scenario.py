@@ -497,6 +497,12 @@ ERRORS = [
         "10 without a unit beside '250 yd': give both their unit, or neither (m)",
     ),
     (
+        "a normal's sd wider than the whole range (a humidity's 5, meant as 5 %)",
+        BALL + '[weather]\nhumidity = { dist = "normal", mean = 0.5, sd = 5 }\n',
+        "weather.humidity.sd",
+        "5 is wider than the whole allowed range [0, 1]: most draws would fall outside it",
+    ),
+    (
         "a distribution's name that is a list (a TypeError)",
         BALL.replace('"2686 rpm"', '{ dist = ["normal"], mean = "1 rpm", sd = "1 rpm" }'),
         "launch.spin.dist",

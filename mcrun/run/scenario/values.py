@@ -293,6 +293,13 @@ def read_dist(ctx, leaf, param, path=None):
             raise ctx.error(f"{where}.sd", f"must be >= 0, got {given('sd', spread=True)}")
         if name == "normal":
             check_in("mean")
+            lo, hi = param.limits
+            if sd > hi - lo:  # (a humidity's sd of 5, meant as 5 %: most draws invalid_input)
+                raise ctx.error(
+                    f"{where}.sd",
+                    f"{given('sd', spread=True)} is wider than the whole allowed range "
+                    f"[{fmt(lo, kind)}, {fmt(hi, kind)}]: most draws would fall outside it",
+                )
         else:
             low, high = args[2:]
             if sd == 0.0:
