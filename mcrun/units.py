@@ -300,15 +300,14 @@ def whole_number(value: object) -> tuple[int | None, str]:
             value = decimal.Decimal(value)  # (not a float: read exactly; "1e999999" is cheap)
         except decimal.InvalidOperation:
             return None, ""
-    if isinstance(value, decimal.Decimal | numbers.Rational):  # (a Fraction, read exactly)
-        exact = value if isinstance(value, decimal.Decimal) else None
-        if exact is None:
-            return (int(value), "") if value.denominator == 1 else (None, "")
-        if not exact.is_finite() or exact != exact.to_integral_value():
+    if isinstance(value, numbers.Rational):  # (a Fraction, read exactly)
+        return (int(value), "") if value.denominator == 1 else (None, "")
+    if isinstance(value, decimal.Decimal):
+        if not value.is_finite() or value != value.to_integral_value():
             return None, ""
-        if not exact.is_zero() and exact.adjusted() > 1000:
+        if not value.is_zero() and value.adjusted() > 1000:
             return None, TOO_LARGE
-        return int(exact), ""
+        return int(value), ""
     if isinstance(value, np.floating) and np.finfo(value.dtype).nmant > 52:  # (a long double)
         exact_enough = bool(np.isfinite(value)) and value == np.floor(value)
         return (int(value), "") if exact_enough else (None, "")

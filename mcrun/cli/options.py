@@ -140,10 +140,10 @@ def local_workers(text, option="--workers"):
     from mcrun.run.distributed import check_local_workers
 
     value, why = units.whole_number(str(text).strip())  # (read as every whole number is)
+    said = f"{option} {units.shown(str(text))}"
     if why:
-        raise InputError(f"{option} {units.shown(str(text))}: {why}")
-    return check_local_workers(math.nan if value is None else value,
-                               f"{option} {units.shown(str(text))}")  # fmt: skip
+        raise InputError(f"{said}: {why}")
+    return check_local_workers(math.nan if value is None else value, said)
 
 
 def given(**kwargs):

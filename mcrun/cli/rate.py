@@ -37,12 +37,11 @@ def holes_wanted(spec, count, where="--holes"):
     for part in str(spec).split(","):
         lo, dash, hi = part.strip().partition("-")
         # (in ASCII digits, as every whole number: int() read "١٢" as 12 and "1_2" as 12)
-        first, last = (lo, hi if dash else lo)  # ("1-" is no range: refused)
-        if not (first.strip().isascii() and first.strip().isdigit() and last.strip().isascii()
-                and last.strip().isdigit()):  # fmt: skip
+        ends = (lo.strip(), (hi if dash else lo).strip())  # ("1-" is no range: refused)
+        if not all(end.isascii() and end.isdigit() for end in ends):
             raise InputError(f"{where} {shown(str(spec))}: allowed: hole numbers 1-{count} as "
                              "1-9 or 1,3,10-12")  # fmt: skip
-        first, last = int(first), int(last)
+        first, last = int(ends[0]), int(ends[1])
         if not 1 <= first <= last <= count:
             raise InputError(f"{where} {shown(str(spec))}: allowed: hole numbers 1-{count} as "
                              f"1-9 or 1,3,10-12 (the map has {count} holes)")  # fmt: skip

@@ -92,11 +92,8 @@ def _air_note(session, air, conditions):
         "pressure_pa": f"{DEFAULTS['pressure_pa']:g} Pa",
         "relative_humidity": f"{100 * DEFAULTS['relative_humidity']:g} %",
     }
-    if "altitude_m" in given:
-        given_or_set = {*given, "pressure_pa"}
-    else:
-        given_or_set = set(given)
-    left = [v for k, v in defaults.items() if k not in given_or_set]
+    set_by = {*given, *(["pressure_pa"] if "altitude_m" in given else [])}  # (the altitude's)
+    left = [v for k, v in defaults.items() if k not in set_by]
     if "air_density_kgpm3" in given or not left:
         how = "as given"
     else:

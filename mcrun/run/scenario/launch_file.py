@@ -286,38 +286,44 @@ def read_launch_file(
     return Resample(path, dict(columns), n_rows, jitter, rows, fit, choices.get("club"), digest)
 
 
+def _per_entry(points, entry_of):
+    """[(entry, [indices of the points that give it])] of ``entry_of(spec)`` for each point's
+    launch file, each distinct entry once, in the order first given (None: left out)."""
+    entries = []
+    for point in points:
+        spec = point.params.get("launch.file")
+        entry = None if spec is None else entry_of(spec)
+        if entry is None:
+            continue
+        same = next((indices for known, indices in entries if known == entry), None)
+        if same is None:
+            entries.append((entry, [point.index]))
+        else:
+            same.append(point.index)
+    return entries
+
+
 def launch_files(points):
     """The launch files the points draw from, each once, JSON-able: the ``file``, its
     ``sha256`` (as read), its ``club`` (or None) and the ``points`` (their indices) that draw
     from it; what a run records beside its scenario, which names the file alone (another file
     under its name would draw other shots)."""
-    files = []
-    for point in points:
-        spec = point.params.get("launch.file")
-        if spec is None:
-            continue
-        entry = {"file": str(spec.path), "sha256": spec.sha256, "club": spec.club}
-        same = next((f for f in files if {**f, "points": None} == {**entry, "points": None}), None)
-        if same is None:
-            files.append({**entry, "points": [point.index]})
-        else:
-            same["points"].append(point.index)
-    return files
+    return [
+        {**entry, "points": indices}
+        for entry, indices in _per_entry(
+            points, lambda spec: {"file": str(spec.path), "sha256": spec.sha256, "club": spec.club}
+        )
+    ]
 
 
 def launch_fits(points):
     """The normal fits of the points' launch files, each once, JSON-able: the ``points`` (their
     indices) that draw from it, the ``file``, the ``club`` (or None) and ``NormalFit.as_dict``.
     What a run prints when it starts and records beside its scenario."""
-    fits = []
-    for point in points:
-        spec = point.params.get("launch.file")
-        if spec is None or spec.fit is None:
-            continue
-        entry = {"file": str(spec.path), "club": spec.club, **spec.fit.as_dict()}
-        same = next((f for f in fits if {**f, "points": None} == {**entry, "points": None}), None)
-        if same is None:
-            fits.append({"points": [point.index], **entry})
-        else:
-            same["points"].append(point.index)
-    return fits
+
+    def fit_of(spec):
+        if spec.fit is None:
+            return None
+        return {"file": str(spec.path), "club": spec.club, **spec.fit.as_dict()}
+
+    return [{"points": indices, **entry} for entry, indices in _per_entry(points, fit_of)]

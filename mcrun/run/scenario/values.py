@@ -127,7 +127,7 @@ def as_given(raw, key_unit, value_si, kind, spread=False):
     bare = fmt(value_si, kind, spread)
     if key_unit is not None:  # a bare number, in the key's unit (``spin_rpm = 2686``)
         written = f"{float(raw):g} {key_unit}"
-    elif isinstance(raw, str) and _LEADING_NUMBER.sub("", raw, count=1).strip():
+    elif isinstance(raw, str) and _unit_written(raw):
         written = " ".join(raw.split())  # a number and its unit
     else:  # a number in the bare unit
         return bare
@@ -164,6 +164,11 @@ def _check_in(ctx, where, value_si, param, what="must be", shown=None, bare=Fals
         )
 
 
+def _unit_written(value):
+    """The text after a value's leading number ("mph" of "167 mph"; "" of a bare number)."""
+    return _LEADING_NUMBER.sub("", str(value), count=1).strip()
+
+
 def _bare_word(kind):
     """What a bare number of ``kind`` is read as, for advice: "rad/s", "a share"."""
     return "a share" if kind == "fraction" else KINDS[kind][0]
@@ -177,18 +182,15 @@ def _mixed_units(ctx, where, values, kind, keys=None):
     keys = list(range(len(values))) if keys is None else keys
     offset = any(o for _, o in KINDS[kind][1].values())  # (0 C is no 0 F)
 
-    def unit_of(value):
-        return _LEADING_NUMBER.sub("", str(value), count=1).strip()
-
     bare, given = [], []
     for k, value in zip(keys, values, strict=True):
         if k in DIMENSIONLESS or isinstance(value, dict | list):
             continue
         if _is_bare(value, None):
-            zero = read_value(ctx, f"{where}", value, "number", None) == 0.0
+            zero = read_value(ctx, where, value, "number", None) == 0.0
             if not zero or (offset and k not in SPREADS):
                 bare.append(k)
-        elif canonical_unit(kind, unit_of(value)) != KINDS[kind][0]:
+        elif canonical_unit(kind, _unit_written(value)) != KINDS[kind][0]:
             given.append(k)
     return (bare[0], given[0]) if bare and given else None
 
@@ -197,9 +199,7 @@ def _is_bare(value, key_unit):
     """Whether a value was written as a bare number, in no unit (none in its key either)."""
     if key_unit is not None:
         return False
-    return is_number(value) or (
-        isinstance(value, str) and not _LEADING_NUMBER.sub("", value, count=1).strip()
-    )
+    return is_number(value) or (isinstance(value, str) and not _unit_written(value))
 
 
 def _refuse_bare(ctx, where, value, leaf, param):
@@ -219,7 +219,7 @@ def _refuse_mixed_units(ctx, where, table, keys, leaf, param, path=None):
     mixed = _mixed_units(ctx, where, [table[k] for k in keys], param.kind, keys)
     if mixed is not None:
         bare, given = mixed
-        unit = _LEADING_NUMBER.sub("", str(table[given]), count=1).strip()
+        unit = _unit_written(table[given])
         suffix = column_suffix(param.kind, unit)
         key = f", or the key one: {path}_{suffix} = {{...}}" * bool(suffix and path)
         raise ctx.error(
